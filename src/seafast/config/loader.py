@@ -1,0 +1,143 @@
+"""Reading case files: YAML -> validated :class:`~seafast.config.schema.Case`, with overrides.
+
+All input problems surface as :class:`CaseError` with one message per problem naming the
+dotted key, the value given and what is allowed.
+"""
+
+from __future__ import annotations
+
+import copy
+from importlib import resources
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+import yaml
+from pydantic import ValidationError
+
+from seafast.config.schema import Case
+
+__all__ = ["CaseError", "load_case", "case_from_mapping", "parse_overrides", "apply_overrides", "base_case_text", "case_json_schema"]
+
+
+class CaseError(ValueError):
+    """Invalid case input; the message names the field, the value and what is allowed."""
+
+
+def base_case_text() -> str:
+    """The built-in base case as commented YAML text."""
+    return resources.files("seafast.config").joinpath("base_case.yaml").read_text(encoding="utf-8")
+
+
+def _format_validation_error(err: ValidationError, source: str) -> str:
+    lines = []
+    for e in err.errors():
+        loc = ".".join(str(p) if not isinstance(p, int) else f"[{p}]" for p in e["loc"]).replace(".[", "[")
+        msg = e["msg"].removeprefix("Value error, ")
+        value = e.get("input")
+        where = loc or "(case)"
+        if e["type"] == "extra_forbidden":
+            lines.append(f"{where}: unknown key (value {value!r}); check the spelling against `seafast schema`")
+        elif e["type"] in ("missing",):
+            lines.append(f"{where}: required key is missing")
+        elif isinstance(value, (dict, list)) and loc:
+            lines.append(f"{where}: {msg}")
+        else:
+            lines.append(f"{where} = {value!r}: {msg}" if loc else f"{msg}")
+    return f"invalid case {source}:\n  " + "\n  ".join(lines)
+
+
+def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
+    parts = key.split(".")
+    if not key or any(p == "" for p in parts):
+        raise CaseError(f"--set {key}=...: empty key part; use dotted keys such as cargo.length_m")
+    node = data
+    for p in parts[:-1]:
+        nxt = node.get(p)
+        if nxt is None:
+            nxt = {}
+            node[p] = nxt
+        if not isinstance(nxt, dict):
+            raise CaseError(f"--set {key}: '{p}' is a value, not a group of keys")
+        node = nxt
+    node[parts[-1]] = value
+
+
+def parse_overrides(items: Iterable[str]) -> dict[str, Any]:
+    """Parse ``KEY=VALUE`` strings; VALUE is read as YAML (numbers, lists, null, strings)."""
+    out: dict[str, Any] = {}
+    for item in items:
+        if "=" not in item:
+            raise CaseError(f"--set {item!r}: expected KEY=VALUE, e.g. --set cargo.length_m=90")
+        key, _, raw = item.partition("=")
+        try:
+            out[key.strip()] = yaml.safe_load(raw) if raw.strip() else None
+        except yaml.YAMLError as exc:
+            raise CaseError(f"--set {key}: value {raw!r} is not valid YAML ({exc.__class__.__name__})") from None
+    return out
+
+
+def apply_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """A copy of the raw case mapping with dotted-key overrides applied."""
+    result = copy.deepcopy(dict(data))
+    for key, value in overrides.items():
+        _set_dotted(result, key, value)
+    return result
+
+
+def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:
+    vessel = data.get("vessel")
+    if not isinstance(vessel, dict):
+        return
+    for key in ("deck_deflection_table", "still_water_bending_moment_table", "hull_form_table"):
+        v = vessel.get(key)
+        if isinstance(v, str) and v and not Path(v).is_absolute():
+            vessel[key] = str((base_dir / v).resolve())
+    m = vessel.get("motions")
+    if isinstance(m, str) and m not in ("bem", "none") and not Path(m).is_absolute():
+        vessel["motions"] = str((base_dir / m).resolve())
+
+
+def case_from_mapping(data: Any, source: str = "(mapping)", overrides: Mapping[str, Any] | None = None, base_dir: Path | None = None) -> Case:
+    """Validate a raw mapping (parsed YAML) into a :class:`Case`."""
+    if data is None:
+        data = {}
+    if not isinstance(data, Mapping):
+        raise CaseError(f"invalid case {source}: the top level must be a mapping of keys (got {type(data).__name__})")
+    raw = apply_overrides(data, overrides or {})
+    if base_dir is not None:
+        _resolve_paths(raw, base_dir)
+    try:
+        return Case.model_validate(raw)
+    except ValidationError as err:
+        raise CaseError(_format_validation_error(err, source)) from None
+
+
+def load_case(path: str | Path | None = None, overrides: Mapping[str, Any] | None = None) -> Case:
+    """Load a case file (``None``: the built-in base case) and apply dotted-key overrides.
+
+    Raises
+    ------
+    CaseError
+        If the file cannot be read or parsed, or any value is invalid.
+    """
+    if path is None:
+        text, source, base_dir = base_case_text(), "(built-in base case)", Path.cwd()
+    else:
+        p = Path(path)
+        try:
+            text = p.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise CaseError(f"cannot read case file '{p}': {exc.strerror if isinstance(exc, OSError) else exc}") from None
+        source, base_dir = f"'{p}'", p.resolve().parent
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
+        raise CaseError(f"invalid case {source}: not valid YAML{where}: {getattr(exc, 'problem', exc)}") from None
+    return case_from_mapping(data, source, overrides, base_dir)
+
+
+def case_json_schema() -> dict[str, Any]:
+    """JSON Schema of the case format."""
+    return Case.model_json_schema()

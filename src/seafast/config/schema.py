@@ -1,0 +1,293 @@
+"""The case-file schema: typed, validated configuration of one seafast case.
+
+Every key carries its SI unit in its name. Objects are immutable (frozen) and reject unknown
+keys, so a misspelt key is an error rather than silently ignored. The dotted keys of
+INTERFACE.md (``cargo.length_m``, ``solver.harmonics``, ...) are the attribute paths of
+:class:`Case`.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+__all__ = [
+    "Case",
+    "CargoConfig",
+    "CargoSectionConfig",
+    "SeaFasteningConfig",
+    "LashingConfig",
+    "VesselConfig",
+    "WaveConfig",
+    "SolverConfig",
+    "ModelConfig",
+    "OutputConfig",
+    "BASE_SADDLE_STIFFNESS_N_PER_M",
+]
+
+BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
+
+Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
+NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False)]
+Finite = Annotated[float, Field(allow_inf_nan=False)]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True)
+
+
+class CargoSectionConfig(_Strict):
+    """One segment of a piecewise (tapered) tube, positions along the cargo from its aft end."""
+
+    x_start_m: NonNegative
+    x_end_m: Positive
+    diameter_start_m: Positive
+    diameter_end_m: Positive
+    wall_thickness_m: Positive
+
+    @model_validator(mode="after")
+    def _check(self) -> "CargoSectionConfig":
+        if self.x_end_m <= self.x_start_m:
+            raise ValueError(f"x_end_m = {self.x_end_m} must be greater than x_start_m = {self.x_start_m}")
+        d_min = min(self.diameter_start_m, self.diameter_end_m)
+        if self.wall_thickness_m >= d_min / 2:
+            raise ValueError(
+                f"wall_thickness_m = {self.wall_thickness_m} must be less than half the smallest diameter ({d_min / 2})"
+            )
+        return self
+
+
+class CargoConfig(_Strict):
+    """The cargo: a steel tube (monopile), uniform or piecewise."""
+
+    length_m: Positive = Field(74.0, description="Cargo length L_m [m]")
+    diameter_m: Positive = Field(8.0, description="Outer diameter D of the uniform tube [m]")
+    wall_thickness_m: Positive = Field(0.080, description="Wall thickness t of the uniform tube [m]")
+    sections: tuple[CargoSectionConfig, ...] | None = Field(
+        None, description="Piecewise tube segments covering [0, length_m]; replaces diameter_m/wall_thickness_m"
+    )
+    position_m: Finite | None = Field(
+        None, description="x of the cargo midpoint on the ship from the aft perpendicular [m]; default midship"
+    )
+    youngs_modulus_Pa: Positive = 210e9
+    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)] = 0.3
+    density_kg_per_m3: Positive = 7850.0
+    units_abreast: Annotated[int, Field(ge=1, le=20)] = Field(
+        4, description="Identical cargo items side by side (their weights add on the hull; one is modelled)"
+    )
+
+    @model_validator(mode="after")
+    def _check(self) -> "CargoConfig":
+        if self.sections is None:
+            if self.wall_thickness_m >= self.diameter_m / 2:
+                raise ValueError(
+                    f"wall_thickness_m = {self.wall_thickness_m} must be less than diameter_m / 2 = {self.diameter_m / 2}"
+                )
+        else:
+            if len(self.sections) == 0:
+                raise ValueError("sections must list at least one segment (or be null for the uniform tube)")
+            x = 0.0
+            for i, s in enumerate(self.sections):
+                if not math.isclose(s.x_start_m, x, abs_tol=1e-6):
+                    raise ValueError(
+                        f"sections[{i}].x_start_m = {s.x_start_m} must equal the previous segment's end ({x}); "
+                        "segments must be contiguous from 0"
+                    )
+                x = s.x_end_m
+            if not math.isclose(x, self.length_m, abs_tol=1e-6):
+                raise ValueError(f"the last section ends at {x} m but length_m = {self.length_m}; they must match")
+        return self
+
+
+class LashingConfig(_Strict):
+    """Pretensioned lashing wires at the lashed saddles."""
+
+    stiffness_N_per_m: NonNegative = Field(
+        37.5e3, description="Wire axial stiffness k_l [N/m]; k_z and k_theta scale with it from 6.5 kN/m and 1.46 MN m/rad"
+    )
+    pretension_N: NonNegative = Field(210e3, description="Total pretension T_l [N], shared by the lashed saddles, acting downward")
+
+
+class SeaFasteningConfig(_Strict):
+    """Saddles and lashings."""
+
+    saddle_count: Annotated[int, Field(ge=1, le=50)] = Field(
+        3, description="n saddles evenly from 0.2 L to 0.8 L, lashings at the two outermost"
+    )
+    saddle_positions_m: tuple[Annotated[float, Field(allow_inf_nan=False)], ...] | None = Field(
+        None, description="Explicit saddle positions along the cargo from its aft end [m]; overrides saddle_count"
+    )
+    saddle_stiffness_N_per_m: Positive | tuple[Positive, ...] = Field(
+        BASE_SADDLE_STIFFNESS_N_PER_M, description="Compression stiffness per saddle [N/m]: one value for all, or one per saddle"
+    )
+    lashed_saddles: tuple[Annotated[int, Field(ge=0)], ...] | None = Field(
+        None, description="Indices (0-based, aft to fore) of lashed saddles; default the two outermost"
+    )
+    lashing: LashingConfig = LashingConfig()
+
+    @field_validator("saddle_positions_m")
+    @classmethod
+    def _positions(cls, v: tuple[float, ...] | None) -> tuple[float, ...] | None:
+        if v is None:
+            return v
+        if len(v) == 0:
+            raise ValueError("must list at least one position, or be null to use saddle_count")
+        if any(b <= a for a, b in zip(v, v[1:])):
+            raise ValueError(f"{list(v)}: positions must be strictly increasing (no coincident saddles)")
+        return v
+
+
+class VesselConfig(_Strict):
+    """Vessel particulars and the sources of the deck excitation."""
+
+    length_m: Positive = Field(171.0, description="Length between perpendiculars L_s [m]")
+    breadth_m: Positive = Field(42.0, description="Moulded breadth B [m]")
+    draft_m: Positive = Field(6.5, description="Design draught T [m]")
+    displacement_m3: Positive = Field(32000.0, description="Displaced volume [m^3]")
+    hull_second_moment_m4: Positive = Field(103.8, description="Hull-girder second moment of area I_s [m^4]")
+    hull_shear_area_m2: Positive | None = Field(None, description="Hull-girder effective shear area [m^2]; default documented")
+    youngs_modulus_Pa: Positive = 210e9
+    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)] = 0.3
+    water_density_kg_per_m3: Positive = 1025.0
+    lightship_mass_kg: Positive | None = Field(None, description="Lightship mass [kg]; default documented")
+    hull_form_table: Path | None = Field(
+        None, description="CSV with columns x_m, breadth_m (waterline breadth); default: tapered box from L, B, T, displacement"
+    )
+    still_water_bending_moment_table: Path | None = Field(
+        None, description="CSV with columns x_m, bending_moment_Nm (sagging positive), e.g. from the loading computer"
+    )
+    deck_deflection_table: Path | None = Field(
+        None, description="CSV x_m, still_water_m, wave_amplitude_m, wave_phase_rad; replaces the computed hull deflection"
+    )
+    motions: str = Field(
+        "bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output"
+    )
+    bem_panel_size_m: Positive = Field(3.0, description="Target panel size of the BEM mesh [m]")
+
+
+class WaveConfig(_Strict):
+    """Regular head-sea wave."""
+
+    length_m: Positive = Field(171.0, description="Wave length lambda [m]")
+    amplitude_m: NonNegative = Field(3.0, description="Wave amplitude zeta_a [m]")
+    frequency_rad_s: Positive | None = Field(None, description="Wave frequency [rad/s]; default from deep-water dispersion")
+
+
+class SolverConfig(_Strict):
+    """Nonlinear (contact) solver settings."""
+
+    method: Literal["hbm", "quasi_static", "time_domain"] = "hbm"
+    formulation: Literal["condensed", "full"] = "condensed"
+    contact_law: Literal["tanh", "softplus", "exact"] = "tanh"
+    regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
+    harmonics: Annotated[int, Field(ge=1, le=100)] = Field(5, description="Number of harmonics H")
+    time_samples: Annotated[int, Field(ge=4, le=8192)] = Field(128, description="AFT time samples per period N")
+    nonlinear_solver: Literal["hybr", "newton"] = "hybr"
+    tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
+
+    @model_validator(mode="after")
+    def _check(self) -> "SolverConfig":
+        if self.time_samples < 2 * self.harmonics + 2:
+            raise ValueError(
+                f"time_samples = {self.time_samples} must be at least 2 * harmonics + 2 = {2 * self.harmonics + 2} (aliasing)"
+            )
+        return self
+
+
+class ModelConfig(_Strict):
+    """Discretisation, damping and environment."""
+
+    element_length_m: Positive = Field(1.0, description="Target cargo finite-element length [m]")
+    damping_ratio: Annotated[float, Field(ge=0, lt=1)] = Field(
+        0.02, description="Rayleigh damping ratio at the first two cargo natural frequencies [-]"
+    )
+    gravity_m_per_s2: Positive = 9.81
+
+
+class OutputConfig(_Strict):
+    """What `seafast run` writes besides summary.csv."""
+
+    netcdf: bool = True
+    plots: bool = True
+
+
+class Case(_Strict):
+    """One seafast case: cargo, sea-fastening, vessel, wave, solver."""
+
+    name: str = "case"
+    cargo: CargoConfig = CargoConfig()
+    seafastening: SeaFasteningConfig = SeaFasteningConfig()
+    vessel: VesselConfig = VesselConfig()
+    wave: WaveConfig = WaveConfig()
+    solver: SolverConfig = SolverConfig()
+    model: ModelConfig = ModelConfig()
+    outputs: OutputConfig = OutputConfig()
+
+    @model_validator(mode="after")
+    def _check(self) -> "Case":
+        L = self.cargo.length_m
+        sf = self.seafastening
+        positions = self.saddle_positions_m()
+        for i, x in enumerate(positions):
+            if not (0.0 < x < L):
+                raise ValueError(
+                    f"seafastening.saddle_positions_m[{i}] = {x} lies outside the cargo; allowed: 0 < x < cargo.length_m = {L}"
+                )
+        if isinstance(sf.saddle_stiffness_N_per_m, tuple) and len(sf.saddle_stiffness_N_per_m) not in (1, len(positions)):
+            raise ValueError(
+                f"seafastening.saddle_stiffness_N_per_m has {len(sf.saddle_stiffness_N_per_m)} values for "
+                f"{len(positions)} saddles; give one value, or one per saddle"
+            )
+        if sf.lashed_saddles is not None:
+            bad = [i for i in sf.lashed_saddles if i >= len(positions)]
+            if bad:
+                raise ValueError(
+                    f"seafastening.lashed_saddles = {list(sf.lashed_saddles)} names saddle(s) {bad}; allowed 0..{len(positions) - 1}"
+                )
+        if self.cargo.position_m is not None:
+            half = L / 2
+            if self.cargo.position_m - half < 0 or self.cargo.position_m + half > self.vessel.length_m:
+                raise ValueError(
+                    f"cargo.position_m = {self.cargo.position_m} puts the cargo (length {L} m) beyond the ship's ends; "
+                    f"allowed {half} .. {self.vessel.length_m - half}"
+                )
+        return self
+
+    # ---------------------------------------------------------------- derived values
+    def saddle_positions_m(self) -> tuple[float, ...]:
+        """Saddle positions along the cargo [m]: explicit list, or the arrangement rule."""
+        sf = self.seafastening
+        if sf.saddle_positions_m is not None:
+            return tuple(sf.saddle_positions_m)
+        n, L = sf.saddle_count, self.cargo.length_m
+        if n == 1:
+            return (0.5 * L,)
+        return tuple(0.2 * L + i * 0.6 * L / (n - 1) for i in range(n))
+
+    def saddle_stiffnesses_N_per_m(self) -> tuple[float, ...]:
+        """Stiffness of each saddle [N/m]."""
+        k = self.seafastening.saddle_stiffness_N_per_m
+        n = len(self.saddle_positions_m())
+        if isinstance(k, tuple):
+            return k * n if len(k) == 1 else k
+        return (float(k),) * n
+
+    def lashed_saddle_indices(self) -> tuple[int, ...]:
+        """Indices of the lashed saddles (default: the two outermost)."""
+        if self.seafastening.lashed_saddles is not None:
+            return tuple(sorted(set(self.seafastening.lashed_saddles)))
+        n = len(self.saddle_positions_m())
+        return (0,) if n == 1 else (0, n - 1)
+
+    def cargo_position_m(self) -> float:
+        """x of the cargo midpoint from the AP [m] (default: midship)."""
+        return self.cargo.position_m if self.cargo.position_m is not None else 0.5 * self.vessel.length_m
+
+    def wave_frequency_rad_s(self) -> float:
+        """Wave frequency [rad/s]: given, or deep-water dispersion omega = sqrt(2 pi g / lambda)."""
+        if self.wave.frequency_rad_s is not None:
+            return self.wave.frequency_rad_s
+        return math.sqrt(2.0 * math.pi * self.model.gravity_m_per_s2 / self.wave.length_m)
