@@ -1,0 +1,170 @@
+"""The ``seafast`` command line: run, init, schema, study, report.
+
+Exit codes: 0 success; 2 invalid input (one clear message on stderr, no traceback); 3 the
+case ran but the nonlinear solver did not converge (results are still written, flagged).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Sequence
+
+import seafast
+
+__all__ = ["main", "build_parser"]
+
+EXIT_OK = 0
+EXIT_INVALID_INPUT = 2
+EXIT_NOT_CONVERGED = 3
+
+RUN_EXAMPLES = """examples:
+  seafast run                                   # the built-in base case
+  seafast run case.yaml -o results/             # a case file
+  seafast run --set seafastening.saddle_count=4 --set wave.amplitude_m=2
+  seafast run case.yaml --set solver.contact_law=exact --set solver.harmonics=15
+"""
+
+
+def _add_set(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a case key (dotted, e.g. cargo.length_m=90); repeatable; VALUE is read as YAML",
+    )
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="seafast",
+        description="Sea-fastening response of monopiles on heavy-lift vessels: linear and harmonic-balance "
+        "(unilateral saddle) analysis of the cargo under hull-girder deflection and ship motions.",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="Run 'seafast COMMAND --help' for a command's options and examples.",
+    )
+    parser.add_argument("--version", action="version", version=f"seafast {seafast.__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    run = sub.add_parser(
+        "run", help="run a case (default: the built-in base case)", epilog=RUN_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    run.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
+    run.add_argument("-o", "--output", default="seafast-output", help="output directory (default: %(default)s)")
+    _add_set(run)
+    run.add_argument("--no-plots", action="store_true", help="skip the PNG figures")
+    run.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    run.set_defaults(handler=_cmd_run)
+
+    init = sub.add_parser(
+        "init",
+        help="write the base case as an editable, commented YAML file",
+        epilog="example:\n  seafast init my_case.yaml && seafast run my_case.yaml",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    init.add_argument("file", help="path of the case file to write")
+    init.add_argument("--force", action="store_true", help="overwrite an existing file")
+    init.set_defaults(handler=_cmd_init)
+
+    schema = sub.add_parser(
+        "schema",
+        help="print the JSON Schema of the case format",
+        epilog="example:\n  seafast schema > seafast-case.schema.json",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    schema.set_defaults(handler=_cmd_schema)
+
+    try:
+        from seafast.studies.cli import add_study_subcommand
+    except ImportError:  # pragma: no cover - studies are part of the package
+        add_study_subcommand = None
+    if add_study_subcommand is not None:
+        add_study_subcommand(sub)
+    try:
+        from seafast.output.report import add_report_subcommand
+    except ImportError:  # pragma: no cover
+        add_report_subcommand = None
+    if add_report_subcommand is not None:
+        add_report_subcommand(sub)
+    return parser
+
+
+def _error(message: str) -> int:
+    print(f"seafast: error: {message}", file=sys.stderr)
+    return EXIT_INVALID_INPUT
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    from seafast.config import CaseError, load_case, parse_overrides
+    from seafast.output.files import write_run_outputs
+    from seafast.output.tables import format_summary_table
+    from seafast.pipeline import run_case
+
+    try:
+        overrides = parse_overrides(args.overrides)
+        if args.no_plots:
+            overrides["outputs.plots"] = False
+        case = load_case(args.case, overrides)
+    except CaseError as exc:
+        return _error(str(exc))
+    say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
+    say(f"seafast {seafast.__version__}: running '{case.name}'" + (f" from {args.case}" if args.case else " (built-in base case)"))
+    t0 = time.perf_counter()
+    try:
+        result = run_case(case, progress=say)
+    except (CaseError, ValueError) as exc:
+        return _error(str(exc))
+    paths = write_run_outputs(result, args.output)
+    rows = result.summary
+    if not args.quiet:
+        print(format_summary_table(rows, title=f"{case.name}: maxima over the cargo, the saddles and one wave period"))
+        print(f"excitation: {result.excitation.source}")
+        print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    bad = [r for r in rows if not r["converged"]]
+    for r in bad:
+        print(
+            f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge (residual {r['residual_norm']:.3e}); "
+            "its numbers are flagged converged=false in summary.csv and must not be trusted",
+            file=sys.stderr,
+        )
+    return EXIT_NOT_CONVERGED if bad else EXIT_OK
+
+
+def _cmd_init(args: argparse.Namespace) -> int:
+    from seafast.config import base_case_text
+
+    path = Path(args.file)
+    if path.exists() and not args.force:
+        return _error(f"'{path}' exists; use --force to overwrite it")
+    try:
+        path.write_text(base_case_text(), encoding="utf-8")
+    except OSError as exc:
+        return _error(f"cannot write '{path}': {exc.strerror}")
+    print(f"wrote {path}: the base case; edit it and run 'seafast run {path}'")
+    return EXIT_OK
+
+
+def _cmd_schema(args: argparse.Namespace) -> int:
+    from seafast.config import case_json_schema
+
+    print(json.dumps(case_json_schema(), indent=2))
+    return EXIT_OK
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``seafast`` command; returns the exit code."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "handler", None):
+        parser.print_help()
+        return EXIT_OK
+    return int(args.handler(args))
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,344 @@
+"""The vessel side of a case: hull-girder deflection and rigid-body motions -> deck excitation.
+
+Sources, in order of precedence (MODEL.md section 3, INTERFACE.md):
+
+* ``vessel.deck_deflection_table``: the user's own hull deflection (still water and wave);
+  replaces the hull-girder model entirely.
+* ``vessel.still_water_bending_moment_table``: still-water moment from a loading computer,
+  turned into deflection by the Timoshenko hull beam; the wave part is still computed.
+* Otherwise the hull-girder model: documented default loading of the vessel (lightship by a
+  Prohaska distribution, the cargo units abreast, ballast balanced to even keel) on the
+  tapered-box hull, still water and quasi-static regular wave.
+
+Rigid-body heave and pitch: ``vessel.motions`` = ``bem`` (capytaine on the same hull form,
+cached on disk), ``none``, or a path to capytaine NetCDF / WAMIT output.
+
+Everything here depends only on the vessel, cargo-mass and wave parts of the case, so it is
+memoised per process: a parametric study over saddles computes it once.
+"""
+
+from __future__ import annotations
+
+import csv
+import functools
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from numpy.typing import NDArray
+from scipy.interpolate import CubicHermiteSpline
+
+from seafast.config.schema import Case
+from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
+from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.excitation.hull_girder import (
+    DEFAULT_SHEAR_AREA_M2,
+    HullGirder,
+    HullGirderResponse,
+    WaveHullResponse,
+    deck_deflection_at,
+    deck_harmonics_at,
+    deflection_from_bending_moment,
+    still_water_response,
+    wave_response,
+)
+from seafast.model.sections import tube_area_m2
+from seafast.model.structure import StructuralModel
+from seafast.vessel.hull_form import HullForm
+from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_distribution_kg_per_m
+
+__all__ = ["VesselExcitation", "vessel_excitation", "BEM_FREQUENCIES_RAD_S", "hull_form_of", "vessel_loading_of"]
+
+BEM_FREQUENCIES_RAD_S = np.linspace(0.2, 2.0, 19)
+"""Frequencies of the BEM run [rad/s]: fixed, so the disk cache serves every wave length;
+the RAOs at the case's frequency are interpolated (0.1 rad/s spacing)."""
+
+
+@dataclass(frozen=True)
+class _Curve:
+    """Deflection [m] and slope [rad] along the ship as a C1 Hermite interpolant."""
+
+    x_m: NDArray[np.float64]
+    deflection_m: NDArray[np.float64]
+    slope_rad: NDArray[np.float64]
+
+    def __call__(self, x: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
+        spl = CubicHermiteSpline(self.x_m, self.deflection_m, self.slope_rad)
+        return spl(x), spl(x, 1)
+
+
+@dataclass(frozen=True)
+class VesselExcitation:
+    """What the vessel does, independent of the sea-fastening.
+
+    Attributes
+    ----------
+    omega_rad_s
+        Wave frequency [rad/s].
+    cargo_aft_end_x_m
+        Ship x of the cargo's aft end [m].
+    still_water, wave
+        Still-water hull response / deck table, and wave hull response / deck table.
+    still_water_curve
+        Interpolant of the still-water deck deflection (when it came from a moment table).
+    motions
+        ``RigidBodyMotions`` or None; ``rigid_body`` the amplitudes at the case's wave.
+    loading
+        The ship's weight distribution (computed hull only).
+    source
+        Human-readable provenance.
+    """
+
+    omega_rad_s: float
+    wave_amplitude_m: float
+    cargo_aft_end_x_m: float
+    still_water: HullGirderResponse | DeckDeflectionTable | None
+    wave: WaveHullResponse | DeckDeflectionTable | None
+    still_water_curve: _Curve | None
+    motions: Any
+    rigid_body: RigidBodyAmplitudes | None
+    loading: VesselLoading | None
+    source: str
+
+    def _still_water_fn(self):
+        if self.still_water_curve is not None:
+            return self.still_water_curve
+        if isinstance(self.still_water, DeckDeflectionTable):
+            return self.still_water.still_water_at
+        if self.still_water is not None:
+            return lambda x: deck_deflection_at(self.still_water, x)
+        return None
+
+    def _wave_fn(self):
+        if isinstance(self.wave, DeckDeflectionTable):
+            return self.wave.wave_at
+        if self.wave is not None:
+            def first_harmonic(x: NDArray) -> tuple[NDArray, NDArray]:
+                z, s = deck_harmonics_at(self.wave, x)
+                return z[1], s[1]
+
+            return first_harmonic
+        return None
+
+    def cargo_excitation(self, model: StructuralModel, case: Case | None = None) -> HarmonicExcitation:
+        """The two-harmonic excitation of ``model`` (still water k = 0, wave k = 1)."""
+        return assemble_excitation(
+            model, self.cargo_aft_end_x_m, self.omega_rad_s, self._still_water_fn(), self._wave_fn(), self.rigid_body, self.source
+        )
+
+    def to_dataset(self) -> xr.Dataset:
+        """Hull deflection/moment and RAOs as labelled variables (merged into results.nc)."""
+        data: dict[str, Any] = {}
+        coords: dict[str, Any] = {}
+        attrs = {"cargo_aft_end_x_m": self.cargo_aft_end_x_m, "vessel_source": self.source}
+        sw = self.still_water
+        if isinstance(sw, HullGirderResponse):
+            coords["hull_x_m"] = ("hull_x_m", sw.x_m, {"long_name": "x along the ship from the aft perpendicular", "units": "m"})
+            for name, values, long_name, units in (
+                ("hull_still_water_deflection_m", sw.deflection_m, "still-water hull deflection (chord through AP and FP)", "m"),
+                ("hull_still_water_bending_moment_Nm", sw.bending_moment_Nm, "still-water hull bending moment (sagging +)", "N m"),
+                ("hull_still_water_shear_force_N", sw.shear_force_N, "still-water hull shear force", "N"),
+                ("hull_weight_N_per_m", sw.weight_N_per_m, "ship weight per metre", "N/m"),
+                ("hull_buoyancy_N_per_m", sw.buoyancy_N_per_m, "still-water buoyancy per metre", "N/m"),
+            ):
+                data[name] = ("hull_x_m", values, {"long_name": long_name, "units": units})
+        elif self.still_water_curve is not None:
+            c = self.still_water_curve
+            coords["hull_x_m"] = ("hull_x_m", c.x_m, {"long_name": "x along the ship from the aft perpendicular", "units": "m"})
+            data["hull_still_water_deflection_m"] = ("hull_x_m", c.deflection_m, {"long_name": "still-water hull deflection from the moment table", "units": "m"})
+        wv = self.wave
+        if isinstance(wv, WaveHullResponse) and "hull_x_m" in coords and np.array_equal(wv.x_m, coords["hull_x_m"][1]):
+            coords["hull_period_fraction"] = ("hull_period_fraction", wv.period_fraction, {"long_name": "t/T of the hull wave balance", "units": "1"})
+            data["hull_wave_deflection_m"] = (("hull_period_fraction", "hull_x_m"), wv.deflection_m, {"long_name": "wave-induced hull deflection", "units": "m"})
+            data["hull_wave_bending_moment_Nm"] = (("hull_period_fraction", "hull_x_m"), wv.bending_moment_Nm, {"long_name": "wave-induced hull bending moment (sagging +)", "units": "N m"})
+            if "hull_still_water_bending_moment_Nm" not in data:
+                data["hull_still_water_bending_moment_Nm"] = ("hull_x_m", np.zeros_like(wv.x_m), {"long_name": "not computed", "units": "N m"})
+        ds = xr.Dataset(data, coords=coords, attrs=attrs)
+        if self.motions is not None:
+            m = self.motions
+            rao = xr.Dataset(
+                {
+                    "heave_rao_real": ("rao_omega_rad_s", m.heave_rao_m_per_m.real, {"long_name": "heave RAO, real part", "units": "m/m"}),
+                    "heave_rao_imag": ("rao_omega_rad_s", m.heave_rao_m_per_m.imag, {"long_name": "heave RAO, imaginary part", "units": "m/m"}),
+                    "pitch_rao_real": ("rao_omega_rad_s", m.pitch_rao_rad_per_m.real, {"long_name": "pitch RAO (bow up), real part", "units": "rad/m"}),
+                    "pitch_rao_imag": ("rao_omega_rad_s", m.pitch_rao_rad_per_m.imag, {"long_name": "pitch RAO (bow up), imaginary part", "units": "rad/m"}),
+                },
+                coords={"rao_omega_rad_s": ("rao_omega_rad_s", m.omega_rad_s, {"long_name": "wave frequency", "units": "rad/s"})},
+            )
+            ds = xr.merge([ds, rao])
+            if self.rigid_body is not None:
+                rb = self.rigid_body
+                ds.attrs.update(
+                    heave_amplitude_m=abs(rb.heave_m), heave_phase_rad=float(np.angle(rb.heave_m)),
+                    pitch_amplitude_rad=abs(rb.pitch_rad), pitch_phase_rad=float(np.angle(rb.pitch_rad)),
+                    pitch_reference_x_m=rb.reference_x_m,
+                )
+        ds.attrs.update(attrs)
+        return ds
+
+
+# ------------------------------------------------------------------------------ builders
+def _read_two_columns(path: str | Path, key: str, columns: tuple[str, str]) -> tuple[NDArray, NDArray]:
+    p = Path(path)
+    try:
+        rows = [r for r in csv.reader(l for l in p.read_text(encoding="utf-8").splitlines() if l.strip() and not l.startswith("#"))]
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{key} = '{p}': cannot read it ({getattr(exc, 'strerror', exc)})") from None
+    header = [h.strip() for h in rows[0]] if rows else []
+    if any(c not in header for c in columns):
+        raise ValueError(f"{key} = '{p}': expected columns {', '.join(columns)}; header is {header}")
+    idx = [header.index(c) for c in columns]
+    out = []
+    for i, r in enumerate(rows[1:], start=2):
+        try:
+            vals = [float(r[j]) for j in idx]
+        except (ValueError, IndexError):
+            raise ValueError(f"{key} = '{p}', line {i}: values must be numbers") from None
+        if not all(math.isfinite(v) for v in vals):
+            raise ValueError(f"{key} = '{p}', line {i}: values must be finite")
+        out.append(vals)
+    a = np.array(out, dtype=float).reshape(-1, 2)
+    if a.shape[0] < 2 or np.any(np.diff(a[:, 0]) <= 0):
+        raise ValueError(f"{key} = '{p}': needs at least 2 rows with {columns[0]} strictly increasing")
+    return a[:, 0], a[:, 1]
+
+
+def hull_form_of(case: Case) -> HullForm:
+    """The hull form: the user's breadth table, or the tapered box of L, B, T and displacement."""
+    v = case.vessel
+    if v.hull_form_table is not None:
+        x, b = _read_two_columns(v.hull_form_table, "vessel.hull_form_table", ("x_m", "breadth_m"))
+        if np.any(b < 0):
+            raise ValueError(f"vessel.hull_form_table = '{v.hull_form_table}': breadth_m must be >= 0")
+        return HullForm(station_x_m=x - x[0], waterline_breadth_m=b, draft_m=v.draft_m)
+    cb = v.displacement_m3 / (v.length_m * v.breadth_m * v.draft_m)
+    if not 0.3 < cb <= 1.0:
+        raise ValueError(
+            f"vessel.displacement_m3 = {v.displacement_m3} gives a block coefficient {cb:.3f} for L x B x T = "
+            f"{v.length_m} x {v.breadth_m} x {v.draft_m}; allowed 0.3 < C_b <= 1"
+        )
+    try:
+        return HullForm.tapered_box(v.length_m, v.breadth_m, v.draft_m, cb)
+    except ValueError as exc:
+        raise ValueError(f"vessel: {exc}") from None
+
+
+def _cargo_mass_kg(case: Case) -> float:
+    c = case.cargo
+    if c.sections is None:
+        return c.density_kg_per_m3 * float(tube_area_m2(c.diameter_m, c.wall_thickness_m)) * c.length_m
+    return sum(
+        c.density_kg_per_m3 * (s.x_end_m - s.x_start_m)
+        * float(tube_area_m2(0.5 * (s.diameter_start_m + s.diameter_end_m), s.wall_thickness_m))
+        for s in c.sections
+    )
+
+
+def vessel_loading_of(case: Case, hull: HullForm) -> VesselLoading:
+    """The documented default loading with the case's cargo (all units abreast)."""
+    try:
+        return base_vessel_loading(
+            hull=hull,
+            cargo_position_m=case.cargo_position_m(),
+            cargo_length_m=case.cargo.length_m,
+            cargo_mass_kg=case.cargo.units_abreast * _cargo_mass_kg(case),
+            lightship_mass_kg=case.vessel.lightship_mass_kg,
+            water_density_kg_per_m3=case.vessel.water_density_kg_per_m3,
+            gravity_m_per_s2=case.model.gravity_m_per_s2,
+        )
+    except ValueError as exc:
+        raise ValueError(f"vessel loading: {exc}") from None
+
+
+def _motions(case: Case, hull: HullForm, loading: VesselLoading | None) -> Any:
+    v = case.vessel
+    if v.motions == "none":
+        return None
+    from seafast.excitation import hydrodynamics as hydro
+
+    props = hydro.base_vessel_mass_properties(hull, water_density_kg_per_m3=v.water_density_kg_per_m3)
+    if loading is not None:
+        # mass, LCG and pitch inertia of the actual loading (not a uniform-density body)
+        x = np.linspace(0.0, hull.length_m, 4001)
+        m = mass_distribution_kg_per_m(x, loading)
+        mass = float(np.trapezoid(m, x))
+        xg = float(np.trapezoid(m * x, x) / mass)
+        radius = math.sqrt(float(np.trapezoid(m * (x - xg) ** 2, x)) / mass)
+        props = {"mass_kg": mass, "centre_of_gravity_m": (xg, 0.0, props["centre_of_gravity_m"][2]), "pitch_radius_of_gyration_m": radius}
+    common = dict(water_density_kg_per_m3=v.water_density_kg_per_m3, gravity_m_per_s2=case.model.gravity_m_per_s2, **props)
+    if v.motions == "bem":
+        return hydro.compute_motions(hull, omega_rad_s=BEM_FREQUENCIES_RAD_S, panel_size_m=v.bem_panel_size_m, **common)
+    path = Path(v.motions)
+    if not path.exists():
+        raise ValueError(f"vessel.motions = '{v.motions}': no such file; allowed: bem, none, or a path to capytaine NetCDF / WAMIT .1 output")
+    return hydro.load_motions(path, hull, **common)
+
+
+def vessel_excitation(case: Case) -> VesselExcitation:
+    """The vessel's excitation for ``case`` (memoised on the parts of the case it depends on)."""
+    key = json.dumps(
+        {
+            "vessel": case.vessel.model_dump(mode="json"),
+            "wave": case.wave.model_dump(mode="json"),
+            "cargo_mass": case.cargo.units_abreast * _cargo_mass_kg(case),
+            "cargo_length": case.cargo.length_m,
+            "cargo_position": case.cargo_position_m(),
+            "g": case.model.gravity_m_per_s2,
+        },
+        sort_keys=True,
+    )
+    return _vessel_excitation_cached(key, case)
+
+
+@functools.lru_cache(maxsize=16)
+def _vessel_excitation_cached(key: str, case: Case) -> VesselExcitation:
+    v = case.vessel
+    omega = case.wave_frequency_rad_s()
+    aft = case.cargo_position_m() - 0.5 * case.cargo.length_m
+    amplitude = case.wave.amplitude_m
+    hull = hull_form_of(case)
+    parts: list[str] = []
+    still: Any = None
+    wave: Any = None
+    curve = None
+    loading = None
+    if v.deck_deflection_table is not None:
+        table = read_deck_deflection_table(v.deck_deflection_table)
+        still = wave = table
+        parts.append(f"deck deflection table '{Path(v.deck_deflection_table).name}'")
+    else:
+        girder = HullGirder(
+            hull,
+            second_moment_m4=v.hull_second_moment_m4,
+            shear_area_m2=v.hull_shear_area_m2 or DEFAULT_SHEAR_AREA_M2,
+            youngs_modulus_Pa=v.youngs_modulus_Pa,
+            shear_modulus_Pa=v.youngs_modulus_Pa / (2.0 * (1.0 + v.poisson_ratio)),
+            water_density_kg_per_m3=v.water_density_kg_per_m3,
+            gravity_m_per_s2=case.model.gravity_m_per_s2,
+        )
+        loading = vessel_loading_of(case, hull)
+        if v.still_water_bending_moment_table is not None:
+            x, moment = _read_two_columns(v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm"))
+            z, s = deflection_from_bending_moment(girder, x, moment)
+            curve = _Curve(x, z, s)
+            parts.append(f"still-water moment table '{Path(v.still_water_bending_moment_table).name}'")
+        else:
+            still = still_water_response(girder, loading)
+            parts.append("hull girder (default loading, still water)")
+        if amplitude > 0:
+            wave = wave_response(girder, loading, case.wave.length_m, amplitude)
+            parts.append(f"quasi-static wave lambda = {case.wave.length_m:g} m, zeta_a = {amplitude:g} m")
+    motions = _motions(case, hull, loading)
+    rigid = None
+    if motions is not None and amplitude > 0:
+        heave, pitch = motions.rao_at(omega)
+        rigid = RigidBodyAmplitudes(complex(heave) * amplitude, complex(pitch) * amplitude, float(motions.reference_x_m))
+        parts.append(f"heave/pitch from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}")
+    elif v.motions == "none":
+        parts.append("no rigid-body motion")
+    return VesselExcitation(omega, amplitude, aft, still, wave, curve, motions, rigid, loading, "; ".join(parts))

@@ -1,0 +1,249 @@
+"""Report-ready figures of one case (matplotlib, PNG). Every axis carries its unit.
+
+All functions take the case Dataset written as ``results.nc`` (so they also work on a file
+read back later) and return the path written.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+__all__ = [
+    "plot_deflection",
+    "plot_forces_and_moments",
+    "plot_saddle_time_histories",
+    "plot_saddle_surfaces",
+    "plot_aft_picture",
+    "plot_hull_girder",
+    "plot_raos",
+    "write_case_figures",
+]
+
+_COLORS = {"linear": "tab:blue", "nonlinear": "tab:red"}
+DPI = 200
+
+
+def _save(fig: plt.Figure, path: Path) -> Path:
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
+    """Ship deck, saddles and cargo deflection (static and dynamic envelope)."""
+    has_hull = "hull_x_m" in ds.coords
+    fig, axes = plt.subplots(2 if has_hull else 1, 1, figsize=(9, 7 if has_hull else 4), squeeze=False)
+    axes = axes[:, 0]
+    ax_c = axes[-1]
+    aft = float(ds.attrs.get("cargo_aft_end_x_m", 0.0))
+    if has_hull:
+        ax = axes[0]
+        x = ds["hull_x_m"].values
+        sw = ds["hull_still_water_deflection_m"].values * 1e3
+        ax.plot(x, sw, "k", label="still water")
+        if "hull_wave_deflection_m" in ds:
+            w = ds["hull_wave_deflection_m"].values * 1e3
+            ax.fill_between(x, sw + w.min(axis=0), sw + w.max(axis=0), color="0.8", label="still water + wave (envelope)")
+        xs = aft + ds["saddle_x_m"].values
+        ax.plot(xs, np.interp(xs, x, sw), "v", color="tab:green", ms=9, label="saddles")
+        ax.axvspan(aft, aft + float(ds["x_cargo_m"].max()), color="tab:orange", alpha=0.15, label="cargo")
+        ax.set_xlabel("x along the ship from the aft perpendicular [m]")
+        ax.set_ylabel("hull deflection [mm]")
+        ax.set_title("Hull deflection (relative to the chord through the ship's ends)")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    xc = ds["x_cargo_m"].values
+    for mdl in ("linear", "nonlinear"):
+        c = _COLORS[mdl]
+        st = ds["cargo_deflection_m"].sel(load_case="static", model=mdl).isel(period_fraction=0).values * 1e3
+        ax_c.plot(xc, st, color=c, lw=2, label=f"{mdl}, static")
+        dyn = ds["cargo_deflection_m"].sel(load_case="dynamic", model=mdl).values * 1e3
+        ax_c.fill_between(xc, dyn.min(axis=0), dyn.max(axis=0), color=c, alpha=0.15, label=f"{mdl}, dynamic envelope")
+    deck = ds["deck_deflection_m"].sel(load_case="static").isel(period_fraction=0).values * 1e3
+    ax_c.plot(ds["saddle_x_m"].values, deck, "^", color="tab:green", ms=9, label="deck under saddles (static)")
+    ax_c.set_xlabel("x along the cargo from its aft end [m]")
+    ax_c.set_ylabel("deflection [mm]")
+    ax_c.set_title("Cargo deflection relative to the vessel's rigid-body frame")
+    ax_c.legend(fontsize=8, ncol=2)
+    ax_c.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_forces_and_moments(ds: xr.Dataset, path: Path) -> Path:
+    """Saddle forces (static and dynamic range) and bending-moment lines along the cargo."""
+    fig, (ax_f, ax_m) = plt.subplots(2, 1, figsize=(9, 7))
+    xs = ds["saddle_x_m"].values
+    width = 0.015 * float(ds["x_cargo_m"].max())
+    for i, mdl in enumerate(("linear", "nonlinear")):
+        c = _COLORS[mdl]
+        off = (i - 0.5) * width
+        st = ds["saddle_force_N"].sel(load_case="static", model=mdl).isel(period_fraction=0).values / 1e6
+        dyn = ds["saddle_force_N"].sel(load_case="dynamic", model=mdl).values / 1e6
+        ax_f.bar(xs + off, st, width=width, color=c, alpha=0.6, label=f"{mdl}, static")
+        ax_f.errorbar(xs + off, st, yerr=[st - dyn.min(axis=0), dyn.max(axis=0) - st], fmt="none", ecolor=c, capsize=4, label=f"{mdl}, dynamic range")
+    ax_f.axhline(0.0, color="k", lw=0.8)
+    ax_f.set_xlabel("saddle position along the cargo [m]")
+    ax_f.set_ylabel("saddle force [MN]")
+    ax_f.set_title("Saddle normal forces (negative = tension, impossible for a real saddle)")
+    ax_f.legend(fontsize=8, ncol=2)
+    ax_f.grid(alpha=0.3)
+    xm = ds["x_moment_m"].values
+    for mdl in ("linear", "nonlinear"):
+        c = _COLORS[mdl]
+        st = ds["bending_moment_Nm"].sel(load_case="static", model=mdl).isel(period_fraction=0).values / 1e6
+        dyn = ds["bending_moment_Nm"].sel(load_case="dynamic", model=mdl).values / 1e6
+        ax_m.plot(xm, st, color=c, lw=2, label=f"{mdl}, static")
+        ax_m.fill_between(xm, dyn.min(axis=0), dyn.max(axis=0), color=c, alpha=0.15, label=f"{mdl}, dynamic envelope")
+    for x in xs:
+        ax_m.axvline(x, color="tab:green", lw=0.8, ls=":")
+    ax_m.set_xlabel("x along the cargo from its aft end [m]")
+    ax_m.set_ylabel("bending moment [MN m] (sagging +)")
+    ax_m.set_title("Cargo bending moment")
+    ax_m.legend(fontsize=8, ncol=2)
+    ax_m.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_saddle_time_histories(ds: xr.Dataset, path: Path) -> Path:
+    """Force and compression/gap of every saddle over one period, linear vs nonlinear."""
+    n = ds.sizes["saddle"]
+    fig, axes = plt.subplots(2, n, figsize=(3.2 * n + 1, 5.5), squeeze=False, sharex=True)
+    s = ds["period_fraction"].values
+    for j in range(n):
+        for mdl in ("linear", "nonlinear"):
+            sel = ds.sel(load_case="dynamic", model=mdl, saddle=j)
+            axes[0, j].plot(s, sel["saddle_force_N"].values / 1e6, color=_COLORS[mdl], label=mdl)
+            axes[1, j].plot(s, sel["saddle_compression_m"].values * 1e3, color=_COLORS[mdl], label=mdl)
+        axes[0, j].set_title(f"saddle {j} at x = {float(ds['saddle_x_m'][j]):.1f} m")
+        axes[1, j].axhline(0.0, color="k", lw=0.8)
+        axes[1, j].set_xlabel("period fraction t/T [-]")
+        for ax in axes[:, j]:
+            ax.grid(alpha=0.3)
+    axes[0, 0].set_ylabel("saddle force [MN]")
+    axes[1, 0].set_ylabel("compression [mm] (negative = gap)")
+    axes[0, 0].legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_saddle_surfaces(ds: xr.Dataset, path: Path) -> Path:
+    """Surfaces of nonlinear saddle force and compression over saddle position x period."""
+    fig = plt.figure(figsize=(11, 4.8))
+    s = ds["period_fraction"].values
+    xs = ds["saddle_x_m"].values
+    X, S = np.meshgrid(xs, s)
+    sel = ds.sel(load_case="dynamic", model="nonlinear")
+    for i, (var, scale, label) in enumerate(
+        (("saddle_force_N", 1e-6, "saddle force [MN]"), ("saddle_compression_m", 1e3, "compression [mm]"))
+    ):
+        ax = fig.add_subplot(1, 2, i + 1, projection="3d")
+        Z = sel[var].values * scale
+        if xs.size > 1:
+            ax.plot_surface(X, S, Z, cmap="viridis", edgecolor="k", linewidth=0.2, alpha=0.9)
+        else:
+            ax.plot(X[:, 0], S[:, 0], Z[:, 0])
+        ax.set_xlabel("x along cargo [m]")
+        ax.set_ylabel("period fraction [-]")
+        ax.set_zlabel(label)
+        ax.set_title(f"nonlinear {label.split(' [')[0]}")
+    return _save(fig, path)
+
+
+def plot_aft_picture(ds: xr.Dataset, path: Path) -> Path:
+    """The AFT picture for the most loaded saddle: compression, time-domain force, H-harmonic force."""
+    sel = ds.sel(load_case="dynamic", model="nonlinear")
+    j = int(sel["saddle_force_N"].max("period_fraction").argmax())
+    s = sel["period_fraction"].values
+    comp = sel["saddle_compression_m"].isel(saddle=j).values
+    force = sel["saddle_force_N"].isel(saddle=j).values
+    H = int(ds.attrs.get("harmonics", 5))
+    spec = np.fft.rfft(force)
+    spec[H + 1 :] = 0.0
+    recon = np.fft.irfft(spec, n=force.size)
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    ax1.plot(s, comp * 1e3, "k.-", ms=3)
+    ax1.axhline(0.0, color="0.5", lw=0.8)
+    ax1.set_ylabel("compression delta(t) [mm]")
+    ax1.set_title(f"AFT, saddle {j} (x = {float(ds['saddle_x_m'][j]):.1f} m): harmonics -> time samples -> contact law -> harmonics")
+    ax2.plot(s, force / 1e6, "r.", ms=4, label="contact force f(delta(t_n)) at the N samples")
+    ax2.plot(s, recon / 1e6, "b-", label=f"reconstruction from H = {H} harmonics")
+    ax2.set_xlabel("period fraction t/T [-]")
+    ax2.set_ylabel("saddle force [MN]")
+    ax2.legend(fontsize=8)
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
+    """Hull deflection (still water, hog, sag) and hull bending moment along the ship."""
+    x = ds["hull_x_m"].values
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
+    ax1.plot(x, ds["hull_still_water_deflection_m"].values * 1e3, "k", label="still water")
+    ax2.plot(x, ds["hull_still_water_bending_moment_Nm"].values / 1e6, "k", label="still water")
+    if "hull_wave_deflection_m" in ds:
+        w = ds["hull_wave_deflection_m"].values
+        m = ds["hull_wave_bending_moment_Nm"].values
+        mid = np.argmin(np.abs(x - 0.5 * x[-1]))
+        i_hog, i_sag = int(np.argmin(m[:, mid])), int(np.argmax(m[:, mid]))
+        sw = ds["hull_still_water_deflection_m"].values
+        swm = ds["hull_still_water_bending_moment_Nm"].values
+        ax1.plot(x, (sw + w[i_hog]) * 1e3, "tab:red", label="hog (crest amidships)")
+        ax1.plot(x, (sw + w[i_sag]) * 1e3, "tab:blue", label="sag (trough amidships)")
+        ax2.plot(x, (swm + m[i_hog]) / 1e6, "tab:red", label="hog")
+        ax2.plot(x, (swm + m[i_sag]) / 1e6, "tab:blue", label="sag")
+    aft = float(ds.attrs.get("cargo_aft_end_x_m", np.nan))
+    if np.isfinite(aft):
+        for ax in (ax1, ax2):
+            ax.axvspan(aft, aft + float(ds["x_cargo_m"].max()), color="tab:orange", alpha=0.15)
+    ax1.set_ylabel("hull deflection [mm]")
+    ax2.set_ylabel("hull bending moment [MN m] (sagging +)")
+    ax2.set_xlabel("x along the ship from the aft perpendicular [m]")
+    for ax in (ax1, ax2):
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    ax1.set_title("Hull girder")
+    return _save(fig, path)
+
+
+def plot_raos(ds: xr.Dataset, path: Path) -> Path:
+    """Heave and pitch RAOs (amplitude and phase) with the case's wave frequency marked."""
+    w = ds["rao_omega_rad_s"].values
+    fig, axes = plt.subplots(2, 2, figsize=(9, 6), sharex=True)
+    for col, (name, scale, unit) in enumerate((("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m"))):
+        z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
+        axes[0, col].plot(w, np.abs(z) * scale, "k.-")
+        axes[0, col].set_ylabel(f"{name} RAO [{unit}]")
+        axes[1, col].plot(w, np.degrees(np.angle(z)), "k.-")
+        axes[1, col].set_ylabel(f"{name} phase [deg]")
+        axes[1, col].set_xlabel("wave frequency [rad/s]")
+        for ax in axes[:, col]:
+            ax.axvline(float(ds.attrs.get("wave_frequency_rad_s", np.nan)), color="tab:red", ls=":")
+            ax.grid(alpha=0.3)
+    axes[0, 0].set_title("Heave (head seas)")
+    axes[0, 1].set_title("Pitch (bow up positive, head seas)")
+    return _save(fig, path)
+
+
+def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
+    """Write every figure the dataset supports into ``out_dir``; return the paths."""
+    out_dir = Path(out_dir)
+    paths = [
+        plot_deflection(ds, out_dir / "deflection.png"),
+        plot_forces_and_moments(ds, out_dir / "forces_moments.png"),
+        plot_saddle_time_histories(ds, out_dir / "saddle_time_histories.png"),
+        plot_saddle_surfaces(ds, out_dir / "saddle_surfaces.png"),
+        plot_aft_picture(ds, out_dir / "aft_most_loaded_saddle.png"),
+    ]
+    if "hull_x_m" in ds.coords:
+        paths.append(plot_hull_girder(ds, out_dir / "hull_girder.png"))
+    if "rao_omega_rad_s" in ds.coords:
+        paths.append(plot_raos(ds, out_dir / "raos.png"))
+    return paths

@@ -1,0 +1,63 @@
+"""Summary tables: the CSV contract of INTERFACE.md and a terminal rendering."""
+
+from __future__ import annotations
+
+import csv
+import io
+from pathlib import Path
+from typing import Any, Iterable, Sequence
+
+from seafast.results.dataset import SUMMARY_COLUMNS
+
+__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table"]
+
+
+def _cell(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def summary_csv_text(rows: Iterable[dict[str, Any]], columns: Sequence[str] = SUMMARY_COLUMNS) -> str:
+    """CSV text with exactly ``columns`` (SI units; booleans as true/false)."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(columns)
+    for r in rows:
+        w.writerow([_cell(r[c]) for c in columns])
+    return buf.getvalue()
+
+
+def write_summary_csv(rows: Iterable[dict[str, Any]], path: str | Path) -> Path:
+    """Write ``summary.csv`` (INTERFACE.md columns) and return its path."""
+    p = Path(path)
+    p.write_text(summary_csv_text(rows), encoding="utf-8")
+    return p
+
+
+def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:
+    """Human-readable table in engineering units (mm, MN, MN m, MPa)."""
+    head = ("load case", "model", "u_c [mm]", "u_s [mm]", "u_d [mm]", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "contact", "converged")
+    lines = []
+    for r in rows:
+        lines.append(
+            (
+                r["load_case"],
+                r["model"],
+                f"{r['u_c_m'] * 1e3:.2f}",
+                f"{r['u_s_m'] * 1e3:.2f}",
+                f"{r['u_d_m'] * 1e3:.2f}",
+                f"{r['F_N'] / 1e6:.3f}",
+                f"{r['M_b_Nm'] / 1e6:.2f}",
+                f"{r['sigma_b_Pa'] / 1e6:.2f}",
+                "kept" if r.get("contact_preserved", True) else "LOST",
+                "yes" if r["converged"] else f"NO (residual {r.get('residual_norm', float('nan')):.2e})",
+            )
+        )
+    widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
+    fmt = lambda cells: "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))
+    out = [title] if title else []
+    out += [fmt(head), fmt(["-" * w for w in widths])] + [fmt(l) for l in lines]
+    return "\n".join(out)

@@ -1,0 +1,189 @@
+"""One case end to end: configuration -> model -> excitation -> solvers -> results.
+
+This is the only place that knows the order of the stages; each stage is a pure function of
+the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+import xarray as xr
+
+import seafast
+from seafast.config.schema import Case
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.sections import CargoGeometry, TubeSegment
+from seafast.model.seafastening import SeaFastening
+from seafast.model.structure import StructuralModel, build_structural_model
+from seafast.results.dataset import build_case_dataset, summary_rows
+from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
+from seafast.solvers.linear import solve_linear
+
+__all__ = ["CaseResult", "build_model", "cargo_geometry", "run_case", "evaluate_summary", "solve_nonlinear"]
+
+
+def cargo_geometry(case: Case) -> CargoGeometry:
+    """The cargo's tube segments and material from the case."""
+    c = case.cargo
+    if c.sections is None:
+        segments = (TubeSegment(0.0, c.length_m, c.diameter_m, c.diameter_m, c.wall_thickness_m),)
+    else:
+        segments = tuple(
+            TubeSegment(s.x_start_m, s.x_end_m, s.diameter_start_m, s.diameter_end_m, s.wall_thickness_m) for s in c.sections
+        )
+    return CargoGeometry(segments, c.youngs_modulus_Pa, c.density_kg_per_m3, c.poisson_ratio)
+
+
+def build_model(case: Case) -> StructuralModel:
+    """Cargo + sea-fastening structural model of the case.
+
+    Raises
+    ------
+    seafast.model.MechanismError
+        If the support layout leaves the cargo a mechanism.
+    """
+    positions = np.array(case.saddle_positions_m())
+    lashed = np.zeros(positions.size, dtype=bool)
+    lashed[list(case.lashed_saddle_indices())] = True
+    sf = SeaFastening(
+        saddle_x_m=positions,
+        saddle_stiffness_N_per_m=np.array(case.saddle_stiffnesses_N_per_m()),
+        lashed=lashed,
+        lashing_wire_stiffness_N_per_m=case.seafastening.lashing.stiffness_N_per_m,
+        lashing_pretension_N=case.seafastening.lashing.pretension_N,
+    )
+    return build_structural_model(
+        cargo_geometry(case),
+        sf,
+        target_element_length_m=case.model.element_length_m,
+        damping_ratio=case.model.damping_ratio,
+        gravity_m_per_s2=case.model.gravity_m_per_s2,
+    )
+
+
+def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool) -> Any:
+    """Nonlinear (unilateral-saddle) response by the case's method; returns a PeriodicResponse.
+
+    ``static=True`` solves the still-water state alone (harmonic balance with H = 0).
+    """
+    from seafast.solvers.hbm import HBMOptions, solve_hbm
+
+    s = case.solver
+    if static:
+        opts = HBMOptions(
+            harmonics=0,
+            time_samples=2,
+            contact_law=s.contact_law,
+            regularisation_per_m=s.regularisation_per_m,
+            formulation=s.formulation,
+            solver=s.nonlinear_solver,
+            tolerance=s.tolerance,
+        )
+        return solve_hbm(model, excitation.static_part(), opts)
+    if s.method == "quasi_static":
+        from seafast.solvers.references import solve_quasi_static
+
+        return solve_quasi_static(model, excitation, time_samples=s.time_samples)
+    if s.method == "time_domain":
+        from seafast.solvers.references import solve_time_domain
+
+        return solve_time_domain(model, excitation, time_samples=s.time_samples)
+    opts = HBMOptions(
+        harmonics=s.harmonics,
+        time_samples=s.time_samples,
+        contact_law=s.contact_law,
+        regularisation_per_m=s.regularisation_per_m,
+        formulation=s.formulation,
+        solver=s.nonlinear_solver,
+        tolerance=s.tolerance,
+    )
+    return solve_hbm(model, excitation, opts)
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """Everything computed for one case."""
+
+    case: Case
+    model: StructuralModel
+    excitation: HarmonicExcitation
+    vessel: Any  # seafast.excitation.vessel.VesselExcitation (hull girder, motions) or None
+    dataset: xr.Dataset
+    responses: dict[str, Any]
+
+    @property
+    def summary(self) -> list[dict[str, Any]]:
+        """Summary rows (INTERFACE.md columns plus contact_preserved and diagnostics)."""
+        return summary_rows(self.dataset)
+
+
+def _excitation(case: Case, model: StructuralModel) -> tuple[HarmonicExcitation, Any]:
+    from seafast.excitation.vessel import vessel_excitation
+
+    vessel = vessel_excitation(case)
+    return vessel.cargo_excitation(model, case), vessel
+
+
+def run_case(
+    case: Case,
+    *,
+    excitation: HarmonicExcitation | None = None,
+    vessel: Any = None,
+    progress: Callable[[str], None] | None = None,
+) -> CaseResult:
+    """Run one case: linear and nonlinear, static and dynamic.
+
+    Parameters
+    ----------
+    case
+        The validated case.
+    excitation, vessel
+        Precomputed excitation (and the vessel data it came from), e.g. from a study that
+        reuses them across points; computed from the case when omitted.
+    progress
+        Called with a short message as each stage starts (e.g. to print it).
+    """
+    say = progress or (lambda message: None)
+    model = build_model(case)
+    if excitation is None:
+        say("vessel excitation (hull girder, motions)")
+        excitation, vessel = _excitation(case, model)
+    say("linear and nonlinear solves")
+    N = case.solver.time_samples
+    lin_static = solve_linear(model, excitation.static_part())
+    lin_dynamic = solve_linear(model, excitation)
+    nl_static = solve_nonlinear(model, excitation, case, static=True)
+    nl_dynamic = solve_nonlinear(model, excitation, case, static=False)
+    series: dict[tuple[str, str], PeriodTimeSeries] = {
+        ("static", "linear"): linear_time_series(lin_static, N),
+        ("dynamic", "linear"): linear_time_series(lin_dynamic, N),
+        ("static", "nonlinear"): from_periodic_response(nl_static, N),
+        ("dynamic", "nonlinear"): from_periodic_response(nl_dynamic, N),
+    }
+    attrs = {
+        "title": f"seafast results: {case.name}",
+        "seafast_version": seafast.__version__,
+        "excitation_source": excitation.source,
+        "wave_frequency_rad_s": excitation.omega_rad_s,
+        "solver_method": case.solver.method,
+        "solver_formulation": case.solver.formulation,
+        "contact_law": case.solver.contact_law,
+        "harmonics": case.solver.harmonics,
+        "time_samples": N,
+        "case_json": case.model_dump_json(),
+        "conventions": "x from the cargo's aft end; z up; displacements relative to the vessel's rigid-body frame; "
+        "sagging moment positive; saddle compression positive when compressed",
+    }
+    ds = build_case_dataset(model, excitation, series, N, attrs)
+    if vessel is not None and hasattr(vessel, "to_dataset"):
+        ds = xr.merge([ds, vessel.to_dataset()], combine_attrs="override")
+    responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
+    return CaseResult(case, model, excitation, vessel, ds, responses)
+
+
+def evaluate_summary(case: Case) -> list[dict[str, Any]]:
+    """Summary rows of one case (what a study records per point)."""
+    return run_case(case).summary
