@@ -1,0 +1,710 @@
+"""Hull-girder bending of the vessel in still water and on a regular wave (quasi-static).
+
+The ship is a free-free Timoshenko beam loaded by ``q(x) = b(x) - w(x)`` [N/m] (buoyancy minus
+weight, positive upward). Sections are wall-sided (see :class:`~seafast.vessel.hull_form.HullForm`),
+so the buoyancy per metre is ``rho g C_s B(x) d(x)`` with the local draught
+
+    d(x) = T + sinkage - trim (x - x_mid) + zeta(x)
+
+where ``sinkage`` [m] is positive when the ship sinks deeper, ``trim`` [rad] is the ship's
+pitch rotation, positive bow up (trim by the stern), ``x_mid = L/2`` and ``zeta`` the wave
+elevation (zero in still water). Sinkage and trim are solved so that the buoyancy equals the
+weight and LCB = LCG (the two conditions are linear in sinkage and trim while no section
+emerges, so one Newton step is exact; emergence is handled by continuing Newton).
+
+Sign conventions (seafast): x from the AP forward [m]; z up; deflection positive up;
+slope = dz/dx; shear force ``V(x) = int_0^x q dx`` (net upward force on the part aft of x) [N];
+bending moment ``M(x) = int_0^x V dx`` [N m], sagging positive, hogging negative, so that
+``M'' = q`` and ``M = EI psi'``. Timoshenko kinematics: ``dz/dx = psi - V / (G A_s)`` so
+``z'' = M / (E I) - q / (G A_s)``; the shear deflection of a free-free hull relative to the
+chord through its ends is exactly ``-M(x) / (G A_s)``.
+
+Definiteness (documented choice): a free-free beam under a self-equilibrated load has two
+rigid-body modes. seafast fixes them by putting the deflection relative to the chord through
+the hull's end points (AP and FP): ``z(AP) = z(FP) = 0``. In the FE model this is done by
+constraining the two end deflection DOFs; because the load is self-equilibrated to round-off,
+the constraint forces vanish and nothing else changes. Only differences along the deck matter
+to the cargo; the rigid-body motion of the ship is handled separately (RAOs).
+
+Discretisation: nodes at a uniform spacing plus every break point of the hull form and the
+loading; within each element the load is linear between its end values (so discontinuities
+of the weight at item ends are exact); shear force and bending moment are integrated exactly
+for that load (so they vanish at both ends to round-off); the deflection comes from
+``seafast.model.beam`` Timoshenko elements with consistent nodal loads of the linear element
+load.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+from numpy.typing import NDArray
+from scipy.interpolate import CubicHermiteSpline, CubicSpline
+
+from seafast.model.beam import assemble_beam
+from seafast.vessel.hull_form import HullForm
+from seafast.vessel.loading import VesselLoading, weight_distribution_N_per_m
+
+__all__ = [
+    "DEFAULT_SHEAR_AREA_M2",
+    "HullGirder",
+    "HullGirderResponse",
+    "WaveHullResponse",
+    "still_water_response",
+    "deflection_from_bending_moment",
+    "wave_response",
+    "iacs_wave_bending_moments_Nm",
+    "iacs_wave_coefficient",
+    "deck_deflection_at",
+    "deck_harmonics_at",
+    "deck_rise_m",
+]
+
+FloatArray = NDArray[np.float64]
+WeightSource = VesselLoading | Callable[[FloatArray], FloatArray]
+
+DEFAULT_SHEAR_AREA_M2 = 0.8
+"""Default effective vertical shear area of the hull girder [m^2].
+
+Vertical shear is carried by the longitudinal vertical plating: the two side shells and the
+two longitudinal bulkheads of the wing (ballast) tanks of a heavy-lift vessel, i.e. four webs
+of about 11 m effective depth and 18 mm mean thickness: 4 x 11 x 0.018 = 0.79 m^2. (For the
+same section, I = 103.8 m^4 corresponds to deck and bottom flanges of ~1.3 m^2 each at
++/- 6 m, consistent with a ~12 m deep hull.)"""
+
+
+# ============================================================================ data classes
+@dataclass(frozen=True)
+class HullGirder:
+    """The hull as a Timoshenko beam with wall-sided buoyancy.
+
+    Parameters
+    ----------
+    hull
+        Hull form (waterline breadths, design draught, section-area coefficient).
+    second_moment_m4
+        Vertical second moment of area of the hull girder I [m^4] (base 103.8).
+    shear_area_m2
+        Effective vertical shear area A_s [m^2] (default :data:`DEFAULT_SHEAR_AREA_M2`).
+    youngs_modulus_Pa
+        Young's modulus E [Pa].
+    shear_modulus_Pa
+        Shear modulus G [Pa]; ``None`` gives ``E / 2.6`` (steel, nu = 0.3).
+    water_density_kg_per_m3, gravity_m_per_s2
+        Sea water density and gravity.
+    """
+
+    hull: HullForm
+    second_moment_m4: float = 103.8
+    shear_area_m2: float = DEFAULT_SHEAR_AREA_M2
+    youngs_modulus_Pa: float = 210e9
+    shear_modulus_Pa: float | None = None
+    water_density_kg_per_m3: float = 1025.0
+    gravity_m_per_s2: float = 9.81
+
+    def __post_init__(self) -> None:
+        if self.shear_modulus_Pa is None:
+            object.__setattr__(self, "shear_modulus_Pa", self.youngs_modulus_Pa / 2.6)
+        for name in ("second_moment_m4", "shear_area_m2", "youngs_modulus_Pa", "shear_modulus_Pa",
+                     "water_density_kg_per_m3", "gravity_m_per_s2"):
+            v = getattr(self, name)
+            if not (v > 0):  # inf shear area is allowed (Euler-Bernoulli)
+                raise ValueError(f"hull girder: {name} = {v!r}; must be > 0")
+
+    @property
+    def length_m(self) -> float:
+        """Hull length AP-FP [m]."""
+        return self.hull.length_m
+
+    @property
+    def midship_x_m(self) -> float:
+        """x of midship (L/2 from the AP) [m]."""
+        return float(self.hull.station_x_m[0]) + 0.5 * self.hull.length_m
+
+    @property
+    def bending_stiffness_Nm2(self) -> float:
+        """EI [N m^2]."""
+        return float(self.youngs_modulus_Pa * self.second_moment_m4)
+
+    @property
+    def shear_stiffness_N(self) -> float:
+        """G A_s [N] (``inf`` for an Euler-Bernoulli hull)."""
+        return float(self.shear_modulus_Pa * self.shear_area_m2)
+
+    @property
+    def buoyancy_per_draught_N_per_m2(self) -> float:
+        """rho g C_s [N/m^3]: buoyancy per metre = this x breadth x local draught."""
+        return float(self.water_density_kg_per_m3 * self.gravity_m_per_s2 * self.hull.section_area_coefficient)
+
+
+@dataclass(frozen=True)
+class HullGirderResponse:
+    """Still-water hull-girder response at the nodes ``x_m``.
+
+    Attributes
+    ----------
+    x_m
+        Node positions from the AP [m], shape (n_x,).
+    weight_N_per_m
+        Weight per metre [N/m] (positive = downward load); at a discontinuity the mean of the
+        two sides.
+    buoyancy_N_per_m
+        Buoyancy per metre [N/m] (upward).
+    shear_force_N
+        ``V(x) = int_0^x (b - w)`` [N].
+    bending_moment_Nm
+        Bending moment [N m], sagging positive, hogging negative; zero at AP and FP.
+    deflection_m
+        Deflection [m], positive up, relative to the chord through AP and FP (zero at both).
+    slope_rad
+        dz/dx of the deflection line [rad] (Timoshenko: bending rotation plus shear strain).
+    sinkage_m
+        Parallel sinkage from the design draught [m], positive deeper.
+    trim_rad
+        Trim angle [rad], positive bow up.
+    """
+
+    x_m: FloatArray
+    weight_N_per_m: FloatArray
+    buoyancy_N_per_m: FloatArray
+    shear_force_N: FloatArray
+    bending_moment_Nm: FloatArray
+    deflection_m: FloatArray
+    slope_rad: FloatArray
+    sinkage_m: float
+    trim_rad: float
+
+
+@dataclass(frozen=True)
+class WaveHullResponse:
+    """Quasi-static hull-girder response on a regular head-sea wave, wave-induced part.
+
+    Wave: ``zeta(x, t) = zeta_a cos(omega t + k (x - L/2))``, crest at midship at t = 0,
+    travelling from bow to stern. ``deflection_m`` and ``bending_moment_Nm`` are the
+    wave-induced parts (total minus still water, ``still_water`` holds the latter).
+    Harmonics: ``w(x, t) = Re(sum_k W_k(x) exp(i k omega t))``, k = 0 the (real) mean.
+
+    Attributes
+    ----------
+    x_m
+        Node positions [m], shape (n_x,).
+    period_fraction
+        s = t / T at the time steps, shape (n_t,), in [0, 1).
+    deflection_m, bending_moment_Nm, slope_rad
+        Wave-induced deflection [m] (chord-relative), moment [N m] and slope [rad], shape (n_t, n_x).
+    deflection_harmonics_m, bending_moment_harmonics_Nm, slope_harmonics_rad
+        Complex harmonics, shape (n_harmonics + 1, n_x).
+    sinkage_m, trim_rad
+        Wave-induced sinkage [m] and trim [rad] time series, shape (n_t,).
+    wave_length_m, wave_amplitude_m, frequency_rad_s
+        The wave (frequency from deep-water dispersion).
+    still_water
+        The still-water response of the same loading.
+    """
+
+    x_m: FloatArray
+    period_fraction: FloatArray
+    deflection_m: FloatArray
+    bending_moment_Nm: FloatArray
+    deflection_harmonics_m: NDArray[np.complex128]
+    bending_moment_harmonics_Nm: NDArray[np.complex128]
+    slope_rad: FloatArray = field(default_factory=lambda: np.zeros((0, 0)))
+    slope_harmonics_rad: NDArray[np.complex128] = field(default_factory=lambda: np.zeros((0, 0), complex))
+    sinkage_m: FloatArray = field(default_factory=lambda: np.zeros(0))
+    trim_rad: FloatArray = field(default_factory=lambda: np.zeros(0))
+    wave_length_m: float = float("nan")
+    wave_amplitude_m: float = float("nan")
+    frequency_rad_s: float = float("nan")
+    still_water: HullGirderResponse | None = None
+
+
+# ============================================================================ internals
+def _grid(girder: HullGirder, breakpoints: tuple[float, ...], n_points: int) -> FloatArray:
+    """Node positions: uniform spacing plus all break points (nearby uniform nodes dropped)."""
+    x0 = float(girder.hull.station_x_m[0])
+    x1 = float(girder.hull.station_x_m[-1])
+    if n_points < 3:
+        raise ValueError(f"hull girder: n_points = {n_points}; must be >= 3")
+    base = np.linspace(x0, x1, n_points)
+    h = (x1 - x0) / (n_points - 1)
+    tol = 1e-9 * (x1 - x0)
+    bp = np.array(sorted(set([x0, x1, *girder.hull.station_x_m, *breakpoints])))
+    bp = bp[(bp >= x0 - tol) & (bp <= x1 + tol)]
+    bp = np.clip(bp, x0, x1)
+    keep = np.ones(base.size, bool)
+    for p in bp:
+        keep &= np.abs(base - p) > 0.3 * h
+    x = np.unique(np.concatenate([base[keep], bp]))
+    # merge nodes closer than tol (round-off duplicates)
+    x = x[np.concatenate([[True], np.diff(x) > tol])]
+    return x
+
+
+def _weight_element_ends(
+    girder: HullGirder, loading: WeightSource, x: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Weight per metre at the start and end of each element (one-sided limits) [N/m]."""
+    if isinstance(loading, VesselLoading):
+        def fun(xx: FloatArray) -> FloatArray:
+            return weight_distribution_N_per_m(xx, loading, girder.gravity_m_per_s2)
+    elif callable(loading):
+        fun = loading  # type: ignore[assignment]
+    else:
+        raise TypeError("hull girder: loading must be a VesselLoading or a callable x_m -> weight_N_per_m")
+    h = np.diff(x)
+    x25 = x[:-1] + 0.25 * h
+    x75 = x[:-1] + 0.75 * h
+    w25 = np.asarray(fun(x25), dtype=float)
+    w75 = np.asarray(fun(x75), dtype=float)
+    # exact for a load linear inside each element
+    wa = 1.5 * w25 - 0.5 * w75
+    wb = 1.5 * w75 - 0.5 * w25
+    return wa, wb
+
+
+def _check_loading_extent(girder: HullGirder, loading: WeightSource) -> tuple[float, ...]:
+    if not isinstance(loading, VesselLoading):
+        return ()
+    x0 = float(girder.hull.station_x_m[0])
+    x1 = float(girder.hull.station_x_m[-1])
+    tol = 1e-9 * (x1 - x0)
+    for it in loading.items:
+        if it.x_start_m < x0 - tol or it.x_end_m > x1 + tol:
+            raise ValueError(
+                f"hull girder: weight item {it.name!r} [{it.x_start_m:.2f}, {it.x_end_m:.2f}] m extends beyond "
+                f"the hull [{x0:.2f}, {x1:.2f}] m; overhanging weights are not modelled"
+            )
+    return loading.breakpoints_m
+
+
+def _shear_moment(h: FloatArray, qa: NDArray, qb: NDArray) -> tuple[NDArray, NDArray]:
+    """Exact V and M at the nodes for a load linear in each element (leading axes broadcast)."""
+    dV = 0.5 * h * (qa + qb)
+    V = np.concatenate([np.zeros(dV.shape[:-1] + (1,)), np.cumsum(dV, axis=-1)], axis=-1)
+    dM = V[..., :-1] * h + h * h * (2.0 * qa + qb) / 6.0
+    M = np.concatenate([np.zeros(dM.shape[:-1] + (1,)), np.cumsum(dM, axis=-1)], axis=-1)
+    return V, M
+
+
+def _end_resultants(h: FloatArray, qa: NDArray, qb: NDArray) -> NDArray:
+    """(V(L), M(L)) stacked on the last axis, for the element loads."""
+    V, M = _shear_moment(h, qa, qb)
+    return np.stack([V[..., -1], M[..., -1]], axis=-1)
+
+
+@dataclass(frozen=True)
+class _Beam:
+    """Factorised free-free Timoshenko hull beam with the two end deflections constrained."""
+
+    x: FloatArray
+    h: FloatArray
+    EI: float
+    GA: float
+    free: NDArray[np.intp]
+    factor: tuple
+
+    @classmethod
+    def build(cls, x: FloatArray, girder: HullGirder) -> "_Beam":
+        n_el = x.size - 1
+        EI = girder.bending_stiffness_Nm2
+        GA = girder.shear_stiffness_N
+        gas = None if np.isinf(GA) else np.full(n_el, GA)
+        K, _, _ = assemble_beam(x, np.full(n_el, EI), np.zeros(n_el), shear_stiffness_N=gas)
+        n_dof = 2 * x.size
+        free = np.setdiff1d(np.arange(n_dof), [0, n_dof - 2])
+        factor = scipy.linalg.cho_factor(K[np.ix_(free, free)])
+        return cls(x, np.diff(x), EI, GA, free, factor)
+
+    def solve(self, qa: NDArray, qb: NDArray, V: NDArray) -> tuple[NDArray, NDArray]:
+        """Nodal deflection [m] and slope dz/dx [rad], shape (..., n_x), for element loads."""
+        h = self.h
+        lead = qa.shape[:-1]
+        n = self.x.size
+        f = np.zeros(lead + (2 * n,))
+        fz1 = h * (7.0 * qa + 3.0 * qb) / 20.0
+        fr1 = h * h * (3.0 * qa + 2.0 * qb) / 60.0
+        fz2 = h * (3.0 * qa + 7.0 * qb) / 20.0
+        fr2 = -h * h * (2.0 * qa + 3.0 * qb) / 60.0
+        f[..., 0:-2:2] += fz1
+        f[..., 1:-1:2] += fr1
+        f[..., 2::2] += fz2
+        f[..., 3::2] += fr2
+        ff = f[..., self.free].reshape(-1, self.free.size).T
+        uf = scipy.linalg.cho_solve(self.factor, ff)
+        u = np.zeros((2 * n, uf.shape[1]))
+        u[self.free] = uf
+        u = u.T.reshape(lead + (2 * n,))
+        z = u[..., 0::2]
+        psi = u[..., 1::2]
+        slope = psi if np.isinf(self.GA) else psi - V / self.GA
+        return z, slope
+
+
+def _balance(
+    girder: HullGirder,
+    x: FloatArray,
+    wa: FloatArray,
+    wb: FloatArray,
+    zeta: NDArray,
+    max_iter: int = 50,
+) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
+    """Sinkage and trim that balance the element weights; vectorised over leading axes of ``zeta``.
+
+    Returns sinkage, trim (shape lead), nodal buoyancy (lead + (n_x,)) and element load ends
+    qa, qb (lead + (n_el,)).
+    """
+    h = np.diff(x)
+    rgc = girder.buoyancy_per_draught_N_per_m2
+    breadth = girder.hull.breadth_at(x)
+    xm = girder.midship_x_m
+    T = girder.hull.draft_m
+    lead = zeta.shape[:-1]
+    s = np.zeros(lead)
+    tr = np.zeros(lead)
+    L = girder.length_m
+    for _ in range(max_iter):
+        d = T + s[..., None] - tr[..., None] * (x - xm) + zeta
+        wet = d > 0
+        b = rgc * breadth * np.where(wet, d, 0.0)
+        qa = b[..., :-1] - wa
+        qb = b[..., 1:] - wb
+        R = _end_resultants(h, qa, qb)
+        db_ds = rgc * breadth * wet
+        db_dt = -(x - xm) * db_ds
+        Js = _end_resultants(h, db_ds[..., :-1], db_ds[..., 1:])
+        Jt = _end_resultants(h, db_dt[..., :-1], db_dt[..., 1:])
+        J = np.stack([Js, Jt], axis=-1)  # (..., 2 equations, 2 unknowns)
+        delta = np.linalg.solve(J, -R[..., None])[..., 0]
+        s = s + delta[..., 0]
+        tr = tr + delta[..., 1]
+        if np.all(np.abs(delta[..., 0]) < 1e-13 * T) and np.all(np.abs(delta[..., 1]) * L < 1e-13 * T):
+            break
+    else:  # pragma: no cover - only for pathological emergence
+        raise RuntimeError("hull girder: hydrostatic balance did not converge")
+    d = T + s[..., None] - tr[..., None] * (x - xm) + zeta
+    b = rgc * breadth * np.maximum(d, 0.0)
+    qa = b[..., :-1] - wa
+    qb = b[..., 1:] - wb
+    return s, tr, b, qa, qb
+
+
+def _nodal_weight(wa: FloatArray, wb: FloatArray) -> FloatArray:
+    """Nodal weight values: mean of the one-sided limits at interior nodes."""
+    w = np.empty(wa.size + 1)
+    w[0] = wa[0]
+    w[-1] = wb[-1]
+    w[1:-1] = 0.5 * (wb[:-1] + wa[1:])
+    return w
+
+
+# ============================================================================ public API
+def still_water_response(
+    girder: HullGirder, loading: WeightSource, n_points: int = 343
+) -> HullGirderResponse:
+    """Still-water equilibrium, shear force, bending moment and deflection of the hull girder.
+
+    Parameters
+    ----------
+    girder
+        The hull girder.
+    loading
+        A :class:`~seafast.vessel.loading.VesselLoading`, or a callable ``x_m -> weight [N/m]``
+        (downward positive). The total weight should be close to the displacement at the design
+        draught (it need not be equal: sinkage and trim are solved).
+    n_points
+        Number of uniformly spaced nodes (break points of the hull form and the loading are
+        added); the default gives 0.5 m elements on a 171 m hull.
+
+    Returns
+    -------
+    HullGirderResponse
+        Buoyancy equals weight and LCB = LCG to round-off; V and M vanish at both ends to
+        round-off; the deflection is relative to the chord through AP and FP (see the module
+        docstring), positive up, so a hogging hull shows a positive deflection amidships.
+    """
+    bp = _check_loading_extent(girder, loading)
+    x = _grid(girder, bp, n_points)
+    wa, wb = _weight_element_ends(girder, loading, x)
+    s, tr, b, qa, qb = _balance(girder, x, wa, wb, np.zeros(x.size))
+    h = np.diff(x)
+    V, M = _shear_moment(h, qa, qb)
+    beam = _Beam.build(x, girder)
+    z, slope = beam.solve(qa, qb, V)
+    return HullGirderResponse(
+        x_m=x,
+        weight_N_per_m=_nodal_weight(wa, wb),
+        buoyancy_N_per_m=b,
+        shear_force_N=V,
+        bending_moment_Nm=M,
+        deflection_m=z,
+        slope_rad=slope,
+        sinkage_m=float(s),
+        trim_rad=float(tr),
+    )
+
+
+def deflection_from_bending_moment(
+    girder: HullGirder,
+    x_m: FloatArray,
+    bending_moment_Nm: FloatArray,
+    shear_force_N: FloatArray | None = None,
+) -> tuple[FloatArray, FloatArray]:
+    """Hull deflection from a given still-water bending-moment distribution (loading computer).
+
+    Integrates the Timoshenko curvature ``z'' = M / (E I) - V' / (G A_s)`` exactly for a cubic
+    spline through the table: ``z = int int M / (EI) - int V / (G A_s)``, then removes the
+    chord through the first and last table points (normally AP and FP; the same definiteness
+    as :func:`still_water_response`).
+
+    Parameters
+    ----------
+    girder
+        Supplies EI and G A_s (the hull form is not used).
+    x_m
+        Table positions from the AP [m], strictly increasing, at least 4 points.
+    bending_moment_Nm
+        Still-water bending moment [N m], sagging positive, hogging negative (note: many
+        loading computers print hogging positive; flip the sign of such tables).
+    shear_force_N
+        Optional shear force [N] in the seafast convention ``V = dM/dx``; if omitted it is the
+        derivative of the moment spline and the shear deflection is ``-(M - M(x_0)) / G A_s``.
+
+    Returns
+    -------
+    deflection_m, slope_rad
+        At ``x_m``: deflection [m] (positive up, zero at both ends) and dz/dx [rad].
+
+    Raises
+    ------
+    ValueError
+        On a malformed table, or if ``shear_force_N`` has the opposite sign convention
+        (anti-correlated with dM/dx).
+    """
+    x = np.asarray(x_m, dtype=float)
+    M = np.asarray(bending_moment_Nm, dtype=float)
+    if x.ndim != 1 or x.shape != M.shape or x.size < 4:
+        raise ValueError("deflection_from_bending_moment: x_m and bending_moment_Nm must be 1-D of equal length >= 4")
+    if np.any(np.diff(x) <= 0) or not (np.all(np.isfinite(x)) and np.all(np.isfinite(M))):
+        raise ValueError("deflection_from_bending_moment: x_m must be strictly increasing and all values finite")
+    EI = girder.bending_stiffness_Nm2
+    GA = girder.shear_stiffness_N
+    spl = CubicSpline(x, M)
+    S1 = spl.antiderivative(1)
+    S2 = spl.antiderivative(2)
+    dMdx = spl.derivative(1)(x)
+    if shear_force_N is None:
+        V = dMdx
+        intV = M - M[0]
+    else:
+        V = np.asarray(shear_force_N, dtype=float)
+        if V.shape != x.shape or not np.all(np.isfinite(V)):
+            raise ValueError("deflection_from_bending_moment: shear_force_N must match x_m and be finite")
+        if np.dot(V, dMdx) < 0:
+            raise ValueError(
+                "deflection_from_bending_moment: shear_force_N is anti-correlated with dM/dx; seafast uses V = dM/dx "
+                "(flip the sign of the shear-force table)"
+            )
+        vs = CubicSpline(x, V).antiderivative(1)
+        intV = vs(x) - vs(x[0])
+    shear_term = 0.0 if np.isinf(GA) else 1.0 / GA
+    z = (S2(x) - S2(x[0]) - S1(x[0]) * (x - x[0])) / EI - shear_term * intV
+    slope = (S1(x) - S1(x[0])) / EI - shear_term * V
+    chord_slope = (z[-1] - z[0]) / (x[-1] - x[0])
+    z = z - z[0] - chord_slope * (x - x[0])
+    slope = slope - chord_slope
+    return z, slope
+
+
+def wave_response(
+    girder: HullGirder,
+    loading: WeightSource,
+    wave_length_m: float,
+    wave_amplitude_m: float,
+    n_steps: int = 64,
+    n_harmonics: int = 5,
+    n_points: int = 343,
+) -> WaveHullResponse:
+    """Quasi-static hull-girder response on a regular head-sea wave over one period.
+
+    Wave elevation (phase convention relied on by other modules)::
+
+        zeta(x, t) = zeta_a cos(omega t + k (x - L/2)),   k = 2 pi / lambda,
+
+    crest at midship at t = 0, waves travelling from bow to stern; ``omega = sqrt(g k)``
+    (deep water). At each of ``n_steps`` equal steps of the period fraction ``s = t / T`` in
+    [0, 1) the ship is re-balanced (sinkage and trim) on the wave surface with wall-sided
+    sections (buoyancy to the local wave surface; the Smith effect and dynamics are ignored),
+    and the bending moment and chord-relative deflection follow as in still water. The
+    wave-induced part (total minus still water) is returned. While no section emerges
+    (local draught > 0 everywhere) the buoyancy is linear in the draught, so the wave-induced
+    response is exactly linear in ``zeta_a`` and purely first-harmonic; emergence (very steep
+    waves or light draught) makes it nonlinear, which the Newton balance handles.
+
+    A crest amidships (t = 0) gives hogging (negative moment, midship deflected up); a trough
+    amidships (s = 0.5) gives sagging.
+
+    Parameters
+    ----------
+    girder, loading
+        As for :func:`still_water_response`.
+    wave_length_m, wave_amplitude_m
+        Wave length lambda [m] and amplitude zeta_a [m].
+    n_steps
+        Time steps per period (> 2 n_harmonics).
+    n_harmonics
+        Highest harmonic returned.
+    n_points
+        Uniform nodes along the hull (plus break points).
+
+    Returns
+    -------
+    WaveHullResponse
+    """
+    if not (wave_length_m > 0) or not np.isfinite(wave_amplitude_m):
+        raise ValueError("wave_response: wave_length_m must be > 0 and wave_amplitude_m finite")
+    if n_steps <= 2 * n_harmonics:
+        raise ValueError(f"wave_response: n_steps = {n_steps} must exceed 2 n_harmonics = {2 * n_harmonics}")
+    bp = _check_loading_extent(girder, loading)
+    x = _grid(girder, bp, n_points)
+    wa, wb = _weight_element_ends(girder, loading, x)
+    k = 2.0 * np.pi / wave_length_m
+    omega = float(np.sqrt(girder.gravity_m_per_s2 * k))
+    sfrac = np.arange(n_steps) / n_steps
+    phase = 2.0 * np.pi * sfrac[:, None] + k * (x[None, :] - girder.midship_x_m)
+    zeta = np.vstack([np.zeros((1, x.size)), wave_amplitude_m * np.cos(phase)])
+    s, tr, b, qa, qb = _balance(girder, x, wa, wb, zeta)
+    h = np.diff(x)
+    V, M = _shear_moment(h, qa, qb)
+    beam = _Beam.build(x, girder)
+    z, slope = beam.solve(qa, qb, V)
+    still = HullGirderResponse(
+        x_m=x,
+        weight_N_per_m=_nodal_weight(wa, wb),
+        buoyancy_N_per_m=b[0],
+        shear_force_N=V[0],
+        bending_moment_Nm=M[0],
+        deflection_m=z[0],
+        slope_rad=slope[0],
+        sinkage_m=float(s[0]),
+        trim_rad=float(tr[0]),
+    )
+    zw = z[1:] - z[0]
+    Mw = M[1:] - M[0]
+    sw = slope[1:] - slope[0]
+
+    def harmonics(a: NDArray) -> NDArray[np.complex128]:
+        c = np.fft.fft(a, axis=0)[: n_harmonics + 1] / n_steps
+        c[1:] *= 2.0
+        c[0] = c[0].real
+        return c
+
+    return WaveHullResponse(
+        x_m=x,
+        period_fraction=sfrac,
+        deflection_m=zw,
+        bending_moment_Nm=Mw,
+        deflection_harmonics_m=harmonics(zw),
+        bending_moment_harmonics_Nm=harmonics(Mw),
+        slope_rad=sw,
+        slope_harmonics_rad=harmonics(sw),
+        sinkage_m=s[1:] - s[0],
+        trim_rad=tr[1:] - tr[0],
+        wave_length_m=float(wave_length_m),
+        wave_amplitude_m=float(wave_amplitude_m),
+        frequency_rad_s=omega,
+        still_water=still,
+    )
+
+
+def iacs_wave_coefficient(length_m: float) -> float:
+    """IACS UR S11 wave coefficient C_w [-] (rule length L in m, 0 < L <= 500)."""
+    L = float(length_m)
+    if not (0 < L <= 500):
+        raise ValueError(f"iacs_wave_coefficient: length_m = {L!r} outside (0, 500]")
+    if L < 90:
+        return 0.0792 * L
+    if L <= 300:
+        return 10.75 - ((300.0 - L) / 100.0) ** 1.5
+    if L <= 350:
+        return 10.75
+    return 10.75 - ((L - 350.0) / 150.0) ** 1.5
+
+
+def iacs_wave_bending_moments_Nm(
+    length_m: float, breadth_m: float, block_coefficient: float
+) -> tuple[float, float]:
+    """IACS UR S11 rule vertical wave bending moments amidships [N m].
+
+    ``M_wh = +190 C_w L^2 B C_b 1e-3`` kN m (hogging) and
+    ``M_ws = -110 C_w L^2 B (C_b + 0.7) 1e-3`` kN m (sagging), C_b not less than 0.6,
+    C_w from :func:`iacs_wave_coefficient`. NOTE: returned in the IACS sign convention
+    (hogging positive, sagging negative), which is the opposite of seafast's
+    (sagging positive); compare magnitudes, or negate for seafast.
+
+    Returns
+    -------
+    hogging_Nm, sagging_Nm
+        (positive, negative) [N m].
+    """
+    L, B = float(length_m), float(breadth_m)
+    cb = max(float(block_coefficient), 0.6)
+    cw = iacs_wave_coefficient(L)
+    hog_kNm = 190.0 * cw * L * L * B * cb * 1e-3
+    sag_kNm = -110.0 * cw * L * L * B * (cb + 0.7) * 1e-3
+    return hog_kNm * 1e3, sag_kNm * 1e3
+
+
+def deck_deflection_at(
+    response: HullGirderResponse | WaveHullResponse, x_m: FloatArray | float
+) -> tuple[NDArray, NDArray]:
+    """Deck deflection [m] and slope dz/dx [rad] at ``x_m`` by cubic Hermite interpolation.
+
+    The interpolant uses the nodal deflections and the nodal slopes of the Timoshenko
+    solution, so it is C1 and consistent with the FE result. For a
+    :class:`WaveHullResponse` the wave-induced time series is interpolated: the outputs have
+    shape (n_t,) + shape(x_m).
+    """
+    xq = np.asarray(x_m, dtype=float)
+    x = response.x_m
+    if isinstance(response, WaveHullResponse):
+        spl = CubicHermiteSpline(x, response.deflection_m.T, response.slope_rad.T, axis=0)
+        z = np.moveaxis(spl(xq), -1, 0) if xq.ndim else spl(xq)
+        sl = np.moveaxis(spl(xq, 1), -1, 0) if xq.ndim else spl(xq, 1)
+        return np.asarray(z), np.asarray(sl)
+    spl = CubicHermiteSpline(x, response.deflection_m, response.slope_rad)
+    return np.asarray(spl(xq)), np.asarray(spl(xq, 1))
+
+
+def deck_harmonics_at(
+    response: WaveHullResponse, x_m: FloatArray | float
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Complex harmonics of the wave-induced deck deflection [m] and slope [rad] at ``x_m``.
+
+    Returns arrays of shape (n_harmonics + 1,) + shape(x_m) in the convention
+    ``w(t) = Re(sum_k W_k exp(i k omega t))``; ``abs(W_1)`` and ``angle(W_1)`` are the
+    ``wave_amplitude_m`` and ``wave_phase_rad`` of a deck deflection table.
+    """
+    xq = np.asarray(x_m, dtype=float)
+    x = response.x_m
+    out_z = []
+    out_s = []
+    for part in (np.real, np.imag):
+        spl = CubicHermiteSpline(x, part(response.deflection_harmonics_m).T, part(response.slope_harmonics_rad).T, axis=0)
+        zz = spl(xq)
+        ss = spl(xq, 1)
+        out_z.append(np.moveaxis(zz, -1, 0) if xq.ndim else zz)
+        out_s.append(np.moveaxis(ss, -1, 0) if xq.ndim else ss)
+    return out_z[0] + 1j * out_z[1], out_s[0] + 1j * out_s[1]
+
+
+def deck_rise_m(response: HullGirderResponse, centre_x_m: float, half_span_m: float) -> float:
+    """Deck rise [m] at ``centre_x_m`` above the mean of the deck at ``centre_x_m +/- half_span_m``.
+
+    The one non-rigid combination of three deck points: positive when the hull hogs between
+    them (the middle saddle of a three-saddle cargo is then the most loaded).
+    """
+    z, _ = deck_deflection_at(response, np.array([centre_x_m - half_span_m, centre_x_m, centre_x_m + half_span_m]))
+    return float(z[1] - 0.5 * (z[0] + z[2]))

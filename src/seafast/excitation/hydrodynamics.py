@@ -1,0 +1,888 @@
+"""Rigid-body heave and pitch of the vessel in head seas (MODEL.md section 3, item 3).
+
+Linear potential flow (radiation + diffraction) with capytaine, hydrostatic stiffness from the
+hull form, and the 2-DOF equation of motion in heave and pitch, giving response amplitude
+operators (RAOs) per metre of wave amplitude. Results are cached on disk; coefficients can also
+be imported from a capytaine NetCDF file or from WAMIT ``.1``/``.3`` output.
+
+Conventions (seafast; other modules rely on them)
+-------------------------------------------------
+* Time dependence ``x(t) = Re(X exp(+i omega t))``.
+* Coordinates: ``x`` from the aft perpendicular (AP), forward positive; ``z`` up. The vertical
+  position of the centre of gravity is given **above the keel (baseline)**; internally
+  (capytaine's frame) heights are relative to the design waterline, ``z_wl = z_keel - T``.
+* Regular head-sea wave: ``zeta(x, t) = zeta_a cos(omega t + k (x - x_mid))``,
+  ``x_mid = L/2`` (crest at midship at ``t = 0``; the wave travels towards ``-x``, from bow to
+  stern; capytaine's ``wave_direction = pi``). The complex wave elevation per unit amplitude is
+  ``exp(i k (x - x_mid))``, so the phases of all RAOs refer to the wave crest at midship.
+* Heave ``w`` positive up, at ``x = reference_x_m`` (the CoG x). Pitch ``theta = dz/dx``, positive
+  **bow up**. The rigid-body vertical displacement at ``x`` is ``w + theta (x - reference_x_m)``.
+* DOF order everywhere: (heave, pitch). Generalised force conjugate to ``theta`` is the moment
+  ``sum f_z (x - reference_x_m)`` (bow-up positive). Units of the 2x2 matrices: ``[[kg, kg m],
+  [kg m, kg m^2]]`` (added mass), same per second (damping), ``[N/m, N]`` (stiffness row 1,
+  column by column: N/m, N/rad; N, N m/rad); excitation ``[N/m, N m/m]`` per metre of wave
+  amplitude.
+
+Mapping from capytaine (and WAMIT) conventions: both use a rotation about ``+y`` (``eta_5``),
+which with ``x`` forward is bow *down*, so ``theta = -eta_5``. Capytaine uses
+``exp(-i omega t)``: its complex amplitudes are complex-conjugated. WAMIT already uses
+``exp(+i omega t)``.
+
+Long-wave limit (checked in the tests): the ship follows the wave, the vertical displacement at
+``x_mid`` tends to ``1`` m/m with zero phase and ``theta/zeta_a`` tends to the wave slope ``i k``
+(magnitude ``k`` rad/m, phase +90 deg).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal, Sequence
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from seafast.vessel.hull_form import HullForm
+from seafast.vessel.hull_mesh import hull_mesh_arrays, section_profile
+
+__all__ = [
+    "RigidBodyMotions",
+    "base_vessel_mass_properties",
+    "compute_motions",
+    "load_motions",
+    "read_wamit_1",
+    "read_wamit_3",
+    "hydrostatic_stiffness_matrix",
+    "mass_matrix",
+    "solve_heave_pitch",
+    "strip_theory_estimate",
+    "wavenumber_rad_per_m",
+    "default_cache_dir",
+    "MESH_ALGORITHM_VERSION",
+]
+
+#: Bump when the mesher or the post-processing changes, to invalidate cached BEM results.
+MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
+
+_T = np.diag([1.0, -1.0])  # capytaine/WAMIT (heave, eta5) -> seafast (heave, theta)
+
+
+# ---------------------------------------------------------------------------------- results
+@dataclass(frozen=True, eq=False)
+class RigidBodyMotions:
+    """Heave and pitch RAOs of the vessel in regular head seas (seafast conventions, see module).
+
+    Attributes
+    ----------
+    omega_rad_s
+        Wave frequencies [rad/s], shape (n_w,), strictly increasing.
+    heave_rao_m_per_m
+        Complex heave amplitude at ``x = reference_x_m`` per metre of wave amplitude [m/m].
+    pitch_rao_rad_per_m
+        Complex pitch ``theta = dz/dx`` (bow up) per metre of wave amplitude [rad/m].
+    added_mass
+        Added mass, shape (n_w, 2, 2), (heave, pitch) about ``reference_x_m`` [kg, kg m, kg m^2].
+    radiation_damping
+        Radiation damping, shape (n_w, 2, 2) [kg/s, kg m/s, kg m^2/s].
+    excitation_force
+        Complex wave excitation per metre of wave amplitude, shape (n_w, 2) [N/m, N m/m].
+    reference_x_m
+        ``x`` from the AP about which pitch acts (the CoG x) [m].
+    mass_matrix
+        Rigid-body mass matrix (2, 2) about ``reference_x_m`` [kg, kg m^2].
+    hydrostatic_stiffness
+        Hydrostatic stiffness (2, 2) [N/m, N/rad; N, N m/rad].
+    wave_phase_reference_x_m
+        ``x_mid``: where the wave crest is at ``t = 0`` [m].
+    wavenumber_rad_per_m
+        Wave number of each frequency [rad/m] (finite depth if applicable).
+    source
+        Free text describing where the coefficients come from.
+    """
+
+    omega_rad_s: NDArray[np.float64]
+    heave_rao_m_per_m: NDArray[np.complex128]
+    pitch_rao_rad_per_m: NDArray[np.complex128]
+    added_mass: NDArray[np.float64]
+    radiation_damping: NDArray[np.float64]
+    excitation_force: NDArray[np.complex128]
+    reference_x_m: float
+    mass_matrix: NDArray[np.float64] = field(default_factory=lambda: np.full((2, 2), np.nan))
+    hydrostatic_stiffness: NDArray[np.float64] = field(default_factory=lambda: np.full((2, 2), np.nan))
+    wave_phase_reference_x_m: float = float("nan")
+    wavenumber_rad_per_m: NDArray[np.float64] | None = None
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        w = np.asarray(self.omega_rad_s, dtype=float)
+        if w.ndim != 1 or w.size < 1 or np.any(np.diff(w) <= 0):
+            raise ValueError("RigidBodyMotions: omega_rad_s must be a non-empty, strictly increasing 1-D array")
+        n = w.size
+        arrays = {
+            "heave_rao_m_per_m": (np.complex128, (n,)),
+            "pitch_rao_rad_per_m": (np.complex128, (n,)),
+            "added_mass": (np.float64, (n, 2, 2)),
+            "radiation_damping": (np.float64, (n, 2, 2)),
+            "excitation_force": (np.complex128, (n, 2)),
+            "mass_matrix": (np.float64, (2, 2)),
+            "hydrostatic_stiffness": (np.float64, (2, 2)),
+        }
+        object.__setattr__(self, "omega_rad_s", w)
+        for name, (dtype, shape) in arrays.items():
+            a = np.asarray(getattr(self, name), dtype=dtype)
+            if a.shape != shape:
+                raise ValueError(f"RigidBodyMotions: {name} has shape {a.shape}, expected {shape}")
+            a.setflags(write=False)
+            object.__setattr__(self, name, a)
+        if self.wavenumber_rad_per_m is not None:
+            k = np.asarray(self.wavenumber_rad_per_m, dtype=float)
+            if k.shape != (n,):
+                raise ValueError("RigidBodyMotions: wavenumber_rad_per_m must have the shape of omega_rad_s")
+            object.__setattr__(self, "wavenumber_rad_per_m", k)
+        w.setflags(write=False)
+
+    # ---------------------------------------------------------------- interpolation
+    def _check_range(self, omega: NDArray[np.float64]) -> None:
+        lo, hi = self.omega_rad_s[0], self.omega_rad_s[-1]
+        bad = omega[(omega < lo * (1 - 1e-12)) | (omega > hi * (1 + 1e-12)) | ~np.isfinite(omega)]
+        if bad.size:
+            raise ValueError(
+                f"RigidBodyMotions: omega = {float(bad[0])!r} rad/s is outside the computed range "
+                f"[{lo:.6g}, {hi:.6g}] rad/s"
+            )
+
+    def _interp(self, omega: ArrayLike, values: NDArray[np.complex128]):
+        w = np.asarray(omega, dtype=float)
+        self._check_range(np.atleast_1d(w))
+        wc = np.clip(w, self.omega_rad_s[0], self.omega_rad_s[-1])
+        out = np.interp(wc, self.omega_rad_s, values.real) + 1j * np.interp(wc, self.omega_rad_s, values.imag)
+        return complex(out) if np.ndim(w) == 0 else out
+
+    def rao_at(self, omega: ArrayLike):
+        """Heave and pitch RAOs at ``omega`` [rad/s], linearly interpolated (real and imaginary parts).
+
+        Returns
+        -------
+        (heave [m/m], pitch [rad/m])
+            Complex scalars for a scalar ``omega``, arrays otherwise.
+
+        Raises
+        ------
+        ValueError
+            If any ``omega`` lies outside the computed range (message names value and range).
+        """
+        return self._interp(omega, self.heave_rao_m_per_m), self._interp(omega, self.pitch_rao_rad_per_m)
+
+    def vertical_displacement_rao(self, x_m: ArrayLike, omega: ArrayLike | None = None):
+        """Rigid-body vertical displacement ``w + theta (x - reference_x_m)`` per metre of wave [m/m].
+
+        Parameters
+        ----------
+        x_m
+            Positions from the AP [m].
+        omega
+            Frequency [rad/s] (interpolated); ``None``: all computed frequencies, shape
+            ``(n_w,) + shape(x_m)``.
+        """
+        x = np.asarray(x_m, dtype=float)
+        if omega is None:
+            h, p = self.heave_rao_m_per_m, self.pitch_rao_rad_per_m
+            return h.reshape((-1,) + (1,) * x.ndim) + p.reshape((-1,) + (1,) * x.ndim) * (x - self.reference_x_m)
+        h, p = self.rao_at(omega)
+        if np.ndim(omega) == 0:
+            return h + p * (x - self.reference_x_m)
+        return np.asarray(h)[(...,) + (None,) * x.ndim] + np.asarray(p)[(...,) + (None,) * x.ndim] * (x - self.reference_x_m)
+
+    # ---------------------------------------------------------------- export
+    def to_dataset(self) -> xr.Dataset:
+        """Export as an :class:`xarray.Dataset` writable with ``to_netcdf`` (real/imag split).
+
+        Complex quantities are stored as ``<name>_real`` / ``<name>_imag`` plus ``<name>_abs``
+        and ``<name>_phase_deg`` (phase of ``exp(+i omega t)`` amplitudes, relative to the wave
+        crest at ``wave_phase_reference_x_m``).
+        """
+        dof = ["heave", "pitch"]
+        coords = {
+            "omega": ("omega", self.omega_rad_s, {"units": "rad/s", "long_name": "wave angular frequency"}),
+            "dof": ("dof", dof, {"long_name": "degree of freedom (heave up at reference_x_m, pitch bow up)"}),
+            "radiating_dof": ("radiating_dof", dof, {"long_name": "radiating (motion) degree of freedom"}),
+        }
+        ds = xr.Dataset(coords={k: xr.Variable(*v) for k, v in coords.items()})
+
+        def add_complex(name, data, dims, units, long_name):
+            for part, fn, u in (
+                ("real", np.real, units),
+                ("imag", np.imag, units),
+                ("abs", np.abs, units),
+                ("phase_deg", lambda a: np.degrees(np.angle(a)), "deg"),
+            ):
+                ds[f"{name}_{part}"] = xr.Variable(dims, fn(data), {"units": u, "long_name": f"{long_name} ({part})"})
+
+        add_complex("heave_rao", self.heave_rao_m_per_m, ("omega",), "m/m", "heave RAO at reference_x_m")
+        add_complex("pitch_rao", self.pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO theta=dz/dx, bow up")
+        add_complex("excitation_force", self.excitation_force, ("omega", "dof"), "N/m (heave), N m/m (pitch)",
+                    "wave excitation per metre of wave amplitude")
+        ds["added_mass"] = xr.Variable(("omega", "dof", "radiating_dof"), self.added_mass,
+                                       {"units": "kg, kg m, kg m^2", "long_name": "added mass (heave, pitch)"})
+        ds["radiation_damping"] = xr.Variable(("omega", "dof", "radiating_dof"), self.radiation_damping,
+                                              {"units": "kg/s, kg m/s, kg m^2/s", "long_name": "radiation damping"})
+        ds["mass_matrix"] = xr.Variable(("dof", "radiating_dof"), self.mass_matrix,
+                                        {"units": "kg, kg m^2", "long_name": "rigid-body mass matrix"})
+        ds["hydrostatic_stiffness"] = xr.Variable(("dof", "radiating_dof"), self.hydrostatic_stiffness,
+                                                  {"units": "N/m, N/rad, N m/rad", "long_name": "hydrostatic stiffness"})
+        if self.wavenumber_rad_per_m is not None:
+            ds["wavenumber"] = xr.Variable(("omega",), self.wavenumber_rad_per_m,
+                                           {"units": "rad/m", "long_name": "wave number"})
+        ds.attrs.update(
+            reference_x_m=float(self.reference_x_m),
+            wave_phase_reference_x_m=float(self.wave_phase_reference_x_m),
+            time_convention="x(t) = Re(X exp(+i omega t))",
+            wave_convention="zeta = zeta_a cos(omega t + k (x - wave_phase_reference_x_m)), head seas towards -x",
+            pitch_convention="theta = dz/dx, bow up positive, about x = reference_x_m",
+            source=self.source,
+        )
+        return ds
+
+
+# ---------------------------------------------------------------------------------- physics helpers
+def wavenumber_rad_per_m(omega_rad_s: ArrayLike, water_depth_m: float = math.inf, gravity_m_per_s2: float = 9.81):
+    """Wave number from the linear dispersion relation ``omega^2 = g k tanh(k h)`` [rad/m]."""
+    w = np.asarray(omega_rad_s, dtype=float)
+    k = w**2 / gravity_m_per_s2
+    if math.isinf(water_depth_m):
+        return k
+    h = float(water_depth_m)
+    k = np.where(k > 0, k, 0.0)
+    k = np.maximum(k, w / math.sqrt(gravity_m_per_s2 * h))
+    for _ in range(100):  # Newton on f(k) = g k tanh(kh) - w^2
+        th = np.tanh(k * h)
+        f = gravity_m_per_s2 * k * th - w**2
+        df = gravity_m_per_s2 * (th + k * h * (1 - th**2))
+        dk = np.where(df > 0, f / np.where(df > 0, df, 1.0), 0.0)
+        k = k - dk
+        if np.all(np.abs(dk) <= 1e-14 * np.maximum(k, 1e-30)):
+            break
+    return k
+
+
+def _section_centroid_below_wl(hull: HullForm) -> float:
+    """Height of the sectional-area centroid relative to the waterline [m] (negative)."""
+    prof = section_profile(hull.section_area_coefficient, hull.draft_m)
+    poly = np.vstack([prof, [[0.0, 0.0]]])  # close along the centre line and the waterline
+    y, z = poly[:, 0], poly[:, 1]
+    cross = y * np.roll(z, -1) - np.roll(y, -1) * z
+    area = 0.5 * np.sum(cross)
+    return float(np.sum((z + np.roll(z, -1)) * cross) / (6.0 * area))
+
+
+def _x_grid(hull: HullForm, n: int = 4001) -> NDArray[np.float64]:
+    return np.unique(np.concatenate([np.linspace(hull.station_x_m[0], hull.station_x_m[-1], n), hull.station_x_m]))
+
+
+def hydrostatic_stiffness_matrix(
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+) -> NDArray[np.float64]:
+    """Heave-pitch hydrostatic stiffness of the wall-sided hull about the CoG x (seafast DOFs).
+
+    ``C_ww = rho g A_wp``; ``C_wt = C_tw = rho g int b (x - x_G) dx``;
+    ``C_tt = rho g int b (x - x_G)^2 dx + rho g V z_B - m g z_G`` with heights relative to the
+    waterline (``z_G`` given above the keel in ``centre_of_gravity_m``).
+
+    Returns
+    -------
+    ndarray (2, 2)
+        [[N/m, N/rad], [N, N m/rad]].
+    """
+    x = _x_grid(hull)
+    b = hull.breadth_at(x)
+    xg, zg_keel = float(centre_of_gravity_m[0]), float(centre_of_gravity_m[2])
+    rg = water_density_kg_per_m3 * gravity_m_per_s2
+    c11 = rg * np.trapezoid(b, x)
+    c12 = rg * np.trapezoid(b * (x - xg), x)
+    c22 = rg * np.trapezoid(b * (x - xg) ** 2, x)
+    zb = _section_centroid_below_wl(hull)
+    zg = zg_keel - hull.draft_m
+    c22 += rg * hull.displaced_volume_m3() * zb - mass_kg * gravity_m_per_s2 * zg
+    return np.array([[c11, c12], [c12, c22]])
+
+
+def mass_matrix(mass_kg: float, pitch_radius_of_gyration_m: float) -> NDArray[np.float64]:
+    """Rigid-body mass matrix about the CoG: ``diag(m, m r_yy^2)`` [kg, kg m^2]."""
+    return np.diag([float(mass_kg), float(mass_kg) * float(pitch_radius_of_gyration_m) ** 2])
+
+
+def solve_heave_pitch(
+    omega_rad_s: ArrayLike,
+    added_mass: ArrayLike,
+    radiation_damping: ArrayLike,
+    excitation_force: ArrayLike,
+    mass_matrix_: ArrayLike,
+    hydrostatic_stiffness: ArrayLike,
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Solve ``[-omega^2 (M + A) + i omega B + C] X = F`` per frequency (seafast conventions).
+
+    Returns
+    -------
+    (heave [m/m], pitch [rad/m]), each complex (n_w,).
+    """
+    w = np.asarray(omega_rad_s, dtype=float)
+    a = np.asarray(added_mass, dtype=float)
+    b = np.asarray(radiation_damping, dtype=float)
+    f = np.asarray(excitation_force, dtype=complex)
+    m = np.asarray(mass_matrix_, dtype=float)
+    c = np.asarray(hydrostatic_stiffness, dtype=float)
+    z = -(w[:, None, None] ** 2) * (m[None] + a) + 1j * w[:, None, None] * b + c[None]
+    x = np.linalg.solve(z, f[..., None])[..., 0]
+    return x[:, 0], x[:, 1]
+
+
+def _shift_reference(dx_ref_minus_new: float) -> NDArray[np.float64]:
+    """Matrix ``P`` with ``q_old = P q_new`` when pitch moves from ``x_old`` to ``x_new``.
+
+    ``w_old = w_new + theta (x_old - x_new)``; forces transform with ``P^T``.
+    """
+    return np.array([[1.0, dx_ref_minus_new], [0.0, 1.0]])
+
+
+def base_vessel_mass_properties(hull: HullForm, *, water_density_kg_per_m3: float = 1025.0) -> dict:
+    """Documented default mass properties of the vessel (keyword arguments of :func:`compute_motions`).
+
+    * ``mass_kg = rho * V`` (free floating at the design draught; 1025 * 32 000 kg for the base hull),
+    * ``centre_of_gravity_m = (x_LCB, 0, 8.0)``: x at the longitudinal centre of buoyancy (even
+      keel), z = 8 m **above the keel** (internally 8 - T = 1.5 m above the waterline),
+    * ``pitch_radius_of_gyration_m = 0.25 L``.
+    """
+    return {
+        "mass_kg": float(water_density_kg_per_m3 * hull.displaced_volume_m3()),
+        "centre_of_gravity_m": (float(hull.centre_of_buoyancy_x_m()), 0.0, 8.0),
+        "pitch_radius_of_gyration_m": 0.25 * hull.length_m,
+    }
+
+
+# ---------------------------------------------------------------------------------- capytaine
+def default_cache_dir() -> Path:
+    """``$SEAFAST_CACHE_DIR`` if set, else ``~/.cache/seafast/hydrodynamics``."""
+    env = os.environ.get("SEAFAST_CACHE_DIR")
+    return Path(env) if env else Path.home() / ".cache" / "seafast" / "hydrodynamics"
+
+
+def _cache_key(payload: dict) -> str:
+    return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:32]
+
+
+def _run_bem(
+    hull: HullForm,
+    omega: NDArray[np.float64],
+    rotation_center_wl: NDArray[np.float64],
+    panel_size_m: float,
+    rho: float,
+    g: float,
+    depth: float,
+) -> xr.Dataset:
+    """Radiation (heave, pitch) and head-sea diffraction problems; returns capytaine's dataset.
+
+    Frame: origin at midship on the waterline (see :mod:`seafast.vessel.hull_mesh`).
+    """
+    import capytaine as cpt
+
+    hm = hull_mesh_arrays(hull, panel_size_m)
+    mesh, lid = hm.to_capytaine()
+    body = cpt.FloatingBody(
+        mesh=mesh,
+        lid_mesh=lid,
+        dofs=cpt.rigid_body_dofs(only=["Heave", "Pitch"], rotation_center=rotation_center_wl),
+        center_of_mass=rotation_center_wl,
+        name="seafast_vessel",
+    )
+    solver = cpt.BEMSolver()
+    problems = []
+    for w in omega:
+        kw = dict(body=body, omega=float(w), rho=rho, g=g, water_depth=depth)
+        problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in ("Heave", "Pitch")]
+        problems.append(cpt.DiffractionProblem(wave_direction=np.pi, **kw))
+    results = solver.solve_all(problems, progress_bar=False)
+    ds = cpt.assemble_dataset(results, hydrostatics=False)
+    ds.attrs["seafast_origin_x_m"] = float(hm.x_mid_m)
+    ds.attrs["seafast_panel_size_m"] = float(panel_size_m)
+    ds.attrs["seafast_nb_panels_hull"] = hm.nb_hull_panels_full
+    ds.attrs["seafast_nb_panels_lid"] = hm.nb_lid_panels_full
+    return ds
+
+
+def compute_motions(
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    omega_rad_s: ArrayLike,
+    panel_size_m: float = 3.0,
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+    water_depth_m: float = math.inf,
+    cache_dir: str | os.PathLike | None = None,
+    use_cache: bool = True,
+) -> RigidBodyMotions:
+    """Heave and pitch RAOs of the vessel in head seas from capytaine (BEM), cached on disk.
+
+    Parameters
+    ----------
+    hull
+        Hull form; meshed with :func:`seafast.vessel.hull_mesh.hull_mesh_arrays` (sides, bottom,
+        transom, plus an interior waterplane lid removing irregular frequencies; y-symmetry used).
+    mass_kg
+        Ship mass [kg] (given explicitly; capytaine's uniform-density default is not used).
+    centre_of_gravity_m
+        ``(x from AP, y, z above keel)`` [m]. Pitch acts about ``x_G``; ``z_G`` enters the
+        pitch restoring term ``-m g z_G`` and the rotation centre.
+    pitch_radius_of_gyration_m
+        Radius of gyration about the transverse axis through the CoG [m].
+    omega_rad_s
+        Wave frequencies [rad/s] (> 0; sorted internally, duplicates removed).
+    panel_size_m
+        Target panel size [m]: 3 m for production, ~8 m for quick checks.
+    water_density_kg_per_m3, gravity_m_per_s2
+        Passed to capytaine explicitly (its default density is 1000).
+    water_depth_m
+        Water depth [m] (``inf``: deep water).
+    cache_dir
+        Directory of cached capytaine datasets; default :func:`default_cache_dir`.
+    use_cache
+        Read and write the cache (default True).
+
+    Returns
+    -------
+    RigidBodyMotions
+        About ``reference_x_m = x_G``; phases relative to the wave crest at ``L/2``.
+
+    Notes
+    -----
+    The cache key hashes the hull geometry, mass properties, frequencies, panel size, density,
+    gravity, depth, the capytaine version and :data:`MESH_ALGORITHM_VERSION`. The cache file is
+    the capytaine dataset written with capytaine's own NetCDF export, so it can be read back with
+    :func:`load_motions` as well.
+    """
+    import capytaine as cpt
+
+    omega = np.unique(np.asarray(omega_rad_s, dtype=float).ravel())
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega <= 0):
+        raise ValueError(f"compute_motions: omega_rad_s must be finite and > 0, got {omega_rad_s!r}")
+    if not mass_kg > 0 or not pitch_radius_of_gyration_m > 0:
+        raise ValueError("compute_motions: mass_kg and pitch_radius_of_gyration_m must be > 0")
+    cog = tuple(float(c) for c in centre_of_gravity_m)
+    if len(cog) != 3:
+        raise ValueError("compute_motions: centre_of_gravity_m must be (x, y, z)")
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    rotation_center = np.array([cog[0] - x_mid, 0.0, cog[2] - hull.draft_m])
+    depth = float(water_depth_m)
+
+    payload = {
+        "stations": [repr(float(v)) for v in hull.station_x_m],
+        "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
+        "draft": repr(float(hull.draft_m)),
+        "cs": repr(float(hull.section_area_coefficient)),
+        "mass": repr(float(mass_kg)),
+        "cog": [repr(c) for c in cog],
+        "r_yy": repr(float(pitch_radius_of_gyration_m)),
+        "omega": [repr(float(v)) for v in omega],
+        "panel": repr(float(panel_size_m)),
+        "rho": repr(float(water_density_kg_per_m3)),
+        "g": repr(float(gravity_m_per_s2)),
+        "depth": repr(depth),
+        "capytaine": cpt.__version__,
+        "mesh": MESH_ALGORITHM_VERSION,
+    }
+    key = _cache_key(payload)
+    cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
+    path = cdir / f"motions_{key}.nc"
+    ds = None
+    if use_cache and path.is_file():
+        try:
+            ds = _read_capytaine_netcdf(path)
+        except Exception:  # corrupt or foreign file: recompute
+            ds = None
+    if ds is None:
+        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3),
+                      float(gravity_m_per_s2), depth)
+        if use_cache:
+            cdir.mkdir(parents=True, exist_ok=True)
+            ds.attrs["seafast_cache_key"] = key
+            fd, tmp = tempfile.mkstemp(suffix=".nc", dir=cdir)
+            os.close(fd)
+            try:
+                cpt.export_dataset(tmp, ds)
+                os.replace(tmp, path)
+            finally:
+                if os.path.exists(tmp):
+                    os.remove(tmp)
+    return _motions_from_capytaine(
+        ds, hull, mass_kg=mass_kg, centre_of_gravity_m=cog, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        origin_x_m=x_mid, water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+        source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
+    )
+
+
+def _read_capytaine_netcdf(path: str | os.PathLike) -> xr.Dataset:
+    from capytaine.io.xarray import merge_complex_values
+
+    with xr.open_dataset(path) as raw:
+        ds = merge_complex_values(raw.load())
+    return ds
+
+
+def _dof_index(values, name: str) -> int:
+    names = [str(v).lower() for v in values]
+    if name.lower() not in names:
+        raise ValueError(f"capytaine dataset: dof {name!r} missing (found {list(values)})")
+    return names.index(name.lower())
+
+
+def _motions_from_capytaine(
+    ds: xr.Dataset,
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    origin_x_m: float | None,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    source: str,
+) -> RigidBodyMotions:
+    """Convert a capytaine dataset (heave + pitch radiation, head-sea diffraction) to seafast motions."""
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    if origin_x_m is None:
+        origin_x_m = float(ds.attrs.get("seafast_origin_x_m", x_mid))
+    if "omega" not in ds.dims:
+        if "omega" in ds.coords:
+            ds = ds.swap_dims({next(d for d in ds["omega"].dims): "omega"})
+        else:
+            raise ValueError("capytaine dataset: no 'omega' coordinate")
+    ds = ds.sortby("omega")
+    for v in ("added_mass", "radiation_damping", "excitation_force"):
+        if v not in ds:
+            raise ValueError(f"capytaine dataset: variable {v!r} missing")
+    omega = np.asarray(ds["omega"].values, dtype=float)
+    # head seas: wave_direction = pi
+    exc = ds["excitation_force"]
+    if "wave_direction" in exc.dims:
+        wd = np.asarray(exc["wave_direction"].values, dtype=float)
+        i = int(np.argmin(np.abs(np.angle(np.exp(1j * (wd - np.pi))))))
+        if abs(np.angle(np.exp(1j * (wd[i] - np.pi)))) > 1e-6:
+            raise ValueError(f"capytaine dataset: no head-sea (wave_direction = pi) case, found {wd}")
+        exc = exc.isel(wave_direction=i)
+    elif "wave_direction" in exc.coords and abs(float(exc["wave_direction"]) - np.pi) > 1e-6:
+        raise ValueError("capytaine dataset: excitation is not for wave_direction = pi")
+    for d in [d for d in exc.dims if d not in ("omega", "influenced_dof")]:
+        exc = exc.isel({d: 0})
+    inf_dofs = ds["influenced_dof"].values
+    rad_dofs = ds["radiating_dof"].values
+    ih, ip = _dof_index(inf_dofs, "Heave"), _dof_index(inf_dofs, "Pitch")
+    jh, jp = _dof_index(rad_dofs, "Heave"), _dof_index(rad_dofs, "Pitch")
+
+    def mat(v: str) -> NDArray[np.float64]:
+        da = ds[v]
+        for d in [d for d in da.dims if d not in ("omega", "influenced_dof", "radiating_dof")]:
+            da = da.isel({d: 0})
+        da = da.transpose("omega", "influenced_dof", "radiating_dof").values
+        return np.real(da[:, [ih, ip]][:, :, [jh, jp]])
+
+    a_c, b_c = mat("added_mass"), mat("radiation_damping")
+    f_c = exc.transpose("omega", "influenced_dof").values[:, [ih, ip]]
+    if "wavenumber" in ds.coords or "wavenumber" in ds:
+        k = np.broadcast_to(np.asarray(ds["wavenumber"].values, dtype=float), omega.shape).copy()
+    else:
+        depth = float(ds["water_depth"].values) if "water_depth" in ds.coords else math.inf
+        k = wavenumber_rad_per_m(omega, depth, gravity_m_per_s2)
+
+    # rotation centre of the dataset (capytaine frame: x relative to origin_x_m)
+    if "rotation_center" in ds.coords or "rotation_center" in ds:
+        rc = np.asarray(ds["rotation_center"].values, dtype=float).reshape(-1)[:3]
+        x_rot = origin_x_m + float(rc[0])
+    else:
+        x_rot = origin_x_m
+    return _motions_from_rigid_coefficients(
+        omega, k, a_c, b_c, np.conj(f_c), hull,
+        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m,
+        mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+    )
+
+
+def _motions_from_rigid_coefficients(
+    omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, wave_phase_origin_x_m,
+    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2, source,
+) -> RigidBodyMotions:
+    """Common back end of the importers.
+
+    Inputs in (heave, eta5) DOFs (eta5 = rotation about +y, bow down) about
+    ``coeff_reference_x_m``, excitation in the ``exp(+i omega t)`` convention with the incident
+    wave phase referred to ``wave_phase_origin_x_m``.
+    """
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    x_g = float(centre_of_gravity_m[0])
+    # eta5 -> theta (bow up)
+    a = _T @ a_eta @ _T
+    b = _T @ b_eta @ _T
+    f = f_eta_plus @ _T
+    # incident wave phase: unit crest at the origin <-> seafast wave exp(i k (x - x_mid))
+    f = f * np.exp(1j * k * (wave_phase_origin_x_m - x_mid))[:, None]
+    # move the pitch reference from the coefficient reference to the CoG x
+    p = _shift_reference(coeff_reference_x_m - x_g)
+    a = p.T @ a @ p
+    b = p.T @ b @ p
+    f = f @ p
+    m = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
+    c = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+                                     water_density_kg_per_m3=water_density_kg_per_m3,
+                                     gravity_m_per_s2=gravity_m_per_s2)
+    heave, pitch = solve_heave_pitch(omega, a, b, f, m, c)
+    return RigidBodyMotions(
+        omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a,
+        radiation_damping=b, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
+        wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source=source,
+    )
+
+
+# ---------------------------------------------------------------------------------- WAMIT
+def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
+                 frequency_column: Literal["period", "omega"] = "period"):
+    """Read heave/pitch added mass and damping from a WAMIT ``.1`` file (dimensional SI result).
+
+    Lines ``PER I J Abar Bbar``; ``Abar = A / (rho L^k)``, ``Bbar = B / (rho L^k omega)`` with
+    ``k = 3`` (translation-translation), 4 (mixed), 5 (rotation-rotation), ``L = ULEN``.
+    Lines with ``PER <= 0`` (zero/infinite frequency limits) are skipped.
+
+    Returns
+    -------
+    omega [rad/s] (n_w,), A (n_w, 2, 2), B (n_w, 2, 2) in WAMIT modes (3, 5).
+    """
+    rows: dict[float, dict[tuple[int, int], tuple[float, float]]] = {}
+    for line in Path(path).read_text().splitlines():
+        parts = line.split()
+        if len(parts) < 5:
+            continue
+        per, i, j, abar, bbar = float(parts[0]), int(parts[1]), int(parts[2]), float(parts[3]), float(parts[4])
+        if per <= 0 or i not in (3, 5) or j not in (3, 5):
+            continue
+        w = 2 * math.pi / per if frequency_column == "period" else per
+        rows.setdefault(round(w, 12), {})[(i, j)] = (abar, bbar)
+    if not rows:
+        raise ValueError(f"WAMIT .1 file {path}: no heave/pitch (modes 3, 5) coefficients found")
+    omega = np.array(sorted(rows))
+    a = np.zeros((omega.size, 2, 2))
+    b = np.zeros((omega.size, 2, 2))
+    idx = {3: 0, 5: 1}
+    for n, w in enumerate(omega):
+        for (i, j), (abar, bbar) in rows[w].items():
+            kexp = 3 + (i > 3) + (j > 3)
+            scale = water_density_kg_per_m3 * ulen_m**kexp
+            a[n, idx[i], idx[j]] = abar * scale
+            b[n, idx[i], idx[j]] = bbar * scale * w
+        missing = {(3, 3), (3, 5), (5, 3), (5, 5)} - set(rows[w])
+        if {(3, 3), (5, 5)} & missing:
+            raise ValueError(f"WAMIT .1 file {path}: diagonal heave/pitch terms missing at omega = {w:.6g} rad/s")
+    return omega, a, b
+
+
+def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
+                 gravity_m_per_s2: float, heading_deg: float = 180.0,
+                 frequency_column: Literal["period", "omega"] = "period"):
+    """Read heave/pitch wave excitation from a WAMIT ``.3`` file for one heading.
+
+    Lines ``PER BETA I |X| phase Re Im``; ``Xbar = X / (rho g A L^m)``, ``m = 2`` for forces,
+    3 for moments; ``exp(+i omega t)`` convention, phase relative to the incident wave at the
+    WAMIT origin. The real and imaginary columns are used.
+
+    Returns
+    -------
+    omega [rad/s] (n_w,), X (n_w, 2) complex per metre of wave amplitude, modes (3, 5).
+    """
+    rows: dict[float, dict[int, complex]] = {}
+    headings: set[float] = set()
+    for line in Path(path).read_text().splitlines():
+        parts = line.split()
+        if len(parts) < 7:
+            continue
+        per, beta, i = float(parts[0]), float(parts[1]), int(parts[2])
+        headings.add(beta)
+        if per <= 0 or i not in (3, 5) or abs((beta - heading_deg + 180.0) % 360.0 - 180.0) > 1e-3:
+            continue
+        w = 2 * math.pi / per if frequency_column == "period" else per
+        m = 2 if i <= 3 else 3
+        rows.setdefault(round(w, 12), {})[i] = (float(parts[5]) + 1j * float(parts[6])) * (
+            water_density_kg_per_m3 * gravity_m_per_s2 * ulen_m**m
+        )
+    if not rows:
+        raise ValueError(
+            f"WAMIT .3 file {path}: no heave/pitch excitation for heading {heading_deg} deg "
+            f"(headings found: {sorted(headings)})"
+        )
+    omega = np.array(sorted(rows))
+    x = np.zeros((omega.size, 2), dtype=complex)
+    for n, w in enumerate(omega):
+        if set(rows[w]) != {3, 5}:
+            raise ValueError(f"WAMIT .3 file {path}: heave or pitch missing at omega = {w:.6g} rad/s")
+        x[n] = rows[w][3], rows[w][5]
+    return omega, x
+
+
+def load_motions(
+    path: str | os.PathLike,
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    format: Literal["auto", "capytaine", "wamit"] = "auto",
+    origin_x_m: float | None = None,
+    ulen_m: float = 1.0,
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+    water_depth_m: float = math.inf,
+    frequency_column: Literal["period", "omega"] = "period",
+) -> RigidBodyMotions:
+    """Import hydrodynamic coefficients and solve heave and pitch with given mass properties.
+
+    Parameters
+    ----------
+    path
+        A capytaine NetCDF file (``.nc``, as written by ``capytaine.export_dataset``; complex
+        values split and merged back with capytaine's ``merge_complex_values``), or a WAMIT
+        output: the ``.1`` file, the ``.3`` file or their common stem (both must exist).
+    hull
+        Hull form (hydrostatics are computed from it, consistently with :func:`compute_motions`).
+    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m
+        Mass properties, as in :func:`compute_motions` (z above keel).
+    format
+        ``"auto"``: ``.nc`` -> capytaine, otherwise WAMIT.
+    origin_x_m
+        seafast ``x`` (from the AP) of the file's coordinate origin, which is also the phase
+        reference of its incident wave. Default: the ``seafast_origin_x_m`` attribute of a
+        seafast-written capytaine file, otherwise ``L/2`` (midship).
+    ulen_m
+        WAMIT ``ULEN`` [m] (non-dimensionalising length).
+    water_density_kg_per_m3, gravity_m_per_s2
+        WAMIT's ``rho`` and ``g`` used to dimensionalise, and used for the hydrostatics.
+    water_depth_m
+        Water depth for the wave number (WAMIT only; capytaine files carry their wave numbers).
+    frequency_column
+        WAMIT: whether the first column holds periods [s] (default, WAMIT's usual output) or
+        angular frequencies [rad/s].
+
+    Notes
+    -----
+    WAMIT assumptions: modes 3 (heave) and 5 (pitch, rotation about +y, i.e. bow down with the
+    body x-axis pointing forward, parallel to seafast x), coefficients about the WAMIT body
+    origin, which lies on the waterline at ``x = origin_x_m``; head seas ``beta = 180 deg``;
+    ``exp(+i omega t)`` with phases relative to the incident wave crest at the origin. The
+    heave-pitch coefficients are transferred to the CoG x; couplings with surge are ignored.
+    """
+    p = Path(path)
+    fmt = format
+    if fmt == "auto":
+        fmt = "capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit"
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    common = dict(mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+                  pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+                  water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
+    if fmt == "capytaine":
+        ds = _read_capytaine_netcdf(p)
+        return _motions_from_capytaine(ds, hull, origin_x_m=origin_x_m, source=f"capytaine file {p}", **common)
+    if fmt != "wamit":
+        raise ValueError(f"load_motions: unknown format {format!r}")
+    stem = p.with_suffix("") if p.suffix in (".1", ".3") else p
+    f1, f3 = Path(f"{stem}.1"), Path(f"{stem}.3")
+    for f in (f1, f3):
+        if not f.is_file():
+            raise FileNotFoundError(f"load_motions: WAMIT file {f} not found")
+    w1, a, b = read_wamit_1(f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
+                            frequency_column=frequency_column)
+    w3, x = read_wamit_3(f3, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
+                         gravity_m_per_s2=gravity_m_per_s2, frequency_column=frequency_column)
+    if w1.shape != w3.shape or not np.allclose(w1, w3, rtol=1e-6):
+        common_w = np.intersect1d(np.round(w1, 9), np.round(w3, 9))
+        if common_w.size == 0:
+            raise ValueError("load_motions: the .1 and .3 files share no frequency")
+        i1 = np.isin(np.round(w1, 9), common_w)
+        i3 = np.isin(np.round(w3, 9), common_w)
+        w1, a, b, x = w1[i1], a[i1], b[i1], x[i3]
+    origin = x_mid if origin_x_m is None else float(origin_x_m)
+    k = wavenumber_rad_per_m(w1, water_depth_m, gravity_m_per_s2)
+    return _motions_from_rigid_coefficients(
+        w1, k, a, b, x, hull, coeff_reference_x_m=origin, wave_phase_origin_x_m=origin,
+        source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)", **common,
+    )
+
+
+# ---------------------------------------------------------------------------------- strip theory
+def strip_theory_estimate(
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    omega_rad_s: ArrayLike,
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+    n_sections: int = 400,
+) -> RigidBodyMotions:
+    """Independent zero-speed strip-theory estimate of heave and pitch in deep-water head seas.
+
+    Relative-motion strip theory: each section of waterline breadth ``b(x)`` has hydrostatic
+    stiffness ``c = rho g b``, a frequency-independent flat-plate added mass
+    ``a = rho pi b^2 / 8`` and a 2-D radiation damping ``d = rho g^2 Abar^2 / omega^3`` with the
+    wave-amplitude ratio ``Abar = 2 sin(k b / 2) exp(-k T)``. The section force is
+    ``(c - omega^2 a + i omega d) (zeta*(x) - w(x))`` with the Smith-corrected wave
+    ``zeta*(x) = exp(-k T_m) exp(i k (x - x_mid))`` (``T_m`` = sectional area / breadth, the
+    mean draught of the section), which is exact Froude-Krylov for box sections in head seas.
+    Integrated along the ship with the ``(1, x - x_G)`` weights, plus the ``rho g V z_B - m g z_G``
+    pitch restoring term, it gives a 2-DOF system like the BEM one. Valid at low frequency
+    (long waves); no 3-D end effects, no forward speed.
+    """
+    omega = np.asarray(omega_rad_s, dtype=float).ravel()
+    if omega.size == 0 or np.any(omega <= 0) or np.any(np.diff(omega) <= 0):
+        raise ValueError("strip_theory_estimate: omega_rad_s must be > 0 and strictly increasing")
+    rho, g = float(water_density_kg_per_m3), float(gravity_m_per_s2)
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    x_g = float(centre_of_gravity_m[0])
+    x = np.unique(np.concatenate([np.linspace(hull.station_x_m[0], hull.station_x_m[-1], n_sections + 1),
+                                  hull.station_x_m]))
+    b = hull.breadth_at(x)
+    t_mean = hull.section_area_coefficient * hull.draft_m
+    k = wavenumber_rad_per_m(omega, math.inf, g)
+    lever = x - x_g
+    wts = np.stack([np.ones_like(x), lever])  # (2, n_x)
+    a_sec = rho * np.pi * b**2 / 8.0
+    c_sec = rho * g * b
+    a_mat = np.zeros((omega.size, 2, 2))
+    b_mat = np.zeros((omega.size, 2, 2))
+    f = np.zeros((omega.size, 2), dtype=complex)
+    for n, (w, kk) in enumerate(zip(omega, k)):
+        abar = 2.0 * np.sin(kk * b / 2.0) * np.exp(-kk * hull.draft_m)
+        d_sec = rho * g**2 * abar**2 / w**3
+        a_mat[n] = np.trapezoid(a_sec * wts[:, None, :] * wts[None, :, :], x, axis=-1)
+        b_mat[n] = np.trapezoid(d_sec * wts[:, None, :] * wts[None, :, :], x, axis=-1)
+        zeta_star = np.exp(-kk * t_mean) * np.exp(1j * kk * (x - x_mid))
+        f[n] = np.trapezoid((c_sec - w**2 * a_sec + 1j * w * d_sec) * zeta_star * wts, x, axis=-1)
+    m = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
+    c = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+                                     water_density_kg_per_m3=rho, gravity_m_per_s2=g)
+    heave, pitch = solve_heave_pitch(omega, a_mat, b_mat, f, m, c)
+    return RigidBodyMotions(
+        omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a_mat,
+        radiation_damping=b_mat, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
+        wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source="strip theory estimate",
+    )
