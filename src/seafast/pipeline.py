@@ -179,7 +179,9 @@ def run_case(
     }
     ds = build_case_dataset(model, excitation, series, N, attrs)
     if vessel is not None and hasattr(vessel, "to_dataset"):
-        ds = xr.merge([ds, vessel.to_dataset()], combine_attrs="override")
+        vds = vessel.to_dataset()
+        ds = xr.merge([ds, vds], combine_attrs="override")
+        ds.attrs.update(vds.attrs)
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
     return CaseResult(case, model, excitation, vessel, ds, responses)
 

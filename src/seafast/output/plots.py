@@ -159,7 +159,7 @@ def plot_saddle_surfaces(ds: xr.Dataset, path: Path) -> Path:
 def plot_aft_picture(ds: xr.Dataset, path: Path) -> Path:
     """The AFT picture for the most loaded saddle: compression, time-domain force, H-harmonic force."""
     sel = ds.sel(load_case="dynamic", model="nonlinear")
-    j = int(sel["saddle_force_N"].max("period_fraction").argmax())
+    j = int(np.argmax(sel["saddle_force_N"].max("period_fraction").values))
     s = sel["period_fraction"].values
     comp = sel["saddle_compression_m"].isel(saddle=j).values
     force = sel["saddle_force_N"].isel(saddle=j).values

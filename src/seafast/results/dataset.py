@@ -39,6 +39,26 @@ def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Var
     return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units})
 
 
+def _seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitation, deck_z: np.ndarray) -> np.ndarray:
+    """Straight line through the deck points under the outermost saddles, at every cargo node [m].
+
+    The frame in which the cargo's own deflection is reported: it moves with the deck at the
+    sea-fastening, so the hull girder's deflection elsewhere along the ship (tens of mm
+    relative to the ship's end chord) does not swamp the cargo's millimetres. With a single
+    saddle the line has the deck slope under it.
+    """
+    x = model.cargo.node_x_m
+    xs = model.saddle_x_m
+    if xs.size >= 2:
+        slope = (deck_z[..., -1] - deck_z[..., 0]) / (xs[-1] - xs[0])
+    else:
+        theta = excitation.deck_displacement[:, model.saddle_deck_dof + 1]
+        n_t = deck_z.shape[-2]
+        th_dyn = harmonics_to_time(theta, n_t)[:, 0]
+        slope = np.stack([np.full(n_t, np.real(theta[0, 0])), th_dyn])
+    return deck_z[..., :1] + slope[..., None] * (x - xs[0])
+
+
 def build_case_dataset(
     model: StructuralModel,
     excitation: HarmonicExcitation,
@@ -87,8 +107,18 @@ def build_case_dataset(
     dims4 = ("load_case", "model", "period_fraction")
     deck_static = np.real(excitation.deck_displacement[0, model.saddle_deck_dof])
     deck_total = harmonics_to_time(excitation.deck_displacement[:, model.saddle_deck_dof], time_samples)
+    deck_all = np.stack([np.broadcast_to(deck_static, deck_total.shape), deck_total])  # (load_case, N, n_s)
+    baseline = _seafastening_baseline(model, excitation, deck_all)  # (load_case, N, n_x)
     data_vars = {
-        "cargo_deflection_m": _var(dims4 + ("x_cargo_m",), disp, "cargo deflection relative to the vessel frame (up positive)", "m"),
+        "cargo_deflection_m": _var(
+            dims4 + ("x_cargo_m",),
+            disp - baseline[:, None],
+            "cargo deflection relative to the sea-fastening baseline (line through the deck under the outermost saddles), up positive",
+            "m",
+        ),
+        "cargo_deflection_vessel_frame_m": _var(
+            dims4 + ("x_cargo_m",), disp, "cargo deflection relative to the vessel's rigid-body frame (hull chord AP-FP), up positive", "m"
+        ),
         "saddle_compression_m": _var(dims4 + ("saddle",), comp, "saddle compression delta = z_deck - z_cargo (negative = gap)", "m"),
         "saddle_gap_m": _var(dims4 + ("saddle",), gap, "saddle detachment (gap), nonlinear model", "m"),
         "saddle_force_N": _var(dims4 + ("saddle",), force, "saddle normal force on the cargo (up positive)", "N"),
@@ -97,7 +127,7 @@ def build_case_dataset(
         "bending_stress_Pa": _var(dims4 + ("x_moment_m",), stress, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"),
         "deck_deflection_m": _var(
             ("load_case", "period_fraction", "saddle"),
-            np.stack([np.broadcast_to(deck_static, deck_total.shape), deck_total]),
+            deck_all,
             "deck deflection under each saddle (hull elastic deflection, up positive)",
             "m",
         ),

@@ -57,15 +57,16 @@ def linear_time_series(response: LinearResponse, time_samples: int) -> PeriodTim
 def from_periodic_response(response: Any, time_samples: int | None = None) -> PeriodTimeSeries:
     """Adapt a nonlinear solver's ``PeriodicResponse`` (HBM or reference) to the common form.
 
-    A static (single-sample) response is repeated over ``time_samples``.
+    A static (time-invariant) response is repeated over ``time_samples``.
     """
     disp = np.asarray(response.cargo_displacement_time_m, dtype=float)
     comp = np.asarray(response.saddle_compression_time_m, dtype=float)
     force = np.asarray(response.saddle_force_time_N, dtype=float)
     if time_samples is not None and disp.shape[0] != time_samples:
-        if disp.shape[0] != 1:
-            raise ValueError(f"cannot resample a {disp.shape[0]}-sample response onto {time_samples} samples")
-        disp, comp, force = (np.repeat(a, time_samples, axis=0) for a in (disp, comp, force))
+        # only a static (time-invariant) response may be spread over a different grid
+        if not (np.allclose(disp, disp[:1]) and np.allclose(comp, comp[:1]) and np.allclose(force, force[:1])):
+            raise ValueError(f"cannot resample a {disp.shape[0]}-sample periodic response onto {time_samples} samples")
+        disp, comp, force = (np.repeat(a[:1], time_samples, axis=0) for a in (disp, comp, force))
     diag = {
         "method": getattr(response, "method", "nonlinear"),
         "residual_norm": float(getattr(response, "residual_norm", np.nan)),
