@@ -6,6 +6,7 @@ the previous one's output. Nothing here prints or writes files (see :mod:`seafas
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -18,7 +19,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
-from seafast.results.dataset import build_case_dataset, summary_rows
+from seafast.results.dataset import CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
 
@@ -111,13 +112,24 @@ class CaseResult:
     model: StructuralModel
     excitation: HarmonicExcitation
     vessel: Any  # seafast.excitation.vessel.VesselExcitation (hull girder, motions) or None
-    dataset: xr.Dataset
+    arrays: CaseArrays
     responses: dict[str, Any]
+    attrs: dict[str, Any]
 
     @property
     def summary(self) -> list[dict[str, Any]]:
         """Summary rows (INTERFACE.md columns plus contact_preserved and diagnostics)."""
-        return summary_rows(self.dataset)
+        return summary_rows_from_arrays(self.arrays)
+
+    @functools.cached_property
+    def dataset(self) -> xr.Dataset:
+        """All results labelled (what results.nc holds), vessel data merged in."""
+        ds = build_case_dataset(self.arrays, self.model, self.attrs)
+        if self.vessel is not None and hasattr(self.vessel, "to_dataset"):
+            vds = self.vessel.to_dataset()
+            ds = xr.merge([ds, vds], combine_attrs="override")
+            ds.attrs.update(vds.attrs)
+        return ds
 
 
 def _excitation(case: Case, model: StructuralModel) -> tuple[HarmonicExcitation, Any]:
@@ -177,13 +189,9 @@ def run_case(
         "conventions": "x from the cargo's aft end; z up; displacements relative to the vessel's rigid-body frame; "
         "sagging moment positive; saddle compression positive when compressed",
     }
-    ds = build_case_dataset(model, excitation, series, N, attrs)
-    if vessel is not None and hasattr(vessel, "to_dataset"):
-        vds = vessel.to_dataset()
-        ds = xr.merge([ds, vds], combine_attrs="override")
-        ds.attrs.update(vds.attrs)
+    arrays = case_arrays(model, excitation, series, N)
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, ds, responses)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
 
 
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:

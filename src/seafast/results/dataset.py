@@ -8,6 +8,7 @@ Dimensions: ``load_case`` (static, dynamic), ``model`` (linear, nonlinear), ``pe
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
@@ -17,7 +18,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 from seafast.results.timeseries import PeriodTimeSeries, harmonics_to_time, moment_lines, period_grid
 
-__all__ = ["LOAD_CASES", "MODELS", "SUMMARY_COLUMNS", "build_case_dataset", "summary_rows"]
+__all__ = ["LOAD_CASES", "MODELS", "SUMMARY_COLUMNS", "CaseArrays", "case_arrays", "build_case_dataset", "summary_rows_from_arrays"]
 
 LOAD_CASES = ("static", "dynamic")
 MODELS = ("linear", "nonlinear")
@@ -59,26 +60,59 @@ def _seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitatio
     return deck_z[..., :1] + slope[..., None] * (x - xs[0])
 
 
-def build_case_dataset(
+@dataclass(frozen=True)
+class CaseArrays:
+    """The numbers of one case as plain arrays, axes (load_case, model, period_fraction, ...)."""
+
+    period_fraction: np.ndarray
+    x_moment_m: np.ndarray
+    cargo_deflection_m: np.ndarray  # relative to the sea-fastening baseline
+    cargo_deflection_vessel_frame_m: np.ndarray
+    saddle_compression_m: np.ndarray
+    saddle_gap_m: np.ndarray
+    saddle_force_N: np.ndarray
+    bending_moment_Nm: np.ndarray
+    bending_stress_Pa: np.ndarray
+    deck_deflection_m: np.ndarray  # (load_case, period_fraction, saddle)
+    deck_rise_m: np.ndarray
+    converged: np.ndarray  # (load_case, model)
+    residual_norm: np.ndarray
+    iterations: np.ndarray
+    solver_message: np.ndarray
+    harmonic_truncation_indicator: np.ndarray  # (load_case, model, saddle)
+    tensile_force_error_N: np.ndarray
+
+    def maxima(self) -> dict[str, np.ndarray]:
+        """Summary quantities (MODEL.md section 6), each of shape (load_case, model)."""
+        return {
+            "u_c_m": np.abs(self.cargo_deflection_m).max(axis=(2, 3)),
+            "u_s_m": np.maximum(self.saddle_compression_m.max(axis=(2, 3)), 0.0),
+            "u_d_m": self.saddle_gap_m.max(axis=(2, 3)),
+            "F_N": self.saddle_force_N.max(axis=(2, 3)),
+            "M_b_Nm": np.abs(self.bending_moment_Nm).max(axis=(2, 3)),
+            "sigma_b_Pa": np.abs(self.bending_stress_Pa).max(axis=(2, 3)),
+            "contact_preserved": (self.saddle_compression_m > 0.0).all(axis=(2, 3)),
+        }
+
+
+def case_arrays(
     model: StructuralModel,
     excitation: HarmonicExcitation,
     series: Mapping[tuple[str, str], PeriodTimeSeries],
     time_samples: int,
-    attrs: Mapping[str, Any] | None = None,
-) -> xr.Dataset:
-    """Assemble the case Dataset from the four responses keyed by (load_case, model)."""
-    s = period_grid(time_samples)
+) -> CaseArrays:
+    """Collect the four responses keyed by (load_case, model) into arrays, with moment lines."""
     nodes = model.cargo.node_x_m
+    n_s = model.saddle_count
     disp = np.zeros((2, 2, time_samples, nodes.size))
-    comp = np.zeros((2, 2, time_samples, model.saddle_count))
+    comp = np.zeros((2, 2, time_samples, n_s))
     force = np.zeros_like(comp)
-    moments = []
-    stresses = []
-    x_moment = None
+    moments, stresses = [], []
+    x_moment = np.zeros(0)
     converged = np.zeros((2, 2), dtype=bool)
     residual = np.full((2, 2), np.nan)
     iterations = np.zeros((2, 2), dtype=int)
-    truncation = np.full((2, 2, model.saddle_count), np.nan)
+    truncation = np.full((2, 2, n_s), np.nan)
     tensile = np.full((2, 2), np.nan)
     messages = np.empty((2, 2), dtype=object)
     for i, lc in enumerate(LOAD_CASES):
@@ -96,101 +130,104 @@ def build_case_dataset(
             iterations[i, j] = ts.diagnostics.get("iterations", 0)
             messages[i, j] = ts.diagnostics.get("message", "")
             if "harmonic_truncation_indicator" in ts.diagnostics:
-                truncation[i, j] = np.broadcast_to(ts.diagnostics["harmonic_truncation_indicator"], (model.saddle_count,))
+                truncation[i, j] = np.broadcast_to(ts.diagnostics["harmonic_truncation_indicator"], (n_s,))
             if "tensile_force_error_N" in ts.diagnostics:
                 tensile[i, j] = float(np.max(ts.diagnostics["tensile_force_error_N"]))
-    moment = np.stack(moments).reshape(2, 2, time_samples, -1)
-    stress = np.stack(stresses).reshape(2, 2, time_samples, -1)
-    contact = comp > 0.0
-    gap = np.where(np.array(MODELS)[None, :, None, None] == "nonlinear", np.maximum(-comp, 0.0), 0.0)
-
-    dims4 = ("load_case", "model", "period_fraction")
     deck_static = np.real(excitation.deck_displacement[0, model.saddle_deck_dof])
     deck_total = harmonics_to_time(excitation.deck_displacement[:, model.saddle_deck_dof], time_samples)
     deck_all = np.stack([np.broadcast_to(deck_static, deck_total.shape), deck_total])  # (load_case, N, n_s)
     baseline = _seafastening_baseline(model, excitation, deck_all)  # (load_case, N, n_x)
+    is_nonlinear = (np.array(MODELS) == "nonlinear")[None, :, None, None]
+    return CaseArrays(
+        period_fraction=period_grid(time_samples),
+        x_moment_m=x_moment,
+        cargo_deflection_m=disp - baseline[:, None],
+        cargo_deflection_vessel_frame_m=disp,
+        saddle_compression_m=comp,
+        saddle_gap_m=np.where(is_nonlinear, np.maximum(-comp, 0.0), 0.0),
+        saddle_force_N=force,
+        bending_moment_Nm=np.stack(moments).reshape(2, 2, time_samples, -1),
+        bending_stress_Pa=np.stack(stresses).reshape(2, 2, time_samples, -1),
+        deck_deflection_m=deck_all,
+        deck_rise_m=deck_all - baseline[..., model.saddle_node],
+        converged=converged,
+        residual_norm=residual,
+        iterations=iterations,
+        solver_message=messages.astype(str),
+        harmonic_truncation_indicator=truncation,
+        tensile_force_error_N=tensile,
+    )
+
+
+def summary_rows_from_arrays(arrays: CaseArrays) -> list[dict[str, Any]]:
+    """The summary table rows straight from the arrays (no Dataset needed: fast for studies)."""
+    mx = arrays.maxima()
+    rows = []
+    for i, lc in enumerate(LOAD_CASES):
+        for j, mdl in enumerate(MODELS):
+            row: dict[str, Any] = {"load_case": lc, "model": mdl}
+            for name in ("u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa"):
+                row[name] = float(mx[name][i, j])
+            row["converged"] = bool(arrays.converged[i, j])
+            row["contact_preserved"] = bool(mx["contact_preserved"][i, j])
+            row["residual_norm"] = float(arrays.residual_norm[i, j])
+            row["iterations"] = int(arrays.iterations[i, j])
+            rows.append(row)
+    return rows
+
+
+def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mapping[str, Any] | None = None) -> xr.Dataset:
+    """The case Dataset (what ``results.nc`` holds) from the case arrays."""
+    a = arrays
+    dims4 = ("load_case", "model", "period_fraction")
     data_vars = {
         "cargo_deflection_m": _var(
             dims4 + ("x_cargo_m",),
-            disp - baseline[:, None],
+            a.cargo_deflection_m,
             "cargo deflection relative to the sea-fastening baseline (line through the deck under the outermost saddles), up positive",
             "m",
         ),
         "cargo_deflection_vessel_frame_m": _var(
-            dims4 + ("x_cargo_m",), disp, "cargo deflection relative to the vessel's rigid-body frame (hull chord AP-FP), up positive", "m"
+            dims4 + ("x_cargo_m",), a.cargo_deflection_vessel_frame_m,
+            "cargo deflection relative to the vessel's rigid-body frame (hull chord AP-FP), up positive", "m",
         ),
-        "saddle_compression_m": _var(dims4 + ("saddle",), comp, "saddle compression delta = z_deck - z_cargo (negative = gap)", "m"),
-        "saddle_gap_m": _var(dims4 + ("saddle",), gap, "saddle detachment (gap), nonlinear model", "m"),
-        "saddle_force_N": _var(dims4 + ("saddle",), force, "saddle normal force on the cargo (up positive)", "N"),
-        "contact_state": _var(dims4 + ("saddle",), contact.astype(np.int8), "saddle in contact (1) or detached (0)", "1"),
-        "bending_moment_Nm": _var(dims4 + ("x_moment_m",), moment, "cargo bending moment (sagging positive)", "N m"),
-        "bending_stress_Pa": _var(dims4 + ("x_moment_m",), stress, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"),
+        "saddle_compression_m": _var(dims4 + ("saddle",), a.saddle_compression_m, "saddle compression delta = z_deck - z_cargo (negative = gap)", "m"),
+        "saddle_gap_m": _var(dims4 + ("saddle",), a.saddle_gap_m, "saddle detachment (gap), nonlinear model", "m"),
+        "saddle_force_N": _var(dims4 + ("saddle",), a.saddle_force_N, "saddle normal force on the cargo (up positive)", "N"),
+        "contact_state": _var(dims4 + ("saddle",), (a.saddle_compression_m > 0).astype(np.int8), "saddle in contact (1) or detached (0)", "1"),
+        "bending_moment_Nm": _var(dims4 + ("x_moment_m",), a.bending_moment_Nm, "cargo bending moment (sagging positive)", "N m"),
+        "bending_stress_Pa": _var(dims4 + ("x_moment_m",), a.bending_stress_Pa, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"),
         "deck_deflection_m": _var(
-            ("load_case", "period_fraction", "saddle"),
-            deck_all,
-            "deck deflection under each saddle (hull elastic deflection, up positive)",
-            "m",
+            ("load_case", "period_fraction", "saddle"), a.deck_deflection_m,
+            "deck deflection under each saddle (hull elastic deflection, up positive)", "m",
+        ),
+        "deck_rise_m": _var(
+            ("load_case", "period_fraction", "saddle"), a.deck_rise_m,
+            "deck deflection under each saddle relative to the sea-fastening baseline (up positive)", "m",
         ),
         "saddle_stiffness_N_per_m": _var(("saddle",), model.saddle_stiffness_N_per_m, "saddle compression stiffness", "N/m"),
         "saddle_lashed": _var(("saddle",), np.asarray(model.seafastening.lashed).astype(np.int8), "saddle carries lashings", "1"),
         "saddle_x_m": _var(("saddle",), model.saddle_x_m, "saddle position along the cargo from its aft end", "m"),
-        "residual_norm": _var(("load_case", "model"), residual, "nonlinear solver residual norm", "1"),
-        "iterations": _var(("load_case", "model"), iterations, "nonlinear solver iterations", "1"),
-        "solver_message": xr.Variable(("load_case", "model"), messages.astype(str), {"long_name": "solver message"}),
+        "residual_norm": _var(("load_case", "model"), a.residual_norm, "nonlinear solver residual norm", "1"),
+        "iterations": _var(("load_case", "model"), a.iterations, "nonlinear solver iterations", "1"),
+        "solver_message": xr.Variable(("load_case", "model"), a.solver_message, {"long_name": "solver message"}),
         "harmonic_truncation_indicator": _var(
-            ("load_case", "model", "saddle"), truncation, "share of the contact-force signal above harmonic H", "1"
+            ("load_case", "model", "saddle"), a.harmonic_truncation_indicator, "share of the contact-force signal above harmonic H", "1"
         ),
-        "tensile_force_error_N": _var(("load_case", "model"), tensile, "largest tensile force of the regularised contact law", "N"),
+        "tensile_force_error_N": _var(("load_case", "model"), a.tensile_force_error_N, "largest tensile force of the regularised contact law", "N"),
+        "converged": _var(("load_case", "model"), a.converged.astype(np.int8), *_SUMMARY_ATTRS["converged"]),
     }
-    ds = xr.Dataset(
+    for name, values in a.maxima().items():
+        data_vars[name] = _var(("load_case", "model"), values.astype(np.int8) if values.dtype == bool else values, *_SUMMARY_ATTRS[name])
+    return xr.Dataset(
         data_vars,
         coords={
             "load_case": list(LOAD_CASES),
             "model": list(MODELS),
-            "period_fraction": _var(("period_fraction",), s, "time over wave period t/T", "1"),
+            "period_fraction": _var(("period_fraction",), a.period_fraction, "time over wave period t/T", "1"),
             "saddle": np.arange(model.saddle_count),
-            "x_cargo_m": _var(("x_cargo_m",), nodes, "position along the cargo from its aft end", "m"),
-            "x_moment_m": _var(("x_moment_m",), x_moment, "position along the cargo from its aft end", "m"),
+            "x_cargo_m": _var(("x_cargo_m",), model.cargo.node_x_m, "position along the cargo from its aft end", "m"),
+            "x_moment_m": _var(("x_moment_m",), a.x_moment_m, "position along the cargo from its aft end", "m"),
         },
         attrs=dict(attrs or {}),
     )
-    # maxima over the cargo, saddles and the period (MODEL.md section 6)
-    def over(v: str, dims: tuple[str, ...]) -> xr.DataArray:
-        return np.abs(ds[v]).max(dims)
-
-    ds["u_c_m"] = over("cargo_deflection_m", ("period_fraction", "x_cargo_m"))
-    ds["u_s_m"] = ds["saddle_compression_m"].max(("period_fraction", "saddle")).clip(min=0.0)
-    ds["u_d_m"] = ds["saddle_gap_m"].max(("period_fraction", "saddle"))
-    ds["F_N"] = ds["saddle_force_N"].max(("period_fraction", "saddle"))
-    ds["M_b_Nm"] = over("bending_moment_Nm", ("period_fraction", "x_moment_m"))
-    ds["sigma_b_Pa"] = over("bending_stress_Pa", ("period_fraction", "x_moment_m"))
-    ds["converged"] = xr.DataArray(converged.astype(np.int8), dims=("load_case", "model"))
-    ds["contact_preserved"] = (ds["saddle_compression_m"] > 0).all(("period_fraction", "saddle")).astype(np.int8)
-    for name, (long_name, units) in _SUMMARY_ATTRS.items():
-        ds[name].attrs.update(long_name=long_name, units=units)
-    return ds
-
-
-def summary_rows(ds: xr.Dataset) -> list[dict[str, Any]]:
-    """The summary table: one row per (load_case, model), INTERFACE.md columns + contact_preserved."""
-    rows = []
-    for lc in LOAD_CASES:
-        for mdl in MODELS:
-            sel = ds.sel(load_case=lc, model=mdl)
-            rows.append(
-                {
-                    "load_case": lc,
-                    "model": mdl,
-                    "u_c_m": float(sel["u_c_m"]),
-                    "u_s_m": float(sel["u_s_m"]),
-                    "u_d_m": float(sel["u_d_m"]),
-                    "F_N": float(sel["F_N"]),
-                    "M_b_Nm": float(sel["M_b_Nm"]),
-                    "sigma_b_Pa": float(sel["sigma_b_Pa"]),
-                    "converged": bool(sel["converged"]),
-                    "contact_preserved": bool(sel["contact_preserved"]),
-                    "residual_norm": float(sel["residual_norm"]),
-                    "iterations": int(sel["iterations"]),
-                }
-            )
-    return rows
