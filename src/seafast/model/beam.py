@@ -47,18 +47,9 @@ def beam_element_stiffness(
     shear_stiffness_N
         Effective shear stiffness G A_s [N]; ``None`` (or infinite) gives Euler-Bernoulli.
     """
-    L = float(length_m)
-    EI = float(bending_stiffness_Nm2)
-    phi = 0.0 if shear_stiffness_N is None or np.isinf(shear_stiffness_N) else 12.0 * EI / (shear_stiffness_N * L * L)
-    c = EI / ((1.0 + phi) * L**3)
-    return c * np.array(
-        [
-            [12.0, 6.0 * L, -12.0, 6.0 * L],
-            [6.0 * L, (4.0 + phi) * L * L, -6.0 * L, (2.0 - phi) * L * L],
-            [-12.0, -6.0 * L, 12.0, -6.0 * L],
-            [6.0 * L, (2.0 - phi) * L * L, -6.0 * L, (4.0 + phi) * L * L],
-        ]
-    )
+    gas = None if shear_stiffness_N is None else np.array([shear_stiffness_N], dtype=float)
+    K, _ = _element_matrices(np.array([length_m], dtype=float), np.array([bending_stiffness_Nm2], dtype=float), np.zeros(1), gas)
+    return K[0]
 
 
 def beam_element_mass(
@@ -71,26 +62,11 @@ def beam_element_mass(
 
     With ``shear_stiffness_N=None`` this is the classical Hermite matrix ``mL/420 [156 ...]``.
     """
-    L = float(length_m)
-    m = float(mass_per_length_kg_per_m) * L
-    phi = 0.0
-    if shear_stiffness_N is not None and not np.isinf(shear_stiffness_N):
-        phi = 12.0 * bending_stiffness_Nm2 / (shear_stiffness_N * L * L)
-    p2 = phi * phi
-    a = 13 / 35 + 7 * phi / 10 + p2 / 3
-    b = (11 / 210 + 11 * phi / 120 + p2 / 24) * L
-    c = 9 / 70 + 3 * phi / 10 + p2 / 6
-    d = (13 / 420 + 3 * phi / 40 + p2 / 24) * L
-    e = (1 / 105 + phi / 60 + p2 / 120) * L * L
-    f = (1 / 140 + phi / 60 + p2 / 120) * L * L
-    return m / (1.0 + phi) ** 2 * np.array(
-        [
-            [a, b, c, -d],
-            [b, e, d, -f],
-            [c, d, a, -b],
-            [-d, -f, -b, e],
-        ]
+    gas = None if shear_stiffness_N is None else np.array([shear_stiffness_N], dtype=float)
+    _, M = _element_matrices(
+        np.array([length_m], dtype=float), np.array([bending_stiffness_Nm2], dtype=float), np.array([mass_per_length_kg_per_m], dtype=float), gas
     )
+    return M[0]
 
 
 def uniform_load_vector(length_m: float, load_N_per_m: float) -> FloatArray:
@@ -103,6 +79,49 @@ def uniform_load_vector(length_m: float, load_N_per_m: float) -> FloatArray:
 def node_dof_indices(element: int) -> NDArray[np.intp]:
     """Global DOF indices (z1, theta1, z2, theta2) of element ``element`` in a 1-D chain."""
     return np.arange(2 * element, 2 * element + 4)
+
+
+def _element_matrices(
+    lengths_m: FloatArray,
+    bending_stiffness_Nm2: FloatArray,
+    mass_per_length_kg_per_m: FloatArray,
+    shear_stiffness_N: FloatArray | None,
+) -> tuple[FloatArray, FloatArray]:
+    """Stiffness and mass matrices of all elements at once, shape (n_el, 4, 4) each."""
+    L = np.asarray(lengths_m, dtype=float)
+    EI = np.broadcast_to(np.asarray(bending_stiffness_Nm2, dtype=float), L.shape)
+    if shear_stiffness_N is None:
+        phi = np.zeros_like(L)
+    else:
+        gas = np.broadcast_to(np.asarray(shear_stiffness_N, dtype=float), L.shape)
+        with np.errstate(divide="ignore"):
+            phi = np.where(np.isinf(gas), 0.0, 12.0 * EI / (gas * L * L))
+    L2 = L * L
+    c = EI / ((1.0 + phi) * L**3)
+    K = np.empty(L.shape + (4, 4))
+    K[:, 0] = np.stack([12.0 + 0 * L, 6.0 * L, -12.0 + 0 * L, 6.0 * L], axis=-1)
+    K[:, 1] = np.stack([6.0 * L, (4.0 + phi) * L2, -6.0 * L, (2.0 - phi) * L2], axis=-1)
+    K[:, 2] = -K[:, 0]
+    K[:, 3] = np.stack([6.0 * L, (2.0 - phi) * L2, -6.0 * L, (4.0 + phi) * L2], axis=-1)
+    K *= c[:, None, None]
+    p2 = phi * phi
+    a = 13 / 35 + 7 * phi / 10 + p2 / 3
+    b = (11 / 210 + 11 * phi / 120 + p2 / 24) * L
+    cc = 9 / 70 + 3 * phi / 10 + p2 / 6
+    d = (13 / 420 + 3 * phi / 40 + p2 / 24) * L
+    e = (1 / 105 + phi / 60 + p2 / 120) * L2
+    f = (1 / 140 + phi / 60 + p2 / 120) * L2
+    M = np.stack(
+        [
+            np.stack([a, b, cc, -d], axis=-1),
+            np.stack([b, e, d, -f], axis=-1),
+            np.stack([cc, d, a, -b], axis=-1),
+            np.stack([-d, -f, -b, e], axis=-1),
+        ],
+        axis=-2,
+    )
+    M *= (np.asarray(mass_per_length_kg_per_m, dtype=float) * L / (1.0 + phi) ** 2)[:, None, None]
+    return K, M
 
 
 def assemble_beam(
@@ -133,17 +152,20 @@ def assemble_beam(
     x = np.asarray(node_x_m, dtype=float)
     n_el = x.size - 1
     n_dof = 2 * x.size
+    lengths = np.diff(x)
+    Ke, Me = _element_matrices(lengths, bending_stiffness_Nm2, mass_per_length_kg_per_m, shear_stiffness_N)
+    dofs = 2 * np.arange(n_el)[:, None] + np.arange(4)[None, :]  # (n_el, 4)
+    rows = np.broadcast_to(dofs[:, :, None], (n_el, 4, 4))
+    cols = np.broadcast_to(dofs[:, None, :], (n_el, 4, 4))
     K = np.zeros((n_dof, n_dof))
     M = np.zeros((n_dof, n_dof))
+    np.add.at(K, (rows, cols), Ke)
+    np.add.at(M, (rows, cols), Me)
     f = np.zeros(n_dof)
-    lengths = np.diff(x)
-    for e in range(n_el):
-        idx = node_dof_indices(e)
-        gas = None if shear_stiffness_N is None else shear_stiffness_N[e]
-        K[np.ix_(idx, idx)] += beam_element_stiffness(lengths[e], bending_stiffness_Nm2[e], gas)
-        M[np.ix_(idx, idx)] += beam_element_mass(lengths[e], mass_per_length_kg_per_m[e], bending_stiffness_Nm2[e], gas)
-        if load_N_per_m is not None:
-            f[idx] += uniform_load_vector(lengths[e], load_N_per_m[e])
+    if load_N_per_m is not None:
+        q = np.broadcast_to(np.asarray(load_N_per_m, dtype=float), lengths.shape)
+        fe = np.stack([q * lengths / 2, q * lengths**2 / 12, q * lengths / 2, -q * lengths**2 / 12], axis=-1)
+        np.add.at(f, dofs, fe)
     return K, M, f
 
 
@@ -169,22 +191,18 @@ def element_end_moments(
     u = np.asarray(displacement)
     n_el = x.size - 1
     lengths = np.diff(x)
-    m0 = np.zeros(u.shape[:-1] + (n_el,), dtype=u.dtype if np.iscomplexobj(u) else float)
-    m1 = np.zeros_like(m0)
-    q = None if load_N_per_m is None else np.broadcast_to(np.asarray(load_N_per_m), u.shape[:-1] + (n_el,))
-    for e in range(n_el):
-        gas = None if shear_stiffness_N is None else shear_stiffness_N[e]
-        ke = beam_element_stiffness(lengths[e], bending_stiffness_Nm2[e], gas)
-        end_forces = u[..., 2 * e : 2 * e + 4] @ ke.T
-        if q is not None:
-            L = lengths[e]
-            # subtract the fixed-end equivalent of the distributed load
-            end_forces = end_forces - np.stack(
-                [q[..., e] * L / 2, q[..., e] * L * L / 12, q[..., e] * L / 2, -q[..., e] * L * L / 12], axis=-1
-            )
-        m0[..., e] = -end_forces[..., 1]
-        m1[..., e] = end_forces[..., 3]
-    return m0, m1
+    Ke, _ = _element_matrices(lengths, bending_stiffness_Nm2, np.zeros(n_el), shear_stiffness_N)
+    dofs = 2 * np.arange(n_el)[:, None] + np.arange(4)[None, :]
+    ue = u[..., dofs]  # (..., n_el, 4)
+    # only the two moment rows of the element end forces are needed
+    m_start = -np.einsum("ej,...ej->...e", Ke[:, 1, :], ue)
+    m_end = np.einsum("ej,...ej->...e", Ke[:, 3, :], ue)
+    if load_N_per_m is not None:
+        q = np.broadcast_to(np.asarray(load_N_per_m), u.shape[:-1] + (n_el,))
+        # remove the fixed-end moments of the distributed load (q L^2 / 12 at each end)
+        m_start = m_start + q * lengths**2 / 12.0
+        m_end = m_end + q * lengths**2 / 12.0
+    return m_start, m_end
 
 
 def bending_moment_line(
