@@ -88,13 +88,14 @@ def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:
     vessel = data.get("vessel")
     if not isinstance(vessel, dict):
         return
-    for key in ("deck_deflection_table", "still_water_bending_moment_table", "hull_form_table"):
+    for key in ("deck_deflection_table", "still_water_bending_moment_table", "hull_form_table", "motions"):
         v = vessel.get(key)
-        if isinstance(v, str) and v and not Path(v).is_absolute():
+        if not isinstance(v, str) or not v or (key == "motions" and v in ("bem", "none")):
+            continue
+        if "\0" in v:
+            raise CaseError(f"vessel.{key} = {v!r}: not a valid path (contains a NUL character)")
+        if not Path(v).is_absolute():
             vessel[key] = str((base_dir / v).resolve())
-    m = vessel.get("motions")
-    if isinstance(m, str) and m not in ("bem", "none") and not Path(m).is_absolute():
-        vessel["motions"] = str((base_dir / m).resolve())
 
 
 def case_from_mapping(data: Any, source: str = "(mapping)", overrides: Mapping[str, Any] | None = None, base_dir: Path | None = None) -> Case:
@@ -124,6 +125,8 @@ def load_case(path: str | Path | None = None, overrides: Mapping[str, Any] | Non
         text, source, base_dir = base_case_text(), "(built-in base case)", Path.cwd()
     else:
         p = Path(path)
+        if "\0" in str(path):
+            raise CaseError(f"case file {str(path)!r}: not a valid path (contains a NUL character)")
         try:
             text = p.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError) as exc:

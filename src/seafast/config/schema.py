@@ -12,7 +12,7 @@ import math
 from pathlib import Path
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
 __all__ = [
     "Case",
@@ -30,9 +30,20 @@ __all__ = [
 
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
 
-Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
-NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False)]
-Finite = Annotated[float, Field(allow_inf_nan=False)]
+def _not_bool(value: object) -> object:
+    # pydantic's lax mode reads YAML true/yes/on as 1; a boolean is never a valid number here
+    if isinstance(value, bool):
+        raise ValueError(f"{value!r} is a yes/no value; a number is required")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError("must be a finite number")
+    return value
+
+
+NotBool = BeforeValidator(_not_bool)
+Positive = Annotated[float, NotBool, Field(gt=0, allow_inf_nan=False)]
+NonNegative = Annotated[float, NotBool, Field(ge=0, allow_inf_nan=False)]
+Finite = Annotated[float, NotBool, Field(allow_inf_nan=False)]
+Count = Annotated[int, NotBool]
 
 
 class _Strict(BaseModel):
@@ -73,9 +84,9 @@ class CargoConfig(_Strict):
         None, description="x of the cargo midpoint on the ship from the aft perpendicular [m]; default midship"
     )
     youngs_modulus_Pa: Positive = 210e9
-    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)] = 0.3
+    poisson_ratio: Annotated[float, NotBool, Field(gt=0, lt=0.5)] = 0.3
     density_kg_per_m3: Positive = 7850.0
-    units_abreast: Annotated[int, Field(ge=1, le=20)] = Field(
+    units_abreast: Annotated[Count, Field(ge=1, le=20)] = Field(
         4, description="Identical cargo items side by side (their weights add on the hull; one is modelled)"
     )
 
@@ -114,16 +125,16 @@ class LashingConfig(_Strict):
 class SeaFasteningConfig(_Strict):
     """Saddles and lashings."""
 
-    saddle_count: Annotated[int, Field(ge=1, le=50)] = Field(
+    saddle_count: Annotated[Count, Field(ge=1, le=50)] = Field(
         3, description="n saddles evenly from 0.2 L to 0.8 L, lashings at the two outermost"
     )
-    saddle_positions_m: tuple[Annotated[float, Field(allow_inf_nan=False)], ...] | None = Field(
+    saddle_positions_m: tuple[Finite, ...] | None = Field(
         None, description="Explicit saddle positions along the cargo from its aft end [m]; overrides saddle_count"
     )
     saddle_stiffness_N_per_m: Positive | tuple[Positive, ...] = Field(
         BASE_SADDLE_STIFFNESS_N_PER_M, description="Compression stiffness per saddle [N/m]: one value for all, or one per saddle"
     )
-    lashed_saddles: tuple[Annotated[int, Field(ge=0)], ...] | None = Field(
+    lashed_saddles: tuple[Annotated[Count, Field(ge=0)], ...] | None = Field(
         None, description="Indices (0-based, aft to fore) of lashed saddles; default the two outermost"
     )
     lashing: LashingConfig = LashingConfig()
@@ -150,7 +161,7 @@ class VesselConfig(_Strict):
     hull_second_moment_m4: Positive = Field(103.8, description="Hull-girder second moment of area I_s [m^4]")
     hull_shear_area_m2: Positive | None = Field(None, description="Hull-girder effective shear area [m^2]; default documented")
     youngs_modulus_Pa: Positive = 210e9
-    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5)] = 0.3
+    poisson_ratio: Annotated[float, NotBool, Field(gt=0, lt=0.5)] = 0.3
     water_density_kg_per_m3: Positive = 1025.0
     lightship_mass_kg: Positive | None = Field(None, description="Lightship mass [kg]; default documented")
     hull_form_table: Path | None = Field(
@@ -183,8 +194,8 @@ class SolverConfig(_Strict):
     formulation: Literal["condensed", "full"] = "condensed"
     contact_law: Literal["tanh", "softplus", "exact"] = "tanh"
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
-    harmonics: Annotated[int, Field(ge=1, le=100)] = Field(5, description="Number of harmonics H")
-    time_samples: Annotated[int, Field(ge=4, le=8192)] = Field(128, description="AFT time samples per period N")
+    harmonics: Annotated[Count, Field(ge=1, le=100)] = Field(5, description="Number of harmonics H")
+    time_samples: Annotated[Count, Field(ge=4, le=8192)] = Field(128, description="AFT time samples per period N")
     nonlinear_solver: Literal["hybr", "newton"] = "hybr"
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
 
@@ -201,7 +212,7 @@ class ModelConfig(_Strict):
     """Discretisation, damping and environment."""
 
     element_length_m: Positive = Field(1.0, description="Target cargo finite-element length [m]")
-    damping_ratio: Annotated[float, Field(ge=0, lt=1)] = Field(
+    damping_ratio: Annotated[float, NotBool, Field(ge=0, lt=1)] = Field(
         0.02, description="Rayleigh damping ratio at the first two cargo natural frequencies [-]"
     )
     gravity_m_per_s2: Positive = 9.81

@@ -95,10 +95,12 @@ def read_deck_deflection_table(path: str | Path) -> DeckDeflectionTable:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"vessel.deck_deflection_table = '{p}': cannot read it ({getattr(exc, 'strerror', exc)})") from None
-    rows = [r for r in csv.reader(line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#"))]
+    # keep each row's line number in the file so messages point at the right line
+    numbered = [(n, line) for n, line in enumerate(text.splitlines(), start=1) if line.strip() and not line.lstrip().startswith("#")]
+    rows = [(n, next(csv.reader([line]))) for n, line in numbered]
     if not rows:
         raise ValueError(f"vessel.deck_deflection_table = '{p}': the file is empty; expected columns {', '.join(DECK_TABLE_COLUMNS)}")
-    header = [h.strip() for h in rows[0]]
+    header = [h.strip() for h in rows[0][1]]
     missing = [c for c in DECK_TABLE_COLUMNS if c not in header]
     if missing:
         raise ValueError(
@@ -106,8 +108,9 @@ def read_deck_deflection_table(path: str | Path) -> DeckDeflectionTable:
             f"expected {', '.join(DECK_TABLE_COLUMNS)}"
         )
     col = {c: header.index(c) for c in DECK_TABLE_COLUMNS}
-    data = {c: [] for c in DECK_TABLE_COLUMNS}
-    for i, row in enumerate(rows[1:], start=2):
+    data: dict[str, list[float]] = {c: [] for c in DECK_TABLE_COLUMNS}
+    line_of_row: list[int] = []
+    for i, row in rows[1:]:
         for c in DECK_TABLE_COLUMNS:
             try:
                 v = float(row[col[c]])
@@ -117,11 +120,12 @@ def read_deck_deflection_table(path: str | Path) -> DeckDeflectionTable:
             if not math.isfinite(v):
                 raise ValueError(f"vessel.deck_deflection_table = '{p}', line {i}, column {c}: {v} is not finite")
             data[c].append(v)
+        line_of_row.append(i)
     x = np.array(data["x_m"])
     if x.size < 2:
         raise ValueError(f"vessel.deck_deflection_table = '{p}': needs at least 2 data rows, got {x.size}")
     if np.any(np.diff(x) <= 0):
-        bad = int(np.argmax(np.diff(x) <= 0)) + 3
+        bad = line_of_row[int(np.argmax(np.diff(x) <= 0)) + 1]
         raise ValueError(f"vessel.deck_deflection_table = '{p}', line {bad}: x_m must be strictly increasing")
     amp = np.array(data["wave_amplitude_m"])
     phase = np.array(data["wave_phase_rad"])

@@ -1,0 +1,105 @@
+"""Benchmark: condensed HBM vs full HBM vs the exact references, base case, one BLAS thread.
+
+Run ``python benchmarks/bench_hbm.py``. The last line is ``key=value`` pairs (INTERFACE.md).
+Swap the case by editing :func:`base_case_model_and_excitation` only.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.sections import CargoGeometry, TubeSegment
+from seafast.model.seafastening import SeaFastening
+from seafast.model.structure import StructuralModel, build_structural_model
+
+
+def base_case_model_and_excitation() -> tuple[StructuralModel, HarmonicExcitation]:
+    """Base-case model and a realistic stand-in excitation (to be replaced by the vessel's).
+
+    Static: deck under the middle saddle raised 5.75 mm (source: 6.3 MN, 49 MNm). Wave at
+    0.6 rad/s: parabolic hog/sag at the middle saddle, 12 mm cos(wt) - 3 mm cos(2wt) (sag
+    deeper than hog: the middle saddle lifts off), a 2 mm rigid deck rotation in quadrature,
+    and the inertia load of 1.5 m heave and 1 deg pitch.
+    """
+    geometry = CargoGeometry((TubeSegment(0, 74, 8, 8, 0.08),))
+    sf = SeaFastening(np.array([14.8, 37, 59.2]), np.full(3, 1.1e9), np.array([True, False, True]))
+    model = build_structural_model(geometry, sf, target_element_length_m=1.0)
+    w = 0.6
+    x_s = model.saddle_x_m
+    xc, half = 37.0, 0.5 * (x_s[-1] - x_s[0])
+    s = (x_s - xc) / half
+    xo = np.zeros((3, model.deck_dof_count), dtype=complex)
+    xo[0, 2] = 5.75e-3
+    for k, rel, anti in ((1, 12e-3, 2e-3), (2, -3e-3, 0.0)):
+        xo[k, 0::2] = rel * (1 - s**2) + 1j * anti * s
+        xo[k, 1::2] = rel * (-2 * s / half) + 1j * anti / half
+    x = model.cargo.node_x_m
+    heave, pitch = 1.5, 0.0175
+    u_rb = np.zeros(model.cargo_dof_count, dtype=complex)
+    u_rb[0::2] = heave + 1j * pitch * (x - xc)
+    u_rb[1::2] = 1j * pitch
+    load = np.zeros((3, model.cargo_dof_count), dtype=complex)
+    load[1] = -model.cargo.mass @ (-(w**2) * u_rb)
+    line = np.zeros((3, model.cargo.element_count), dtype=complex)
+    xm = model.cargo.element_mid_x_m
+    line[1] = -model.cargo.element_mass_per_length_kg_per_m * (-(w**2) * (heave + 1j * pitch * (xm - xc)))
+    return model, HarmonicExcitation(w, xo, load, line, source="benchmark stand-in: hog/sag + heave/pitch inertia")
+
+
+def timed(fn, repeats: int):
+    out, times = None, []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return out, 1e3 * float(np.median(times))
+
+
+def rel_diff(a, b) -> float:
+    return float(np.max(np.abs(a.saddle_force_time_N - b.saddle_force_time_N)) / np.max(np.abs(b.saddle_force_time_N)))
+
+
+def main() -> None:
+    from seafast.solvers.hbm import HBMOptions, solve_hbm
+    from seafast.solvers.references import solve_quasi_static, solve_time_domain
+
+    model, ex = base_case_model_and_excitation()
+    # H = 16 with the exact law: the lowest H meeting the 1 % agreement with the references here
+    cond = HBMOptions(harmonics=16, time_samples=128, contact_law="exact")
+    full = HBMOptions(harmonics=16, time_samples=128, contact_law="exact", formulation="full")
+    source = HBMOptions(harmonics=5, time_samples=128, contact_law="tanh")
+    with threadpool_limits(1):
+        solve_hbm(model, ex, cond)  # warm caches
+        r_c, t_c = timed(lambda: solve_hbm(model, ex, cond), 50)
+        r_s, t_s = timed(lambda: solve_hbm(model, ex, source), 50)
+        r_f, t_f = timed(lambda: solve_hbm(model, ex, full), 3)
+        r_q, t_q = timed(lambda: solve_quasi_static(model, ex, 128), 10)
+        r_t, t_t = timed(lambda: solve_time_domain(model, ex, 128), 3)
+    print(f"case: {ex.source}; {model.cargo_dof_count} cargo DOFs, {model.saddle_count} saddles, omega {ex.omega_rad_s} rad/s")
+    print(f"condensed HBM (H=16, N=128, exact)    median {t_c:9.2f} ms  {r_c.message}")
+    print(f"condensed HBM (H=5, N=128, tanh)      median {t_s:9.2f} ms  {r_s.message}")
+    print(f"full HBM      (H=16, N=128, exact)    median {t_f:9.2f} ms  {r_f.message}")
+    print(f"quasi-static reference (N=128)        median {t_q:9.2f} ms")
+    print(f"time-domain reference (2048 steps/T)  median {t_t:9.2f} ms  {r_t.message}")
+    print(f"speed-up of condensed vs full {t_f / t_c:.0f}x, vs time domain {t_t / t_c:.0f}x, vs quasi-static {t_q / t_c:.1f}x")
+    pairs = {
+        "condensed vs full": rel_diff(r_c, r_f),
+        "condensed vs time domain": rel_diff(r_c, r_t),
+        "condensed vs quasi-static": rel_diff(r_c, r_q),
+        "time domain vs quasi-static": rel_diff(r_t, r_q),
+        "full vs time domain": rel_diff(r_f, r_t),
+        "tanh H=5 (source) vs time domain": rel_diff(r_s, r_t),
+    }
+    for name, v in pairs.items():
+        print(f"max saddle-force difference {name:34s} {v:.2e} (of the max force)")
+    print(f"max saddle force: condensed {r_c.max_saddle_force_N / 1e6:.4f} MN, TD {r_t.max_saddle_force_N / 1e6:.4f} MN, QS {r_q.max_saddle_force_N / 1e6:.4f} MN; max gap {r_c.max_gap_m * 1e3:.3f} mm")
+    max_rel = max(pairs[k] for k in ("condensed vs full", "condensed vs time domain", "condensed vs quasi-static", "time domain vs quasi-static"))
+    print(f"median_ms={t_c:.3g} speedup_vs_full={t_f / t_c:.0f} speedup_vs_time_domain={t_t / t_c:.0f} max_rel_diff={max_rel:.1e}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,177 @@
+"""The common result of the nonlinear solvers: one period of the steady-state response.
+
+Harmonic balance (``solve_hbm``) and the exact references (``solve_quasi_static``,
+``solve_time_domain``) all return a :class:`PeriodicResponse` sampled on the same time grid
+``t_n = n T / N`` (period fraction ``n / N``, n = 0 .. N-1), so they can be compared sample by
+sample.
+
+Sign conventions (MODEL.md)
+---------------------------
+* Cargo DOFs (z [m], theta [rad]) per cargo node, z positive upward and relative to the
+  vessel's rigid-body frame, in the structural model's cargo-DOF order.
+* Saddle compression ``delta = z_deck - z_cargo`` [m], positive when compressed; a negative
+  value is a gap (detachment).
+* Saddle force [N]: the contact force of the compression-only part of the saddle
+  (k_sad - k_z at lashed saddles) on the cargo, positive pushing the cargo up.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = [
+    "PeriodicResponse",
+    "period_fraction",
+    "harmonics_to_time",
+    "high_harmonic_energy_share",
+]
+
+
+def period_fraction(time_samples: int) -> NDArray[np.float64]:
+    """The sampling grid ``n / N``, n = 0 .. N-1 (t_n = n T / N)."""
+    return np.arange(int(time_samples), dtype=float) / int(time_samples)
+
+
+def harmonics_to_time(harmonics: NDArray, time_samples: int) -> NDArray[np.float64]:
+    """Sample ``x(t) = Re(sum_k X_k exp(i k omega t))`` at ``t_n = n T / N``.
+
+    Parameters
+    ----------
+    harmonics
+        Complex amplitudes, shape (H+1, ...); row 0 is the (real) static part.
+    time_samples
+        N.
+
+    Returns
+    -------
+    Real samples, shape (N, ...).
+    """
+    X = np.asarray(harmonics)
+    n_k, N = X.shape[0], int(time_samples)
+    phase = 2.0 * np.pi * np.outer(np.arange(N), np.arange(n_k)) / N
+    flat = X.reshape(n_k, -1)
+    # real arithmetic: Re(X e^{i p}) = Re X cos p - Im X sin p
+    out = np.cos(phase) @ np.ascontiguousarray(flat.real) - np.sin(phase) @ np.ascontiguousarray(flat.imag)
+    return out.reshape((N,) + X.shape[1:])
+
+
+def high_harmonic_energy_share(signal: NDArray, harmonics: int) -> NDArray[np.float64]:
+    """Share of the fluctuating signal energy carried by harmonics above ``harmonics``.
+
+    ``signal`` has shape (N, n) (one period, N samples, n channels). The energy of harmonic k
+    is ``|X_k|^2 / 2`` (k >= 1), computed by DFT of the N samples (harmonics up to N/2); the
+    share is ``sum_{k > H} / sum_{k >= 1}`` per channel, 0 for a constant channel. It measures
+    how much of the signal a truncation at H harmonics misses (MODEL.md section 5).
+    """
+    s = np.asarray(signal, dtype=float)
+    N = s.shape[0]
+    spectrum = np.fft.rfft(s, axis=0) / N
+    energy = np.abs(spectrum) ** 2
+    if N % 2 == 0:
+        energy[-1] *= 0.5  # the Nyquist bin is not doubled
+    energy = energy[1:]
+    total = energy.sum(axis=0)
+    above = energy[int(harmonics):].sum(axis=0)
+    scale = np.max(np.abs(s), axis=0) ** 2 if s.size else 0.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share = np.where(total > 1e-24 * np.maximum(scale, 1e-300), above / total, 0.0)
+    return share
+
+
+@dataclass(frozen=True)
+class PeriodicResponse:
+    """One period of the steady-state response of cargo and saddles.
+
+    Attributes
+    ----------
+    method
+        ``"hbm"``, ``"quasi_static"`` or ``"time_domain"``.
+    omega_rad_s
+        Fundamental frequency [rad/s] (period T = 2 pi / omega).
+    period_fraction
+        ``n / N``, shape (N,).
+    cargo_displacement_time_m
+        Cargo DOFs over the period (z [m], theta [rad]), shape (N, n_c), relative to the
+        vessel's rigid-body frame; static part included.
+    cargo_displacement_harmonics
+        Complex amplitudes X_k of the cargo DOFs, k = 0 .. H, shape (H+1, n_c), with
+        ``x(t) = Re(sum_k X_k exp(i k omega t))``; ``None`` for the time-sampled references.
+    saddle_compression_time_m
+        ``delta = z_deck - z_cargo`` at each saddle [m], shape (N, n_s); negative = gap.
+    saddle_force_time_N
+        Contact force of the compression-only saddle part on the cargo [N], shape (N, n_s),
+        from the contact law used (exact law for the references).
+    contact_state
+        ``delta > 0`` (in contact), shape (N, n_s).
+    converged
+        Whether the solver met its tolerance. A non-converged response is returned (never an
+        exception) so callers can report it.
+    residual_norm
+        Final residual (relative, dimensionless; see the solver for its normalisation).
+    iterations, function_evaluations
+        Nonlinear iterations (Newton steps, continuation steps included) and residual
+        evaluations (time steps for the time-domain reference).
+    message
+        Human-readable account of the solution path and any warnings.
+    harmonic_truncation_indicator
+        Per saddle, the share of the fluctuating contact-force energy above harmonic H
+        (see :func:`high_harmonic_energy_share`); for the references H is the ``harmonics``
+        recorded in ``options`` (what an HBM with that H would miss).
+    tensile_force_error_N
+        Largest tensile (negative) force the contact law produced over the period [N], >= 0;
+        nonzero only for the ``tanh`` regularisation.
+    options
+        The settings used (plain dict, safe to serialise).
+    """
+
+    method: str
+    omega_rad_s: float
+    period_fraction: NDArray[np.float64]
+    cargo_displacement_time_m: NDArray[np.float64]
+    cargo_displacement_harmonics: NDArray[np.complex128] | None
+    saddle_compression_time_m: NDArray[np.float64]
+    saddle_force_time_N: NDArray[np.float64]
+    contact_state: NDArray[np.bool_]
+    converged: bool
+    residual_norm: float
+    iterations: int
+    message: str
+    harmonic_truncation_indicator: NDArray[np.float64]
+    tensile_force_error_N: float
+    function_evaluations: int
+    options: dict[str, Any] = field(default_factory=dict)
+
+    # ------------------------------------------------------------------ convenience maxima
+    @property
+    def time_samples(self) -> int:
+        """N."""
+        return int(self.period_fraction.size)
+
+    @property
+    def max_saddle_force_N(self) -> float:
+        """Largest saddle force over the period and the saddles [N]."""
+        return float(np.max(self.saddle_force_time_N))
+
+    @property
+    def max_saddle_compression_m(self) -> float:
+        """Largest saddle compression u_s [m] (0 if never compressed)."""
+        return float(max(np.max(self.saddle_compression_time_m), 0.0))
+
+    @property
+    def max_gap_m(self) -> float:
+        """Largest detachment u_d = max(-delta) [m] (0 if contact is preserved)."""
+        return float(max(-np.min(self.saddle_compression_time_m), 0.0))
+
+    @property
+    def contact_preserved(self) -> bool:
+        """True when every saddle stays in contact over the whole period."""
+        return bool(np.all(self.contact_state))
+
+    def max_cargo_deflection_m(self, z_dofs: NDArray[np.intp] | None = None) -> float:
+        """Largest |z| over the period and the cargo [m]; z DOFs are the even cargo DOFs."""
+        z = self.cargo_displacement_time_m[:, 0::2] if z_dofs is None else self.cargo_displacement_time_m[:, z_dofs]
+        return float(np.max(np.abs(z)))

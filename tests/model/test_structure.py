@@ -1,0 +1,231 @@
+"""Verification of the cargo + sea-fastening structural model against statics.
+
+Reactions are taken from the linear solver (bilateral saddles, deck held flat) and compared
+with closed-form answers: the three-moment equation for a continuous beam with overhangs on
+rigid supports, statically determinate beams on springs, and plain force balance.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
+from seafast.model.seafastening import BASE_LASHING, SeaFastening, evenly_spaced_saddles
+from seafast.model.structure import MechanismError, StructuralModel, build_structural_model
+from seafast.solvers.linear import solve_linear
+
+LM, D, T, RHO, G = 74.0, 8.0, 0.08, 7850.0, 9.81
+BASE_X = np.array([0.2, 0.5, 0.8]) * LM
+
+
+def _geometry(E: float = 210e9) -> CargoGeometry:
+    return CargoGeometry((TubeSegment(0.0, LM, D, D, T),), youngs_modulus_Pa=E, density_kg_per_m3=RHO)
+
+
+def _weight_N() -> float:
+    return float(RHO * tube_area_m2(D, T) * LM * G)
+
+
+def _flat_deck(model: StructuralModel) -> HarmonicExcitation:
+    return HarmonicExcitation(
+        0.6,
+        np.zeros((1, model.deck_dof_count), dtype=complex),
+        np.zeros((1, model.cargo_dof_count), dtype=complex),
+        np.zeros((1, model.cargo.element_count), dtype=complex),
+    )
+
+
+def _spring_forces(model: StructuralModel, resp) -> np.ndarray:
+    """Total vertical spring force on the cargo at each saddle (saddle + lashing k_z), static part."""
+    kz = model.seafastening.lashing_vertical_stiffness_N_per_m
+    return (resp.saddle_force_N[0] + kz * resp.saddle_compression_m[0]).real
+
+
+def three_moment_reactions(xs: np.ndarray, length: float, w: float) -> np.ndarray:
+    """Reactions (upward) of a uniform beam on three rigid supports with overhangs, load w down.
+
+    Support moments (sagging positive): the overhangs give M_A = -w a^2/2 and
+    M_C = -w (length - c)^2/2; Clapeyron's equation for the two spans then gives M_B:
+        M_A L1 + 2 M_B (L1 + L2) + M_C L2 = -w (L1^3 + L2^3) / 4.
+    Span shears from M(x) = M_i + V_i x - w x^2/2 with M(L_span) = M_{i+1}.
+    """
+    a, b, c = xs
+    L1, L2 = b - a, c - b
+    MA = -w * a**2 / 2
+    MC = -w * (length - c) ** 2 / 2
+    MB = (-w * (L1**3 + L2**3) / 4 - MA * L1 - MC * L2) / (2 * (L1 + L2))
+    V1 = (MB - MA) / L1 + w * L1 / 2  # shear just right of A
+    V2 = (MC - MB) / L2 + w * L2 / 2  # shear just right of B
+    RA = w * a + V1
+    RB = (w * L1 - V1) + V2
+    RC = (w * L2 - V2) + w * (length - c)
+    return np.array([RA, RB, RC])
+
+
+def test_three_moment_helper_sanity() -> None:
+    # two equal spans, no overhang: 3/8, 10/8 (=5/4), 3/8 of w L_span
+    r = three_moment_reactions(np.array([0.0, 5.0, 10.0]), 10.0, 1.0)
+    np.testing.assert_allclose(r, [3 * 5 / 8, 10 * 5 / 8, 3 * 5 / 8], rtol=1e-14)
+
+
+@pytest.mark.parametrize(
+    "fractions",
+    [(0.2, 0.5, 0.8), (0.1, 0.45, 0.9), (0.25, 0.4, 0.7)],
+    ids=["base", "asym-1", "asym-2"],
+)
+def test_continuous_beam_on_three_rigid_supports(fractions) -> None:
+    xs = np.array(fractions) * LM
+    sf = SeaFastening(xs, np.full(3, 1e14), np.zeros(3, bool), lashing_wire_stiffness_N_per_m=0.0, lashing_pretension_N=0.0)
+    model = build_structural_model(_geometry(), sf, target_element_length_m=1.0)
+    np.testing.assert_allclose(model.saddle_x_m, xs, rtol=0, atol=1e-9)
+    resp = solve_linear(model, _flat_deck(model))
+    w = RHO * float(tube_area_m2(D, T)) * G
+    expected = three_moment_reactions(xs, LM, w)
+    assert expected.sum() == pytest.approx(w * LM, rel=1e-12)
+    # 1e-4 of the largest reaction (the 1e14 N/m saddles are not perfectly rigid; asym-2 has a
+    # middle support in tension, where the relative error of that smaller value is larger)
+    tol = 1e-4 * np.abs(expected).max()
+    np.testing.assert_allclose(resp.saddle_force_N[0].real, expected, rtol=0, atol=tol)
+    np.testing.assert_allclose(resp.saddle_force_N[0].imag, 0.0, atol=0)
+    # compression is force / stiffness (negative = the support pulls)
+    np.testing.assert_allclose(resp.saddle_compression_m[0].real, expected / 1e14, rtol=0, atol=tol / 1e14)
+
+
+def test_beam_on_two_equal_springs_under_its_weight() -> None:
+    """Statically determinate: each spring W/2, compression W/(2k), for any beam stiffness."""
+    k = 2.0e8
+    xs = np.array([0.2, 0.8]) * LM
+    W = _weight_N()
+    for E, rtol in ((210e9, 1e-9), (210e12, 1e-6)):  # a 1000x stiffer beam costs conditioning
+        sf = SeaFastening(xs, np.full(2, k), np.zeros(2, bool), lashing_wire_stiffness_N_per_m=0.0, lashing_pretension_N=0.0)
+        model = build_structural_model(_geometry(E), sf, target_element_length_m=2.0)
+        assert model.cargo.mass_kg * G == pytest.approx(W, rel=1e-12)
+        resp = solve_linear(model, _flat_deck(model))
+        np.testing.assert_allclose(resp.saddle_force_N[0].real, [W / 2, W / 2], rtol=rtol)
+        np.testing.assert_allclose(resp.saddle_compression_m[0].real, [W / (2 * k)] * 2, rtol=rtol)
+        # the cargo sinks: z at the saddles is -W/(2k) (deck flat at 0)
+        np.testing.assert_allclose(resp.cargo_displacement[0, model.saddle_cargo_dof].real, -W / (2 * k), rtol=rtol)
+
+
+def test_single_saddle_without_rotational_lashing_is_a_mechanism() -> None:
+    sf = SeaFastening(np.array([37.0]), np.array([1.1e9]), np.array([False]))
+    with pytest.raises(MechanismError) as exc:
+        build_structural_model(_geometry(), sf)
+    msg = str(exc.value)
+    assert "mechanism" in msg
+    assert "1 saddle(s)" in msg and "37.0" in msg
+    assert isinstance(exc.value, ValueError)
+
+
+def test_lashed_single_saddle_with_zero_lashing_stiffness_is_a_mechanism() -> None:
+    sf = SeaFastening(np.array([30.0]), np.array([1.1e9]), np.array([True]), lashing_wire_stiffness_N_per_m=0.0)
+    with pytest.raises(MechanismError, match=r"30\.0"):
+        build_structural_model(_geometry(), sf)
+
+
+def test_single_saddle_with_rotational_lashing_is_stable() -> None:
+    sf = SeaFastening(np.array([37.0]), np.array([1.1e9]), np.array([True]))
+    model = build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+    resp = solve_linear(model, _flat_deck(model))
+    W = _weight_N()
+    # all weight + pretension through the one support (saddle + lashing spring)
+    assert _spring_forces(model, resp).sum() == pytest.approx(W + 210e3, rel=1e-9)
+
+
+@pytest.mark.parametrize("target", [4.0, 1.0, 0.3])
+def test_mesh_has_node_at_every_saddle_and_meets_target_length(target: float) -> None:
+    xs = np.array([3.3, 14.8, 37.0, 41.17, 59.2])
+    sections = (TubeSegment(0.0, 30.0, 8.0, 8.0, 0.08), TubeSegment(30.0, LM, 8.0, 6.5, 0.06))
+    geom = CargoGeometry(sections)
+    sf = SeaFastening(xs, np.full(xs.size, 1.1e9), np.array([True, False, False, False, True]))
+    model = build_structural_model(geom, sf, target_element_length_m=target)
+    x = model.cargo.node_x_m
+    assert x[0] == 0.0 and x[-1] == pytest.approx(LM, abs=1e-12)
+    assert np.all(np.diff(x) > 0)
+    assert np.diff(x).max() <= target + 1e-9
+    np.testing.assert_allclose(x[model.saddle_node], xs, rtol=0, atol=1e-9)
+    assert np.min(np.abs(x - 30.0)) < 1e-9  # section boundary is a node
+    # the element count is minimal per interval: no interval over-refined
+    fixed = np.array([0.0, 3.3, 14.8, 30.0, 37.0, 41.17, 59.2, LM])
+    n_expected = int(sum(np.ceil((b - a) / target - 1e-9) for a, b in zip(fixed[:-1], fixed[1:])))
+    assert model.cargo.element_count == n_expected
+    # the tapered segment gets its midpoint properties
+    D_mid, _ = geom.section_at(model.cargo.element_mid_x_m)
+    np.testing.assert_allclose(model.cargo.element_outer_diameter_m, D_mid, rtol=1e-12)
+    assert model.cargo.mass_kg == pytest.approx(geom.mass_kg(), rel=1e-5)
+
+
+def test_lashed_saddle_unilateral_stiffness_is_ksad_minus_kz() -> None:
+    k_sad = np.array([1.1e9, 5.0e8, 2.0e9])
+    sf = SeaFastening(BASE_X, k_sad, np.array([True, False, True]))
+    kz = BASE_LASHING.vertical_stiffness_N_per_m
+    np.testing.assert_allclose(sf.lashing_vertical_stiffness_N_per_m, [kz, 0.0, kz], rtol=1e-15)
+    np.testing.assert_allclose(sf.unilateral_stiffness_N_per_m, [1.1e9 - kz, 5.0e8, 2.0e9 - kz], rtol=1e-15)
+    np.testing.assert_allclose(sf.lashing_rotational_stiffness_Nm_per_rad, [1.46e6, 0.0, 1.46e6], rtol=1e-15)
+    model = build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+    np.testing.assert_allclose(model.saddle_unilateral_stiffness_N_per_m, sf.unilateral_stiffness_N_per_m)
+    # linear model: the full saddle stiffness, bilateral, on the saddle z DOFs
+    Kcc, Kco, Koo = model.spring_matrices(include_saddles=True)
+    cz, oz = model.saddle_cargo_dof, model.saddle_deck_dof
+    np.testing.assert_allclose(np.diag(Kcc)[cz], k_sad, rtol=1e-15)
+    np.testing.assert_allclose(Kco[cz, oz], -k_sad, rtol=1e-15)
+    np.testing.assert_allclose(np.diag(Koo)[oz], k_sad, rtol=1e-15)
+    np.testing.assert_allclose(np.diag(Koo)[oz + 1], [1.46e6, 0.0, 1.46e6], rtol=1e-15)
+    # nonlinear split: only the lashing springs stay linear
+    Kcc_nl, _, Koo_nl = model.spring_matrices(include_saddles=False)
+    np.testing.assert_allclose(np.diag(Koo_nl)[oz], [kz, 0.0, kz], rtol=1e-15)
+    assert np.diag(Kcc_nl)[cz] == pytest.approx([kz, 0.0, kz], rel=1e-15)
+
+
+def test_lashing_springs_scale_with_wire_stiffness() -> None:
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]), lashing_wire_stiffness_N_per_m=75e3)
+    np.testing.assert_allclose(sf.lashing_vertical_stiffness_N_per_m, [13e3, 0, 13e3], rtol=1e-12)
+    np.testing.assert_allclose(sf.lashing_rotational_stiffness_Nm_per_rad, [2.92e6, 0, 2.92e6], rtol=1e-12)
+    # a lashing stiffer than the saddle: the unilateral part is clipped at zero
+    soft = SeaFastening(BASE_X, np.full(3, 1.0e3), np.array([True, False, True]))
+    np.testing.assert_allclose(soft.unilateral_stiffness_N_per_m, [0.0, 1.0e3, 0.0])
+
+
+def test_pretension_adds_to_static_saddle_reactions() -> None:
+    W = _weight_N()
+    results = {}
+    for T_l in (0.0, 210e3, 2.0e6):
+        sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]), lashing_pretension_N=T_l)
+        model = build_structural_model(_geometry(), sf, target_element_length_m=1.0)
+        # pretension shared equally by the lashed saddles, downward on the cargo
+        np.testing.assert_allclose(sf.saddle_pretension_N, [T_l / 2, 0.0, T_l / 2])
+        assert model.pretension_load_N.sum() == pytest.approx(-T_l, abs=1e-9)
+        assert model.static_load_N[0::2].sum() == pytest.approx(-(W + T_l), rel=1e-12)
+        resp = solve_linear(model, _flat_deck(model))
+        forces = _spring_forces(model, resp)
+        assert forces.sum() == pytest.approx(W + T_l, rel=1e-9)
+        # saddle (compression) part alone: the lashing k_z part is ~1e-6 of it
+        assert resp.saddle_force_N[0].real.sum() == pytest.approx(W + T_l, rel=1e-5)
+        results[T_l] = forces
+    # linear superposition: the pretension response adds, symmetric layout -> outer saddles equal
+    for T_l in (210e3, 2.0e6):
+        extra = results[T_l] - results[0.0]
+        assert extra.sum() == pytest.approx(T_l, rel=1e-7)
+        assert extra[0] == pytest.approx(extra[2], rel=1e-9)
+        assert extra[0] > 0
+
+
+def test_arrangement_rule() -> None:
+    np.testing.assert_allclose(evenly_spaced_saddles(3, 74.0), [14.8, 37.0, 59.2], rtol=1e-14)
+    np.testing.assert_allclose(evenly_spaced_saddles(1, 74.0), [37.0])
+    xs = evenly_spaced_saddles(7, 100.0)
+    assert xs[0] == pytest.approx(20.0) and xs[-1] == pytest.approx(80.0)
+    np.testing.assert_allclose(np.diff(xs), 10.0, rtol=1e-12)
+    with pytest.raises(ValueError):
+        evenly_spaced_saddles(0, 74.0)
+
+
+def test_rayleigh_damping_gives_the_ratio_at_the_first_two_frequencies() -> None:
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    model = build_structural_model(_geometry(), sf, target_element_length_m=2.0, damping_ratio=0.03)
+    w = model.natural_frequencies_rad_s(True, count=2)
+    for wi in w:
+        zeta = model.rayleigh_alpha_per_s / (2 * wi) + model.rayleigh_beta_s * wi / 2
+        assert zeta == pytest.approx(0.03, rel=1e-10)

@@ -1,0 +1,78 @@
+"""Frequency-response continuation: quasi-static far below resonance, linear peak, nonlinear pass."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from threadpoolctl import threadpool_limits
+
+from seafast.solvers.continuation import frequency_response
+from seafast.solvers.hbm import HBMOptions
+from seafast.solvers.linear import solve_linear
+from seafast.solvers.periodic import harmonics_to_time
+from seafast.solvers.references import solve_quasi_static
+from solver_cases import base_model, wave_excitation
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _one_blas_thread():
+    with threadpool_limits(1):
+        yield
+
+
+def deck_only(model, relative_mm):
+    """Deck hog/sag only (no inertia load), constant amplitude: excitation at any omega."""
+    return lambda w: wave_excitation(
+        model, omega_rad_s=w, relative_mm=relative_mm, second_harmonic_mm=0.0, antisymmetric_mm=0.0, heave_m=0.0, pitch_rad=0.0
+    )
+
+
+def test_wave_frequencies_are_quasi_static():
+    """Base case, 0.2-2 rad/s: the response is the quasi-static one (first mode ~42 rad/s)."""
+    model = base_model(element_length_m=2.0)
+    excitation_at = deck_only(model, 12.0)
+    opts = HBMOptions(harmonics=10, time_samples=64, contact_law="exact")
+    branch = frequency_response(model, excitation_at, 0.2, 2.0, opts)
+    assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(2.0, rel=1e-6)
+    assert not branch.contact_preserved.any()  # the middle saddle lifts off throughout
+    qs = solve_quasi_static(model, excitation_at(0.2), time_samples=64)
+    print(f"\nomega 0.2..2 rad/s: max force {branch.max_saddle_force_N.min() / 1e6:.4f}..{branch.max_saddle_force_N.max() / 1e6:.4f} MN, quasi-static {qs.max_saddle_force_N / 1e6:.4f} MN; {len(branch.omega_rad_s)} points")
+    # within the H = 10 truncation error (~0.5 % on the peak force here)
+    assert branch.max_saddle_force_N[0] == pytest.approx(qs.max_saddle_force_N, rel=0.01)
+    assert branch.max_gap_m[0] == pytest.approx(qs.max_gap_m, rel=0.05)
+    # over the whole wave band the response changes by well under 1 %
+    assert np.ptp(branch.max_saddle_force_N) / qs.max_saddle_force_N < 0.01
+
+
+def linear_peak(model, excitation_at, omegas, N):
+    z = [np.abs(harmonics_to_time(solve_linear(model, excitation_at(w)).cargo_displacement[:, 0::2], N)).max() for w in omegas]
+    return omegas[int(np.argmax(z))], max(z)
+
+
+def test_linear_resonance_peak_matches_linear_frf():
+    """Soft saddles (1 % of base): contact is kept through resonance, so HBM = linear FRF."""
+    model = base_model(element_length_m=2.0, stiffness_scale=0.01)
+    excitation_at = deck_only(model, 1.0)
+    opts = HBMOptions(harmonics=2, time_samples=16, contact_law="exact")
+    branch = frequency_response(model, excitation_at, 1.0, 10.0, opts)
+    assert branch.converged.all() and branch.contact_preserved.all()
+    w_lin, z_lin = linear_peak(model, excitation_at, np.linspace(1.0, 10.0, 3601), 16)
+    print(f"\ncontinuation peak {branch.peak_omega_rad_s:.4f} rad/s vs linear FRF {w_lin:.4f} rad/s "
+          f"(first natural frequency {model.natural_frequencies_rad_s(True, 2)[1]:.4f}); {len(branch.omega_rad_s)} points")
+    assert branch.peak_omega_rad_s == pytest.approx(w_lin, rel=0.02)
+    assert branch.max_cargo_deflection_m.max() == pytest.approx(z_lin, rel=0.02)
+
+
+def test_nonlinear_resonance_is_passed_with_lift_off():
+    model = base_model(element_length_m=2.0, stiffness_scale=0.01)
+    opts = HBMOptions(harmonics=3, time_samples=32, contact_law="tanh")
+    branch = frequency_response(model, deck_only(model, 20.0), 1.0, 10.0, opts)
+    assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(10.0, rel=1e-6)
+    assert not branch.contact_preserved.all() and branch.max_gap_m.max() > 1e-3
+    assert 4.5 < branch.peak_omega_rad_s < 5.6
+
+
+def test_invalid_sweep_is_rejected():
+    model = base_model(element_length_m=8.0)
+    with pytest.raises(ValueError, match="omega"):
+        frequency_response(model, deck_only(model, 1.0), 1.0, 1.0)

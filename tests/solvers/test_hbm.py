@@ -1,0 +1,155 @@
+"""Harmonic balance solver: formulations, solvers, limits, diagnostics and speed."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+from threadpoolctl import threadpool_limits
+
+from seafast.model.beam import bending_moment_line
+from seafast.solvers.hbm import HBMOptions, solve_hbm
+from seafast.solvers.linear import solve_linear
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references import solve_quasi_static
+from solver_cases import base_model, static_excitation, wave_excitation
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _one_blas_thread():
+    with threadpool_limits(1):
+        yield
+
+
+@pytest.fixture(scope="module")
+def model():
+    return base_model()
+
+
+@pytest.fixture(scope="module")
+def coarse():
+    return base_model(element_length_m=4.0)
+
+
+def max_moment(model, response: PeriodicResponse) -> float:
+    _, m = bending_moment_line(
+        model.cargo.node_x_m,
+        response.cargo_displacement_time_m,
+        model.cargo.element_bending_stiffness_Nm2,
+        load_N_per_m=model.cargo.gravity_line_load_N_per_m,
+    )
+    return float(np.max(np.abs(m)))
+
+
+def test_static_calibration_linear_and_nonlinear(model):
+    """H = 0 with the static excitation: contact is kept, so the nonlinear static = linear static."""
+    ex = static_excitation(model)
+    lin = solve_linear(model, ex)
+    r = solve_hbm(model, ex, HBMOptions(harmonics=0, time_samples=2, contact_law="exact"))
+    assert r.converged and r.contact_preserved
+    assert r.saddle_force_time_N.shape == (2, 3)
+    assert np.allclose(r.saddle_force_time_N[0], lin.saddle_force_N[0].real, rtol=1e-9)
+    assert r.max_saddle_force_N == pytest.approx(6.3e6, rel=0.01)
+    assert max_moment(model, r) == pytest.approx(49.0e6, rel=0.01)
+    assert r.max_saddle_compression_m == pytest.approx(5.73e-3, rel=0.01)
+
+
+def test_response_shapes_and_diagnostics(model):
+    ex = wave_excitation(model)
+    r = solve_hbm(model, ex)  # defaults: H = 5, N = 128, tanh, kappa = 1000, condensed, newton
+    N, n_c, n_s = 128, model.cargo_dof_count, model.saddle_count
+    assert r.method == "hbm" and r.converged and r.residual_norm <= 1e-10
+    assert r.period_fraction.shape == (N,) and r.period_fraction[1] == 1 / N
+    assert r.cargo_displacement_time_m.shape == (N, n_c)
+    assert r.cargo_displacement_harmonics.shape == (6, n_c)
+    assert r.saddle_compression_time_m.shape == r.saddle_force_time_N.shape == r.contact_state.shape == (N, n_s)
+    assert r.harmonic_truncation_indicator.shape == (n_s,)
+    assert np.all((0 <= r.harmonic_truncation_indicator) & (r.harmonic_truncation_indicator < 0.05))
+    assert not r.contact_preserved and r.max_gap_m > 1e-3  # the middle saddle lifts off in the sag
+    assert r.contact_state[:, 1].mean() < 0.95 and r.contact_state[:, [0, 2]].all()
+    # the tanh law pulls: up to 0.139 k / kappa
+    assert 0 < r.tensile_force_error_N <= 0.1393 * model.saddle_unilateral_stiffness_N_per_m.max() / 1000
+    assert r.options["harmonics"] == 5 and r.function_evaluations >= r.iterations
+    # time signal = harmonics
+    t = r.period_fraction
+    z = np.real(np.exp(2j * np.pi * np.outer(t, np.arange(6))) @ r.cargo_displacement_harmonics)
+    assert np.allclose(z, r.cargo_displacement_time_m, atol=1e-12)
+
+
+@pytest.mark.parametrize("law", ["softplus", "exact"])
+def test_non_negative_laws_give_no_tension(model, law):
+    r = solve_hbm(model, wave_excitation(model), HBMOptions(contact_law=law))
+    assert r.converged and r.tensile_force_error_N == 0.0 and r.saddle_force_time_N.min() >= 0.0
+
+
+def test_contact_preserved_equals_linear(model):
+    ex = wave_excitation(model, relative_mm=3.0, second_harmonic_mm=-1.0)
+    lin = solve_linear(model, ex)
+    r = solve_hbm(model, ex, HBMOptions(contact_law="exact"))
+    assert r.contact_preserved and r.iterations == 0
+    assert np.allclose(r.cargo_displacement_harmonics[:3], lin.cargo_displacement, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("law", ["tanh", "softplus", "exact"])
+def test_condensed_equals_full(coarse, law):
+    ex = wave_excitation(coarse)
+    opts = dict(harmonics=4, time_samples=32, contact_law=law)
+    rc = solve_hbm(coarse, ex, HBMOptions(**opts))
+    rf = solve_hbm(coarse, ex, HBMOptions(formulation="full", **opts))
+    assert rc.converged and rf.converged
+    scale_f = np.abs(rc.saddle_force_time_N).max()
+    scale_x = np.abs(rc.cargo_displacement_time_m).max()
+    assert np.abs(rf.saddle_force_time_N - rc.saddle_force_time_N).max() <= 1e-6 * scale_f
+    assert np.abs(rf.cargo_displacement_time_m - rc.cargo_displacement_time_m).max() <= 1e-6 * scale_x
+
+
+@pytest.mark.parametrize("formulation", ["condensed", "full"])
+def test_hybr_equals_newton(coarse, formulation):
+    ex = wave_excitation(coarse)
+    a = solve_hbm(coarse, ex, HBMOptions(harmonics=3, time_samples=16, solver="newton", formulation=formulation))
+    b = solve_hbm(coarse, ex, HBMOptions(harmonics=3, time_samples=16, solver="hybr", formulation=formulation))
+    assert a.converged and b.converged
+    assert np.allclose(a.saddle_force_time_N, b.saddle_force_time_N, rtol=0, atol=1e-7 * a.max_saddle_force_N)
+
+
+def test_static_nonlinear_lift_off_matches_quasi_static(coarse):
+    """H = 0: a large static hog lifts the outer saddles; the nonlinear static = exact static."""
+    ex = wave_excitation(coarse, static_mid_mm=25.0).static_part()
+    r = solve_hbm(coarse, ex, HBMOptions(harmonics=0, time_samples=2, contact_law="exact"))
+    qs = solve_quasi_static(coarse, ex, time_samples=2)
+    assert r.converged and not r.contact_preserved
+    assert np.allclose(r.saddle_force_time_N, qs.saddle_force_time_N, rtol=0, atol=1e-6 * qs.max_saddle_force_N)
+    assert np.allclose(r.cargo_displacement_time_m, qs.cargo_displacement_time_m, rtol=0, atol=1e-9)
+
+
+def test_non_convergence_is_reported_not_raised(model):
+    ex = wave_excitation(model)
+    r = solve_hbm(model, ex, HBMOptions(max_iterations=1, continuation=False, tolerance=1e-14))
+    assert not r.converged and r.residual_norm > 1e-14 and "max_iterations" in r.message
+
+
+def test_fallback_continuation_reaches_the_solution(model):
+    """A seesaw case (outer saddles lift together) where direct Newton may struggle still converges."""
+    ex = wave_excitation(model, relative_mm=16.0, second_harmonic_mm=0.0)
+    r = solve_hbm(model, ex, HBMOptions(contact_law="tanh"))
+    assert r.converged
+
+
+def test_dropped_harmonics_are_reported(model):
+    r = solve_hbm(model, wave_excitation(model), HBMOptions(harmonics=1, time_samples=8))
+    assert r.converged and "ignored" in r.message
+
+
+def test_condensed_speed_base_case(model):
+    ex = wave_excitation(model)
+    opts = HBMOptions(harmonics=5, time_samples=128)
+    solve_hbm(model, ex, opts)
+    times = []
+    for _ in range(30):
+        t0 = time.perf_counter()
+        solve_hbm(model, ex, opts)
+        times.append(time.perf_counter() - t0)
+    median_ms = 1e3 * float(np.median(times))
+    print(f"\ncondensed HBM base case (H=5, N=128): median {median_ms:.2f} ms")
+    assert median_ms < 5.0
