@@ -12,42 +12,22 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment
-from seafast.model.seafastening import SeaFastening
-from seafast.model.structure import StructuralModel, build_structural_model
+from seafast.model.structure import StructuralModel
 
 
 def base_case_model_and_excitation() -> tuple[StructuralModel, HarmonicExcitation]:
-    """Base-case model and a realistic stand-in excitation (to be replaced by the vessel's).
+    """The built-in base case: its model and its real vessel excitation.
 
-    Static: deck under the middle saddle raised 5.75 mm (source: 6.3 MN, 49 MNm). Wave at
-    0.6 rad/s: parabolic hog/sag at the middle saddle, 12 mm cos(wt) - 3 mm cos(2wt) (sag
-    deeper than hog: the middle saddle lifts off), a 2 mm rigid deck rotation in quadrature,
-    and the inertia load of 1.5 m heave and 1 deg pitch.
+    Still-water and quasi-static wave hull deflection (lambda = 171 m, zeta_a = 3 m) plus the
+    heave/pitch inertia from the capytaine RAOs (computed once, then read from the disk cache).
     """
-    geometry = CargoGeometry((TubeSegment(0, 74, 8, 8, 0.08),))
-    sf = SeaFastening(np.array([14.8, 37, 59.2]), np.full(3, 1.1e9), np.array([True, False, True]))
-    model = build_structural_model(geometry, sf, target_element_length_m=1.0)
-    w = 0.6
-    x_s = model.saddle_x_m
-    xc, half = 37.0, 0.5 * (x_s[-1] - x_s[0])
-    s = (x_s - xc) / half
-    xo = np.zeros((3, model.deck_dof_count), dtype=complex)
-    xo[0, 2] = 5.75e-3
-    for k, rel, anti in ((1, 12e-3, 2e-3), (2, -3e-3, 0.0)):
-        xo[k, 0::2] = rel * (1 - s**2) + 1j * anti * s
-        xo[k, 1::2] = rel * (-2 * s / half) + 1j * anti / half
-    x = model.cargo.node_x_m
-    heave, pitch = 1.5, 0.0175
-    u_rb = np.zeros(model.cargo_dof_count, dtype=complex)
-    u_rb[0::2] = heave + 1j * pitch * (x - xc)
-    u_rb[1::2] = 1j * pitch
-    load = np.zeros((3, model.cargo_dof_count), dtype=complex)
-    load[1] = -model.cargo.mass @ (-(w**2) * u_rb)
-    line = np.zeros((3, model.cargo.element_count), dtype=complex)
-    xm = model.cargo.element_mid_x_m
-    line[1] = -model.cargo.element_mass_per_length_kg_per_m * (-(w**2) * (heave + 1j * pitch * (xm - xc)))
-    return model, HarmonicExcitation(w, xo, load, line, source="benchmark stand-in: hog/sag + heave/pitch inertia")
+    from seafast.config import load_case
+    from seafast.excitation.vessel import vessel_excitation
+    from seafast.pipeline import build_model
+
+    case = load_case()
+    model = build_model(case)
+    return model, vessel_excitation(case).cargo_excitation(model, case)
 
 
 def timed(fn, repeats: int):

@@ -23,7 +23,7 @@ from seafast.results.dataset import CaseArrays, build_case_dataset, case_arrays,
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
 
-__all__ = ["CaseResult", "build_model", "cargo_geometry", "run_case", "evaluate_summary", "solve_nonlinear"]
+__all__ = ["CaseResult", "build_model", "cargo_geometry", "run_case", "evaluate_summary", "solve_nonlinear", "frequency_sweep"]
 
 
 def cargo_geometry(case: Case) -> CargoGeometry:
@@ -197,3 +197,33 @@ def run_case(
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     """Summary rows of one case (what a study records per point)."""
     return run_case(case).summary
+
+
+def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
+    """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
+
+    The deck-motion amplitudes and the rigid-body displacement amplitudes of the case's wave are
+    kept while the frequency is swept (:meth:`HarmonicExcitation.at_frequency`), so the sweep
+    shows where the quasi-static picture holds and what the cargo does near its resonances.
+
+    Returns
+    -------
+    branch, model
+        The :class:`~seafast.solvers.continuation.FrequencyResponseBranch` and the model.
+    """
+    from seafast.solvers.continuation import frequency_response
+    from seafast.solvers.hbm import HBMOptions
+
+    model = build_model(case)
+    excitation, _ = _excitation(case, model)
+    s = case.solver
+    opts = HBMOptions(
+        harmonics=s.harmonics,
+        time_samples=s.time_samples,
+        contact_law=s.contact_law,
+        regularisation_per_m=s.regularisation_per_m,
+        tolerance=max(s.tolerance, 1e-8),
+    )
+    branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
+    return branch, model
+

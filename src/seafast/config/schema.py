@@ -196,7 +196,9 @@ class SolverConfig(_Strict):
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
     harmonics: Annotated[Count, Field(ge=1, le=100)] = Field(5, description="Number of harmonics H")
     time_samples: Annotated[Count, Field(ge=4, le=8192)] = Field(128, description="AFT time samples per period N")
-    nonlinear_solver: Literal["hybr", "newton"] = "hybr"
+    nonlinear_solver: Literal["hybr", "newton"] = Field(
+        "newton", description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
+    )
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
 
     @model_validator(mode="after")
@@ -258,6 +260,15 @@ class Case(_Strict):
                 raise ValueError(
                     f"seafastening.lashed_saddles = {list(sf.lashed_saddles)} names saddle(s) {bad}; allowed 0..{len(positions) - 1}"
                 )
+        d_max = self.cargo.diameter_m if self.cargo.sections is None else max(
+            max(s.diameter_start_m, s.diameter_end_m) for s in self.cargo.sections
+        )
+        if self.cargo.units_abreast * d_max > self.vessel.breadth_m:
+            raise ValueError(
+                f"cargo.units_abreast = {self.cargo.units_abreast} units of {d_max:g} m diameter need "
+                f"{self.cargo.units_abreast * d_max:g} m of deck, more than vessel.breadth_m = {self.vessel.breadth_m:g}; "
+                f"allowed units_abreast <= {int(self.vessel.breadth_m // d_max)}"
+            )
         if self.cargo.position_m is not None:
             half = L / 2
             if self.cargo.position_m - half < 0 or self.cargo.position_m + half > self.vessel.length_m:

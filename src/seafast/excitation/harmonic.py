@@ -69,3 +69,21 @@ class HarmonicExcitation:
         return HarmonicExcitation(
             self.omega_rad_s, fit(self.deck_displacement), fit(self.cargo_load_N), fit(self.cargo_line_load_N_per_m), self.source
         )
+
+    def at_frequency(self, omega_rad_s: float) -> "HarmonicExcitation":
+        """The same deck-motion amplitudes and rigid-body displacement amplitudes at another frequency.
+
+        The vessel-induced cargo loads are rigid-body inertia (proportional to the square of
+        each harmonic's frequency), so they scale with ``(omega / self.omega)^2``; the deck
+        deflection amplitudes are kept. This is the structural frequency response to the
+        case's excitation *shape*, used to sweep through the cargo's resonances.
+        """
+        scale = (omega_rad_s / self.omega_rad_s) ** 2 if self.omega_rad_s > 0 else 0.0
+        return HarmonicExcitation(
+            float(omega_rad_s),
+            self.deck_displacement,
+            np.concatenate([self.cargo_load_N[:1], scale * self.cargo_load_N[1:]]),
+            np.concatenate([self.cargo_line_load_N_per_m[:1], scale * self.cargo_line_load_N_per_m[1:]]),
+            self.source + f" (shape swept to {omega_rad_s:.4g} rad/s)",
+        )
+

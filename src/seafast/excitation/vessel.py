@@ -239,20 +239,38 @@ def _cargo_mass_kg(case: Case) -> float:
     )
 
 
-def vessel_loading_of(case: Case, hull: HullForm) -> VesselLoading:
-    """The documented default loading with the case's cargo (all units abreast)."""
+def vessel_loading_of(case: Case, hull: HullForm) -> tuple[VesselLoading, str]:
+    """The documented default loading with the case's cargo (all units abreast).
+
+    The default ballast plan also sets a moderate still-water hogging moment at the cargo (the
+    calibration). When a heavy cargo leaves no positive ballast that achieves it, the plan falls
+    back to balancing displacement and trim only (aft and fore tanks), and says so.
+
+    Returns
+    -------
+    loading, description
+    """
+    common = dict(
+        hull=hull,
+        cargo_position_m=case.cargo_position_m(),
+        cargo_length_m=case.cargo.length_m,
+        cargo_mass_kg=case.cargo.units_abreast * _cargo_mass_kg(case),
+        lightship_mass_kg=case.vessel.lightship_mass_kg,
+        water_density_kg_per_m3=case.vessel.water_density_kg_per_m3,
+        gravity_m_per_s2=case.model.gravity_m_per_s2,
+    )
     try:
-        return base_vessel_loading(
-            hull=hull,
-            cargo_position_m=case.cargo_position_m(),
-            cargo_length_m=case.cargo.length_m,
-            cargo_mass_kg=case.cargo.units_abreast * _cargo_mass_kg(case),
-            lightship_mass_kg=case.vessel.lightship_mass_kg,
-            water_density_kg_per_m3=case.vessel.water_density_kg_per_m3,
-            gravity_m_per_s2=case.model.gravity_m_per_s2,
-        )
+        return base_vessel_loading(**common), "default loading"
+    except ValueError:
+        pass
+    try:
+        return base_vessel_loading(still_water_moment_Nm=None, **common), "default loading, ballast for even keel only (cargo too heavy for the default hogging plan)"
     except ValueError as exc:
-        raise ValueError(f"vessel loading: {exc}") from None
+        raise ValueError(
+            f"vessel loading: {exc}; the cargo ({case.cargo.units_abreast} units abreast, "
+            f"{common['cargo_mass_kg'] / 1e3:.0f} t) cannot be ballasted to the design draught - reduce cargo.units_abreast "
+            "or give vessel.deck_deflection_table / vessel.still_water_bending_moment_table"
+        ) from None
 
 
 def _motions(case: Case, hull: HullForm, loading: VesselLoading | None) -> Any:
@@ -321,7 +339,7 @@ def _vessel_excitation_cached(key: str, case: Case) -> VesselExcitation:
             water_density_kg_per_m3=v.water_density_kg_per_m3,
             gravity_m_per_s2=case.model.gravity_m_per_s2,
         )
-        loading = vessel_loading_of(case, hull)
+        loading, loading_note = vessel_loading_of(case, hull)
         if v.still_water_bending_moment_table is not None:
             x, moment = _read_two_columns(v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm"))
             z, s = deflection_from_bending_moment(girder, x, moment)
@@ -329,7 +347,7 @@ def _vessel_excitation_cached(key: str, case: Case) -> VesselExcitation:
             parts.append(f"still-water moment table '{Path(v.still_water_bending_moment_table).name}'")
         else:
             still = still_water_response(girder, loading)
-            parts.append("hull girder (default loading, still water)")
+            parts.append(f"hull girder ({loading_note}, still water)")
         if amplitude > 0:
             wave = wave_response(girder, loading, case.wave.length_m, amplitude)
             parts.append(f"quasi-static wave lambda = {case.wave.length_m:g} m, zeta_a = {amplitude:g} m")

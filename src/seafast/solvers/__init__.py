@@ -1,0 +1,31 @@
+"""Solvers: linear (bilateral saddles), harmonic balance with AFT (unilateral saddles), references.
+
+* :func:`solve_linear` - partitioned static + frequency-domain solve.
+* :func:`solve_hbm` with :class:`HBMOptions` - periodic steady state with contact (condensed or full).
+* :func:`solve_quasi_static`, :func:`solve_time_domain` - exact-contact references.
+* :func:`frequency_response` - pseudo-arclength continuation in frequency.
+
+Non-convergence is reported in the result (``converged``, ``residual_norm``, ``message``), never raised.
+"""
+
+from seafast.solvers.contact import CONTACT_LAWS, ContactLaw, contact_law
+from seafast.solvers.continuation import FrequencyResponseBranch, frequency_response
+from seafast.solvers.hbm import HBMOptions, solve_hbm
+from seafast.solvers.linear import LinearResponse, solve_linear
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references import solve_quasi_static, solve_time_domain
+
+__all__ = [
+    "CONTACT_LAWS",
+    "ContactLaw",
+    "contact_law",
+    "HBMOptions",
+    "solve_hbm",
+    "LinearResponse",
+    "solve_linear",
+    "PeriodicResponse",
+    "solve_quasi_static",
+    "solve_time_domain",
+    "FrequencyResponseBranch",
+    "frequency_response",
+]
