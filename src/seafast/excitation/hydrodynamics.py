@@ -35,6 +35,7 @@ Long-wave limit (checked in the tests): the ship follows the wave, the vertical 
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -468,8 +469,10 @@ def compute_motions(
 
     Notes
     -----
-    The cache key hashes the hull geometry, mass properties, frequencies, panel size, density,
-    gravity, depth, the capytaine version and :data:`MESH_ALGORITHM_VERSION`. The cache file is
+    The cache key hashes the hull geometry, the BEM pitch axis (LCB x at the CoG height),
+    frequencies, panel size, density, gravity, depth, the capytaine version and
+    :data:`MESH_ALGORITHM_VERSION`; mass, CoG x and inertia are applied after the BEM, so a
+    change of loading reuses the cached hydrodynamic coefficients. The cache file is
     the capytaine dataset written with capytaine's own NetCDF export, so it can be read back with
     :func:`load_motions` as well.
     """
@@ -484,7 +487,10 @@ def compute_motions(
     if len(cog) != 3:
         raise ValueError("compute_motions: centre_of_gravity_m must be (x, y, z)")
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
-    rotation_center = np.array([cog[0] - x_mid, 0.0, cog[2] - hull.draft_m])
+    # The BEM pitch axis is fixed at the hull's LCB (at the CoG height): the radiation and
+    # diffraction coefficients then depend on the hull alone, so one cached BEM run serves every
+    # loading (studies vary the cargo and with it the CoG); they are moved to the CoG x below.
+    rotation_center = np.array([hull.centre_of_buoyancy_x_m() - x_mid, 0.0, cog[2] - hull.draft_m])
     depth = float(water_depth_m)
 
     payload = {
@@ -492,9 +498,7 @@ def compute_motions(
         "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
         "draft": repr(float(hull.draft_m)),
         "cs": repr(float(hull.section_area_coefficient)),
-        "mass": repr(float(mass_kg)),
-        "cog": [repr(c) for c in cog],
-        "r_yy": repr(float(pitch_radius_of_gyration_m)),
+        "rotation_center": [repr(float(c)) for c in rotation_center],
         "omega": [repr(float(v)) for v in omega],
         "panel": repr(float(panel_size_m)),
         "rho": repr(float(water_density_kg_per_m3)),
@@ -534,6 +538,14 @@ def compute_motions(
 
 
 def _read_capytaine_netcdf(path: str | os.PathLike) -> xr.Dataset:
+    """Read a capytaine NetCDF export (memoised per file version: studies read it once per process)."""
+    p = Path(path)
+    stat = p.stat()
+    return _read_capytaine_netcdf_cached(str(p.resolve()), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=8)
+def _read_capytaine_netcdf_cached(path: str, mtime_ns: int, size: int) -> xr.Dataset:
     from capytaine.io.xarray import merge_complex_values
 
     with xr.open_dataset(path) as raw:

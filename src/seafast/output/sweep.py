@@ -44,7 +44,7 @@ def write_sweep_outputs(branch: Any, model: Any, out_dir: str | Path) -> list[Pa
             for ax in axes:
                 ax.axvline(w, color="tab:blue", ls=":", lw=1)
     axes[0].legend(fontsize=8)
-    axes[0].set_title("Nonlinear frequency response (pseudo-arclength continuation; dotted: linear natural frequencies)")
+    axes[0].set_title("Nonlinear frequency response (arclength continuation)\ndotted: linear natural frequencies on bilateral saddles", fontsize=10)
     axes[-1].set_xlabel("excitation frequency [rad/s]")
     fig.tight_layout()
     png = out / "frequency_response.png"

@@ -1,0 +1,176 @@
+"""``seafast study``: run a built-in or file-defined parametric study.
+
+Usage::
+
+    seafast study NAME|FILE [-o DIR] [--set KEY=VALUE ...] [--workers N | --scheduler ADDRESS]
+                  [--batch-size N] [--no-progress] [--no-figures] [-q]
+
+Writes ``DIR/study.nc``, ``DIR/study.csv``, ``DIR/compliance.csv``, ``DIR/ranking.csv`` and PNG
+figures; ``DIR/points.jsonl`` is the resumable store (rerun the same command after an
+interruption). Exit code 0 on success, 2 on invalid input (one message on stderr).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any, Sequence
+
+from seafast.config.loader import CaseError, parse_overrides
+
+__all__ = ["add_study_subcommand", "build_study_parser", "cmd_study", "main", "EXIT_OK", "EXIT_INVALID_INPUT"]
+
+EXIT_OK = 0
+EXIT_INVALID_INPUT = 2
+EXIT_INTERRUPTED = 130
+
+STUDY_EXAMPLES = """built-in studies: saddles, lashing, cargo, cargo-saddles-8m, cargo-saddles-12m
+
+examples:
+  seafast study saddles -o out/saddles                 # all cores
+  seafast study lashing --workers 1                    # serial
+  seafast study my_study.yaml --set wave.amplitude_m=2 # a study file, base case overridden
+  seafast study cargo --scheduler tcp://10.0.0.5:8786  # a Dask cluster
+An interrupted study resumes when the same command is run again (finished points are kept).
+
+study file (YAML):
+  name: my-study
+  base: my_case.yaml            # optional; default the built-in base case
+  set: {wave.amplitude_m: 2.5}  # optional overrides of the base case
+  axes:
+    - {key: seafastening.saddle_count, values: [2, 3, 4]}
+    - {key: seafastening.saddle_stiffness_N_per_m, start: 1.1e7, stop: 1.1e10, num: 20, scale: log}
+  derived: {cargo.wall_thickness_m: cargo.diameter_m / 110}   # optional
+  limits: {max_saddle_force_N: 7.0e6, max_bending_stress_Pa: 20.0e6}
+"""
+
+
+def _configure(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    parser.add_argument("study", metavar="NAME|FILE", help="built-in study name or study file (YAML)")
+    parser.add_argument("-o", "--output", default=None, help="output directory (default: study-NAME)")
+    parser.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a key of the study's base case (dotted, e.g. wave.amplitude_m=2); repeatable",
+    )
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
+    where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")
+    parser.add_argument("--batch-size", type=int, default=None, metavar="N", help="points per task (default: automatic, at most 25)")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
+    parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    parser.set_defaults(handler=cmd_study)
+    return parser
+
+
+def add_study_subcommand(subparsers: Any) -> argparse.ArgumentParser:
+    """Register ``study`` on an argparse sub-parsers object; returns the sub-parser."""
+    parser = subparsers.add_parser(
+        "study",
+        help="run a parametric study (built-in NAME or a study FILE) and check design limits",
+        description="Run a parametric study over case keys, check the design limits and rank compliant arrangements.",
+        epilog=STUDY_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    return _configure(parser)
+
+
+def build_study_parser() -> argparse.ArgumentParser:
+    """A stand-alone parser for ``python -m seafast.studies.cli``."""
+    parser = argparse.ArgumentParser(
+        prog="seafast study",
+        description="Run a parametric study over case keys, check the design limits and rank compliant arrangements.",
+        epilog=STUDY_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    return _configure(parser)
+
+
+def _error(message: str) -> int:
+    print(f"seafast: error: {message}", file=sys.stderr)
+    return EXIT_INVALID_INPUT
+
+
+def cmd_study(args: argparse.Namespace) -> int:
+    """Handler of ``seafast study``; returns the exit code."""
+    from seafast.studies.limits import RANKING_COLUMNS, DesignLimits, compliance_rows, format_table, rank_compliant, write_rows_csv
+    from seafast.studies.limits import COMPLIANCE_COLUMNS
+    from seafast.studies.runner import ExecutionOptions, run_study
+    from seafast.studies.spec import build_grid, load_study_spec
+
+    say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
+    if args.workers is not None and args.workers < 1:
+        return _error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")
+    if args.batch_size is not None and args.batch_size < 1:
+        return _error(f"--batch-size {args.batch_size}: allowed: 1 or more points per task")
+    try:
+        overrides = parse_overrides(args.overrides)
+        spec, directory = load_study_spec(args.study)
+        grid = build_grid(spec, directory, overrides)
+    except CaseError as exc:
+        return _error(str(exc))
+    out = Path(args.output or f"study-{spec.name}")
+    execution = ExecutionOptions(args.workers, args.scheduler, args.batch_size, progress=not args.no_progress)
+    where = {"serial": "serially", "processes": f"on {execution.worker_count()} local processes", "dask": f"on Dask at {args.scheduler}"}
+    say(f"study '{spec.name}': {grid.size} points over {' x '.join(grid.keys)} {where[execution.mode()]} -> {out}")
+    try:
+        run = run_study(grid, out, execution=execution)
+    except CaseError as exc:
+        return _error(str(exc))
+    except KeyboardInterrupt:
+        print(f"seafast: interrupted; finished points are kept in {out}; rerun the same command to resume", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    limits = DesignLimits(spec.limits.max_saddle_force_N, spec.limits.max_bending_stress_Pa)
+    comp_rows = compliance_rows(run.dataset, limits)
+    ranking = rank_compliant(run.dataset, limits)
+    keys = list(grid.keys)
+    write_rows_csv(out / "compliance.csv", comp_rows, [*keys, *COMPLIANCE_COLUMNS])
+    ranking_columns = ["rank", "saddle_count", *[k for k in keys if k != "seafastening.saddle_count"], *RANKING_COLUMNS[2:]]
+    write_rows_csv(out / "ranking.csv", ranking, ranking_columns)
+    figures = []
+    if not args.no_figures:
+        from seafast.studies.figures import plot_study
+
+        figures = plot_study(run.dataset, out, limits)
+    say(
+        f"{run.points} points: {run.computed} computed, {run.reused} reused from {run.files['store']}, "
+        f"{run.failed} failed; {run.seconds:.1f} s ({run.points_per_second:.1f} points/s)"
+    )
+    if run.failed:
+        first = next(str(e) for e in run.dataset["error"].values.ravel() if str(e))
+        print(f"seafast: warning: {run.failed} point(s) failed (error recorded per point in study.csv); first: {first}", file=sys.stderr)
+    if "nonlinear" in run.dataset["model"]:
+        evaluated = run.dataset["error"] == ""
+        diverged = ~run.dataset["converged"].sel(model="nonlinear").all("load_case") & evaluated
+        if int(diverged.sum()):
+            say(
+                f"note: at {int(diverged.sum())} point(s) the nonlinear solver did not converge "
+                "(converged=false in study.csv; such points never count as compliant)"
+            )
+    if not args.quiet:
+        compliant = sum(1 for r in comp_rows if r.get("complies_nonlinear"))
+        print(
+            f"study {spec.name}: {compliant} of {len(comp_rows)} points comply with F <= {limits.max_saddle_force_N / 1e6:g} MN "
+            f"and sigma_b <= {limits.max_bending_stress_Pa / 1e6:g} MPa (nonlinear model, total response); "
+            f"linear model: {sum(1 for r in comp_rows if r.get('complies_linear'))}"
+        )
+        print("compliant arrangements, fewest saddles first, then largest margin:")
+        print(format_table(ranking, ranking_columns, max_rows=15))
+        written = [run.files["netcdf"], run.files["csv"], out / "compliance.csv", out / "ranking.csv", *figures]
+        print("wrote " + ", ".join(str(p) for p in written))
+    return EXIT_OK
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m seafast.studies.cli``: the ``seafast study`` command on its own."""
+    args = build_study_parser().parse_args(argv)
+    return int(args.handler(args))
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

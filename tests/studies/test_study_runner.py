@@ -1,0 +1,163 @@
+"""Study execution: back-ends agree, failures are recorded, the store resumes, outputs follow INTERFACE.md."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from seafast.studies.runner import (
+    CORE_COLUMNS,
+    ExecutionOptions,
+    PointStore,
+    evaluate_batch,
+    plan_batches,
+    run_study,
+)
+from seafast.studies.spec import StudyError, build_grid, load_study_spec
+
+FAKE = "study_fakes:fake_evaluate"
+FAILING = "study_fakes:failing_evaluate"
+
+
+def _results(ds: xr.Dataset) -> xr.Dataset:
+    return ds.drop_vars("eval_seconds")
+
+
+def test_serial_processes_and_dask_agree(small_grid, tmp_path: Path):
+    from distributed import LocalCluster
+
+    serial = run_study(small_grid, tmp_path / "serial", evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    processes = run_study(
+        small_grid, tmp_path / "processes", evaluator=FAKE, execution=ExecutionOptions(workers=2, batch_size=3, progress=False)
+    )
+    with LocalCluster(processes=True, n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
+        dask = run_study(
+            small_grid, tmp_path / "dask", evaluator=FAKE, execution=ExecutionOptions(scheduler=cluster.scheduler_address, progress=False)
+        )
+    assert (serial.mode, processes.mode, dask.mode) == ("serial", "processes", "dask")
+    assert serial.computed == processes.computed == dask.computed == small_grid.size
+    xr.testing.assert_identical(_results(serial.dataset), _results(processes.dataset))
+    xr.testing.assert_identical(_results(serial.dataset), _results(dask.dataset))
+    on_disk = [xr.load_dataset(tmp_path / d / "study.nc") for d in ("serial", "processes", "dask")]
+    xr.testing.assert_identical(_results(on_disk[0]), _results(on_disk[1]))
+    xr.testing.assert_identical(_results(on_disk[0]), _results(on_disk[2]))
+    texts = [(tmp_path / d / "study.csv").read_text() for d in ("serial", "processes", "dask")]
+    assert texts[0] == texts[1] == texts[2]
+
+
+def test_dataset_layout_and_attributes(small_grid, tmp_path: Path):
+    run = run_study(small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    ds = xr.load_dataset(tmp_path / "study.nc")
+    assert ds["F_N"].dims == ("seafastening.saddle_count", "seafastening.saddle_stiffness_N_per_m", "load_case", "model")
+    assert ds["load_case"].values.tolist() == ["static", "dynamic"]
+    assert ds["model"].values.tolist() == ["linear", "nonlinear"]
+    assert ds["F_N"].attrs["units"] == "N" and ds["sigma_b_Pa"].attrs["units"] == "Pa" and ds["M_b_Nm"].attrs["units"] == "N m"
+    assert ds["seafastening.saddle_stiffness_N_per_m"].attrs["units"] == "N/m"
+    assert ds["seafastening.saddle_stiffness_N_per_m"].attrs["scale"] == "log"
+    assert ds["seafastening.saddle_count"].attrs["base_value"] == 3
+    for name in ("u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa", "converged", "contact_preserved", "residual_norm", "iterations"):
+        assert "long_name" in ds[name].attrs and "units" in ds[name].attrs
+    assert ds["contact_preserved"].dtype == bool
+    point = ds.sel({"seafastening.saddle_count": 3}).isel({"seafastening.saddle_stiffness_N_per_m": 1})
+    case = small_grid.point_case(5)
+    from study_fakes import fake_evaluate
+
+    expected = {(r["load_case"], r["model"]): r for r in fake_evaluate(case)}
+    assert float(point["F_N"].sel(load_case="dynamic", model="nonlinear")) == expected[("dynamic", "nonlinear")]["F_N"]
+    assert run.points_per_second > 0
+
+
+def test_csv_columns_follow_the_interface(small_grid, tmp_path: Path):
+    run_study(small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    with open(tmp_path / "study.csv", newline="") as fh:
+        rows = list(csv.reader(fh))
+    header = rows[0]
+    keys = ["seafastening.saddle_count", "seafastening.saddle_stiffness_N_per_m"]
+    fixed = "load_case,model,u_c_m,u_s_m,u_d_m,F_N,M_b_Nm,sigma_b_Pa,converged".split(",")
+    assert header[:2] == keys
+    assert header[2:11] == fixed
+    assert header[11] == "contact_preserved"
+    assert header[12:] == ["residual_norm", "iterations", "error"]
+    assert tuple(header[2:12]) == CORE_COLUMNS
+    assert len(rows) - 1 == small_grid.size * 4  # one row per point, load case and model
+    assert {r[11] for r in rows[1:]} == {"true", "false"}
+    first = rows[1]
+    assert first[:4] == ["2", "11000000.0", "static", "linear"]
+
+
+def test_failing_point_is_recorded_and_the_others_complete(small_grid, tmp_path: Path):
+    run = run_study(small_grid, tmp_path, evaluator=FAILING, execution=ExecutionOptions(workers=2, progress=False))
+    ds = run.dataset
+    errors = ds["error"]
+    five = errors.sel({"seafastening.saddle_count": 5}).values
+    assert all(e.startswith("RuntimeError: solver diverged for 5 saddles") for e in five)
+    assert "\n" not in five[0]
+    assert (errors.sel({"seafastening.saddle_count": [2, 3, 4]}) == "").all()
+    assert np.isnan(ds["F_N"].sel({"seafastening.saddle_count": 5})).all()
+    assert np.isfinite(ds["F_N"].sel({"seafastening.saddle_count": [2, 3, 4]})).all()
+    assert run.failed == 4 and ds.attrs["failed_points"] == 4
+    text = (tmp_path / "study.csv").read_text()
+    assert text.count("RuntimeError: solver diverged") == 4 * 4
+
+
+def test_not_converged_is_recorded_not_an_error(tmp_path: Path):
+    spec, directory = load_study_spec("saddles")
+    grid = build_grid(spec, directory)
+    records = evaluate_batch(grid, [80], FAILING, pin_threads=False)  # 6 saddles
+    assert records[0].error == ""
+    assert [r["converged"] for r in records[0].rows if r["model"] == "nonlinear"] == [False, False]
+
+
+def test_invalid_point_combination_is_an_error_record():
+    spec_text = {"name": "t", "axes": [{"key": "cargo.wall_thickness_m", "values": [0.05, 5.0]}]}
+    from seafast.studies.spec import study_spec_from_mapping
+
+    grid = build_grid(study_spec_from_mapping(spec_text))
+    ok, bad = evaluate_batch(grid, [0, 1], FAKE, pin_threads=False)
+    assert ok.error == "" and len(ok.rows) == 4
+    assert bad.error.startswith("CaseError:") and "wall_thickness_m" in bad.error and bad.rows == ()
+
+
+def test_resume_skips_finished_points_and_drops_a_torn_line(small_grid, tmp_path: Path, monkeypatch):
+    calls: list[int] = []
+
+    def counting(case):
+        from study_fakes import fake_evaluate
+
+        calls.append(1)
+        return fake_evaluate(case)
+
+    with PointStore(tmp_path, small_grid) as store:
+        store.append(evaluate_batch(small_grid, list(range(7)), FAKE, pin_threads=False))
+    with open(tmp_path / "points.jsonl", "ab") as fh:
+        fh.write(b'{"study": "' + small_grid.fingerprint().encode() + b'", "index": 7, "rows": [{"load_')
+    run = run_study(small_grid, tmp_path, evaluator=counting, execution=ExecutionOptions(workers=1, progress=False))
+    assert run.reused == 7 and run.computed == small_grid.size - 7 and len(calls) == small_grid.size - 7
+    lines = (tmp_path / "points.jsonl").read_text().splitlines()
+    indices = [json.loads(line)["index"] for line in lines]
+    assert sorted(indices) == list(range(small_grid.size))  # none lost, none duplicated, torn line gone
+    reference = run_study(small_grid, tmp_path / "ref", evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    xr.testing.assert_identical(_results(run.dataset), _results(reference.dataset))
+    again = run_study(small_grid, tmp_path, evaluator=counting, execution=ExecutionOptions(workers=1, progress=False))
+    assert again.computed == 0 and again.reused == small_grid.size
+
+
+def test_directory_of_another_study_is_refused(small_grid, tmp_path: Path):
+    run_study(small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    other = build_grid(small_grid.spec, None, {"wave.amplitude_m": 1.0})
+    with pytest.raises(StudyError, match="different study"):
+        run_study(other, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+
+
+def test_batches_cover_every_point_once():
+    pending = list(range(1, 400, 2))
+    for workers, size in ((1, None), (2, None), (8, None), (2, 7)):
+        batches = plan_batches(pending, workers, size)
+        assert [i for b in batches for i in b] == pending
+        assert max(len(b) for b in batches) <= (size or 25)
+    assert plan_batches([], 2) == []
