@@ -16,7 +16,7 @@ from pydantic import ValidationError
 
 from seafast.config.schema import Case
 
-__all__ = ["CaseError", "load_case", "case_from_mapping", "parse_overrides", "apply_overrides", "base_case_text", "case_json_schema"]
+__all__ = ["CaseError", "load_case", "parse_yaml", "case_from_mapping", "parse_overrides", "apply_overrides", "base_case_text", "case_json_schema"]
 
 
 class CaseError(ValueError):
@@ -132,13 +132,17 @@ def load_case(path: str | Path | None = None, overrides: Mapping[str, Any] | Non
         except (OSError, UnicodeDecodeError) as exc:
             raise CaseError(f"cannot read case file '{p}': {exc.strerror if isinstance(exc, OSError) else exc}") from None
         source, base_dir = f"'{p}'", p.resolve().parent
+    return case_from_mapping(parse_yaml(text, source), source, overrides, base_dir)
+
+
+def parse_yaml(text: str, source: str, error: type[CaseError] = CaseError, kind: str = "case") -> Any:
+    """Parse YAML text; a syntax error becomes ``error`` naming the line and column."""
     try:
-        data = yaml.safe_load(text)
+        return yaml.safe_load(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        raise CaseError(f"invalid case {source}: not valid YAML{where}: {getattr(exc, 'problem', exc)}") from None
-    return case_from_mapping(data, source, overrides, base_dir)
+        raise error(f"invalid {kind} {source}: not valid YAML{where}: {getattr(exc, 'problem', exc)}") from None
 
 
 def case_json_schema() -> dict[str, Any]:

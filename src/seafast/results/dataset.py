@@ -16,7 +16,8 @@ import xarray as xr
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
-from seafast.results.timeseries import PeriodTimeSeries, harmonics_to_time, moment_lines, period_grid
+from seafast.results.timeseries import PeriodTimeSeries, moment_lines
+from seafast.solvers.periodic import harmonics_to_time, period_fraction
 
 __all__ = ["LOAD_CASES", "MODELS", "SUMMARY_COLUMNS", "CaseArrays", "case_arrays", "build_case_dataset", "summary_rows_from_arrays"]
 
@@ -139,7 +140,7 @@ def case_arrays(
     baseline = _seafastening_baseline(model, excitation, deck_all)  # (load_case, N, n_x)
     is_nonlinear = (np.array(MODELS) == "nonlinear")[None, :, None, None]
     return CaseArrays(
-        period_fraction=period_grid(time_samples),
+        period_fraction=period_fraction(time_samples),
         x_moment_m=x_moment,
         cargo_deflection_m=disp - baseline[:, None],
         cargo_deflection_vessel_frame_m=disp,

@@ -12,21 +12,9 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import LinearResponse
+from seafast.solvers.periodic import harmonics_to_time
 
-__all__ = ["PeriodTimeSeries", "harmonics_to_time", "linear_time_series", "from_periodic_response", "period_grid", "moment_lines"]
-
-
-def period_grid(time_samples: int) -> NDArray[np.float64]:
-    """Period fractions s_n = n / N, n = 0 .. N-1."""
-    return np.arange(time_samples) / time_samples
-
-
-def harmonics_to_time(harmonics: NDArray, time_samples: int) -> NDArray[np.float64]:
-    """Evaluate ``Re(sum_k X_k exp(i k 2 pi s))`` on the period grid; harmonics on axis 0."""
-    s = period_grid(time_samples)
-    k = np.arange(harmonics.shape[0])
-    phase = np.exp(2j * np.pi * np.outer(s, k))  # (N, n_k)
-    return np.real(np.tensordot(phase, harmonics, axes=(1, 0)))
+__all__ = ["PeriodTimeSeries", "linear_time_series", "from_periodic_response", "moment_lines"]
 
 
 @dataclass(frozen=True)

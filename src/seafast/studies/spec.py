@@ -37,10 +37,9 @@ from pathlib import Path
 from typing import Annotated, Any, Literal, Mapping
 
 import numpy as np
-import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from seafast.config.loader import CaseError, apply_overrides, case_from_mapping, load_case
+from seafast.config.loader import CaseError, apply_overrides, case_from_mapping, load_case, parse_yaml
 from seafast.config.schema import Case
 
 __all__ = [
@@ -540,13 +539,7 @@ def load_study_spec(name_or_path: str | Path) -> tuple[StudySpec, Path | None]:
         except (OSError, UnicodeDecodeError) as exc:
             raise StudyError(f"cannot read study file '{path}': {exc}") from None
         source, directory = f"'{path}'", path.resolve().parent
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        raise StudyError(f"invalid study {source}: not valid YAML{where}: {getattr(exc, 'problem', exc)}") from None
-    return study_spec_from_mapping(data, source), directory
+    return study_spec_from_mapping(parse_yaml(text, source, StudyError, "study"), source), directory
 
 
 # --------------------------------------------------------------------------- the grid
