@@ -1090,7 +1090,7 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
         vessel_html += '<p class="small">No rigid-body motions in this run (vessel.motions = none, or a deck-deflection table), so no RAO figure.</p>'
     summary_html = (
         _findings_html([f for f in findings if f.level == "WARNING"])
-        + "<p>Maxima over the cargo, the saddles and one wave period; displacements relative to the vessel's rigid-body frame; "
+        + "<p>Maxima over the cargo, the saddles and one wave period; cargo deflection u_c relative to the sea-fastening baseline (deck line through the outermost saddles), rigid-body heave and pitch removed; "
         "<i>dynamic</i> = total response (still water included).</p>"
         + _table(header, rows)
         + files_note

@@ -26,7 +26,7 @@ MODELS = ("linear", "nonlinear")
 SUMMARY_COLUMNS = ("load_case", "model", "u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa", "converged")
 
 _SUMMARY_ATTRS = {
-    "u_c_m": ("maximum cargo deflection relative to the vessel's rigid-body frame", "m"),
+    "u_c_m": ("maximum cargo deflection relative to the sea-fastening baseline (rigid-body motion removed)", "m"),
     "u_s_m": ("maximum saddle compression", "m"),
     "u_d_m": ("maximum saddle detachment (gap); 0 for the linear model", "m"),
     "F_N": ("maximum saddle normal force", "N"),
