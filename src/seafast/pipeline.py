@@ -73,6 +73,11 @@ def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case
     from seafast.solvers.hbm import HBMOptions, solve_hbm
 
     s = case.solver
+    if static and s.method != "hbm":
+        # the references use the exact contact law; so does their still-water state
+        from seafast.solvers.references import solve_quasi_static
+
+        return solve_quasi_static(model, excitation.static_part(), time_samples=2)
     if static:
         opts = HBMOptions(
             harmonics=0,
