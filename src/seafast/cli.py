@@ -9,12 +9,19 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
 from typing import Sequence
 
-import numpy as np
+# Small dense solves are fastest on one BLAS thread on few cores; OpenBLAS reads this when it is
+# loaded, so set it before numpy/scipy load (study worker processes inherit it). An explicit
+# user setting wins.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import numpy as np  # noqa: E402
 
 import seafast
 
@@ -194,12 +201,18 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``seafast`` command; returns the exit code."""
+    import scipy.linalg  # noqa: F401 - load scipy's BLAS now so the limit below reaches it
+    from threadpoolctl import threadpool_limits
+
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "handler", None):
         parser.print_help()
         return EXIT_OK
-    return int(args.handler(args))
+    # seafast's dense solves are small (~100-5000 unknowns): one BLAS thread is fastest on few
+    # cores, and leaves the cores to study workers (the BEM step lifts this limit for itself).
+    with threadpool_limits(limits=1, user_api="blas"):
+        return int(args.handler(args))
 
 
 if __name__ == "__main__":  # pragma: no cover

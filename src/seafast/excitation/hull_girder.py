@@ -295,6 +295,9 @@ def _end_resultants(h: FloatArray, qa: NDArray, qb: NDArray) -> NDArray:
     return np.stack([V[..., -1], M[..., -1]], axis=-1)
 
 
+_HALF_BANDWIDTH = 3
+
+
 @dataclass(frozen=True)
 class _Beam:
     """Factorised free-free Timoshenko hull beam with the two end deflections constrained."""
@@ -315,7 +318,12 @@ class _Beam:
         K, _, _ = assemble_beam(x, np.full(n_el, EI), np.zeros(n_el), shear_stiffness_N=gas)
         n_dof = 2 * x.size
         free = np.setdiff1d(np.arange(n_dof), [0, n_dof - 2])
-        factor = scipy.linalg.cho_factor(K[np.ix_(free, free)])
+        # a chain of 2-node elements is banded (half-bandwidth 3): banded Cholesky, O(n)
+        Kf = K[np.ix_(free, free)]
+        band = np.zeros((_HALF_BANDWIDTH + 1, free.size))
+        for d in range(_HALF_BANDWIDTH + 1):
+            band[_HALF_BANDWIDTH - d, d:] = np.diagonal(Kf, d)
+        factor = (scipy.linalg.cholesky_banded(band), False)
         return cls(x, np.diff(x), EI, GA, free, factor)
 
     def solve(self, qa: NDArray, qb: NDArray, V: NDArray) -> tuple[NDArray, NDArray]:
@@ -333,7 +341,7 @@ class _Beam:
         f[..., 2::2] += fz2
         f[..., 3::2] += fr2
         ff = f[..., self.free].reshape(-1, self.free.size).T
-        uf = scipy.linalg.cho_solve(self.factor, ff)
+        uf = scipy.linalg.cho_solve_banded(self.factor, ff)
         u = np.zeros((2 * n, uf.shape[1]))
         u[self.free] = uf
         u = u.T.reshape(lead + (2 * n,))

@@ -412,7 +412,11 @@ def _run_bem(
         kw = dict(body=body, omega=float(w), rho=rho, g=g, water_depth=depth)
         problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in ("Heave", "Pitch")]
         problems.append(cpt.DiffractionProblem(wave_direction=np.pi, **kw))
-    results = solver.solve_all(problems, progress_bar=False)
+    from threadpoolctl import threadpool_limits
+
+    # the BEM's dense complex solves do profit from every core (callers may have pinned BLAS)
+    with threadpool_limits(limits=os.cpu_count() or 1, user_api="blas"):
+        results = solver.solve_all(problems, progress_bar=False)
     ds = cpt.assemble_dataset(results, hydrostatics=False)
     ds.attrs["seafast_origin_x_m"] = float(hm.x_mid_m)
     ds.attrs["seafast_panel_size_m"] = float(panel_size_m)

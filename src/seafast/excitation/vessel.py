@@ -20,7 +20,6 @@ memoised per process: a parametric study over saddles computes it once.
 from __future__ import annotations
 
 import csv
-import functools
 import json
 import math
 from dataclasses import dataclass
@@ -310,11 +309,21 @@ def vessel_excitation(case: Case) -> VesselExcitation:
         },
         sort_keys=True,
     )
-    return _vessel_excitation_cached(key, case)
+    cached = _VESSEL_CACHE.get(key)
+    if cached is None:
+        cached = _compute_vessel_excitation(case)
+        if len(_VESSEL_CACHE) >= 16:
+            _VESSEL_CACHE.pop(next(iter(_VESSEL_CACHE)))
+        _VESSEL_CACHE[key] = cached
+    return cached
 
 
-@functools.lru_cache(maxsize=16)
-def _vessel_excitation_cached(key: str, case: Case) -> VesselExcitation:
+# keyed by the parts of the case the vessel depends on (not the whole case: a study over the
+# sea-fastening must hit it at every point)
+_VESSEL_CACHE: dict[str, VesselExcitation] = {}
+
+
+def _compute_vessel_excitation(case: Case) -> VesselExcitation:
     v = case.vessel
     omega = case.wave_frequency_rad_s()
     aft = case.cargo_position_m() - 0.5 * case.cargo.length_m
