@@ -1,0 +1,67 @@
+"""The labelled results of a case: dimensions, units, summary maxima and the NetCDF round trip."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from seafast.config import load_case
+from seafast.output.files import write_netcdf
+from seafast.pipeline import run_case
+from seafast.results.dataset import SUMMARY_COLUMNS
+
+
+@pytest.fixture(scope="module")
+def result():
+    return run_case(load_case(overrides={"vessel.motions": "none", "solver.time_samples": 64}))
+
+
+def test_every_variable_carries_units_and_a_long_name(result):
+    ds = result.dataset
+    for name, var in ds.data_vars.items():
+        if var.dtype.kind in "fiu":
+            assert "units" in var.attrs and "long_name" in var.attrs, name
+    assert ds.sizes["load_case"] == 2 and ds.sizes["model"] == 2
+    assert ds.sizes["period_fraction"] == 64
+    assert ds.sizes["saddle"] == 3
+
+
+def test_summary_rows_are_the_dataset_maxima(result):
+    ds = result.dataset
+    rows = result.summary
+    assert [c for c in SUMMARY_COLUMNS if c not in rows[0]] == []
+    for row in rows:
+        sel = ds.sel(load_case=row["load_case"], model=row["model"])
+        assert row["F_N"] == pytest.approx(float(sel["saddle_force_N"].max()))
+        assert row["M_b_Nm"] == pytest.approx(float(np.abs(sel["bending_moment_Nm"]).max()))
+        assert row["u_s_m"] == pytest.approx(max(float(sel["saddle_compression_m"].max()), 0.0))
+        assert row["u_c_m"] == pytest.approx(float(np.abs(sel["cargo_deflection_m"]).max()))
+        gap = float(np.maximum(-sel["saddle_compression_m"], 0).max()) if row["model"] == "nonlinear" else 0.0
+        assert row["u_d_m"] == pytest.approx(gap)
+        assert row["contact_preserved"] == bool((sel["saddle_compression_m"] > 0).all())
+
+
+def test_static_rows_do_not_vary_over_the_period(result):
+    st = result.dataset.sel(load_case="static")
+    for v in ("saddle_force_N", "cargo_deflection_m", "bending_moment_Nm"):
+        assert float(np.ptp(st[v].values, axis=1).max()) == pytest.approx(0.0, abs=1e-9 * float(np.abs(st[v]).max()))
+
+
+def test_cargo_deflection_is_relative_to_the_outer_saddle_deck_line(result):
+    ds = result.dataset.sel(load_case="dynamic", model="linear")
+    z = ds["cargo_deflection_m"].values
+    rise = ds["deck_rise_m"].values
+    nodes = [int(np.argmin(np.abs(ds["x_cargo_m"].values - x))) for x in ds["saddle_x_m"].values]
+    # the baseline passes through the deck under the outermost saddles
+    np.testing.assert_allclose(rise[:, [0, -1]], 0.0, atol=1e-12)
+    # so at every saddle: cargo deflection = deck rise - compression
+    np.testing.assert_allclose(z[:, nodes], rise - ds["saddle_compression_m"].values, atol=1e-9)
+
+
+def test_netcdf_round_trip(result, tmp_path):
+    path = write_netcdf(result.dataset, tmp_path / "results.nc")
+    back = xr.open_dataset(path)
+    xr.testing.assert_allclose(back["saddle_force_N"], result.dataset["saddle_force_N"])
+    assert back["bending_moment_Nm"].attrs["units"] == "N m"
+    assert back.attrs["excitation_source"] == result.excitation.source
