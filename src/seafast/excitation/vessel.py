@@ -53,11 +53,12 @@ from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_dist
 
 __all__ = ["VesselExcitation", "vessel_excitation", "BEM_FREQUENCIES_RAD_S", "hull_form_of", "vessel_loading_of"]
 
-BEM_FREQUENCIES_RAD_S = np.linspace(0.2, 1.8, 17)
+BEM_FREQUENCIES_RAD_S = np.round(np.concatenate([np.linspace(0.2, 0.95, 16), np.linspace(1.0, 1.8, 9)]), 6)
 """Frequencies of the BEM run [rad/s]: fixed, so the disk cache serves every wave length;
-the RAOs at the case's frequency are interpolated (0.1 rad/s spacing). 1.8 rad/s (a 19 m wave)
-is the shortest wave the 3 m panels resolve (panel radius < wavelength / 8) and well beyond
-the waves that bend a 171 m hull."""
+the RAOs at the case's frequency are interpolated linearly, on a 0.05 rad/s grid up to
+0.95 rad/s where heave and pitch vary fast (waves of 68 m to 1540 m) and 0.1 rad/s above.
+1.8 rad/s (a 19 m wave) is the shortest wave the 3 m panels resolve (panel radius <
+wavelength / 8) and well beyond the waves that bend a 171 m hull."""
 
 
 @dataclass(frozen=True)
