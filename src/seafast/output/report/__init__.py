@@ -1,0 +1,100 @@
+"""``seafast report DIR``: one self-contained HTML report of a run or study directory.
+
+The report holds interactive plotly figures (plotly.js embedded inline once, so the file opens
+without a network), tables in engineering units (mm, MN, MN m, MPa) and clearly visible WARNING
+boxes where a result should not be trusted. The same figures are written at print quality as
+PNG (matplotlib, at least :data:`PNG_DPI` dpi, units on every axis) into ``report_figures/``
+next to the HTML, and collected into ``report_figures.pdf``.
+
+Inputs
+------
+* A run directory (``seafast run -o DIR``): ``results.nc`` (required), ``summary.csv``,
+  ``case.yaml``.
+* A study directory (``seafast study NAME -o DIR``): ``study.nc`` (required), ``ranking.csv``
+  (read when present, else the ranking is computed from ``study.nc``), ``compliance.csv``.
+
+Design: every figure and table is a pure function ``Dataset -> plotly Figure / rows``; reading
+files and writing the report happen only in :func:`write_report` and the command handler.
+The print (PNG/PDF) figures reuse :mod:`seafast.output.plots` (run) and
+:mod:`seafast.studies.figures` (study).
+
+Modules
+-------
+* :mod:`~seafast.output.report.common`: file names, result types (:class:`ReportError`,
+  :class:`Finding`, :class:`ReportFigure`, :class:`ReportOutputs`) and dataset accessors.
+* :mod:`~seafast.output.report.tables`: inputs (the flattened case), summary, diagnostics and
+  ranking rows.
+* :mod:`~seafast.output.report.findings`: WARNING/NOTE/OK diagnostics of runs and studies.
+* :mod:`~seafast.output.report.figures`: plotly figures of a run (and the shared plotly style).
+* :mod:`~seafast.output.report.study_figures`: plotly figures of a study.
+* :mod:`~seafast.output.report.html`: the page template and :func:`build_report_html`.
+* :mod:`~seafast.output.report.print_figures`: matplotlib PNG/PDF print figures.
+* :mod:`~seafast.output.report.write`: :func:`write_report` (reads the directory, writes the
+  page and the print figures).
+* :mod:`~seafast.output.report.cli`: the ``seafast report`` subcommand.
+"""
+
+from __future__ import annotations
+
+from seafast.output.report.cli import REPORT_EXAMPLES, add_report_subcommand
+from seafast.output.report.common import (
+    FIGURES_DIRNAME,
+    PDF_FILENAME,
+    PNG_DPI,
+    REPORT_FILENAME,
+    Finding,
+    ReportError,
+    ReportFigure,
+    ReportOutputs,
+)
+from seafast.output.report.figures import (
+    contact_timeline_figure,
+    deck_motion_figure,
+    deflection_moment_figure,
+    hull_girder_figure,
+    rao_figure,
+    run_figures,
+    saddle_time_history_figure,
+)
+from seafast.output.report.findings import TENSILE_NOTE_FRACTION, TRUNCATION_LIMIT, run_findings, study_findings
+from seafast.output.report.html import build_report_html, render_html
+from seafast.output.report.print_figures import plot_contact_timeline, write_print_figures
+from seafast.output.report.study_figures import compliance_map_figure, study_figures, study_profile_figure, study_surface_figure
+from seafast.output.report.tables import diagnostics_rows, flatten_case, input_rows, ranking_rows, summary_table_rows
+from seafast.output.report.write import write_report
+
+__all__ = [
+    "REPORT_FILENAME",
+    "FIGURES_DIRNAME",
+    "PDF_FILENAME",
+    "PNG_DPI",
+    "TRUNCATION_LIMIT",
+    "ReportError",
+    "Finding",
+    "ReportFigure",
+    "ReportOutputs",
+    "flatten_case",
+    "input_rows",
+    "summary_table_rows",
+    "diagnostics_rows",
+    "run_findings",
+    "study_findings",
+    "hull_girder_figure",
+    "rao_figure",
+    "deck_motion_figure",
+    "saddle_time_history_figure",
+    "deflection_moment_figure",
+    "contact_timeline_figure",
+    "run_figures",
+    "study_surface_figure",
+    "study_profile_figure",
+    "compliance_map_figure",
+    "study_figures",
+    "ranking_rows",
+    "render_html",
+    "build_report_html",
+    "plot_contact_timeline",
+    "write_print_figures",
+    "write_report",
+    "add_report_subcommand",
+]

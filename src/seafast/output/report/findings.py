@@ -1,0 +1,142 @@
+"""Diagnostics of the report: whether the numbers of a run or a study can be trusted.
+
+Each diagnostic is a :class:`~seafast.output.report.common.Finding` (WARNING / NOTE / OK),
+shown as a coloured box in the HTML, on stderr by ``seafast report`` and in the PDF summary.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import xarray as xr
+
+from seafast.output.report.common import Finding, _labels, _saddle_label, _study_keys, _total
+
+__all__ = ["TRUNCATION_LIMIT", "TENSILE_NOTE_FRACTION", "run_findings", "study_findings"]
+
+TRUNCATION_LIMIT = 1e-2
+"""Harmonic truncation indicator above which a nonlinear result is flagged (share of the
+contact-force signal above harmonic H) [-]."""
+TENSILE_NOTE_FRACTION = 1e-2
+"""A regularised contact law's tensile force above this share of the largest saddle force is noted [-]."""
+
+
+# =============================================================================== findings
+def run_findings(ds: xr.Dataset) -> list[Finding]:
+    """Diagnostics of a run that decide whether its numbers can be trusted.
+
+    WARNING when: a solve did not converge; the harmonic truncation indicator exceeds
+    :data:`TRUNCATION_LIMIT`; a solver message carries a warning (e.g. the quasi-static
+    assumption, or excitation harmonics above H dropped); contact is lost while the linear
+    (bilateral) model is used — its forces then include tension a saddle cannot carry.
+    NOTE when the regularised contact law's tensile force exceeds
+    :data:`TENSILE_NOTE_FRACTION` of the largest saddle force.
+    """
+    out: list[Finding] = []
+    lcs, models = _labels(ds["load_case"]), _labels(ds["model"])
+    for lc in lcs:
+        for m in models:
+            sel = ds.sel(load_case=lc, model=m)
+            if "converged" in sel and not bool(sel["converged"]):
+                res = float(sel["residual_norm"]) if "residual_norm" in sel else math.nan
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the solver did NOT converge",
+                        f"residual norm {res:.3e}. Its numbers (summary, figures) must not be trusted; "
+                        "try more harmonics/time samples, the 'newton' solver or another contact law.",
+                    )
+                )
+            if "harmonic_truncation_indicator" in sel:
+                ind = np.asarray(sel["harmonic_truncation_indicator"].values, dtype=float)
+                if np.any(ind > TRUNCATION_LIMIT):
+                    j = int(np.nanargmax(ind))
+                    out.append(
+                        Finding(
+                            "WARNING",
+                            f"{lc} {m}: harmonic truncation indicator {np.nanmax(ind):.2e} > {TRUNCATION_LIMIT:g}",
+                            f"at {_saddle_label(ds, j)}: a noticeable share of the contact force lies above harmonic "
+                            f"H = {ds.attrs.get('harmonics', '?')}; increase solver.harmonics (and solver.time_samples) "
+                            "until the maxima stop changing.",
+                        )
+                    )
+            msg = str(sel["solver_message"].values.item()) if "solver_message" in sel else ""
+            low = msg.lower()
+            if "warning" in low or "quasi-static" in low or "quasi static" in low:
+                title = "quasi-static assumption questionable" if "quasi" in low else "solver warning"
+                out.append(Finding("WARNING", f"{lc} {m}: {title}", msg))
+    if "contact_preserved" in ds and "linear" in models:
+        lost = [lc for lc in lcs if not bool(ds["contact_preserved"].sel(load_case=lc, model="linear"))]
+        if lost:
+            out.append(
+                Finding(
+                    "WARNING",
+                    f"contact lost while the linear model is used ({', '.join(lost)})",
+                    "The linear (bilateral-saddle) model needs tension at a saddle over part of the period, which a real "
+                    "saddle cannot carry: its forces, moments and stresses are not valid here. Use the nonlinear "
+                    "(harmonic-balance) results.",
+                )
+            )
+    if "tensile_force_error_N" in ds and "F_N" in ds:
+        for lc in lcs:
+            for m in models:
+                t = float(ds["tensile_force_error_N"].sel(load_case=lc, model=m))
+                f = float(ds["F_N"].sel(load_case=lc, model=m))
+                if math.isfinite(t) and f > 0 and t > TENSILE_NOTE_FRACTION * f:
+                    out.append(
+                        Finding(
+                            "NOTE",
+                            f"{lc} {m}: the regularised contact law carries up to {t / 1e3:.0f} kN of tension",
+                            f"{100 * t / f:.1f} % of the largest saddle force: the price of the smooth (tanh) contact law; "
+                            "solver.contact_law=exact or softplus, or a larger solver.regularisation_per_m, removes it.",
+                        )
+                    )
+    if not any(f.level == "WARNING" for f in out):
+        out.insert(0, Finding("OK", "every solve converged; no diagnostic flags a result", ""))
+    return out
+
+
+def study_findings(sds: xr.Dataset) -> list[Finding]:
+    """Diagnostics of a study: failed points, non-converged nonlinear points, linear validity."""
+    out: list[Finding] = []
+    keys = _study_keys(sds)
+    n = int(np.prod([sds.sizes[k] for k in keys])) if keys else 1
+    if "error" in sds:
+        err = np.asarray(sds["error"].values).astype(str)
+        bad = int(np.count_nonzero(err != ""))
+        if bad:
+            first = next(e for e in err.ravel() if e)
+            out.append(
+                Finding(
+                    "WARNING",
+                    f"{bad} of {n} study points failed to evaluate",
+                    f"their cells are blank / marked x. First error: {first.splitlines()[0][:300]}",
+                )
+            )
+    total = _total(sds)
+    if "converged" in total and "nonlinear" in _labels(total["model"]):
+        conv = np.asarray(total["converged"].sel(model="nonlinear").values).astype(bool)
+        evaluated = (np.asarray(sds["error"].values).astype(str) == "") if "error" in sds else np.ones_like(conv)
+        bad = int(np.count_nonzero(~conv & evaluated))
+        if bad:
+            out.append(
+                Finding(
+                    "WARNING",
+                    f"the nonlinear solver did not converge at {bad} of {n} points",
+                    "those points never count as compliant; inspect them with 'seafast run --set ...'.",
+                )
+            )
+    if "contact_preserved" in total and "linear" in _labels(total["model"]):
+        lost = int(np.count_nonzero(~np.asarray(total["contact_preserved"].sel(model="linear").values).astype(bool)))
+        if lost:
+            out.append(
+                Finding(
+                    "NOTE",
+                    f"contact is lost at {lost} of {n} points: the linear model is not valid there",
+                    "the linear surfaces are shown for comparison only; decisions use the nonlinear model.",
+                )
+            )
+    if not any(f.level == "WARNING" for f in out):
+        out.insert(0, Finding("OK", "every study point evaluated and converged", ""))
+    return out
