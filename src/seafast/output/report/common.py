@@ -126,11 +126,16 @@ def _study_keys(sds: xr.Dataset) -> list[str]:
     return [d for d in sds[ref].dims if d not in ("load_case", "model")]
 
 
+def _total_load_case(ds: xr.Dataset) -> str:
+    """The load case holding the total response: ``dynamic``, else the last one present."""
+    labels = _labels(ds["load_case"])
+    return "dynamic" if "dynamic" in labels else labels[-1]
+
+
 def _total(sds: xr.Dataset) -> xr.Dataset:
     if "load_case" not in sds.dims:
         return sds
-    labels = _labels(sds["load_case"])
-    return sds.sel(load_case="dynamic" if "dynamic" in labels else labels[-1])
+    return sds.sel(load_case=_total_load_case(sds))
 
 
 def _base(sds: xr.Dataset, key: str) -> float:

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import ReportFigure, _attr_float, _has, _labels, _saddle_label
+from seafast.output.report.common import ReportFigure, _attr_float, _has, _labels, _saddle_label, _total_load_case
 
 __all__ = [
     "hull_girder_figure", "rao_figure", "deck_motion_figure", "saddle_time_history_figure", "deflection_moment_figure",
@@ -142,7 +142,7 @@ def deck_motion_figure(ds: xr.Dataset) -> Any | None:
     fig = go.Figure()
     s = ds["period_fraction"].values
     deck = ds["deck_deflection_m"]
-    lc = "dynamic" if "dynamic" in _labels(ds["load_case"]) else _labels(ds["load_case"])[-1]
+    lc = _total_load_case(ds)
     for j in range(ds.sizes["saddle"]):
         color = _SADDLE_COLORS[j % len(_SADDLE_COLORS)]
         fig.add_trace(go.Scatter(x=s, y=deck.sel(load_case=lc).isel(saddle=j).values * 1e3, name=_saddle_label(ds, j),
@@ -162,7 +162,7 @@ def saddle_time_history_figure(ds: xr.Dataset) -> Any:
     fig = _subplots(rows=2, cols=n, shared_xaxes=True, shared_yaxes="rows", vertical_spacing=0.1, horizontal_spacing=0.03,
                     subplot_titles=[_saddle_label(ds, j) for j in range(n)])
     s = ds["period_fraction"].values
-    lc = "dynamic" if "dynamic" in _labels(ds["load_case"]) else _labels(ds["load_case"])[-1]
+    lc = _total_load_case(ds)
     for j in range(n):
         for m in _labels(ds["model"]):
             sel = ds.sel(load_case=lc, model=m).isel(saddle=j)
@@ -227,7 +227,7 @@ def contact_timeline_figure(ds: xr.Dataset) -> Any:
     """
     go = _go()
     models = _labels(ds["model"])
-    lc = "dynamic" if "dynamic" in _labels(ds["load_case"]) else _labels(ds["load_case"])[-1]
+    lc = _total_load_case(ds)
     fig = _subplots(rows=len(models), cols=1, shared_xaxes=True, vertical_spacing=0.12,
                     subplot_titles=[f"{m} model" + (" (detached = would need tension)" if m == "linear" else "") for m in models])
     s = ds["period_fraction"].values

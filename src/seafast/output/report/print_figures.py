@@ -15,7 +15,7 @@ from typing import Any, Iterator, Sequence
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import PNG_DPI, _case_mapping, _labels
+from seafast.output.report.common import PNG_DPI, _case_mapping, _labels, _total_load_case
 from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.tables import summary_table_rows
 
@@ -68,7 +68,7 @@ def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
     from matplotlib.patches import Patch
 
     models = _labels(ds["model"])
-    lc = "dynamic" if "dynamic" in _labels(ds["load_case"]) else _labels(ds["load_case"])[-1]
+    lc = _total_load_case(ds)
     n = ds.sizes["saddle"]
     fig, axes = plt.subplots(len(models), 1, figsize=(9, 1.2 + 0.55 * n * len(models) + 0.6), squeeze=False, sharex=True)
     s = ds["period_fraction"].values
