@@ -139,3 +139,22 @@ def test_cli_never_tracebacks_on_random_overrides(tmp_path, capsys, pairs):
     assert "Traceback" not in err
     if code == 2:
         assert err.startswith("seafast: error:")
+
+
+def test_sweep_writes_the_frequency_response(tmp_path):
+    out = tmp_path / "sweep"
+    code = main(["sweep", "-o", str(out), "--omega-min", "0.4", "--omega-max", "0.8", "--set", "vessel.motions=none"])
+    assert code == 0
+    rows = _summary(out / "frequency_response.csv")
+    omega = [float(r["omega_rad_s"]) for r in rows]
+    assert omega[0] == pytest.approx(0.4) and omega[-1] == pytest.approx(0.8)
+    assert all(r["converged"] == "true" for r in rows)
+    # far below the first natural frequency (44 rad/s) the response is quasi-static: flat in omega
+    forces = [float(r["max_saddle_force_N"]) for r in rows]
+    assert max(forces) / min(forces) == pytest.approx(1.0, abs=0.01)
+    assert (out / "frequency_response.png").stat().st_size > 1000
+
+
+def test_sweep_rejects_a_bad_frequency_range(capsys):
+    assert main(["sweep", "--omega-min", "2", "--omega-max", "1"]) == 2
+    assert "omega-min" in capsys.readouterr().err
