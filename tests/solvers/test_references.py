@@ -212,3 +212,90 @@ def test_random_cases_condensed_equals_full(case):
         rf = solve_hbm(model, ex, HBMOptions(formulation="full", **opts))
     assume(rc.converged and rf.converged)
     assert np.abs(rf.saddle_force_time_N - rc.saddle_force_time_N).max() <= 1e-6 * max(rc.max_saddle_force_N, 1.0)
+
+
+# ---------------------------------------------------------------------- full-DOF vs condensed time domain
+def displacement_error(r: PeriodicResponse, ref: PeriodicResponse) -> float:
+    d = r.cargo_displacement_time_m - ref.cargo_displacement_time_m
+    return float(np.max(np.abs(d)) / np.max(np.abs(ref.cargo_displacement_time_m)))
+
+
+def test_time_domain_default_is_the_full_dof_formulation(base):
+    td = base[3]
+    assert td.method == "time_domain" and td.options["formulation"] == "full"
+    assert td.message.startswith("full-DOF formulation") and "2048 steps/period" in td.message
+    assert td.options["steps_per_period"] == 16 * 128
+
+
+def test_time_domain_full_equals_condensed(base):
+    """Both formulations integrate the same discrete HHT-alpha equations (the condensed one holds
+    the saddles bilateral in K and cancels their tension; the full one has the unilateral springs
+    outside K_lin): they differ only by round-off and by the not-yet-decayed remainder of their
+    different start transients (full: exact-contact quasi-static state; condensed: linear
+    periodic solution), both bounded by the period-to-period tolerance."""
+    model, ex, qs, td = base
+    tc = solve_time_domain(model, ex, formulation="condensed")
+    assert tc.converged and tc.options["formulation"] == "condensed" and "condensed" in tc.message
+    e_f, e_x = force_error(td, tc), displacement_error(td, tc)
+    print(f"\nfull-DOF vs condensed time domain: force {e_f:.1e}, displacement {e_x:.1e}")
+    assert e_f < 1e-6 and e_x < 1e-6
+    assert np.array_equal(td.contact_state, tc.contact_state)
+    # full-DOF reference vs quasi-static: design value (peak saddle force)
+    assert td.max_saddle_force_N == pytest.approx(qs.max_saddle_force_N, rel=0.01)
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case_strategy)
+def test_random_cases_time_domain_full_equals_condensed(case):
+    n, factors, amplitude, phases, static_mm, heave = case
+    with threadpool_limits(1):
+        model, ex = random_case(n, factors, amplitude, phases, static_mm, heave, element_length_m=8.0)
+        rf = solve_time_domain(model, ex, time_samples=32, formulation="full")
+        rc = solve_time_domain(model, ex, time_samples=32, formulation="condensed")
+    assume(rf.converged and rc.converged)
+    scale = max(rc.max_saddle_force_N, 1.0)
+    assert np.abs(rf.saddle_force_time_N - rc.saddle_force_time_N).max() <= 1e-6 * scale
+    assert displacement_error(rf, rc) < 1e-6
+
+
+@pytest.fixture(scope="module")
+def real_case():
+    from seafast.config import load_case
+    from seafast.excitation.vessel import vessel_excitation
+    from seafast.pipeline import build_model
+
+    case = load_case()
+    model = build_model(case)
+    return model, vessel_excitation(case).cargo_excitation(model, case)
+
+
+def test_time_domain_full_real_case(real_case):
+    """Real base case (fore saddle lifts off): full == condensed, and the peak saddle force of the
+    full-DOF reference within 1 % of the quasi-static one."""
+    model, ex = real_case
+    tf = solve_time_domain(model, ex, 128)
+    tc = solve_time_domain(model, ex, 128, formulation="condensed")
+    qs = solve_quasi_static(model, ex, 128)
+    assert tf.converged and tc.converged and qs.converged
+    assert tf.options["formulation"] == "full"
+    e_f, e_x = force_error(tf, tc), displacement_error(tf, tc)
+    e_peak = abs(tf.max_saddle_force_N / qs.max_saddle_force_N - 1.0)
+    print(f"\nreal case: full vs condensed TD force {e_f:.1e}, displacement {e_x:.1e}; full TD vs QS peak force {e_peak:.3%} ({tf.message})")
+    assert e_f < 1e-6 and e_x < 1e-6
+    assert e_peak < 0.01
+    assert not tf.contact_preserved and tf.saddle_force_time_N.min() >= 0.0
+
+
+@pytest.mark.parametrize("formulation", ["full", "condensed"])
+def test_time_domain_non_convergence_is_reported(base, formulation):
+    model, ex = base[0], base[1]
+    r = solve_time_domain(model, ex, time_samples=16, formulation=formulation, max_periods=2, tolerance=1e-15)
+    assert not r.converged
+    assert "NOT periodic after 2 periods" in r.message and r.iterations == 2 and r.residual_norm > 1e-15
+    assert r.saddle_force_time_N.shape == (16, model.saddle_count)
+
+
+def test_time_domain_rejects_bad_formulation(base):
+    model, ex = base[0], base[1]
+    with pytest.raises(ValueError, match="formulation.*'full', 'condensed'"):
+        solve_time_domain(model, ex, formulation="dense")
