@@ -158,3 +158,12 @@ def test_sweep_writes_the_frequency_response(tmp_path):
 def test_sweep_rejects_a_bad_frequency_range(capsys):
     assert main(["sweep", "--omega-min", "2", "--omega-max", "1"]) == 2
     assert "omega-min" in capsys.readouterr().err
+
+
+def test_scripting_entry_points():
+    import seafast
+
+    result = seafast.run_case(seafast.load_case(overrides={"vessel.motions": "none"}))
+    assert result.summary[0]["F_N"] == pytest.approx(6.3e6, rel=0.05)
+    with pytest.raises(AttributeError):
+        seafast.no_such_thing  # noqa: B018

@@ -2,8 +2,38 @@
 
 Linear and nonlinear (harmonic balance with unilateral saddles) response of the cargo to the
 vessel's hull-girder deflection and rigid-body motions in regular waves.
+
+Scripting::
+
+    import seafast
+    case = seafast.load_case("my_case.yaml", {"seafastening.saddle_count": 4})
+    result = seafast.run_case(case)
+    result.summary            # rows of summary.csv
+    result.dataset            # everything, labelled (xarray)
+
+The package imports its numerical stack lazily, so ``seafast.cli`` can pin BLAS threads first.
 """
+
+from __future__ import annotations
+
+from typing import Any
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__"]
+__all__ = ["__version__", "load_case", "run_case", "Case", "CaseError", "CaseResult"]
+
+_LAZY = {
+    "load_case": "seafast.config",
+    "Case": "seafast.config",
+    "CaseError": "seafast.config",
+    "run_case": "seafast.pipeline",
+    "CaseResult": "seafast.pipeline",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'seafast' has no attribute {name!r}")
