@@ -429,6 +429,37 @@ class _BandedActiveSet:
         return best
 
 
+class _PeriodicityCheck:
+    """Change of the saddle-force history from one period to the next, over the largest force seen."""
+
+    def __init__(self, stiffness_N_per_m: NDArray, initial_compression_m: NDArray, tolerance: float):
+        self.stiffness = stiffness_N_per_m
+        self.tolerance = tolerance
+        self.scale = float(max(np.max(stiffness_N_per_m * np.abs(initial_compression_m)), 1.0))
+        self.previous: NDArray | None = None
+        self.change = np.inf
+
+    def settled(self, compression_m: NDArray) -> bool:
+        """Record one period's compressions; True once the change is below the tolerance."""
+        force = self.stiffness * np.maximum(compression_m, 0.0)
+        self.scale = max(self.scale, float(np.max(np.abs(force))))
+        if self.previous is not None:
+            self.change = float(np.max(np.abs(force - self.previous))) / self.scale
+            if self.change <= self.tolerance:
+                return True
+        self.previous = force.copy()
+        return False
+
+    @property
+    def converged(self) -> bool:
+        return self.change <= self.tolerance
+
+    def describe(self, periods: int) -> str:
+        if self.converged:
+            return f"periodic steady state after {periods} periods (change {self.change:.2e})"
+        return f"NOT periodic after {periods} periods (change {self.change:.2e} > {self.tolerance:g})"
+
+
 def _time_domain_full(
     model: StructuralModel, excitation: HarmonicExcitation, N: int, S: int, max_periods: int, tolerance: float,
     alpha: float, harmonics_for_indicator: int,
@@ -484,11 +515,9 @@ def _time_domain_full(
     gdt = gamma * dt
     state = np.concatenate([q0, v0, a0])
     stride = S // N
-    previous_force = None
-    change = np.inf
     periods = 0
     steps = 0
-    force_scale = float(max(np.max(k_u * np.abs(delta0)), 1.0))
+    check = _PeriodicityCheck(k_u, delta0, tolerance)
     cargo_out = np.empty((N, n_c))
     delta_out = np.empty((N, n_s))
     for periods in range(1, max_periods + 1):
@@ -506,14 +535,9 @@ def _time_domain_full(
             a1 = c1 * (q1 - qv[0])
             state = np.concatenate([q1, qv[1] + gdt * a1, a1])
         steps += S
-        force = k_u * np.maximum(delta_out, 0.0)
-        force_scale = max(force_scale, float(np.max(np.abs(force))))
-        if previous_force is not None:
-            change = float(np.max(np.abs(force - previous_force))) / force_scale
-            if change <= tolerance:
-                break
-        previous_force = force.copy()
-    converged = change <= tolerance
+        if check.settled(delta_out):
+            break
+    converged, change = check.converged, check.change
     options = {
         "time_samples": N,
         "steps_per_period": S,
@@ -531,7 +555,7 @@ def _time_domain_full(
         f"Newton ({step.solves / max(steps, 1):.3f} banded solves/step, {len(step.factors)} contact states factorised"
         + (f", {step.enumerations} enumerations" if step.enumerations else "")
         + f"), {S} steps/period; "
-        + (f"periodic steady state after {periods} periods (change {change:.2e})" if converged else f"NOT periodic after {periods} periods (change {change:.2e} > {tolerance:g})")
+        + check.describe(periods)
     )
     return _response(
         "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(), converged, change, periods, steps,
@@ -586,11 +610,9 @@ def _time_domain_condensed(
     n_c = model.cargo_dof_count
     stride = S // N
     detached = c_n > 0.0
-    previous_force = None
-    change = np.inf
     periods = 0
     steps = 0
-    force_scale = float(max(np.max(k_u * np.abs(delta_n)), 1.0))
+    check = _PeriodicityCheck(k_u, delta_n, tolerance)
     cargo_out = np.empty((N, n_c))
     delta_out = np.empty((N, model.saddle_count))
     for periods in range(1, int(max_periods) + 1):
@@ -614,14 +636,9 @@ def _time_domain_condensed(
             state = np.concatenate([q_new, v_new, a_new])
             c_n = c_next
             steps += 1
-        force = k_u * np.maximum(delta_out, 0.0)
-        force_scale = max(force_scale, float(np.max(np.abs(force))))
-        if previous_force is not None:
-            change = float(np.max(np.abs(force - previous_force))) / force_scale
-            if change <= tolerance:
-                break
-        previous_force = force.copy()
-    converged = change <= tolerance
+        if check.settled(delta_out):
+            break
+    converged, change = check.converged, check.change
     options = {
         "time_samples": N,
         "steps_per_period": S,
@@ -635,7 +652,7 @@ def _time_domain_condensed(
     msg = (
         f"condensed formulation: HHT-alpha (alpha={alpha:g}) on {model.cargo_dof_count} cargo DOFs, saddles bilateral in K "
         f"and each step's contact condensed on the saddles, exact contact, {S} steps/period; "
-        + (f"periodic steady state after {periods} periods (change {change:.2e})" if converged else f"NOT periodic after {periods} periods (change {change:.2e} > {tolerance:g})")
+        + check.describe(periods)
     )
     return _response(
         "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(), converged, change, periods, steps,
