@@ -65,12 +65,30 @@ def build_model(case: Case) -> StructuralModel:
     )
 
 
+def _hbm_options(case: Case, **changes: Any) -> Any:
+    """Harmonic-balance options from the case's solver settings, with ``changes`` applied."""
+    from seafast.solvers.hbm import HBMOptions
+
+    s = case.solver
+    settings = dict(
+        harmonics=s.harmonics,
+        time_samples=s.time_samples,
+        contact_law=s.contact_law,
+        regularisation_per_m=s.regularisation_per_m,
+        formulation=s.formulation,
+        solver=s.nonlinear_solver,
+        tolerance=s.tolerance,
+    )
+    settings.update(changes)
+    return HBMOptions(**settings)
+
+
 def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool) -> Any:
     """Nonlinear (unilateral-saddle) response by the case's method; returns a PeriodicResponse.
 
     ``static=True`` solves the still-water state alone (harmonic balance with H = 0).
     """
-    from seafast.solvers.hbm import HBMOptions, solve_hbm
+    from seafast.solvers.hbm import solve_hbm
 
     s = case.solver
     if static and s.method != "hbm":
@@ -79,15 +97,7 @@ def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case
 
         return solve_quasi_static(model, excitation.static_part(), time_samples=2)
     if static:
-        opts = HBMOptions(
-            harmonics=0,
-            time_samples=2,
-            contact_law=s.contact_law,
-            regularisation_per_m=s.regularisation_per_m,
-            formulation=s.formulation,
-            solver=s.nonlinear_solver,
-            tolerance=s.tolerance,
-        )
+        opts = _hbm_options(case, harmonics=0, time_samples=2)
         return solve_hbm(model, excitation.static_part(), opts)
     if s.method == "quasi_static":
         from seafast.solvers.references import solve_quasi_static
@@ -97,15 +107,7 @@ def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case
         from seafast.solvers.references import solve_time_domain
 
         return solve_time_domain(model, excitation, time_samples=s.time_samples)
-    opts = HBMOptions(
-        harmonics=s.harmonics,
-        time_samples=s.time_samples,
-        contact_law=s.contact_law,
-        regularisation_per_m=s.regularisation_per_m,
-        formulation=s.formulation,
-        solver=s.nonlinear_solver,
-        tolerance=s.tolerance,
-    )
+    opts = _hbm_options(case)
     return solve_hbm(model, excitation, opts)
 
 
@@ -217,18 +219,12 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
         The :class:`~seafast.solvers.continuation.FrequencyResponseBranch` and the model.
     """
     from seafast.solvers.continuation import frequency_response
-    from seafast.solvers.hbm import HBMOptions
 
     model = build_model(case)
     excitation, _ = _excitation(case, model)
-    s = case.solver
-    opts = HBMOptions(
-        harmonics=s.harmonics,
-        time_samples=s.time_samples,
-        contact_law=s.contact_law,
-        regularisation_per_m=s.regularisation_per_m,
-        tolerance=max(s.tolerance, 1e-8),
-    )
+    # continuation runs on the condensed system with Newton correctors; its corrector's
+    # round-off floor near resonance is ~1e-9, hence the tolerance floor
+    opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
     branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
     return branch, model
 
