@@ -14,6 +14,8 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
+from seafast.model.seafastening import evenly_spaced_saddles
+
 __all__ = [
     "Case",
     "CargoConfig",
@@ -284,10 +286,7 @@ class Case(_Strict):
         sf = self.seafastening
         if sf.saddle_positions_m is not None:
             return tuple(sf.saddle_positions_m)
-        n, L = sf.saddle_count, self.cargo.length_m
-        if n == 1:
-            return (0.5 * L,)
-        return tuple(0.2 * L + i * 0.6 * L / (n - 1) for i in range(n))
+        return tuple(float(x) for x in evenly_spaced_saddles(sf.saddle_count, self.cargo.length_m))
 
     def saddle_stiffnesses_N_per_m(self) -> tuple[float, ...]:
         """Stiffness of each saddle [N/m]."""
