@@ -75,6 +75,7 @@ class _ExactContact:
         self.k = np.asarray(stiffness, dtype=float)
         self.n = self.k.size
         self._inverse: dict[bytes, NDArray] = {}
+        self._bits = (1 << np.arange(self.n, dtype=np.int64)) if self.n < 63 else None
 
     def operator(self, detached: NDArray[np.bool_]) -> NDArray:
         key = np.asarray(detached, dtype=bool).tobytes()
@@ -100,11 +101,14 @@ class _ExactContact:
         for _ in range(4 * self.n + 8):
             if todo.size == 0:
                 break
-            masks, inv = np.unique(detached[todo], axis=0, return_inverse=True)
-            inv = np.asarray(inv).ravel()
-            for j, mask in enumerate(masks):
-                rows = todo[inv == j]
-                delta[rows] = d_lin[rows] @ self.operator(mask).T
+            # group the instants by detached set: an integer code per set (bit s = saddle s)
+            if self._bits is not None:
+                codes = detached[todo] @ self._bits
+            else:  # more saddles than bits in an int64: group by the rows themselves
+                codes = np.unique(detached[todo], axis=0, return_inverse=True)[1].ravel()
+            for code in np.unique(codes):
+                rows = todo[codes == code]
+                delta[rows] = d_lin[rows] @ self.operator(detached[rows[0]]).T
             ok = self._consistent(delta[todo], detached[todo], tol)
             bad = todo[~ok]
             detached[bad] = delta[bad] < 0.0
