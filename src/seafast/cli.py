@@ -148,6 +148,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if not args.quiet:
         print(format_summary_table(rows, title=f"{case.name}: maxima over the cargo, the saddles and one wave period"))
         print(f"excitation: {result.excitation.source}")
+        if "hull_cargo_coupling" in result.attrs:
+            print(result.attrs["hull_cargo_coupling"])
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if not r["converged"]]
     for r in bad:

@@ -7,7 +7,7 @@ the previous one's output. Nothing here prints or writes files (see :mod:`seafas
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -23,7 +23,16 @@ from seafast.results.dataset import CaseArrays, build_case_dataset, case_arrays,
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
 
-__all__ = ["CaseResult", "build_model", "cargo_geometry", "run_case", "evaluate_summary", "solve_nonlinear", "frequency_sweep"]
+__all__ = [
+    "CaseResult",
+    "build_model",
+    "cargo_geometry",
+    "run_case",
+    "evaluate_summary",
+    "solve_nonlinear",
+    "couple_hull_and_cargo",
+    "frequency_sweep",
+]
 
 
 def cargo_geometry(case: Case) -> CargoGeometry:
@@ -170,6 +179,11 @@ def run_case(
     if excitation is None:
         say("vessel excitation (hull girder, motions)")
         excitation, vessel = _excitation(case, model)
+    coupling = None
+    if case.vessel.coupling == "two_way":
+        say("two-way hull-cargo coupling (still water)")
+        coupling = couple_hull_and_cargo(case, model, excitation, vessel)
+        excitation = coupling.excitation
     say("linear and nonlinear solves")
     N = case.solver.time_samples
     lin_static = solve_linear(model, excitation.static_part())
@@ -196,9 +210,39 @@ def run_case(
         "conventions": "x from the cargo's aft end; z up; displacements relative to the vessel's rigid-body frame; "
         "sagging moment positive; saddle compression positive when compressed",
     }
+    if coupling is not None:
+        attrs["hull_cargo_coupling"] = coupling.message
+        attrs["coupled_deck_force_per_unit_N"] = [float(p) for p in coupling.deck_force_N]
     arrays = case_arrays(model, excitation, series, N)
+    if coupling is not None and not coupling.converged:
+        # every row stands on the coupled still-water state: none is converged if it is not
+        arrays = replace(arrays, converged=np.zeros_like(arrays.converged))
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
     return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
+
+
+def couple_hull_and_cargo(case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: Any) -> Any:
+    """The still-water state of hull and cargo solved together (``vessel.coupling = 'two_way'``).
+
+    The cargo's still-water state is solved with the case's nonlinear method (unilateral
+    saddles), its period-mean deck forces load the hull girder in place of its spread weight,
+    and the deck DOFs are iterated to consistency. Returns a
+    :class:`~seafast.excitation.coupling.StillWaterCoupling` whose ``excitation`` replaces the
+    one-way one.
+    """
+    from seafast.excitation.coupling import couple_still_water, deck_forces_N, hull_compliance
+
+    if vessel is None or getattr(vessel, "girder", None) is None or getattr(vessel, "loading", None) is None:
+        raise ValueError("vessel.coupling = 'two_way' needs the computed hull girder and its loading (no vessel data was given)")
+    compliance = hull_compliance(
+        vessel.girder, vessel.loading, vessel.cargo_aft_end_x_m + model.saddle_x_m, case.cargo.units_abreast
+    )
+
+    def deck_forces(static_excitation: HarmonicExcitation) -> Any:
+        response = solve_nonlinear(model, static_excitation, case, static=True)
+        return deck_forces_N(model, static_excitation, response, nonlinear=True)
+
+    return couple_still_water(model, excitation, compliance, deck_forces)
 
 
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
@@ -221,7 +265,9 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
     from seafast.solvers.continuation import frequency_response
 
     model = build_model(case)
-    excitation, _ = _excitation(case, model)
+    excitation, vessel = _excitation(case, model)
+    if case.vessel.coupling == "two_way":
+        excitation = couple_hull_and_cargo(case, model, excitation, vessel).excitation
     # continuation runs on the condensed system with Newton correctors; its corrector's
     # round-off floor near resonance is ~1e-9, hence the tolerance floor
     opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))

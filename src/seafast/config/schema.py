@@ -179,6 +179,22 @@ class VesselConfig(_Strict):
         "bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output"
     )
     bem_panel_size_m: Positive = Field(3.0, description="Target panel size of the BEM mesh [m]")
+    coupling: Literal["one_way", "two_way"] = Field(
+        "one_way",
+        description="'one_way' (the source's: the hull carries the cargo as a spread weight, the cargo follows the deck) or "
+        "'two_way' (the still-water state of hull and cargo solved together: the cargo's saddle forces load the hull girder)",
+    )
+
+    @model_validator(mode="after")
+    def _check_coupling(self) -> "VesselConfig":
+        if self.coupling == "two_way":
+            for key in ("deck_deflection_table", "still_water_bending_moment_table"):
+                if getattr(self, key) is not None:
+                    raise ValueError(
+                        f"vessel.coupling = 'two_way' needs the computed hull girder and its loading; it cannot be combined "
+                        f"with vessel.{key} (use 'one_way', or remove the table)"
+                    )
+        return self
 
 
 class WaveConfig(_Strict):

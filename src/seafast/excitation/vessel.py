@@ -92,6 +92,8 @@ class VesselExcitation:
         ``RigidBodyMotions`` or None; ``rigid_body`` the amplitudes at the case's wave.
     loading
         The ship's weight distribution (computed hull only).
+    girder
+        The hull girder (computed hull only), for the two-way coupling.
     source
         Human-readable provenance.
     """
@@ -106,6 +108,7 @@ class VesselExcitation:
     rigid_body: RigidBodyAmplitudes | None
     loading: VesselLoading | None
     source: str
+    girder: HullGirder | None = None
 
     def _still_water_fn(self):
         if self.still_water_curve is not None:
@@ -371,4 +374,5 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
         parts.append(f"heave/pitch from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}")
     elif v.motions == "none":
         parts.append("no rigid-body motion")
-    return VesselExcitation(omega, amplitude, aft, still, wave, curve, motions, rigid, loading, "; ".join(parts))
+    girder_used = None if v.deck_deflection_table is not None else girder
+    return VesselExcitation(omega, amplitude, aft, still, wave, curve, motions, rigid, loading, "; ".join(parts), girder_used)
