@@ -11,7 +11,8 @@ from seafast.cli import main
 from seafast.config import load_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-CASE_FILES = ("base_case.yaml", "four_saddles_soft.yaml", "lashing_variation.yaml", "monopile_115m_12m.yaml", "user_deck_table.yaml")
+CASE_FILES = ("base_case.yaml", "four_saddles_soft.yaml", "lashing_variation.yaml", "monopile_115m_12m.yaml", "user_deck_table.yaml",
+              "two_way_coupling.yaml")
 
 
 @pytest.mark.parametrize("name", CASE_FILES)
@@ -30,6 +31,7 @@ def test_examples_say_what_they_set() -> None:
     big = load_case(EXAMPLES / "monopile_115m_12m.yaml")
     assert (big.cargo.length_m, big.cargo.diameter_m) == (115.0, 12.0)
     assert big.cargo.wall_thickness_m == pytest.approx(12.0 / 110.0, rel=1e-4)
+    assert load_case(EXAMPLES / "two_way_coupling.yaml").vessel.coupling == "two_way"
     table = load_case(EXAMPLES / "user_deck_table.yaml")
     assert table.vessel.deck_deflection_table is not None and Path(table.vessel.deck_deflection_table).is_file()
 
