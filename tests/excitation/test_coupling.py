@@ -77,6 +77,15 @@ def test_two_way_coupling_unloads_the_middle_saddle_of_the_base_case():
     assert "converged in" in two.attrs["hull_cargo_coupling"]
 
 
+@pytest.mark.parametrize("method", ["quasi_static", "time_domain"])
+def test_the_reference_methods_couple_to_the_same_still_water_state(method):
+    hbm = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.contact_law": "exact"}))
+    ref = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.method": method,
+                                        "wave.amplitude_m": 0.5}))
+    assert _static(ref)["F_N"] == pytest.approx(_static(hbm)["F_N"], rel=1e-6)
+    assert "converged in" in ref.attrs["hull_cargo_coupling"]
+
+
 def test_a_stiff_hull_makes_the_coupling_vanish():
     stiff = {**NO_MOTIONS, "vessel.hull_second_moment_m4": 103.8e3, "vessel.hull_shear_area_m2": 800.0}
     one = run_case(load_case(overrides=stiff))

@@ -153,8 +153,10 @@ def deck_forces_N(model: StructuralModel, excitation: HarmonicExcitation, respon
         bilateral in K).
     """
     Kcc, Kco, Koo = model.spring_matrices(include_saddles=not nonlinear)
-    harmonics = response.cargo_displacement_harmonics if nonlinear else response.cargo_displacement
-    x_c = np.real(np.asarray(harmonics)[0])
+    if nonlinear:  # the period mean of the samples: every method has them (the references have no harmonics)
+        x_c = np.mean(np.asarray(response.cargo_displacement_time_m, dtype=float), axis=0)
+    else:
+        x_c = np.real(np.asarray(response.cargo_displacement)[0])
     x_o = np.real(excitation.deck_displacement[0])
     spring = Kco.T @ x_c + Koo @ x_o  # force the springs need at the deck DOFs = their push on the deck
     p = spring[model.saddle_deck_dof] - model.seafastening.saddle_pretension_N
