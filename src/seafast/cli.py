@@ -152,9 +152,13 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print(result.attrs["hull_cargo_coupling"])
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if not r["converged"]]
+    from seafast.results.dataset import LOAD_CASES, MODELS
+
     for r in bad:
+        message = str(result.arrays.solver_message[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])])
+        why = message.split(" | ")[0] if message.startswith("two-way coupling") else f"residual {r['residual_norm']:.3e}"
         print(
-            f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge (residual {r['residual_norm']:.3e}); "
+            f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge ({why}); "
             "its numbers are flagged converged=false in summary.csv and must not be trusted",
             file=sys.stderr,
         )

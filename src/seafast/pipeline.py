@@ -19,7 +19,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
-from seafast.results.dataset import CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
+from seafast.results.dataset import LOAD_CASES, MODELS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
 
@@ -179,17 +179,21 @@ def run_case(
     if excitation is None:
         say("vessel excitation (hull girder, motions)")
         excitation, vessel = _excitation(case, model)
-    coupling = None
-    if case.vessel.coupling == "two_way":
-        say("two-way hull-cargo coupling (still water)")
-        coupling = couple_hull_and_cargo(case, model, excitation, vessel)
-        excitation = coupling.excitation
-    say("linear and nonlinear solves")
     N = case.solver.time_samples
-    lin_static = solve_linear(model, excitation.static_part())
-    lin_dynamic = solve_linear(model, excitation)
-    nl_static = solve_nonlinear(model, excitation, case, static=True)
-    nl_dynamic = solve_nonlinear(model, excitation, case, static=False)
+    couplings: dict[tuple[str, str], Any] = {}
+    if case.vessel.coupling == "two_way":
+        say("two-way hull-cargo coupling (still water and wave, linear and nonlinear)")
+        couplings = couple_hull_and_cargo(case, model, excitation, vessel)
+        lin_static = couplings[("static", "linear")].response
+        lin_dynamic = couplings[("dynamic", "linear")].response
+        nl_static = couplings[("static", "nonlinear")].response
+        nl_dynamic = couplings[("dynamic", "nonlinear")].response
+    else:
+        say("linear and nonlinear solves")
+        lin_static = solve_linear(model, excitation.static_part())
+        lin_dynamic = solve_linear(model, excitation)
+        nl_static = solve_nonlinear(model, excitation, case, static=True)
+        nl_dynamic = solve_nonlinear(model, excitation, case, static=False)
     series: dict[tuple[str, str], PeriodTimeSeries] = {
         ("static", "linear"): linear_time_series(lin_static, N),
         ("dynamic", "linear"): linear_time_series(lin_dynamic, N),
@@ -210,39 +214,67 @@ def run_case(
         "conventions": "x from the cargo's aft end; z up; displacements relative to the vessel's rigid-body frame; "
         "sagging moment positive; saddle compression positive when compressed",
     }
-    if coupling is not None:
-        attrs["hull_cargo_coupling"] = coupling.message
-        attrs["coupled_deck_force_per_unit_N"] = [float(p) for p in coupling.deck_force_N]
-    arrays = case_arrays(model, excitation, series, N)
-    if coupling is not None and not coupling.converged:
-        # every row stands on the coupled still-water state: none is converged if it is not
-        arrays = replace(arrays, converged=np.zeros_like(arrays.converged))
+    if couplings:
+        attrs["hull_cargo_coupling"] = "\n".join(c.message for c in couplings.values())
+    arrays = case_arrays(model, excitation, series, N, {key: c.excitation for key, c in couplings.items()})
+    if couplings:
+        # a row whose deck did not converge is not converged, whatever its cargo solver says
+        ok = np.array([[couplings[(lc, mdl)].converged for mdl in MODELS] for lc in LOAD_CASES])
+        messages = np.array(
+            [[m if ok[i, j] else f"{couplings[(lc, mdl)].message} | cargo solver: {m}" for j, (mdl, m) in enumerate(zip(MODELS, row))]
+             for i, (lc, row) in enumerate(zip(LOAD_CASES, arrays.solver_message))]
+        )
+        arrays = replace(arrays, converged=arrays.converged & ok, solver_message=messages)
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
     return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
 
 
-def couple_hull_and_cargo(case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: Any) -> Any:
-    """The still-water state of hull and cargo solved together (``vessel.coupling = 'two_way'``).
+def couple_hull_and_cargo(
+    case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: Any
+) -> dict[tuple[str, str], Any]:
+    """Hull and cargo solved together (``vessel.coupling = 'two_way'``), row by row.
 
-    The cargo's still-water state is solved with the case's nonlinear method (unilateral
-    saddles), its period-mean deck forces load the hull girder in place of its spread weight,
-    and the deck DOFs are iterated to consistency. Returns a
-    :class:`~seafast.excitation.coupling.StillWaterCoupling` whose ``excitation`` replaces the
-    one-way one.
+    For each (load case, model) the deck under the sea-fastening is iterated until the hull
+    girder, loaded by the cargo's deck forces in place of its spread load, and the cargo agree
+    (:func:`seafast.excitation.coupling.couple_deck`): the still-water state (harmonic 0) for
+    the static rows, harmonics 0 .. H (the linear model: the excitation's harmonics) for the
+    dynamic rows. Returns :class:`~seafast.excitation.coupling.DeckCoupling` per row, keyed
+    ``(load_case, model)``; each carries the coupled excitation and the cargo's response.
     """
-    from seafast.excitation.coupling import couple_still_water, deck_forces_N, hull_compliance
+    from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance
 
     if vessel is None or getattr(vessel, "girder", None) is None or getattr(vessel, "loading", None) is None:
         raise ValueError("vessel.coupling = 'two_way' needs the computed hull girder and its loading (no vessel data was given)")
-    compliance = hull_compliance(
-        vessel.girder, vessel.loading, vessel.cargo_aft_end_x_m + model.saddle_x_m, case.cargo.units_abreast
-    )
+    compliance = hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, case.cargo.units_abreast)
+    static = excitation.static_part()
+    k_linear = excitation.harmonic_count
+    k_nonlinear = max(case.solver.harmonics + 1, k_linear)
 
-    def deck_forces(static_excitation: HarmonicExcitation) -> Any:
-        response = solve_nonlinear(model, static_excitation, case, static=True)
-        return deck_forces_N(model, static_excitation, response, nonlinear=True)
+    def linear(exc: HarmonicExcitation) -> Any:
+        return solve_linear(model, exc)
 
-    return couple_still_water(model, excitation, compliance, deck_forces)
+    def linear_forces(k: int) -> Callable[[HarmonicExcitation], Any]:
+        return lambda exc: deck_forces_N(model, exc, solve_linear(model, exc), False, k)
+
+    out = {
+        ("static", "linear"): couple_deck(
+            model, static, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, 1), 1, label="static, linear"
+        ),
+        ("static", "nonlinear"): couple_deck(
+            model, static, compliance, lambda e: solve_nonlinear(model, e, case, static=True),
+            lambda e, r: deck_forces_N(model, e, r, True, 1), 1, preconditioner=linear_forces(1), label="static, nonlinear",
+        ),
+        ("dynamic", "linear"): couple_deck(
+            model, excitation, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, k_linear), k_linear,
+            label="dynamic, linear",
+        ),
+        ("dynamic", "nonlinear"): couple_deck(
+            model, excitation, compliance, lambda e: solve_nonlinear(model, e, case, static=False),
+            lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear), k_nonlinear,
+            preconditioner=linear_forces(k_nonlinear), label="dynamic, nonlinear",
+        ),
+    }
+    return out
 
 
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
@@ -267,7 +299,8 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
     model = build_model(case)
     excitation, vessel = _excitation(case, model)
     if case.vessel.coupling == "two_way":
-        excitation = couple_hull_and_cargo(case, model, excitation, vessel).excitation
+        # the sweep follows the wave-coupled deck of the case's own frequency
+        excitation = couple_hull_and_cargo(case, model, excitation, vessel)[("dynamic", "nonlinear")].excitation
     # continuation runs on the condensed system with Newton correctors; its corrector's
     # round-off floor near resonance is ~1e-9, hence the tolerance floor
     opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))

@@ -182,7 +182,7 @@ class VesselConfig(_Strict):
     coupling: Literal["one_way", "two_way"] = Field(
         "one_way",
         description="'one_way' (the source's: the hull carries the cargo as a spread weight, the cargo follows the deck) or "
-        "'two_way' (the still-water state of hull and cargo solved together: the cargo's saddle forces load the hull girder)",
+        "'two_way' (hull and cargo solved together: the cargo's deck forces load the quasi-static hull girder, still water and wave)",
     )
 
     @model_validator(mode="after")

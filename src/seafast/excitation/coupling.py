@@ -1,212 +1,227 @@
-"""Two-way hull-cargo coupling of the still-water state.
+"""Two-way hull-cargo coupling: the cargo's deck forces load the hull girder.
 
-With one-way coupling (the source's assumption) the hull girder carries the cargo as a weight
-spread over its length, and the cargo only follows the deck. With four monopiles abreast, the
-cargo's bending stiffness is comparable to the hull's, and its weight reaches the deck at the
-sea-fastening points only, in proportions the hull's own bending decides. ``two_way`` solves the
-still-water state of hull and cargo together:
+With one-way coupling (the source's assumption) the hull girder carries the cargo as a load
+spread over its length (its weight in still water; nothing at wave frequency, since the
+quasi-static hull balance has no inertia), and the cargo only follows the deck. With four
+monopiles abreast, the cargo's bending stiffness is comparable to the hull's, and its loads reach
+the deck at the sea-fastening points only, in proportions the hull's own bending decides.
+``two_way`` exchanges, on the hull, the cargo's spread load for the forces it actually exerts at
+the sea-fastening points, harmonic by harmonic, and iterates the deck to consistency:
 
-    z_deck = z_one_way + n (Phi p - D)
+    Z_k = Z_k(one way) + n C (P_k - Q_k),    k = 0 .. K-1
 
-at the deck DOFs under the sea-fastening (deflection z [m] and slope theta [rad] at each
-saddle), where ``n`` is the number of identical units abreast, ``p`` [N] the period-mean force
-one unit exerts downward on the deck at each sea-fastening point (saddle contact force, lashing
-spring force, minus the pretension's reaction, which pulls the deck up), ``Phi`` the hull's
-compliance at those points (deck deflection and slope per newton of downward load, the ship
-re-balanced in sinkage and trim) and ``D`` the deck deflection and slope that one unit's
-distributed weight causes in the one-way hull model. Exchanging the distributed weight for the
-point loads keeps the ship's displacement and ballast unchanged.
+where ``Z_k`` are the deck DOFs under the sea-fastening (deflection z [m] and slope theta [rad]
+at each saddle) of harmonic k, ``n`` the number of identical units abreast, ``P_k`` [N] the
+downward force one unit exerts on the deck at each sea-fastening point (saddle contact force,
+lashing spring force, minus the pretension's reaction, which pulls the deck up), ``Q_k`` [N]
+the same unit's spread load as the one-way model sees it, lumped on the cargo nodes (its weight
+at k = 0; at k >= 1 its rigid-body inertia load, so that the exchange is self-equilibrated and
+the quasi-static hull, which balances no inertia, is not asked to), and ``C`` the hull's
+compliance: deck deflection and slope per newton of downward load at each cargo node (spread
+over the node's tributary length), the ship re-balanced in sinkage and trim.
 
-Scope (documented in the README): the still-water state only; the wave-induced hull bending
-stays one-way (the hull is loaded by the cargo's mean forces, not by its wave-frequency
-forces). The loads are applied to the hull as uniform patches of ``patch_length_m`` (a saddle's
-footprint, default 1 m) and the moments of the rotational lashing springs (a few kN m) are not
-applied to the hull. The hull model is linear while no section emerges, so ``Phi`` and ``D``
-are exact differences of hull-girder solutions.
+The hull girder is quasi-static and linear while no section emerges, so ``C`` is exact and
+serves every harmonic. The moments of the rotational lashing springs (a few kN m) are not
+applied to the hull. See the README for what the coupling changes on the base case.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.hull_girder import HullGirder, deck_deflection_at, still_water_response
+from seafast.excitation.hull_girder import HullGirder, deck_load_influence
 from seafast.model.structure import StructuralModel
-from seafast.vessel.loading import VesselLoading, WeightItem
+from seafast.solvers.periodic import harmonics_to_time
+from seafast.vessel.loading import VesselLoading
 
-__all__ = ["HullCompliance", "StillWaterCoupling", "hull_compliance", "deck_forces_N", "couple_still_water"]
-
-CARGO_ITEM = "cargo"
-"""Name of the cargo's weight item in the default vessel loading."""
+__all__ = ["HullCompliance", "DeckCoupling", "hull_compliance", "deck_forces_N", "spread_load_N", "couple_deck"]
 
 
 @dataclass(frozen=True)
 class HullCompliance:
-    """The hull girder's still-water compliance at the sea-fastening points.
+    """The hull girder's compliance at the sea-fastening points, for loads at the cargo nodes.
 
     Attributes
     ----------
-    saddle_x_ship_m
-        Ship x of each sea-fastening point, from the AP [m], shape (n_s,).
+    node_x_ship_m
+        Ship x of the cargo nodes, from the AP [m], shape (n_nodes,).
+    saddle_node
+        Cargo node of each sea-fastening point, shape (n_s,).
     deflection_m_per_N, slope_rad_per_N
-        Deck deflection [m] and slope [rad] at point i per newton of downward load at point j
-        (the ship re-balanced), shape (n_s, n_s).
-    unit_weight_deflection_m, unit_weight_slope_rad
-        Deck deflection [m] and slope [rad] at each point caused by one cargo unit's weight
-        spread over its length, as the one-way model applies it, shape (n_s,).
+        Deck deflection [m] and slope [rad] at sea-fastening point i per newton of downward load
+        at cargo node j (spread over its tributary length; the ship re-balanced), (n_s, n_nodes).
     units_abreast
         Identical cargo units side by side, each on its own saddles at the same x.
-    patch_length_m
-        Length over which each point load is spread on the hull [m].
     """
 
-    saddle_x_ship_m: NDArray[np.float64]
+    node_x_ship_m: NDArray[np.float64]
+    saddle_node: NDArray[np.intp]
     deflection_m_per_N: NDArray[np.float64]
     slope_rad_per_N: NDArray[np.float64]
-    unit_weight_deflection_m: NDArray[np.float64]
-    unit_weight_slope_rad: NDArray[np.float64]
     units_abreast: int
-    patch_length_m: float
 
-    def deck_change(self, deck_force_N: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Change of the deck DOFs (z, theta interleaved per point) from one-way to two-way.
+    def deck_change(self, deck_force_N: NDArray, spread_load_N: NDArray) -> NDArray:
+        """Deck DOFs (z, theta interleaved per point) of two-way minus one-way, per harmonic.
 
-        ``deck_force_N`` is the downward force of one unit on the deck at each point [N].
+        Parameters
+        ----------
+        deck_force_N
+            ``P_k``: downward force of one unit on the deck at each point [N], (K, n_s).
+        spread_load_N
+            ``Q_k``: the unit's spread load on its nodes, downward [N], (K, n_nodes).
         """
-        p = np.asarray(deck_force_N, dtype=float)
-        n = self.units_abreast
-        out = np.empty(2 * p.size)
-        out[0::2] = n * (self.deflection_m_per_N @ p - self.unit_weight_deflection_m)
-        out[1::2] = n * (self.slope_rad_per_N @ p - self.unit_weight_slope_rad)
+        net = -np.asarray(spread_load_N)
+        net = net.astype(np.result_type(net, deck_force_N, float), copy=True)
+        np.add.at(net, (slice(None), self.saddle_node), np.asarray(deck_force_N))
+        out = np.empty((net.shape[0], 2 * self.saddle_node.size), dtype=net.dtype)
+        out[:, 0::2] = self.units_abreast * net @ self.deflection_m_per_N.T
+        out[:, 1::2] = self.units_abreast * net @ self.slope_rad_per_N.T
         return out
 
 
 def hull_compliance(
-    girder: HullGirder,
-    loading: VesselLoading,
-    saddle_x_ship_m: NDArray[np.float64],
-    units_abreast: int,
-    *,
-    patch_length_m: float = 1.0,
-    probe_force_N: float = 1.0e6,
+    girder: HullGirder, loading: VesselLoading, model: StructuralModel, cargo_aft_end_x_m: float, units_abreast: int
 ) -> HullCompliance:
-    """Compliance of the hull at the sea-fastening points, by differences of hull solutions.
+    """:class:`HullCompliance` of ``girder`` under ``loading`` at the model's sea-fastening points.
 
-    Parameters
-    ----------
-    girder, loading
-        The hull girder and its still-water loading; ``loading`` must hold the cargo as the
-        item named ``"cargo"`` (all units abreast).
-    saddle_x_ship_m
-        Ship x of the sea-fastening points [m].
-    units_abreast
-        Number of identical cargo units (``n``).
-    patch_length_m
-        Footprint over which a point load is spread [m] (> 0).
-    probe_force_N
-        Size of the probe loads [N]; the hull model is linear while no section emerges, so the
-        result does not depend on it.
-
-    Raises
-    ------
-    ValueError
-        If the loading has no cargo item, or a patch would reach beyond the hull.
+    One vectorised set of still-water solves: a 1 N probe on each cargo node's tributary length.
     """
-    xs = np.asarray(saddle_x_ship_m, dtype=float)
-    try:
-        cargo = loading.item(CARGO_ITEM)
-    except KeyError:
-        raise ValueError("two-way coupling: the vessel loading has no 'cargo' item (a computed default loading is needed)") from None
-    g = girder.gravity_m_per_s2
-    base = still_water_response(girder, loading)
-    z0, s0 = deck_deflection_at(base, xs)
-    half = 0.5 * patch_length_m
-    flex_z = np.empty((xs.size, xs.size))
-    flex_s = np.empty_like(flex_z)
-    for j, x in enumerate(xs):
-        probe = WeightItem(f"probe at {x:.2f} m", x - half, x + half, probe_force_N / g)
-        z, s = deck_deflection_at(still_water_response(girder, loading.with_items(probe)), xs)
-        flex_z[:, j] = (z - z0) / probe_force_N
-        flex_s[:, j] = (s - s0) / probe_force_N
-    n = int(units_abreast)
-    lighter = replace(cargo, mass_kg=cargo.mass_kg * (n - 1) / n)
-    items = tuple(lighter if it.name == CARGO_ITEM else it for it in loading.items)
-    z1, s1 = deck_deflection_at(still_water_response(girder, replace(loading, items=items)), xs)
-    return HullCompliance(xs, flex_z, flex_s, z0 - z1, s0 - s1, n, float(patch_length_m))
+    xn = float(cargo_aft_end_x_m) + model.cargo.node_x_m
+    edges = np.concatenate([[xn[0]], 0.5 * (xn[1:] + xn[:-1]), [xn[-1]]])
+    z, s = deck_load_influence(girder, loading, edges[:-1], edges[1:], xn[model.saddle_node])
+    return HullCompliance(xn, np.asarray(model.saddle_node), z, s, int(units_abreast))
 
 
-def deck_forces_N(model: StructuralModel, excitation: HarmonicExcitation, response, nonlinear: bool) -> NDArray[np.float64]:
-    """Period-mean downward force of one cargo unit on the deck at each sea-fastening point [N].
+def spread_load_N(model: StructuralModel, excitation: HarmonicExcitation, harmonic_count: int) -> NDArray[np.complex128]:
+    """``Q_k``: one unit's load on the hull as the one-way model spreads it, on the cargo nodes [N].
+
+    Downward positive, shape (K, n_nodes): the weight at k = 0, the rigid-body inertia load of
+    the excitation at k >= 1.
+    """
+    Q = np.zeros((harmonic_count, model.cargo.node_count), dtype=complex)
+    Q[0] = -model.cargo.gravity_load_N[0::2]
+    m = min(harmonic_count, excitation.harmonic_count)
+    Q[1:m] = -excitation.cargo_load_N[1:m, 0::2]
+    return Q
+
+
+def deck_forces_N(model: StructuralModel, excitation: HarmonicExcitation, response, nonlinear: bool, harmonic_count: int = 1) -> NDArray:
+    """``P_k``: downward force of one cargo unit on the deck at each sea-fastening point [N].
 
     Parameters
     ----------
     model, excitation
-        The model and the excitation the response was solved for (its k = 0 deck DOFs).
+        The model and the excitation the response was solved for.
     response
         A :class:`~seafast.solvers.periodic.PeriodicResponse` (``nonlinear=True``: its saddle
-        forces are the compression-only parts) or a
+        forces are the compression-only parts; sampled over the period) or a
         :class:`~seafast.solvers.linear.LinearResponse` (``nonlinear=False``: saddles
-        bilateral in K).
+        bilateral in K; harmonics).
+    harmonic_count
+        K, harmonics k = 0 .. K-1 returned.
+
+    Returns
+    -------
+    Complex amplitudes, shape (K, n_s); row 0 (the period mean) is real.
     """
-    Kcc, Kco, Koo = model.spring_matrices(include_saddles=not nonlinear)
-    if nonlinear:  # the period mean of the samples: every method has them (the references have no harmonics)
-        x_c = np.mean(np.asarray(response.cargo_displacement_time_m, dtype=float), axis=0)
+    _, Kco, Koo = model.spring_matrices(include_saddles=not nonlinear)
+    sad = model.saddle_deck_dof
+    if nonlinear:  # every method has samples (the references have no harmonics)
+        x_c = np.asarray(response.cargo_displacement_time_m, dtype=float)
+        n_t = x_c.shape[0]
+        x_o = harmonics_to_time(excitation.deck_displacement, n_t)
+        p_t = (x_c @ Kco + x_o @ Koo)[:, sad] + np.asarray(response.saddle_force_time_N, dtype=float)
+        c = np.fft.rfft(p_t, axis=0) / n_t
+        P = np.zeros((harmonic_count, sad.size), dtype=complex)
+        m = min(harmonic_count, c.shape[0])
+        P[:m] = c[:m]
+        P[1:m] *= 2.0
+        P[0] = P[0].real
     else:
-        x_c = np.real(np.asarray(response.cargo_displacement)[0])
-    x_o = np.real(excitation.deck_displacement[0])
-    spring = Kco.T @ x_c + Koo @ x_o  # force the springs need at the deck DOFs = their push on the deck
-    p = spring[model.saddle_deck_dof] - model.seafastening.saddle_pretension_N
-    if nonlinear:
-        p = p + np.mean(np.asarray(response.saddle_force_time_N, dtype=float), axis=0)
-    return p
+        X = np.asarray(response.cargo_displacement)
+        Xo = excitation.deck_displacement
+        m = min(harmonic_count, X.shape[0], Xo.shape[0])
+        P = np.zeros((harmonic_count, sad.size), dtype=complex)
+        P[:m] = (X[:m] @ Kco + Xo[:m] @ Koo)[:, sad]
+    P[0] -= model.seafastening.saddle_pretension_N
+    return P
 
 
 @dataclass(frozen=True)
-class StillWaterCoupling:
-    """Outcome of :func:`couple_still_water`.
+class DeckCoupling:
+    """Outcome of :func:`couple_deck`.
 
     Attributes
     ----------
     excitation
-        The excitation with the coupled still-water deck DOFs (k = 0 row changed).
+        The excitation with the coupled deck DOFs (harmonics 0 .. K-1 changed).
+    response
+        The cargo's response to it (whatever ``solve`` returns).
     deck_change
-        Two-way minus one-way deck DOFs (z [m], theta [rad] interleaved per point).
+        Two-way minus one-way deck DOFs, (K, 2 n_s) complex (z [m], theta [rad] interleaved).
     deck_force_N
-        Converged period-mean downward force of one unit on the deck per point [N].
+        ``P_k`` at the coupled state [N], (K, n_s).
     converged, iterations, residual_m, message
-        Convergence of the coupling iteration (residual: largest deck-DOF mismatch [m or rad]).
+        Convergence of the coupling (residual: largest deck-DOF mismatch [m or rad]).
     """
 
     excitation: HarmonicExcitation
-    deck_change: NDArray[np.float64]
-    deck_force_N: NDArray[np.float64]
+    response: object
+    deck_change: NDArray[np.complex128]
+    deck_force_N: NDArray[np.complex128]
     converged: bool
     iterations: int
     residual_m: float
     message: str
 
 
-def _with_static_deck_change(excitation: HarmonicExcitation, change: NDArray[np.float64], note: str) -> HarmonicExcitation:
-    deck = np.array(excitation.deck_displacement, dtype=complex)
-    deck[0] = deck[0] + change
-    source = f"{excitation.source}; {note}" if note else excitation.source
-    return HarmonicExcitation(excitation.omega_rad_s, deck, excitation.cargo_load_N, excitation.cargo_line_load_N_per_m, source)
+def _with_deck_change(excitation: HarmonicExcitation, change: NDArray, note: str) -> HarmonicExcitation:
+    K = change.shape[0]
+    ex = excitation if excitation.harmonic_count >= K else excitation.padded(K)
+    deck = np.array(ex.deck_displacement, dtype=complex)
+    deck[:K] += change
+    deck[0] = deck[0].real
+    source = f"{ex.source}; {note}" if note else ex.source
+    return HarmonicExcitation(ex.omega_rad_s, deck, ex.cargo_load_N, ex.cargo_line_load_N_per_m, source)
 
 
-def couple_still_water(
+def _pack(V: NDArray) -> NDArray[np.float64]:
+    return np.concatenate([V[0].real, V[1:].real.ravel(), V[1:].imag.ravel()])
+
+
+def _unpack(v: NDArray, K: int, n: int) -> NDArray[np.complex128]:
+    V = np.zeros((K, n), dtype=complex)
+    V[0] = v[:n]
+    m = (K - 1) * n
+    V[1:] = (v[n : n + m] + 1j * v[n + m :]).reshape(K - 1, n)
+    return V
+
+
+def couple_deck(
     model: StructuralModel,
     excitation: HarmonicExcitation,
     compliance: HullCompliance,
-    deck_forces: Callable[[HarmonicExcitation], NDArray[np.float64]],
+    solve: Callable[[HarmonicExcitation], object],
+    deck_forces: Callable[[HarmonicExcitation, object], NDArray],
+    harmonic_count: int,
     *,
+    preconditioner: Callable[[HarmonicExcitation], NDArray] | None = None,
     tolerance_m: float = 1e-10,
-    max_iterations: int = 20,
-) -> StillWaterCoupling:
-    """Solve ``v = n (Phi p(v) - D)`` for the still-water deck change ``v`` by Newton's method.
+    max_iterations: int = 40,
+    label: str = "",
+) -> DeckCoupling:
+    """Solve ``V = n C (P(V) - Q)`` for the deck change ``V`` (harmonics 0 .. K-1).
+
+    A quasi-Newton (Broyden) iteration with backtracking, started from the exact Jacobian of
+    the linear (bilateral) model by finite differences (the residual is affine there, so the
+    linear model converges in one step); Broyden's updates carry it to the unilateral model's
+    piecewise-affine residual, and when a step fails to reduce the residual the model's own
+    finite-difference Jacobian replaces the drifted matrix.
 
     Parameters
     ----------
@@ -214,48 +229,95 @@ def couple_still_water(
         The cargo model and its one-way excitation.
     compliance
         :func:`hull_compliance` at the model's sea-fastening points.
+    solve
+        ``excitation -> response`` of the cargo (the model being coupled).
     deck_forces
-        ``static excitation -> p``: solves the cargo's still-water state for the given static
-        excitation and returns :func:`deck_forces_N` of it. Affine for the linear model (one
-        Newton step is exact); piecewise affine with unilateral saddles.
+        ``(excitation, response) -> P`` (K, n_s), e.g. :func:`deck_forces_N`.
+    harmonic_count
+        K: harmonics of the deck coupled (1 = the still-water state only).
+    preconditioner
+        ``excitation -> P`` of the linear model, for ``J0`` (default: ``deck_forces`` of
+        ``solve``, i.e. the model itself).
     tolerance_m, max_iterations
-        Convergence: largest deck-DOF mismatch [m, rad], and the iteration limit.
+        Convergence: largest deck-DOF mismatch [m, rad]; iteration limit.
 
     Returns
     -------
-    StillWaterCoupling
+    DeckCoupling
         Never raises for non-convergence: ``converged=False`` with the residual.
     """
-    static = excitation.static_part()
-    n_v = model.deck_dof_count
+    K = int(harmonic_count)
+    n_o = model.deck_dof_count
+    Q = spread_load_N(model, excitation, K)
 
-    def residual(v: NDArray) -> tuple[NDArray, NDArray]:
-        p = deck_forces(_with_static_deck_change(static, v, ""))
-        return v - compliance.deck_change(p), p
+    def residual_of(forces: Callable[[HarmonicExcitation], NDArray], v: NDArray) -> NDArray:
+        exc = _with_deck_change(excitation, _unpack(v, K, n_o), "")
+        return v - _pack(compliance.deck_change(forces(exc), Q))
 
-    v = np.zeros(n_v)
-    r, p = residual(v)
-    step_m = 1e-7  # finite-difference step: well inside the millimetre scale of the deck change
+    state: dict[str, object] = {}
+
+    def forces_of_model(exc: HarmonicExcitation) -> NDArray:
+        response = solve(exc)
+        state["response"] = response
+        P = deck_forces(exc, response)
+        state["P"] = P
+        return P
+
+    size = n_o * (2 * K - 1)
+    step = 1e-7  # finite-difference step [m]: well inside the millimetre scale of the deck change
+
+    def jacobian(forces: Callable[[HarmonicExcitation], NDArray], v: NDArray, r: NDArray) -> NDArray:
+        J = np.empty((size, size))
+        for j in range(size):
+            dv = np.zeros(size)
+            dv[j] = step
+            J[:, j] = (residual_of(forces, v + dv) - r) / step
+        return J
+
+    v = np.zeros(size)
+    if preconditioner is not None:
+        J = jacobian(preconditioner, v, residual_of(preconditioner, v))
+    r = residual_of(forces_of_model, v)
+    if preconditioner is None:
+        J = jacobian(forces_of_model, v, r)
     it = 0
-    for it in range(1, max_iterations + 1):
-        J = np.empty((n_v, n_v))
-        for j in range(n_v):
-            dv = np.zeros(n_v)
-            dv[j] = step_m
-            J[:, j] = (residual(v + dv)[0] - r) / step_m
-        try:
-            v = v - np.linalg.solve(J, r)
-        except np.linalg.LinAlgError:
-            break
-        r, p = residual(v)
-        if float(np.max(np.abs(r))) <= tolerance_m:
-            break
     res = float(np.max(np.abs(r)))
+    refreshed = preconditioner is None
+    while res > tolerance_m and it < max_iterations:
+        it += 1
+        try:
+            dv = -np.linalg.solve(J, r)
+        except np.linalg.LinAlgError:
+            dv = None
+        accepted = False
+        alpha = 1.0
+        while dv is not None and alpha >= 1.0 / 16.0:
+            v_try = v + alpha * dv
+            r_try = residual_of(forces_of_model, v_try)
+            if float(np.linalg.norm(r_try)) < (1.0 - 1e-4 * alpha) * float(np.linalg.norm(r)):
+                accepted = True
+                break
+            alpha *= 0.5
+        if accepted:
+            s_v = alpha * dv
+            J += np.outer(r_try - r - J @ s_v, s_v) / float(s_v @ s_v)  # Broyden's ("good") update
+            v, r = v_try, r_try
+            res = float(np.max(np.abs(r)))
+            refreshed = False
+        elif not refreshed:
+            # Broyden's matrix has drifted (contact switches): the model's own Jacobian, once
+            J = jacobian(forces_of_model, v, r)
+            refreshed = True
+        else:
+            break
+    residual_of(forces_of_model, v)  # the response and forces at the final state
     ok = bool(np.isfinite(res) and res <= tolerance_m)
-    dz = v[0::2]
+    V = _unpack(v, K, n_o)
+    what = "still-water" if K == 1 else f"harmonics 0..{K - 1}"
     message = (
-        f"two-way still-water coupling {'converged' if ok else 'NOT converged'} in {it} Newton step(s), "
-        f"residual {res:.1e} m; deck change at the saddles {', '.join(f'{1e3 * d:+.2f}' for d in dz)} mm"
+        f"two-way coupling{(' (' + label + ')') if label else ''} of the deck, {what}: "
+        f"{'converged' if ok else 'NOT converged'} in {it} quasi-Newton step(s), residual {res:.1e} m; "
+        f"mean deck change at the saddles {', '.join(f'{1e3 * d:+.2f}' for d in V[0, 0::2].real)} mm"
     )
-    coupled = _with_static_deck_change(excitation, v, "two-way coupled still water")
-    return StillWaterCoupling(coupled, v, p, ok, it, res, message)
+    coupled = _with_deck_change(excitation, V, "two-way coupled deck")
+    return DeckCoupling(coupled, state["response"], V, np.asarray(state["P"]), ok, it, res, message)

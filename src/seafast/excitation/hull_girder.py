@@ -55,6 +55,7 @@ __all__ = [
     "WaveHullResponse",
     "still_water_response",
     "deflection_from_bending_moment",
+    "deck_load_influence",
     "wave_response",
     "iacs_wave_bending_moments_Nm",
     "iacs_wave_coefficient",
@@ -452,6 +453,50 @@ def still_water_response(
         sinkage_m=float(s),
         trim_rad=float(tr),
     )
+
+
+def deck_load_influence(
+    girder: HullGirder,
+    loading: WeightSource,
+    load_start_m: FloatArray,
+    load_end_m: FloatArray,
+    target_x_m: FloatArray,
+    n_points: int = 343,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Deck deflection and slope at ``target_x_m`` per newton of extra downward load on patches.
+
+    Each load j is 1 N spread uniformly over ``[load_start_m[j], load_end_m[j]]``; the ship is
+    re-balanced in sinkage and trim for every load, all at once (vectorised still-water solves
+    on one grid that has every patch edge as a node). While no section emerges the hull
+    model is linear, so the result is exact and independent of the probe size.
+
+    Returns
+    -------
+    deflection_m_per_N, slope_rad_per_N
+        Shape (n_targets, n_loads): response at target i to load j, relative to the still-water
+        state of ``loading`` (chord through AP and FP, as :func:`still_water_response`).
+    """
+    start = np.asarray(load_start_m, dtype=float).ravel()
+    end = np.asarray(load_end_m, dtype=float).ravel()
+    if start.size != end.size or np.any(end <= start):
+        raise ValueError("deck_load_influence: every load patch needs load_end_m > load_start_m")
+    bp = tuple(_check_loading_extent(girder, loading)) + tuple(start) + tuple(end)
+    x = _grid(girder, bp, n_points)
+    wa, wb = _weight_element_ends(girder, loading, x)
+    probe_N = 1.0e6  # numerically comfortable against the ship's ~3e8 N weight; exact by linearity
+    mid = 0.5 * (x[:-1] + x[1:])
+    inside = (mid[None, :] > start[:, None]) & (mid[None, :] < end[:, None])  # (n_loads, n_el)
+    extra = probe_N / (end - start)[:, None] * inside
+    wa_all = np.vstack([wa[None, :], wa[None, :] + extra])
+    wb_all = np.vstack([wb[None, :], wb[None, :] + extra])
+    zeta = np.zeros((wa_all.shape[0], x.size))
+    _, _, _, qa, qb = _balance(girder, x, wa_all, wb_all, zeta)
+    V, _ = _shear_moment(np.diff(x), qa, qb)
+    z, slope = _Beam.build(x, girder).solve(qa, qb, V)
+    spl = CubicHermiteSpline(x, z.T, slope.T, axis=0)
+    xt = np.asarray(target_x_m, dtype=float).ravel()
+    zt, st = spl(xt), spl(xt, 1)  # (n_targets, 1 + n_loads)
+    return (zt[:, 1:] - zt[:, :1]) / probe_N, (st[:, 1:] - st[:, :1]) / probe_N
 
 
 def deflection_from_bending_moment(

@@ -67,7 +67,10 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
         ax_c.plot(xc, st, color=c, lw=2, label=f"{mdl}, static")
         dyn = ds["cargo_deflection_m"].sel(load_case="dynamic", model=mdl).values * 1e3
         ax_c.fill_between(xc, dyn.min(axis=0), dyn.max(axis=0), color=c, alpha=0.15, label=f"{mdl}, dynamic envelope")
-    deck = ds["deck_rise_m"].sel(load_case="static").isel(period_fraction=0).values * 1e3
+    rise = ds["deck_rise_m"].sel(load_case="static")
+    if "model" in rise.dims:
+        rise = rise.sel(model="nonlinear")
+    deck = rise.isel(period_fraction=0).values * 1e3
     ax_c.plot(ds["saddle_x_m"].values, deck, "^", color="tab:green", ms=9, label="deck under saddles (static)")
     ax_c.set_xlabel("x along the cargo from its aft end [m]")
     ax_c.set_ylabel("deflection [mm]")

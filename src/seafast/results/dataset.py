@@ -44,6 +44,9 @@ def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Var
 def _seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitation, deck_z: np.ndarray) -> np.ndarray:
     """Straight line through the deck points under the outermost saddles, at every cargo node [m].
 
+    ``deck_z`` (N, n_s) are the deck deflections of one row, ``excitation`` that row's
+    excitation; returns (N, n_nodes).
+
     The frame in which the cargo's own deflection is reported: it moves with the deck at the
     sea-fastening, so the hull girder's deflection elsewhere along the ship (tens of mm
     relative to the ship's end chord) does not swamp the cargo's millimetres. With a single
@@ -55,9 +58,7 @@ def _seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitatio
         slope = (deck_z[..., -1] - deck_z[..., 0]) / (xs[-1] - xs[0])
     else:
         theta = excitation.deck_displacement[:, model.saddle_deck_dof + 1]
-        n_t = deck_z.shape[-2]
-        th_dyn = harmonics_to_time(theta, n_t)[:, 0]
-        slope = np.stack([np.full(n_t, np.real(theta[0, 0])), th_dyn])
+        slope = harmonics_to_time(theta, deck_z.shape[-2])[:, 0]
     return deck_z[..., :1] + slope[..., None] * (x - xs[0])
 
 
@@ -74,7 +75,7 @@ class CaseArrays:
     saddle_force_N: np.ndarray
     bending_moment_Nm: np.ndarray
     bending_stress_Pa: np.ndarray
-    deck_deflection_m: np.ndarray  # (load_case, period_fraction, saddle)
+    deck_deflection_m: np.ndarray  # (load_case, model, period_fraction, saddle)
     deck_rise_m: np.ndarray
     converged: np.ndarray  # (load_case, model)
     residual_norm: np.ndarray
@@ -101,8 +102,14 @@ def case_arrays(
     excitation: HarmonicExcitation,
     series: Mapping[tuple[str, str], PeriodTimeSeries],
     time_samples: int,
+    excitations: Mapping[tuple[str, str], HarmonicExcitation] | None = None,
 ) -> CaseArrays:
-    """Collect the four responses keyed by (load_case, model) into arrays, with moment lines."""
+    """Collect the four responses keyed by (load_case, model) into arrays, with moment lines.
+
+    ``excitations`` gives the excitation of each (load_case, model) when they differ (two-way
+    hull-cargo coupling); by default every row has ``excitation`` (its static part for the
+    static load case).
+    """
     nodes = model.cargo.node_x_m
     n_s = model.saddle_count
     disp = np.zeros((2, 2, time_samples, nodes.size))
@@ -116,9 +123,14 @@ def case_arrays(
     truncation = np.full((2, 2, n_s), np.nan)
     tensile = np.full((2, 2), np.nan)
     messages = np.empty((2, 2), dtype=object)
+    deck_all = np.zeros((2, 2, time_samples, n_s))
+    baseline = np.zeros((2, 2, time_samples, nodes.size))
     for i, lc in enumerate(LOAD_CASES):
-        exc = excitation.static_part() if lc == "static" else excitation
         for j, mdl in enumerate(MODELS):
+            exc = (excitations or {}).get((lc, mdl), excitation)
+            exc = exc.static_part() if lc == "static" else exc
+            deck_all[i, j] = harmonics_to_time(exc.deck_displacement[:, model.saddle_deck_dof], time_samples)
+            baseline[i, j] = _seafastening_baseline(model, exc, deck_all[i, j])
             ts = series[(lc, mdl)]
             disp[i, j] = ts.cargo_displacement_m[:, 0::2]
             comp[i, j] = ts.saddle_compression_m
@@ -134,15 +146,11 @@ def case_arrays(
                 truncation[i, j] = np.broadcast_to(ts.diagnostics["harmonic_truncation_indicator"], (n_s,))
             if "tensile_force_error_N" in ts.diagnostics:
                 tensile[i, j] = float(np.max(ts.diagnostics["tensile_force_error_N"]))
-    deck_static = np.real(excitation.deck_displacement[0, model.saddle_deck_dof])
-    deck_total = harmonics_to_time(excitation.deck_displacement[:, model.saddle_deck_dof], time_samples)
-    deck_all = np.stack([np.broadcast_to(deck_static, deck_total.shape), deck_total])  # (load_case, N, n_s)
-    baseline = _seafastening_baseline(model, excitation, deck_all)  # (load_case, N, n_x)
     is_nonlinear = (np.array(MODELS) == "nonlinear")[None, :, None, None]
     return CaseArrays(
         period_fraction=period_fraction(time_samples),
         x_moment_m=x_moment,
-        cargo_deflection_m=disp - baseline[:, None],
+        cargo_deflection_m=disp - baseline,
         cargo_deflection_vessel_frame_m=disp,
         saddle_compression_m=comp,
         saddle_gap_m=np.where(is_nonlinear, np.maximum(-comp, 0.0), 0.0),
@@ -199,11 +207,11 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
         "bending_moment_Nm": _var(dims4 + ("x_moment_m",), a.bending_moment_Nm, "cargo bending moment (sagging positive)", "N m"),
         "bending_stress_Pa": _var(dims4 + ("x_moment_m",), a.bending_stress_Pa, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"),
         "deck_deflection_m": _var(
-            ("load_case", "period_fraction", "saddle"), a.deck_deflection_m,
+            dims4 + ("saddle",), a.deck_deflection_m,
             "deck deflection under each saddle (hull elastic deflection, up positive)", "m",
         ),
         "deck_rise_m": _var(
-            ("load_case", "period_fraction", "saddle"), a.deck_rise_m,
+            dims4 + ("saddle",), a.deck_rise_m,
             "deck deflection under each saddle relative to the sea-fastening baseline (up positive)", "m",
         ),
         "saddle_stiffness_N_per_m": _var(("saddle",), model.saddle_stiffness_N_per_m, "saddle compression stiffness", "N/m"),

@@ -123,7 +123,8 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
     exc = html.escape(str(ds.attrs.get("excitation_source", "")))
     vessel_html = f"<p>Excitation: {exc}. Wave frequency {omega:.4f} rad/s (period {2 * math.pi / omega:.2f} s).</p>" if math.isfinite(omega) and omega > 0 else f"<p>Excitation: {exc}</p>"
     if ds.attrs.get("hull_cargo_coupling"):
-        vessel_html += f"<p>Hull-cargo coupling: {html.escape(str(ds.attrs['hull_cargo_coupling']))} (vessel.coupling = two_way).</p>"
+        lines = "".join(f"<li>{html.escape(line)}</li>" for line in str(ds.attrs["hull_cargo_coupling"]).splitlines())
+        vessel_html += f"<p>Hull-cargo coupling (vessel.coupling = two_way): the deck of each row iterated with the hull girder.</p><ul>{lines}</ul>"
     vessel_html += figs_html(["fig-hull-girder", "fig-raos", "fig-deck-motion"])
     if "fig-raos" not in by_id:
         vessel_html += '<p class="small">No rigid-body motions in this run (vessel.motions = none, or a deck-deflection table), so no RAO figure.</p>'
