@@ -54,10 +54,17 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
             ax.fill_between(x, sw + w.min(axis=0), sw + w.max(axis=0), color="0.8", label="still water + wave (envelope)")
         xs = aft + ds["saddle_x_m"].values
         ax.plot(xs, np.interp(xs, x, sw), "v", color="tab:green", ms=9, label="saddles")
+        if ds.attrs.get("hull_cargo_coupling") and "deck_deflection_m" in ds:
+            # the hull line is the one-way solution; mark where the coupled deck sits in still water
+            deck = ds["deck_deflection_m"].sel(load_case="static")
+            deck = deck.sel(model="nonlinear") if "model" in deck.dims else deck
+            ax.plot(xs, deck.isel(period_fraction=0).values * 1e3, "o", mfc="none", color="tab:purple", ms=9,
+                    label="deck under the saddles, two-way coupled (still water)")
         ax.axvspan(aft, aft + float(ds["x_cargo_m"].max()), color="tab:orange", alpha=0.15, label="cargo")
         ax.set_xlabel("x along the ship from the aft perpendicular [m]")
         ax.set_ylabel("hull deflection [mm]")
-        ax.set_title("Hull deflection (relative to the chord through the ship's ends)")
+        ax.set_title("Hull deflection (relative to the chord through the ship's ends)"
+                     + ("; lines: one-way" if ds.attrs.get("hull_cargo_coupling") else ""))
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
     xc = ds["x_cargo_m"].values
