@@ -16,7 +16,7 @@ import xarray as xr
 import seafast
 from seafast.config.schema import Case
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment
+from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.results.dataset import LOAD_CASES, MODELS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
@@ -33,18 +33,6 @@ __all__ = [
     "couple_hull_and_cargo",
     "frequency_sweep",
 ]
-
-
-def cargo_geometry(case: Case) -> CargoGeometry:
-    """The cargo's tube segments and material from the case."""
-    c = case.cargo
-    if c.sections is None:
-        segments = (TubeSegment(0.0, c.length_m, c.diameter_m, c.diameter_m, c.wall_thickness_m),)
-    else:
-        segments = tuple(
-            TubeSegment(s.x_start_m, s.x_end_m, s.diameter_start_m, s.diameter_end_m, s.wall_thickness_m) for s in c.sections
-        )
-    return CargoGeometry(segments, c.youngs_modulus_Pa, c.density_kg_per_m3, c.poisson_ratio)
 
 
 def build_model(case: Case) -> StructuralModel:

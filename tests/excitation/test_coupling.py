@@ -178,3 +178,20 @@ def test_a_coupling_that_does_not_converge_is_flagged_not_hidden(monkeypatch):
     assert not any(row["converged"] for row in result.summary)
     for message in result.arrays.solver_message.ravel():
         assert message.startswith("two-way coupling") and "NOT converged" in message
+
+
+def test_a_tapered_pile_weighs_the_same_on_the_hull_and_in_the_cargo_model():
+    sections = [
+        {"x_start_m": 0.0, "x_end_m": 30.0, "diameter_start_m": 8.0, "diameter_end_m": 8.0, "wall_thickness_m": 0.08},
+        {"x_start_m": 30.0, "x_end_m": 74.0, "diameter_start_m": 8.0, "diameter_end_m": 6.5, "wall_thickness_m": 0.06},
+    ]
+    case = load_case(overrides={**NO_MOTIONS, "cargo.sections": sections, "vessel.coupling": "two_way"})
+    model = build_model(case)
+    vessel = vessel_excitation(case)
+    item = vessel.loading.item("cargo")
+    # the beam elements take their section at mid-element (1 m elements): 1e-5 from the exact taper
+    assert item.mass_kg == pytest.approx(case.cargo.units_abreast * model.cargo.mass_kg, rel=1e-4)
+    rows = couple_hull_and_cargo(case, model, vessel.cargo_excitation(model, case), vessel)
+    static = rows[("static", "nonlinear")]
+    assert static.converged, static.message
+    assert static.deck_force_N[0].real.sum() == pytest.approx(model.cargo.mass_kg * case.model.gravity_m_per_s2, rel=1e-6)

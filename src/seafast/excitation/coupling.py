@@ -100,11 +100,14 @@ def hull_compliance(
 def spread_load_N(model: StructuralModel, excitation: HarmonicExcitation, harmonic_count: int) -> NDArray[np.complex128]:
     """``Q_k``: one unit's load on the hull as the one-way model spreads it, on the cargo nodes [N].
 
-    Downward positive, shape (K, n_nodes): the weight at k = 0, the rigid-body inertia load of
-    the excitation at k >= 1.
+    Downward positive, shape (K, n_nodes): at k = 0 the weight spread uniformly over the cargo's
+    length, as the one-way hull loading carries it (also for a tapered pile), lumped on each
+    node's tributary length; at k >= 1 the rigid-body inertia load of the excitation.
     """
+    x = model.cargo.node_x_m
+    edges = np.concatenate([[x[0]], 0.5 * (x[1:] + x[:-1]), [x[-1]]])
     Q = np.zeros((harmonic_count, model.cargo.node_count), dtype=complex)
-    Q[0] = -model.cargo.gravity_load_N[0::2]
+    Q[0] = model.cargo.mass_kg * model.gravity_m_per_s2 * np.diff(edges) / (x[-1] - x[0])
     m = min(harmonic_count, excitation.harmonic_count)
     Q[1:m] = -excitation.cargo_load_N[1:m, 0::2]
     return Q

@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
 from seafast.config.schema import Case
+from seafast.model.from_case import cargo_geometry
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
 from seafast.excitation.harmonic import HarmonicExcitation
@@ -46,7 +47,6 @@ from seafast.excitation.hull_girder import (
     still_water_response,
     wave_response,
 )
-from seafast.model.sections import tube_area_m2
 from seafast.model.structure import StructuralModel
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_distribution_kg_per_m
@@ -234,14 +234,8 @@ def hull_form_of(case: Case) -> HullForm:
 
 
 def _cargo_mass_kg(case: Case) -> float:
-    c = case.cargo
-    if c.sections is None:
-        return c.density_kg_per_m3 * float(tube_area_m2(c.diameter_m, c.wall_thickness_m)) * c.length_m
-    return sum(
-        c.density_kg_per_m3 * (s.x_end_m - s.x_start_m)
-        * float(tube_area_m2(0.5 * (s.diameter_start_m + s.diameter_end_m), s.wall_thickness_m))
-        for s in c.sections
-    )
+    """Mass of one cargo unit [kg], from the same geometry the cargo model is built from."""
+    return cargo_geometry(case).mass_kg()
 
 
 def vessel_loading_of(case: Case, hull: HullForm) -> tuple[VesselLoading, str]:
