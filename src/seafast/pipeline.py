@@ -80,10 +80,14 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
     return HBMOptions(**settings)
 
 
-def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool) -> Any:
+def solve_nonlinear(
+    model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: Any = None
+) -> Any:
     """Nonlinear (unilateral-saddle) response by the case's method; returns a PeriodicResponse.
 
     ``static=True`` solves the still-water state alone (harmonic balance with H = 0).
+    ``warm_start``: a neighbouring PeriodicResponse of the same case to start the condensed HBM
+    from (ignored by the other methods).
     """
     from seafast.solvers.hbm import solve_hbm
 
@@ -105,7 +109,10 @@ def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case
 
         return solve_time_domain(model, excitation, time_samples=s.time_samples)
     opts = _hbm_options(case)
-    return solve_hbm(model, excitation, opts)
+    start = None
+    if warm_start is not None and s.formulation == "condensed":
+        start = np.asarray(warm_start.saddle_compression_time_m)
+    return solve_hbm(model, excitation, opts, initial_compression_m=start)
 
 
 @dataclass(frozen=True)
@@ -244,6 +251,16 @@ def couple_hull_and_cargo(
     def linear_forces(k: int) -> Callable[[HarmonicExcitation], Any]:
         return lambda exc: deck_forces_N(model, exc, solve_linear(model, exc), False, k)
 
+    last: dict[str, Any] = {}
+
+    def warm_dynamic(exc: HarmonicExcitation) -> Any:
+        # each coupling iterate starts the HBM from the previous one: the deck moves little
+        # between iterates, and the solution followed stays on one branch
+        response = solve_nonlinear(model, exc, case, static=False, warm_start=last.get("response"))
+        if getattr(response, "converged", False):
+            last["response"] = response
+        return response
+
     out = {
         ("static", "linear"): couple_deck(
             model, static, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, 1), 1, label="static, linear"
@@ -257,7 +274,7 @@ def couple_hull_and_cargo(
             label="dynamic, linear",
         ),
         ("dynamic", "nonlinear"): couple_deck(
-            model, excitation, compliance, lambda e: solve_nonlinear(model, e, case, static=False),
+            model, excitation, compliance, warm_dynamic,
             lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear), k_nonlinear,
             preconditioner=linear_forces(k_nonlinear), label="dynamic, nonlinear",
         ),

@@ -8,7 +8,6 @@ The first test needing the case runs the BEM once (~15 s, then cached on disk).
 
 from __future__ import annotations
 
-import time
 
 import numpy as np
 import pytest
@@ -91,15 +90,12 @@ def test_physics_of_the_base_case(real_case):
 
 @pytest.mark.parametrize("opts", [EXACT_16, TANH_5], ids=["exact-H16", "tanh-H5"])
 def test_full_equals_condensed(real_case, opts):
-    """All-cargo-DOF formulation (sparse LU per Newton iteration) = condensed, to 1e-6, in < 2 s."""
+    """All-cargo-DOF formulation (sparse LU per Newton iteration) = condensed, to 1e-6."""
     model, ex = real_case
     rc = solve_hbm(model, ex, HBMOptions(**opts))
-    t0 = time.perf_counter()
     rf = solve_hbm(model, ex, HBMOptions(formulation="full", **opts))
-    elapsed = time.perf_counter() - t0
     assert rc.converged and rf.converged, rf.message
     assert _direct(rf), rf.message
-    assert elapsed < 2.0
     scale_f = np.abs(rc.saddle_force_time_N).max()
     scale_x = np.abs(rc.cargo_displacement_time_m).max()
     assert np.abs(rf.saddle_force_time_N - rc.saddle_force_time_N).max() <= 1e-6 * scale_f
@@ -140,18 +136,3 @@ def test_exact_h16_agrees_with_references(real_case):
     rms = float(np.sqrt(np.mean((r.saddle_force_time_N - qs.saddle_force_time_N) ** 2)) / qs.max_saddle_force_N)
     assert rms < 0.01
     assert _force_error(r, td) <= 1.05 * _force_error(qs, td)
-
-
-def test_condensed_speed_real_case(real_case):
-    model, ex = real_case
-    for opts, limit_ms in ((EXACT_16, 5.0), (TANH_5, 3.0)):
-        o = HBMOptions(**opts)
-        solve_hbm(model, ex, o)
-        times = []
-        for _ in range(30):
-            t0 = time.perf_counter()
-            solve_hbm(model, ex, o)
-            times.append(time.perf_counter() - t0)
-        median_ms = 1e3 * float(np.median(times))
-        print(f"\nreal case condensed HBM {opts}: median {median_ms:.2f} ms")
-        assert median_ms < limit_ms

@@ -927,7 +927,13 @@ def solve_condensed(
     return CondensedSolution(U, corr, a.converged, a.residual, a.iterations, a.evaluations, a.note)
 
 
-def solve_hbm(model: StructuralModel, excitation: HarmonicExcitation, options: HBMOptions | None = None) -> PeriodicResponse:
+def solve_hbm(
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    options: HBMOptions | None = None,
+    *,
+    initial_compression_m: NDArray | None = None,
+) -> PeriodicResponse:
     """Periodic steady state with unilateral saddles by harmonic balance + AFT.
 
     Parameters
@@ -942,6 +948,10 @@ def solve_hbm(model: StructuralModel, excitation: HarmonicExcitation, options: H
     options
         :class:`HBMOptions` (defaults: H = 5, N = 128, tanh law, kappa = 1000 1/m, condensed,
         Newton).
+    initial_compression_m
+        Optional start: saddle compressions sampled on the options' time grid, (N, n_s) [m]
+        (e.g. a neighbouring solution's ``saddle_compression_time_m``; condensed formulation
+        only). Default: the better of the linear solution and the quasi-static predictor.
 
     Returns
     -------
@@ -954,7 +964,13 @@ def solve_hbm(model: StructuralModel, excitation: HarmonicExcitation, options: H
     law = options.law
     ops = condensed_operators(model, excitation, H)
     if options.formulation == "condensed":
-        sol = solve_condensed(ops, options)
+        start = None
+        if initial_compression_m is not None:
+            samples = np.asarray(initial_compression_m, dtype=float)
+            if samples.shape != (N, model.saddle_count):
+                raise ValueError(f"initial_compression_m: shape {samples.shape}; must be (time_samples, n_saddles) = {(N, model.saddle_count)}")
+            start = real_dft_matrices(H, N)[1] @ samples
+        sol = solve_condensed(ops, options, start)
         C = real_to_complex_harmonics(sol.correction_force)  # (H+1, n_s)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
         U = sol.saddle_compression

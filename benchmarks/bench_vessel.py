@@ -1,0 +1,92 @@
+"""Vessel side and hull-cargo coupling: hull-girder solves, BEM, and one-way vs two-way runs.
+
+Run ``python benchmarks/bench_vessel.py`` (add ``--no-bem`` to skip the ~15 s BEM run). The BEM
+is timed on the production mesh with an empty temporary cache, as a first run on a new hull
+would be (issue target: under a minute). Prints the figures; the last line is ``key=value``
+pairs (INTERFACE.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import tempfile
+import time
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+
+def timed(fn, repeats: int):
+    out, times = None, []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return out, 1e3 * float(np.median(times))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--no-bem", action="store_true", help="skip the BEM run")
+    args = parser.parse_args()
+
+    from seafast.config import load_case
+    from seafast.excitation.coupling import hull_compliance
+    from seafast.excitation.hull_girder import still_water_response, wave_response
+    from seafast.excitation.vessel import _motions, hull_form_of, vessel_excitation
+    from seafast.pipeline import build_model, run_case
+
+    one_way = load_case()
+    two_way = load_case(overrides={"vessel.coupling": "two_way"})
+    model = build_model(one_way)
+    vessel = vessel_excitation(one_way)  # BEM from the disk cache (computed on first use)
+    with threadpool_limits(1):
+        _, t_still = timed(lambda: still_water_response(vessel.girder, vessel.loading), 20)
+        _, t_wave = timed(lambda: wave_response(vessel.girder, vessel.loading, 171.0, 3.0), 5)
+        _, t_comp = timed(lambda: hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, 4), 10)
+        run_case(one_way), run_case(two_way)  # warm
+        r1, t_one = timed(lambda: run_case(one_way), 5)
+        r2, t_two = timed(lambda: run_case(two_way), 5)
+    print(f"still-water hull girder (343 nodes, balance + Timoshenko beam)      median {t_still:8.2f} ms")
+    print(f"quasi-static wave response (64 crest positions, vectorised)          median {t_wave:8.2f} ms")
+    print(f"hull compliance at the saddles for loads on all {model.cargo.node_count} cargo nodes      median {t_comp:8.2f} ms "
+          f"({t_comp / t_still:.1f}x one still-water solve)")
+    print(f"base case run_case, one-way (4 solves; vessel from the in-memory cache) median {t_one:8.2f} ms")
+    print(f"base case run_case, two-way (4 rows coupled)                          median {t_two:8.2f} ms ({t_two / t_one:.1f}x one-way)")
+    for line in r2.attrs["hull_cargo_coupling"].splitlines():
+        print(f"  {line}")
+    f1 = {(r["load_case"], r["model"]): r["F_N"] for r in r1.summary}
+    f2 = {(r["load_case"], r["model"]): r["F_N"] for r in r2.summary}
+    for key in f1:
+        print(f"  peak saddle force {key[0]:7s} {key[1]:9s}: one-way {f1[key] / 1e6:7.3f} MN, two-way {f2[key] / 1e6:7.3f} MN "
+              f"({f2[key] / f1[key] - 1.0:+.1%})")
+
+    t_bem = math.nan
+    if not args.no_bem:
+        hull = hull_form_of(one_way)
+        previous = os.environ.get("SEAFAST_CACHE_DIR")
+        with tempfile.TemporaryDirectory() as cache, threadpool_limits(None):
+            os.environ["SEAFAST_CACHE_DIR"] = cache  # an empty cache: a first run on a new hull
+            try:
+                t0 = time.perf_counter()
+                m = _motions(one_way, hull, vessel.loading)
+                t_bem = time.perf_counter() - t0
+            finally:
+                if previous is None:
+                    os.environ.pop("SEAFAST_CACHE_DIR", None)
+                else:
+                    os.environ["SEAFAST_CACHE_DIR"] = previous
+        heave, pitch = m.rao_at(vessel.omega_rad_s)
+        print(f"BEM (capytaine, {np.asarray(m.omega_rad_s).size} frequencies, empty cache) {t_bem:6.1f} s "
+              f"(target 60 s: {60.0 / t_bem:.1f}x margin); RAOs at {vessel.omega_rad_s:.3f} rad/s: "
+              f"heave {abs(heave):.3f} m/m, pitch {np.degrees(abs(pitch)):.3f} deg/m")
+    print(
+        f"still_water_ms={t_still:.3g} wave_ms={t_wave:.3g} compliance_ms={t_comp:.3g} run_one_way_ms={t_one:.3g} "
+        f"run_two_way_ms={t_two:.3g} two_way_vs_one_way={t_two / t_one:.2f} bem_s={t_bem:.3g}"
+    )
+
+
+if __name__ == "__main__":
+    main()
