@@ -236,7 +236,7 @@ def couple_hull_and_cargo(
     dynamic rows. Returns :class:`~seafast.excitation.coupling.DeckCoupling` per row, keyed
     ``(load_case, model)``; each carries the coupled excitation and the cargo's response.
     """
-    from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance
+    from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
 
     if vessel is None or getattr(vessel, "girder", None) is None or getattr(vessel, "loading", None) is None:
         raise ValueError("vessel.coupling = 'two_way' needs the computed hull girder and its loading (no vessel data was given)")
@@ -244,12 +244,11 @@ def couple_hull_and_cargo(
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
     k_nonlinear = max(case.solver.harmonics + 1, k_linear)
+    omega = excitation.omega_rad_s
+    jac = {k: linear_coupling_jacobian(model, omega, compliance, k) for k in {1, k_linear, k_nonlinear}}
 
     def linear(exc: HarmonicExcitation) -> Any:
         return solve_linear(model, exc)
-
-    def linear_forces(k: int) -> Callable[[HarmonicExcitation], Any]:
-        return lambda exc: deck_forces_N(model, exc, solve_linear(model, exc), False, k)
 
     last: dict[str, Any] = {}
 
@@ -263,20 +262,21 @@ def couple_hull_and_cargo(
 
     out = {
         ("static", "linear"): couple_deck(
-            model, static, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, 1), 1, label="static, linear"
+            model, static, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, 1), 1,
+            jacobian0=jac[1], label="static, linear",
         ),
         ("static", "nonlinear"): couple_deck(
             model, static, compliance, lambda e: solve_nonlinear(model, e, case, static=True),
-            lambda e, r: deck_forces_N(model, e, r, True, 1), 1, preconditioner=linear_forces(1), label="static, nonlinear",
+            lambda e, r: deck_forces_N(model, e, r, True, 1), 1, jacobian0=jac[1], label="static, nonlinear",
         ),
         ("dynamic", "linear"): couple_deck(
             model, excitation, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, k_linear), k_linear,
-            label="dynamic, linear",
+            jacobian0=jac[k_linear], label="dynamic, linear",
         ),
         ("dynamic", "nonlinear"): couple_deck(
             model, excitation, compliance, warm_dynamic,
             lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear), k_nonlinear,
-            preconditioner=linear_forces(k_nonlinear), label="dynamic, nonlinear",
+            jacobian0=jac[k_nonlinear], label="dynamic, nonlinear",
         ),
     }
     return out

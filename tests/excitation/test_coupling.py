@@ -195,3 +195,26 @@ def test_a_tapered_pile_weighs_the_same_on_the_hull_and_in_the_cargo_model():
     static = rows[("static", "nonlinear")]
     assert static.converged, static.message
     assert static.deck_force_N[0].real.sum() == pytest.approx(model.cargo.mass_kg * case.model.gravity_m_per_s2, rel=1e-6)
+
+
+def test_the_analytic_linear_jacobian_equals_finite_differences(coupled_in_waves):
+    """``I - n C S_k`` per harmonic against finite differences of the linear model's residual."""
+    from seafast.excitation import coupling
+
+    case, model, excitation, _ = coupled_in_waves
+    vessel = vessel_excitation(case)
+    compliance = coupling.hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, case.cargo.units_abreast)
+    K, n_o = 3, model.deck_dof_count
+    analytic = coupling.linear_coupling_jacobian(model, excitation.omega_rad_s, compliance, K)
+    Q = coupling.spread_load_N(model, excitation, K)
+
+    def residual(v):
+        exc = coupling._with_deck_change(excitation, coupling._unpack(v, K, n_o), "")
+        P = deck_forces_N(model, exc, solve_linear(model, exc), False, K)
+        return v - coupling._pack(compliance.deck_change(P, Q))
+
+    size = n_o * (2 * K - 1)
+    r0 = residual(np.zeros(size))
+    fd = np.column_stack([(residual(1e-6 * np.eye(size)[j]) - r0) / 1e-6 for j in range(size)])
+    assert np.abs(analytic - np.eye(size)).max() > 0.1  # the coupling is not negligible
+    np.testing.assert_allclose(analytic, fd, rtol=0, atol=1e-6 * np.abs(analytic).max())

@@ -39,7 +39,15 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.periodic import harmonics_to_time
 from seafast.vessel.loading import VesselLoading
 
-__all__ = ["HullCompliance", "DeckCoupling", "hull_compliance", "deck_forces_N", "spread_load_N", "couple_deck"]
+__all__ = [
+    "HullCompliance",
+    "DeckCoupling",
+    "hull_compliance",
+    "deck_forces_N",
+    "spread_load_N",
+    "linear_coupling_jacobian",
+    "couple_deck",
+]
 
 
 @dataclass(frozen=True)
@@ -205,6 +213,39 @@ def _unpack(v: NDArray, K: int, n: int) -> NDArray[np.complex128]:
     return V
 
 
+def linear_coupling_jacobian(model: StructuralModel, omega_rad_s: float, compliance: HullCompliance, harmonic_count: int) -> NDArray:
+    """Exact Jacobian of the coupling residual for the linear (bilateral) model, real packing.
+
+    Per harmonic the deck forces respond to the deck DOFs through the cargo's dynamic stiffness
+    seen from the deck, ``S_k = K_oo - K_oc K_d^cc(k w)^-1 K_co`` (saddle rows), so the residual
+    ``V - n C (P(V) - Q)`` has the Jacobian ``I - n C S_k`` per harmonic, split into real and
+    imaginary parts in the packing of :func:`couple_deck`.
+    """
+    K = int(harmonic_count)
+    n_o = model.deck_dof_count
+    sad = model.saddle_deck_dof
+    C = np.empty((n_o, model.saddle_count))
+    C[0::2] = compliance.deflection_m_per_N[:, compliance.saddle_node]
+    C[1::2] = compliance.slope_rad_per_N[:, compliance.saddle_node]
+    size = n_o * (2 * K - 1)
+    J = np.eye(size)
+    m = (K - 1) * n_o
+    for k in range(K):
+        Kd_cc, Kco, Koc, Koo = model.dynamic_stiffness(k * omega_rad_s, include_saddles=True)
+        S = (Koo - Koc @ np.linalg.solve(Kd_cc, Kco))[sad, :]
+        M = compliance.units_abreast * C @ S
+        if k == 0:
+            J[:n_o, :n_o] -= np.real(M)
+            continue
+        re = slice(n_o + (k - 1) * n_o, n_o + k * n_o)
+        im = slice(n_o + m + (k - 1) * n_o, n_o + m + k * n_o)
+        J[re, re] -= M.real
+        J[re, im] += M.imag
+        J[im, re] -= M.imag
+        J[im, im] -= M.real
+    return J
+
+
 def couple_deck(
     model: StructuralModel,
     excitation: HarmonicExcitation,
@@ -213,18 +254,18 @@ def couple_deck(
     deck_forces: Callable[[HarmonicExcitation, object], NDArray],
     harmonic_count: int,
     *,
-    preconditioner: Callable[[HarmonicExcitation], NDArray] | None = None,
+    jacobian0: NDArray | None = None,
     tolerance_m: float = 1e-10,
     max_iterations: int = 40,
     label: str = "",
 ) -> DeckCoupling:
     """Solve ``V = n C (P(V) - Q)`` for the deck change ``V`` (harmonics 0 .. K-1).
 
-    A quasi-Newton (Broyden) iteration with backtracking, started from the exact Jacobian of
-    the linear (bilateral) model by finite differences (the residual is affine there, so the
-    linear model converges in one step); Broyden's updates carry it to the unilateral model's
-    piecewise-affine residual, and when a step fails to reduce the residual the model's own
-    finite-difference Jacobian replaces the drifted matrix.
+    A quasi-Newton (Broyden) iteration with backtracking, started from ``jacobian0`` (the exact
+    Jacobian of the linear model, :func:`linear_coupling_jacobian`: the residual is affine
+    there, so the linear model converges in one step); Broyden's updates carry it to the
+    unilateral model's piecewise-affine residual, and when a step fails to reduce the residual
+    the model's own finite-difference Jacobian replaces the drifted matrix.
 
     Parameters
     ----------
@@ -238,9 +279,9 @@ def couple_deck(
         ``(excitation, response) -> P`` (K, n_s), e.g. :func:`deck_forces_N`.
     harmonic_count
         K: harmonics of the deck coupled (1 = the still-water state only).
-    preconditioner
-        ``excitation -> P`` of the linear model, for ``J0`` (default: ``deck_forces`` of
-        ``solve``, i.e. the model itself).
+    jacobian0
+        The starting Jacobian, e.g. :func:`linear_coupling_jacobian` (default: finite
+        differences of the model itself).
     tolerance_m, max_iterations
         Convergence: largest deck-DOF mismatch [m, rad]; iteration limit.
 
@@ -278,14 +319,11 @@ def couple_deck(
         return J
 
     v = np.zeros(size)
-    if preconditioner is not None:
-        J = jacobian(preconditioner, v, residual_of(preconditioner, v))
     r = residual_of(forces_of_model, v)
-    if preconditioner is None:
-        J = jacobian(forces_of_model, v, r)
+    J = jacobian(forces_of_model, v, r) if jacobian0 is None else np.array(jacobian0, dtype=float)
     it = 0
     res = float(np.max(np.abs(r)))
-    refreshed = preconditioner is None
+    refreshed = jacobian0 is None
     while res > tolerance_m and it < max_iterations:
         it += 1
         try:
