@@ -167,3 +167,9 @@ def test_scripting_entry_points():
     assert result.summary[0]["F_N"] == pytest.approx(6.3e6, rel=0.05)
     with pytest.raises(AttributeError):
         seafast.no_such_thing  # noqa: B018
+
+
+def test_sweep_says_it_cannot_couple(capsys):
+    code = main(["sweep", "--set", "vessel.coupling=two_way", "--set", "vessel.motions=none"])
+    assert code == 2
+    assert "vessel.coupling" in capsys.readouterr().err

@@ -301,11 +301,15 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
     """
     from seafast.solvers.continuation import frequency_response
 
-    model = build_model(case)
-    excitation, vessel = _excitation(case, model)
     if case.vessel.coupling == "two_way":
-        # the sweep follows the wave-coupled deck of the case's own frequency
-        excitation = couple_hull_and_cargo(case, model, excitation, vessel)[("dynamic", "nonlinear")].excitation
+        # the coupled deck depends on the cargo's response at each frequency: continuation
+        # would have to re-couple at every point, which it does not
+        raise ValueError(
+            "vessel.coupling = 'two_way': the frequency sweep supports 'one_way' only (the coupled deck changes "
+            "with frequency); run the sweep with --set vessel.coupling=one_way, or single frequencies with seafast run"
+        )
+    model = build_model(case)
+    excitation, _ = _excitation(case, model)
     # continuation runs on the condensed system with Newton correctors; its corrector's
     # round-off floor near resonance is ~1e-9, hence the tolerance floor
     opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
