@@ -10,6 +10,7 @@ from seafast.excitation.hull_girder import (
     HullGirder,
     deck_deflection_at,
     deck_harmonics_at,
+    deck_load_influence,
     deck_rise_m,
     deflection_from_bending_moment,
     iacs_wave_bending_moments_Nm,
@@ -265,3 +266,24 @@ def test_iacs_formula():
     assert hog == pytest.approx(190 * cw * 171**2 * 42 * 0.686, rel=1e-12)
     assert sag == pytest.approx(-110 * cw * 171**2 * 42 * (0.686 + 0.7), rel=1e-12)
     assert hog > 0 > sag
+
+
+
+def test_deck_load_influence_equals_hull_solutions_with_the_loads_added(base):
+    """The vectorised compliance (all probe loads in one set of solves) against one full
+    still-water solution per load (the hull model is linear while no section emerges)."""
+    girder, loading, still = base
+    start = np.array([60.0, 84.5, 110.0])
+    end = start + 1.0
+    targets = 0.5 * (start + end)
+    z, s = deck_load_influence(girder, loading, start, end, targets)
+    z0, s0 = deck_deflection_at(still, targets)
+    for j in range(start.size):
+        probe = WeightItem(f"probe {j}", start[j], end[j], 2.0e6 / G)
+        zj, sj = deck_deflection_at(still_water_response(girder, loading.with_items(probe)), targets)
+        np.testing.assert_allclose(z[:, j], (zj - z0) / 2.0e6, rtol=1e-5, atol=1e-16)
+        np.testing.assert_allclose(s[:, j], (sj - s0) / 2.0e6, rtol=1e-4, atol=1e-17)
+    assert z[1, 1] < 0.0  # a load pushes the deck under it down (relative to its neighbours)
+    assert z[1, 1] < z[0, 1] and z[1, 1] < z[2, 1]
+    with pytest.raises(ValueError, match="load_end_m > load_start_m"):
+        deck_load_influence(girder, loading, end, start, targets)
