@@ -292,6 +292,24 @@ def solve_quasi_static(
 TIME_DOMAIN_FORMULATIONS = ("full", "condensed")
 
 
+def _time_domain_options(
+    time_samples: int, steps_per_period: int, max_periods: int, tolerance: float, hht_alpha: float,
+    harmonics_for_indicator: int, formulation: str, **extra: float,
+) -> dict:
+    """The settings a time-domain result records (``PeriodicResponse.options``)."""
+    return {
+        "time_samples": int(time_samples),
+        "steps_per_period": int(steps_per_period),
+        "max_periods": int(max_periods),
+        "tolerance": float(tolerance),
+        "hht_alpha": float(hht_alpha),
+        "harmonics_for_indicator": int(harmonics_for_indicator),
+        "contact_law": "exact",
+        "formulation": formulation,
+        **extra,
+    }
+
+
 def solve_time_domain(
     model: StructuralModel,
     excitation: HarmonicExcitation,
@@ -542,18 +560,10 @@ def _time_domain_full(
         if check.settled(delta_out):
             break
     converged, change = check.converged, check.change
-    options = {
-        "time_samples": N,
-        "steps_per_period": S,
-        "max_periods": int(max_periods),
-        "tolerance": float(tolerance),
-        "hht_alpha": alpha,
-        "harmonics_for_indicator": int(harmonics_for_indicator),
-        "contact_law": "exact",
-        "formulation": "full",
-        "contact_states_factorised": len(step.factors),
-        "solves_per_step": step.solves / max(steps, 1),
-    }
+    options = _time_domain_options(
+        N, S, max_periods, tolerance, alpha, harmonics_for_indicator, "full",
+        contact_states_factorised=len(step.factors), solves_per_step=step.solves / max(steps, 1),
+    )
     msg = (
         f"full-DOF formulation: HHT-alpha (alpha={alpha:g}) on {n_c} cargo DOFs, exact unilateral saddle springs by active-set "
         f"Newton ({step.solves / max(steps, 1):.3f} banded solves/step, {len(step.factors)} contact states factorised"
@@ -643,16 +653,7 @@ def _time_domain_condensed(
         if check.settled(delta_out):
             break
     converged, change = check.converged, check.change
-    options = {
-        "time_samples": N,
-        "steps_per_period": S,
-        "max_periods": int(max_periods),
-        "tolerance": float(tolerance),
-        "hht_alpha": alpha,
-        "harmonics_for_indicator": int(harmonics_for_indicator),
-        "contact_law": "exact",
-        "formulation": "condensed",
-    }
+    options = _time_domain_options(N, S, max_periods, tolerance, alpha, harmonics_for_indicator, "condensed")
     msg = (
         f"condensed formulation: HHT-alpha (alpha={alpha:g}) on {model.cargo_dof_count} cargo DOFs, saddles bilateral in K "
         f"and each step's contact condensed on the saddles, exact contact, {S} steps/period; "
