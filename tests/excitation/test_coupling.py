@@ -129,6 +129,13 @@ def test_two_way_coupling_unloads_the_middle_saddle_of_the_base_case():
     assert 0.75 * f1 < f2 < 0.9 * f1
     assert _static(two, "linear")["F_N"] == pytest.approx(f2, rel=5e-3)
     assert two.attrs["hull_cargo_coupling"].count("converged in") == 4
+    # results.nc: each model's own deck, and the one-way layout holding the nonlinear one
+    ds = two.dataset
+    per_model = ds["deck_deflection_per_model_m"]
+    np.testing.assert_array_equal(ds["deck_deflection_m"].values, per_model.sel(model="nonlinear").values)
+    one_deck = one.dataset["deck_deflection_per_model_m"]
+    assert float(np.abs(one_deck.sel(model="linear") - one_deck.sel(model="nonlinear")).max()) == 0.0
+    assert float(np.abs(per_model.sel(load_case="static") - one_deck.sel(load_case="static")).max()) > 5e-3
 
 
 @pytest.mark.parametrize("method", ["quasi_static", "time_domain"])

@@ -206,13 +206,23 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
         "contact_state": _var(dims4 + ("saddle",), (a.saddle_compression_m > 0).astype(np.int8), "saddle in contact (1) or detached (0)", "1"),
         "bending_moment_Nm": _var(dims4 + ("x_moment_m",), a.bending_moment_Nm, "cargo bending moment (sagging positive)", "N m"),
         "bending_stress_Pa": _var(dims4 + ("x_moment_m",), a.bending_stress_Pa, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"),
+        # the deck the nonlinear (physical) cargo stands on, in the layout of one-way results;
+        # with two-way coupling each model has its own deck: the *_per_model_m variables
         "deck_deflection_m": _var(
-            dims4 + ("saddle",), a.deck_deflection_m,
-            "deck deflection under each saddle (hull elastic deflection, up positive)", "m",
+            ("load_case", "period_fraction", "saddle"), a.deck_deflection_m[:, 1],
+            "deck deflection under each saddle (hull elastic deflection, up positive), under the nonlinear model's cargo", "m",
         ),
         "deck_rise_m": _var(
+            ("load_case", "period_fraction", "saddle"), a.deck_rise_m[:, 1],
+            "deck deflection under each saddle relative to the sea-fastening baseline (up positive), under the nonlinear model's cargo", "m",
+        ),
+        "deck_deflection_per_model_m": _var(
+            dims4 + ("saddle",), a.deck_deflection_m,
+            "deck deflection under each saddle per model (differs between models only with two-way coupling), up positive", "m",
+        ),
+        "deck_rise_per_model_m": _var(
             dims4 + ("saddle",), a.deck_rise_m,
-            "deck deflection under each saddle relative to the sea-fastening baseline (up positive)", "m",
+            "deck deflection under each saddle relative to the sea-fastening baseline, per model (up positive)", "m",
         ),
         "saddle_stiffness_N_per_m": _var(("saddle",), model.saddle_stiffness_N_per_m, "saddle compression stiffness", "N/m"),
         "saddle_lashed": _var(("saddle",), np.asarray(model.seafastening.lashed).astype(np.int8), "saddle carries lashings", "1"),
