@@ -70,7 +70,7 @@ from scipy.sparse.linalg import splu
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import CONTACT_LAWS, ContactLaw
-from seafast.solvers.periodic import PeriodicResponse, harmonics_to_time, high_harmonic_energy_share, period_fraction
+from seafast.solvers.periodic import PeriodicResponse, harmonics_to_time, high_harmonic_energy_share
 
 __all__ = [
     "HBMOptions",
@@ -991,18 +991,15 @@ def solve_hbm(
     return PeriodicResponse(
         method="hbm",
         omega_rad_s=float(excitation.omega_rad_s),
-        period_fraction=period_fraction(N),
         cargo_displacement_time_m=harmonics_to_time(X, N),
         cargo_displacement_harmonics=X,
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
-        contact_state=delta > 0.0,
         converged=bool(converged),
         residual_norm=float(resid),
         iterations=int(its),
         message=note,
         harmonic_truncation_indicator=high_harmonic_energy_share(force, H),
-        tensile_force_error_N=float(max(0.0, -np.min(force))) if force.size else 0.0,
         function_evaluations=int(nfev),
         options=options.to_dict(),
     )

@@ -92,8 +92,6 @@ class PeriodicResponse:
         ``"hbm"``, ``"quasi_static"`` or ``"time_domain"``.
     omega_rad_s
         Fundamental frequency [rad/s] (period T = 2 pi / omega).
-    period_fraction
-        ``n / N``, shape (N,).
     cargo_displacement_time_m
         Cargo DOFs over the period (z [m], theta [rad]), shape (N, n_c), relative to the
         vessel's rigid-body frame; static part included.
@@ -105,8 +103,6 @@ class PeriodicResponse:
     saddle_force_time_N
         Contact force of the compression-only saddle part on the cargo [N], shape (N, n_s),
         from the contact law used (exact law for the references).
-    contact_state
-        ``delta > 0`` (in contact), shape (N, n_s).
     converged
         Whether the solver met its tolerance. A non-converged response is returned (never an
         exception) so callers can report it.
@@ -121,35 +117,48 @@ class PeriodicResponse:
         Per saddle, the share of the fluctuating contact-force energy above harmonic H
         (see :func:`high_harmonic_energy_share`); for the references H is the ``harmonics``
         recorded in ``options`` (what an HBM with that H would miss).
-    tensile_force_error_N
-        Largest tensile (negative) force the contact law produced over the period [N], >= 0;
-        nonzero only for the ``tanh`` regularisation.
     options
         The settings used (plain dict, safe to serialise).
     """
 
     method: str
     omega_rad_s: float
-    period_fraction: NDArray[np.float64]
     cargo_displacement_time_m: NDArray[np.float64]
     cargo_displacement_harmonics: NDArray[np.complex128] | None
     saddle_compression_time_m: NDArray[np.float64]
     saddle_force_time_N: NDArray[np.float64]
-    contact_state: NDArray[np.bool_]
     converged: bool
     residual_norm: float
     iterations: int
     message: str
     harmonic_truncation_indicator: NDArray[np.float64]
-    tensile_force_error_N: float
     function_evaluations: int
     options: dict[str, Any] = field(default_factory=dict)
 
-    # ------------------------------------------------------------------ convenience maxima
+    # ------------------------------------------------- derived from the samples
     @property
     def time_samples(self) -> int:
         """N."""
-        return int(self.period_fraction.size)
+        return int(self.saddle_compression_time_m.shape[0])
+
+    @property
+    def period_fraction(self) -> NDArray[np.float64]:
+        """``n / N``, shape (N,)."""
+        return period_fraction(self.time_samples)
+
+    @property
+    def contact_state(self) -> NDArray[np.bool_]:
+        """``delta > 0`` (in contact), shape (N, n_s)."""
+        return self.saddle_compression_time_m > 0.0
+
+    @property
+    def tensile_force_error_N(self) -> float:
+        """Largest tensile (negative) force the contact law produced over the period [N], >= 0.
+
+        Nonzero only for the ``tanh`` regularisation.
+        """
+        force = self.saddle_force_time_N
+        return float(max(0.0, -np.min(force))) if force.size else 0.0
 
     @property
     def max_saddle_force_N(self) -> float:

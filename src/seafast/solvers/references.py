@@ -48,7 +48,7 @@ from scipy.sparse import csr_array
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm import _quadratic_matrices, _solve_dynamic
-from seafast.solvers.periodic import PeriodicResponse, harmonics_to_time, high_harmonic_energy_share, period_fraction
+from seafast.solvers.periodic import PeriodicResponse, harmonics_to_time, high_harmonic_energy_share
 
 __all__ = [
     "TIME_DOMAIN_FORMULATIONS",
@@ -199,18 +199,15 @@ def _response(
     return PeriodicResponse(
         method=method,
         omega_rad_s=float(excitation.omega_rad_s),
-        period_fraction=period_fraction(delta.shape[0]),
         cargo_displacement_time_m=cargo_time,
         cargo_displacement_harmonics=None,
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
-        contact_state=delta > 0.0,
         converged=bool(converged),
         residual_norm=float(residual),
         iterations=int(iterations),
         message=message,
         harmonic_truncation_indicator=high_harmonic_energy_share(force, harmonics_for_indicator),
-        tensile_force_error_N=0.0,
         function_evaluations=int(evaluations),
         options=options,
     )
