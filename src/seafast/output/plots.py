@@ -56,8 +56,7 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
         ax.plot(xs, np.interp(xs, x, sw), "v", color="tab:green", ms=9, label="saddles")
         if ds.attrs.get("hull_cargo_coupling") and "deck_deflection_m" in ds:
             # the hull line is the one-way solution; mark where the coupled deck sits in still water
-            deck = ds["deck_deflection_m"].sel(load_case="static")
-            deck = deck.sel(model="nonlinear") if "model" in deck.dims else deck
+            deck = ds["deck_deflection_m"].sel(load_case="static")  # under the nonlinear model's cargo
             ax.plot(xs, deck.isel(period_fraction=0).values * 1e3, "o", mfc="none", color="tab:purple", ms=9,
                     label="deck under the saddles, two-way coupled (still water)")
         ax.axvspan(aft, aft + float(ds["x_cargo_m"].max()), color="tab:orange", alpha=0.15, label="cargo")
@@ -74,10 +73,7 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
         ax_c.plot(xc, st, color=c, lw=2, label=f"{mdl}, static")
         dyn = ds["cargo_deflection_m"].sel(load_case="dynamic", model=mdl).values * 1e3
         ax_c.fill_between(xc, dyn.min(axis=0), dyn.max(axis=0), color=c, alpha=0.15, label=f"{mdl}, dynamic envelope")
-    rise = ds["deck_rise_m"].sel(load_case="static")
-    if "model" in rise.dims:
-        rise = rise.sel(model="nonlinear")
-    deck = rise.isel(period_fraction=0).values * 1e3
+    deck = ds["deck_rise_m"].sel(load_case="static").isel(period_fraction=0).values * 1e3
     ax_c.plot(ds["saddle_x_m"].values, deck, "^", color="tab:green", ms=9, label="deck under saddles (static)")
     ax_c.set_xlabel("x along the cargo from its aft end [m]")
     ax_c.set_ylabel("deflection [mm]")

@@ -142,8 +142,6 @@ def deck_motion_figure(ds: xr.Dataset) -> Any | None:
     fig = go.Figure()
     s = ds["period_fraction"].values
     deck = ds["deck_deflection_m"]
-    if "model" in deck.dims:  # the deck the nonlinear (physical) cargo stands on; one-way: the same for both
-        deck = deck.sel(model="nonlinear")
     lc = _total_load_case(ds)
     for j in range(ds.sizes["saddle"]):
         color = _SADDLE_COLORS[j % len(_SADDLE_COLORS)]
