@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.beam import bending_moment_line
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
@@ -85,3 +86,19 @@ def wave_excitation(
 
 def static_excitation(model: StructuralModel) -> HarmonicExcitation:
     return wave_excitation(model).static_part()
+
+
+def moments(model: StructuralModel, response) -> np.ndarray:
+    """Bending-moment lines [N m] over the period of a periodic response (self-weight included)."""
+    _, m = bending_moment_line(
+        model.cargo.node_x_m,
+        response.cargo_displacement_time_m,
+        model.cargo.element_bending_stiffness_Nm2,
+        load_N_per_m=model.cargo.gravity_line_load_N_per_m,
+    )
+    return m
+
+
+def peak_moment(model: StructuralModel, response) -> float:
+    """Largest |bending moment| over the cargo and the period [N m]."""
+    return float(np.max(np.abs(moments(model, response))))

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
-from seafast.model.beam import bending_moment_line
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references import solve_quasi_static, solve_time_domain
+from solver_cases import peak_moment
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -102,16 +102,6 @@ def test_full_equals_condensed(real_case, opts):
     assert np.abs(rf.cargo_displacement_time_m - rc.cargo_displacement_time_m).max() <= 1e-6 * scale_x
 
 
-def _peak_moment(model, r: PeriodicResponse) -> float:
-    _, m = bending_moment_line(
-        model.cargo.node_x_m,
-        r.cargo_displacement_time_m,
-        model.cargo.element_bending_stiffness_Nm2,
-        load_N_per_m=model.cargo.gravity_line_load_N_per_m,
-    )
-    return float(np.max(np.abs(m)))
-
-
 def test_exact_h16_agrees_with_references(real_case):
     """H = 16 exact: design values within 1 % of the quasi-static and time-domain references.
 
@@ -129,7 +119,7 @@ def test_exact_h16_agrees_with_references(real_case):
     assert r.converged and qs.converged and td.converged
     for name, ref in (("quasi-static", qs), ("time domain", td)):
         e_peak = abs(r.max_saddle_force_N / ref.max_saddle_force_N - 1.0)
-        e_moment = abs(_peak_moment(model, r) / _peak_moment(model, ref) - 1.0)
+        e_moment = abs(peak_moment(model, r) / peak_moment(model, ref) - 1.0)
         print(f"\nreal case, HBM exact H=16 vs {name}: peak force {e_peak:.3%}, peak moment {e_moment:.3%}, "
               f"worst sample {_force_error(r, ref):.2%}")
         assert e_peak < 0.01 and e_moment < 0.01

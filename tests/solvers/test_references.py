@@ -9,7 +9,6 @@ from hypothesis import strategies as st
 from threadpoolctl import threadpool_limits
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.beam import bending_moment_line
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
 from seafast.model.structure import build_structural_model
@@ -17,23 +16,13 @@ from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references import solve_exact_contact, solve_quasi_static, solve_time_domain
-from solver_cases import base_model, wave_excitation
+from solver_cases import base_model, moments, wave_excitation
 
 
 @pytest.fixture(autouse=True, scope="module")
 def _one_blas_thread():
     with threadpool_limits(1):
         yield
-
-
-def moments(model, r: PeriodicResponse) -> np.ndarray:
-    _, m = bending_moment_line(
-        model.cargo.node_x_m,
-        r.cargo_displacement_time_m,
-        model.cargo.element_bending_stiffness_Nm2,
-        load_N_per_m=model.cargo.gravity_line_load_N_per_m,
-    )
-    return m
 
 
 def force_error(r: PeriodicResponse, ref: PeriodicResponse) -> float:
