@@ -12,6 +12,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from benchutil import timed
 from threadpoolctl import threadpool_limits
 
 from seafast.excitation.harmonic import HarmonicExcitation
@@ -31,15 +32,6 @@ def base_case_model_and_excitation() -> tuple[StructuralModel, HarmonicExcitatio
     case = load_case()
     model = build_model(case)
     return model, vessel_excitation(case).cargo_excitation(model, case)
-
-
-def timed(fn, repeats: int):
-    out, times = None, []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return out, 1e3 * float(np.median(times))
 
 
 def rel_diff(a, b) -> float:

@@ -15,16 +15,8 @@ import tempfile
 import time
 
 import numpy as np
+from benchutil import timed
 from threadpoolctl import threadpool_limits
-
-
-def timed(fn, repeats: int):
-    out, times = None, []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return out, 1e3 * float(np.median(times))
 
 
 def main() -> None:
