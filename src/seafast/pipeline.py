@@ -214,12 +214,15 @@ def run_case(
     arrays = case_arrays(model, excitation, series, N, {key: c.excitation for key, c in couplings.items()})
     if couplings:
         # a row whose deck did not converge is not converged, whatever its cargo solver says
-        ok = np.array([[couplings[(lc, mdl)].converged for mdl in MODELS] for lc in LOAD_CASES])
-        messages = np.array(
-            [[m if ok[i, j] else f"{couplings[(lc, mdl)].message} | cargo solver: {m}" for j, (mdl, m) in enumerate(zip(MODELS, row))]
-             for i, (lc, row) in enumerate(zip(LOAD_CASES, arrays.solver_message))]
-        )
-        arrays = replace(arrays, converged=arrays.converged & ok, solver_message=messages)
+        converged = arrays.converged.copy()
+        messages = arrays.solver_message.astype(object)
+        for i, lc in enumerate(LOAD_CASES):
+            for j, mdl in enumerate(MODELS):
+                coupling = couplings[(lc, mdl)]
+                if not coupling.converged:
+                    converged[i, j] = False
+                    messages[i, j] = f"{coupling.message} | cargo solver: {messages[i, j]}"
+        arrays = replace(arrays, converged=converged, solver_message=messages.astype(str))
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
     return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
 
@@ -236,7 +239,7 @@ def couple_hull_and_cargo(
     dynamic rows. Returns :class:`~seafast.excitation.coupling.DeckCoupling` per row, keyed
     ``(load_case, model)``; each carries the coupled excitation and the cargo's response.
     """
-    from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
+    from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobians
 
     if vessel is None or getattr(vessel, "girder", None) is None or getattr(vessel, "loading", None) is None:
         raise ValueError("vessel.coupling = 'two_way' needs the computed hull girder and its loading (no vessel data was given)")
@@ -245,7 +248,7 @@ def couple_hull_and_cargo(
     k_linear = excitation.harmonic_count
     k_nonlinear = max(case.solver.harmonics + 1, k_linear)
     omega = excitation.omega_rad_s
-    jac = {k: linear_coupling_jacobian(model, omega, compliance, k) for k in {1, k_linear, k_nonlinear}}
+    jac = linear_coupling_jacobians(model, omega, compliance, (1, k_linear, k_nonlinear))
 
     def linear(exc: HarmonicExcitation) -> Any:
         return solve_linear(model, exc)

@@ -27,7 +27,7 @@ applied to the hull. See the README for what the coupling changes on the base ca
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,6 +46,7 @@ __all__ = [
     "deck_forces_N",
     "spread_load_N",
     "linear_coupling_jacobian",
+    "linear_coupling_jacobians",
     "couple_deck",
 ]
 
@@ -213,37 +214,49 @@ def _unpack(v: NDArray, K: int, n: int) -> NDArray[np.complex128]:
     return V
 
 
-def linear_coupling_jacobian(model: StructuralModel, omega_rad_s: float, compliance: HullCompliance, harmonic_count: int) -> NDArray:
-    """Exact Jacobian of the coupling residual for the linear (bilateral) model, real packing.
+def linear_coupling_jacobians(
+    model: StructuralModel, omega_rad_s: float, compliance: HullCompliance, harmonic_counts: Iterable[int]
+) -> dict[int, NDArray]:
+    """Exact Jacobians of the coupling residual for the linear (bilateral) model, real packing.
 
     Per harmonic the deck forces respond to the deck DOFs through the cargo's dynamic stiffness
     seen from the deck, ``S_k = K_oo - K_oc K_d^cc(k w)^-1 K_co`` (saddle rows), so the residual
     ``V - n C (P(V) - Q)`` has the Jacobian ``I - n C S_k`` per harmonic, split into real and
-    imaginary parts in the packing of :func:`couple_deck`.
+    imaginary parts in the packing of :func:`couple_deck`. One Jacobian per requested K
+    (harmonics 0 .. K-1); each harmonic's block is computed once for all of them.
     """
-    K = int(harmonic_count)
+    counts = sorted({int(k) for k in harmonic_counts})
     n_o = model.deck_dof_count
     sad = model.saddle_deck_dof
     C = np.empty((n_o, model.saddle_count))
     C[0::2] = compliance.deflection_m_per_N[:, compliance.saddle_node]
     C[1::2] = compliance.slope_rad_per_N[:, compliance.saddle_node]
-    size = n_o * (2 * K - 1)
-    J = np.eye(size)
-    m = (K - 1) * n_o
-    for k in range(K):
+    blocks = []
+    for k in range(counts[-1]):
         Kd_cc, Kco, Koc, Koo = model.dynamic_stiffness(k * omega_rad_s, include_saddles=True)
         S = (Koo - Koc @ np.linalg.solve(Kd_cc, Kco))[sad, :]
-        M = compliance.units_abreast * C @ S
-        if k == 0:
-            J[:n_o, :n_o] -= np.real(M)
-            continue
-        re = slice(n_o + (k - 1) * n_o, n_o + k * n_o)
-        im = slice(n_o + m + (k - 1) * n_o, n_o + m + k * n_o)
-        J[re, re] -= M.real
-        J[re, im] += M.imag
-        J[im, re] -= M.imag
-        J[im, im] -= M.real
-    return J
+        blocks.append(compliance.units_abreast * C @ S)
+    out = {}
+    for K in counts:
+        size = n_o * (2 * K - 1)
+        J = np.eye(size)
+        J[:n_o, :n_o] -= np.real(blocks[0])
+        m = (K - 1) * n_o
+        for k in range(1, K):
+            M = blocks[k]
+            re = slice(n_o + (k - 1) * n_o, n_o + k * n_o)
+            im = slice(n_o + m + (k - 1) * n_o, n_o + m + k * n_o)
+            J[re, re] -= M.real
+            J[re, im] += M.imag
+            J[im, re] -= M.imag
+            J[im, im] -= M.real
+        out[K] = J
+    return out
+
+
+def linear_coupling_jacobian(model: StructuralModel, omega_rad_s: float, compliance: HullCompliance, harmonic_count: int) -> NDArray:
+    """:func:`linear_coupling_jacobians` for one K (harmonics 0 .. K-1)."""
+    return linear_coupling_jacobians(model, omega_rad_s, compliance, [harmonic_count])[int(harmonic_count)]
 
 
 def couple_deck(
