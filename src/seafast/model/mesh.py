@@ -5,7 +5,11 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["mesh_cargo"]
+__all__ = ["MAX_CARGO_ELEMENTS", "mesh_cargo"]
+
+MAX_CARGO_ELEMENTS = 2000
+"""Largest cargo mesh accepted: the model's matrices are dense (2 DOFs per node), so 2000
+elements already mean 4000-DOF eigen-solves; a 150 m pile at 0.1 m elements needs 1500."""
 
 
 def mesh_cargo(
@@ -24,8 +28,14 @@ def mesh_cargo(
     # merge points closer than a micrometre (round-off from arithmetic on positions)
     keep = np.concatenate([[True], np.diff(pts) > 1e-6])
     pts = pts[keep]
+    counts = [max(1, int(np.ceil((b - a) / target_element_length_m - 1e-9))) for a, b in zip(pts[:-1], pts[1:])]
+    if sum(counts) > MAX_CARGO_ELEMENTS:
+        raise ValueError(
+            f"cargo mesh: length_m = {length_m!r} with target_element_length_m = {target_element_length_m!r} needs "
+            f"{sum(counts)} elements; at most {MAX_CARGO_ELEMENTS} are allowed (check cargo.length_m, or raise "
+            "model.element_length_m)"
+        )
     nodes = [pts[:1]]
-    for a, b in zip(pts[:-1], pts[1:]):
-        n = max(1, int(np.ceil((b - a) / target_element_length_m - 1e-9)))
+    for a, b, n in zip(pts[:-1], pts[1:], counts):
         nodes.append(np.linspace(a, b, n + 1)[1:])
     return np.concatenate(nodes)
