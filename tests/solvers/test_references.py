@@ -288,3 +288,17 @@ def test_time_domain_rejects_bad_formulation(base):
     model, ex = base[0], base[1]
     with pytest.raises(ValueError, match="formulation.*'full', 'condensed'"):
         solve_time_domain(model, ex, formulation="dense")
+
+
+def test_exact_law_converges_from_the_sharpest_soft_solution_reached():
+    """A case hypothesis found (a 1 % saddle near resonance, H = 10): the direct exact-law solve
+    stagnates and the softplus path breaks before its last kappa; the exact law started from
+    the last converged softplus solution converges."""
+    with threadpool_limits(1):
+        model, ex = random_case(3, np.array([0.01, 1.0, 1.0]), 1.0, [3.0, 0.0, 1.0], [0.0, 0.0, 0.0], 2.0)
+        r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact"))
+        ref = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="softplus"))
+    assert r.converged, r.message
+    assert "continuation in kappa" in r.message
+    assert r.saddle_force_time_N.min() >= 0.0
+    assert r.max_saddle_force_N == pytest.approx(ref.max_saddle_force_N, rel=0.01)

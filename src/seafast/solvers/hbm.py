@@ -845,21 +845,22 @@ def _solve_with_fallback(problem: Any, law: ContactLaw, options: HBMOptions, u_s
     if kappa_start < kappa_target:
         u = u0
         kappas = list(np.geomspace(kappa_start, kappa_target, 1 + int(np.ceil(2 * np.log10(kappa_target / kappa_start)))))
-        path_ok = True
+        reached = 0
         for kappa in kappas:
             a = solve(problem, ContactLaw(soft_name, float(kappa)), 1.0, u, tol, maxit)
             total_it += a.iterations
             total_ev += a.evaluations
             if not a.converged:
-                path_ok = False
                 break
-            u = a.u
-        if path_ok:
+            u, reached = a.u, reached + 1
+        if reached:
+            # the requested law from the sharpest soft solution reached (the whole path, or the
+            # part of it that converged: a sharp soft law can be harder than the exact one)
             final = solve(problem, law, 1.0, u, tol, maxit)
             total_it += final.iterations
             total_ev += final.evaluations
             if final.converged:
-                notes.append(f"converged by continuation in kappa over {len(kappas)} step(s)")
+                notes.append(f"converged by continuation in kappa over {reached} of {len(kappas)} step(s)")
                 return _Attempt(final.u, True, final.residual, total_it, total_ev, "; ".join(notes))
             best = final if final.residual < best.residual else best
         notes.append("kappa continuation failed")
