@@ -206,6 +206,12 @@ def run_case(
         "harmonics": case.solver.harmonics,
         "time_samples": N,
         "case_json": case.model_dump_json(),
+        # the damping as built, so that an outside code can rebuild the model: D = alpha M + beta K_<stiffness>
+        "rayleigh_alpha_per_s": model.rayleigh_alpha_per_s,
+        "rayleigh_beta_s": model.rayleigh_beta_s,
+        "rayleigh_stiffness": "beam",
+        "damping_ratio": case.model.damping_ratio,
+        "realised_damping_ratio_modes_1_2": list(model.modal_damping_ratios(2)),
         "conventions": "x from the cargo's aft end; z up; displacements relative to the vessel's rigid-body frame; "
         "sagging moment positive; saddle compression positive when compressed",
     }

@@ -84,15 +84,17 @@ def test_coupled_deck_is_the_hull_girder_under_the_cargo_point_loads(coupled):
 
 def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
     """At wave frequency the hull sees P_k - Q_k: the cargo's deck forces minus its spread
-    inertia load. The two nearly share their resultant and moment: the rest is the inertia and
-    the mass-proportional Rayleigh damping of the cargo's motion relative to the rigid-body
-    frame (it follows the hull's wave deflection), about 2 % of the dynamic deck forces here.
-    A wrong sign or a missing inertia term would leave 100-200 % of the inertia resultant."""
+    inertia load. Their resultant and moment are exactly the inertia and the mass-proportional
+    Rayleigh damping of the cargo's motion relative to the rigid-body frame (it follows the hull's
+    wave deflection): the beam stiffness and its beta K_beam damping have no resultant and no
+    moment (rigid-body motions are in their null space). A wrong sign or a missing inertia term
+    would leave 100-200 % of the inertia resultant."""
     from seafast.excitation.coupling import spread_load_N
 
     case, model, excitation, rows = coupled_in_waves
     xn = model.cargo.node_x_m
     xs = model.saddle_x_m
+    w = excitation.omega_rad_s
     for key in (("dynamic", "linear"), ("dynamic", "nonlinear")):
         row = rows[key]
         assert row.converged, row.message
@@ -100,9 +102,17 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
         Q = spread_load_N(model, row.excitation, P.shape[0])
         inertia = np.abs(Q[1].sum())
         assert inertia > 1e5  # heave and pitch do load the cargo
-        assert abs(P[1].sum() - Q[1].sum()) < 0.25 * inertia
-        assert abs(P[1].sum() - Q[1].sum()) < 0.03 * np.abs(P[1]).max()
-        assert abs(P[1] @ xs - Q[1] @ xn) < 0.25 * np.abs(Q[1] @ xn)
+        X = row.response.cargo_displacement if key[1] == "linear" else row.response.cargo_displacement_harmonics
+        # cargo equilibrium, summed over its z DOFs (resultant) and taken about x = 0 (moment)
+        relative = (-(w**2) + 1j * w * model.rayleigh_alpha_per_s) * (model.cargo.mass @ X[1])
+        resultant = relative[0::2].sum()
+        moment = relative[0::2] @ xn + relative[1::2].sum()
+        assert abs(resultant) > 0.05 * inertia  # the relative motion is not negligible: the check has teeth
+        # the nonlinear row's P comes from 32 AFT samples of the contact forces: aliasing of its higher harmonics
+        tol = 1e-6 if key[1] == "linear" else 2e-3
+        assert abs((P[1].sum() - Q[1].sum()) - resultant) < tol * inertia
+        # the lashings' rotational springs put a few kN m on the deck that P leaves out (documented)
+        assert abs((P[1] @ xs - Q[1] @ xn) - moment) < max(tol, 1e-3) * np.abs(Q[1] @ xn)
         assert P[0].real.sum() == pytest.approx(Q[0].real.sum(), rel=1e-6)
 
 

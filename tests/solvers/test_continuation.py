@@ -66,7 +66,9 @@ def test_linear_resonance_peak_matches_linear_frf():
 def test_nonlinear_resonance_is_passed_with_lift_off():
     model = base_model(element_length_m=2.0, stiffness_scale=0.01)
     opts = HBMOptions(harmonics=3, time_samples=32, contact_law="tanh")
-    branch = frequency_response(model, deck_only(model, 20.0), 1.0, 10.0, opts)
+    # 40 mm of deck hog/sag: with the realised 2 % damping of the bounce mode (issue 12; it was about 1 %)
+    # the 20 mm this test used no longer lifts the cargo off at resonance
+    branch = frequency_response(model, deck_only(model, 40.0), 1.0, 10.0, opts)
     assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(10.0, rel=1e-6)
     assert not branch.contact_preserved.all() and branch.max_gap_m.max() > 1e-3
     assert 4.5 < branch.peak_omega_rad_s < 5.6

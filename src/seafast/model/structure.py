@@ -19,6 +19,7 @@ the static (mean) part and is real.
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -29,7 +30,17 @@ from seafast.model.mesh import mesh_cargo
 from seafast.model.sections import CargoGeometry, tube_area_m2, tube_second_moment_m4
 from seafast.model.seafastening import SeaFastening
 
-__all__ = ["CargoBeam", "StructuralModel", "build_cargo_beam", "build_structural_model", "rayleigh_coefficients"]
+logger = logging.getLogger(__name__)
+
+__all__ = [
+    "CargoBeam",
+    "StructuralModel",
+    "RayleighFit",
+    "build_cargo_beam",
+    "build_structural_model",
+    "fit_rayleigh_to_modes",
+    "rayleigh_coefficients",
+]
 
 
 @dataclass(frozen=True)
@@ -98,10 +109,95 @@ def build_cargo_beam(
 
 
 def rayleigh_coefficients(damping_ratio: float, omega_1_rad_s: float, omega_2_rad_s: float) -> tuple[float, float]:
-    """Rayleigh coefficients (alpha [1/s], beta [s]) giving ``damping_ratio`` at two frequencies."""
+    """Classic Rayleigh coefficients (alpha [1/s], beta [s]) for ``D = alpha M + beta K`` with K the *whole* stiffness.
+
+    ``zeta(omega) = alpha / (2 omega) + beta omega / 2`` equals ``damping_ratio`` at both frequencies. seafast's
+    beta multiplies the beam stiffness only (see :func:`fit_rayleigh_to_modes`); this is the textbook formula,
+    kept for comparison and as the fallback's reference scale.
+    """
     a = 2.0 * damping_ratio * omega_1_rad_s * omega_2_rad_s / (omega_1_rad_s + omega_2_rad_s)
     b = 2.0 * damping_ratio / (omega_1_rad_s + omega_2_rad_s)
     return a, b
+
+
+#: The exact two-mode fit is refused when it needs beta above this multiple of the classic Rayleigh beta
+#: (it would overdamp the beam modes, e.g. when both modes are rigid-body-like bounce and pitch).
+RAYLEIGH_BETA_LIMIT = 10.0
+
+
+@dataclass(frozen=True)
+class RayleighFit:
+    """Rayleigh damping ``D = alpha M + beta K_beam`` fitted on the cargo's first two modes.
+
+    Attributes
+    ----------
+    alpha_per_s, beta_s
+        The coefficients [1/s], [s]; beta multiplies the cargo beam's stiffness only (the saddle and lashing
+        springs carry no dashpot, so a lifted saddle never damps).
+    omega_rad_s
+        The first two natural frequencies of the cargo on bilateral saddles, deck fixed [rad/s].
+    realised_damping_ratio
+        ``phi^T D phi / (2 omega phi^T M phi)`` of those two modes [-].
+    exact
+        Whether both modes have exactly the requested ratio (False: the documented fallback was used).
+    """
+
+    alpha_per_s: float
+    beta_s: float
+    omega_rad_s: tuple[float, float]
+    realised_damping_ratio: tuple[float, float]
+    exact: bool
+
+
+def fit_rayleigh_to_modes(
+    damping_ratio: float, omega_rad_s: NDArray[np.float64], beam_stiffness_per_mass_rad2_per_s2: NDArray[np.float64]
+) -> RayleighFit:
+    """Rayleigh coefficients that give ``damping_ratio`` to the first two modes as they really are.
+
+    With beta multiplying the beam stiffness only, the realised modal damping of a mode with frequency
+    ``omega_i`` is ``zeta_i = (alpha + beta kappa_i) / (2 omega_i)``, where ``kappa_i = phi_i^T K_beam phi_i /
+    phi_i^T M phi_i`` is the part of ``omega_i^2`` that the beam's strain energy carries (the saddle springs carry
+    the rest: 85-95 % in the base case's first two modes, which is why the classic formula, which assumes
+    ``kappa_i = omega_i^2``, realised only 1.1 % instead of 2 %). Two equations, two unknowns.
+
+    When the exact solution needs a negative coefficient, or a beta more than :data:`RAYLEIGH_BETA_LIMIT` times
+    the classic one (both modes nearly rigid on their supports, so that only an enormous beta could separate
+    them), the fallback keeps the classic beta ``2 zeta / (omega_1 + omega_2)`` (it bounds the beam modes as
+    textbook Rayleigh damping does) and takes the alpha that brings the two modes closest to the ratio (least
+    squares); :attr:`RayleighFit.exact` says which, and the realised ratios are recorded.
+
+    Parameters
+    ----------
+    damping_ratio
+        Target ratio of critical damping [-], >= 0.
+    omega_rad_s
+        The first two natural frequencies [rad/s], > 0.
+    beam_stiffness_per_mass_rad2_per_s2
+        ``kappa_i`` of those modes [rad^2/s^2].
+    """
+    w = np.asarray(omega_rad_s, dtype=float)[:2]
+    kappa = np.asarray(beam_stiffness_per_mass_rad2_per_s2, dtype=float)[:2]
+    zeta = float(damping_ratio)
+
+    def realised(alpha: float, beta: float) -> tuple[float, float]:
+        z = (alpha + beta * kappa) / (2.0 * w)
+        return float(z[0]), float(z[1])
+
+    if zeta == 0.0:
+        return RayleighFit(0.0, 0.0, (float(w[0]), float(w[1])), (0.0, 0.0), True)
+    _, beta_classic = rayleigh_coefficients(zeta, float(w[0]), float(w[1]))
+    det = kappa[1] - kappa[0]
+    if abs(det) > 1e-12 * max(float(np.max(np.abs(kappa))), 1e-300):
+        beta = 2.0 * zeta * (w[1] - w[0]) / det
+        alpha = 2.0 * zeta * w[0] - beta * kappa[0]
+        if alpha >= 0.0 and 0.0 <= beta <= RAYLEIGH_BETA_LIMIT * beta_classic:
+            return RayleighFit(float(alpha), float(beta), (float(w[0]), float(w[1])), realised(alpha, beta), True)
+    # fallback: the classic beta (it bounds the beam modes as textbook Rayleigh damping does), and the alpha that
+    # brings modes 1 and 2 closest to the ratio in the least-squares sense
+    beta = beta_classic
+    a_i = 2.0 * zeta * w - beta * kappa  # the alpha each mode alone would need
+    alpha = max(float(np.sum(a_i / w**2) / np.sum(1.0 / w**2)), 0.0)
+    return RayleighFit(alpha, float(beta), (float(w[0]), float(w[1])), realised(alpha, beta), False)
 
 
 @dataclass(frozen=True)
@@ -125,7 +221,11 @@ class StructuralModel:
     pretension_load_N
         Nodal load vector of lashing pretension on the cargo DOFs [N, N m].
     rayleigh_alpha_per_s, rayleigh_beta_s
-        Damping D = alpha M + beta K_beam on the cargo beam (springs undamped).
+        Damping D = alpha M + beta K_beam on the cargo beam (springs undamped), fitted so that the first two
+        modes have the requested damping ratio (:func:`fit_rayleigh_to_modes`).
+    rayleigh_fit
+        The fit (realised modal damping of the first two modes, whether it is exact), or None for a model
+        built with given coefficients.
     """
 
     cargo: CargoBeam
@@ -134,6 +234,7 @@ class StructuralModel:
     rayleigh_alpha_per_s: float
     rayleigh_beta_s: float
     gravity_m_per_s2: float = 9.81
+    rayleigh_fit: RayleighFit | None = None
     _springs: dict = field(default_factory=dict, repr=False, compare=False)
 
     # ---------------------------------------------------------------- sizes and maps
@@ -233,6 +334,32 @@ class StructuralModel:
         w2 = eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, min(count, self.cargo_dof_count) - 1])
         return np.sqrt(np.maximum(w2, 0.0))
 
+    def first_modes_beam_share(self, count: int = 2) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Lowest natural frequencies [rad/s] on bilateral saddles and ``kappa_i = phi^T K_beam phi / phi^T M phi``.
+
+        ``kappa_i / omega_i^2`` is the share of the mode's strain energy in the cargo beam (the rest is in the
+        saddle and lashing springs).
+        """
+        from scipy.linalg import eigh
+
+        Kcc = self.cargo.stiffness + self.spring_matrices(True)[0]
+        n = min(count, self.cargo_dof_count)
+        w2, phi = eigh(Kcc, self.cargo.mass, subset_by_index=[0, n - 1])
+        kappa = np.einsum("ij,ik,kj->j", phi, self.cargo.stiffness, phi) / np.einsum("ij,ik,kj->j", phi, self.cargo.mass, phi)
+        return np.sqrt(np.maximum(w2, 0.0)), kappa
+
+    def modal_damping_ratios(self, count: int = 2) -> NDArray[np.float64]:
+        """Realised damping ``phi^T D phi / (2 omega phi^T M phi)`` of the lowest modes on bilateral saddles [-]."""
+        from scipy.linalg import eigh
+
+        Kcc = self.cargo.stiffness + self.spring_matrices(True)[0]
+        n = min(count, self.cargo_dof_count)
+        w2, phi = eigh(Kcc, self.cargo.mass, subset_by_index=[0, n - 1])
+        w = np.sqrt(np.maximum(w2, 0.0))
+        num = np.einsum("ij,ik,kj->j", phi, self.damping_cc, phi)
+        den = 2.0 * w * np.einsum("ij,ik,kj->j", phi, self.cargo.mass, phi)
+        return np.asarray(num / den, dtype=float)
+
 
 class MechanismError(ValueError):
     """The support layout leaves the cargo free to move as a rigid body (a mechanism)."""
@@ -248,8 +375,9 @@ def build_structural_model(
 ) -> StructuralModel:
     """Mesh the cargo with a node at every saddle and assemble the partitioned linear system.
 
-    Rayleigh damping: ``damping_ratio`` of critical at the first two natural frequencies of the
-    cargo on bilateral saddles with the deck fixed (the documented default is 2 %).
+    Rayleigh damping ``D = alpha M + beta K_beam``: the *realised* modal damping of the first two modes of the
+    cargo on bilateral saddles (deck fixed) equals ``damping_ratio`` (the documented default is 2 %); see
+    :func:`fit_rayleigh_to_modes` for why beta must be fitted on the modes and for the fallback.
 
     Raises
     ------
@@ -274,6 +402,11 @@ def build_structural_model(
             "allowed: at least two distinct saddle positions with positive stiffness, or one saddle "
             "with a rotational lashing"
         )
-    w = model.natural_frequencies_rad_s(True, count=2)
-    alpha, beta = rayleigh_coefficients(damping_ratio, float(w[0]), float(w[1]))
-    return StructuralModel(beam, seafastening, nodes, alpha, beta, gravity_m_per_s2)
+    fit = fit_rayleigh_to_modes(damping_ratio, *model.first_modes_beam_share())
+    if not fit.exact:
+        logger.warning(
+            "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
+            "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
+            damping_ratio, fit.omega_rad_s[0], fit.omega_rad_s[1], *fit.realised_damping_ratio,
+        )
+    return StructuralModel(beam, seafastening, nodes, fit.alpha_per_s, fit.beta_s, gravity_m_per_s2, rayleigh_fit=fit)
