@@ -16,6 +16,7 @@ import xarray as xr
 
 import seafast
 from seafast.config.schema import Case
+from seafast.excitation.coupled_hull import CoupledHull, coupled_hull
 from seafast.excitation.coupling import (
     DeckCoupling,
     HullCompliance,
@@ -131,7 +132,8 @@ class CaseResult:
     """Everything computed for one case.
 
     ``coupling`` holds each row's two-way coupling outcome, keyed ``(load_case, model)``
-    (empty for one-way runs).
+    (empty for one-way runs); ``coupled_hull`` the hull girder under the coupled cargo
+    (``None`` for one-way runs).
     """
 
     case: Case
@@ -142,6 +144,7 @@ class CaseResult:
     responses: dict[str, Any]
     attrs: dict[str, Any]
     coupling: Mapping[tuple[str, str], CouplingStatus] = field(default_factory=dict)
+    coupled_hull: CoupledHull | None = None
 
     @property
     def summary(self) -> list[dict[str, Any]]:
@@ -164,7 +167,7 @@ class CaseResult:
             ds = xr.merge([ds, vds], combine_attrs="override")
             ds.attrs.update(vds.attrs)
         if self.coupling:
-            ds = xr.merge([ds, coupling_dataset(self.coupling)], combine_attrs="override")
+            ds = xr.merge([ds, coupling_dataset(self.coupling, self.coupled_hull)], combine_attrs="override")
         return ds
 
 
@@ -239,6 +242,7 @@ def run_case(
     if couplings:
         attrs["hull_cargo_coupling"] = "\n".join(s.message for s in statuses.values())
     arrays = case_arrays(model, excitation, series, N, {key: c.excitation for key, c in couplings.items()})
+    hull = None
     if couplings:
         # a row whose deck did not converge is not converged, whatever its cargo solver says;
         # why is in the row's CouplingStatus (solver_message stays the cargo solver's own)
@@ -247,8 +251,12 @@ def run_case(
             for j, mdl in enumerate(MODELS):
                 converged[i, j] &= statuses[(lc, mdl)].converged
         arrays = replace(arrays, converged=converged)
+        hull = coupled_hull(
+            vessel.girder, vessel.loading, compliance, vessel.still_water, couplings[("static", "nonlinear")],
+            vessel.wave, couplings[("dynamic", "nonlinear")] if vessel.wave is not None else None,
+        )
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, hull)
 
 
 def _compliance(case: Case, model: StructuralModel, vessel: Any) -> HullCompliance:

@@ -6,6 +6,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
 from seafast.config import CaseError, load_case
 from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
@@ -247,7 +248,7 @@ def test_the_analytic_linear_jacobian_equals_finite_differences(coupled_in_waves
     np.testing.assert_allclose(analytic, fd, rtol=0, atol=1e-6 * np.abs(analytic).max())
 
 
-# ------------------------------------------------------------------ tolerance on a fine mesh
+# ------------------------------------------------------------------ the coupled hull girder
 @pytest.fixture(scope="module")
 def two_way_run():
     """The base case two-way, with heave and pitch (the wave fields carry inertia loads), and
@@ -257,6 +258,121 @@ def two_way_run():
     return result, rows
 
 
+def _saddle_patches(result):
+    """Ship x of the saddles and the half-length of the coupling's saddle patches (the node's
+    tributary length, centred on the saddle)."""
+    aft = result.vessel.cargo_aft_end_x_m
+    xn = aft + result.model.cargo.node_x_m
+    xs = aft + result.model.saddle_x_m
+    half = np.array([0.25 * (xn[i + 1] - xn[i - 1]) for i in result.model.saddle_node])
+    return xs, half
+
+
+def test_the_coupled_still_water_hull_is_a_fresh_hull_solve_under_the_saddle_loads(two_way_run):
+    """Independent route: a fresh still-water hull-girder solve (on its own grid) of the ship
+    with the four piles' spread weight replaced by their converged deck forces on the saddle
+    patches, against the coupled lines of results.nc along the whole ship."""
+    result, rows = two_way_run
+    ds = result.dataset
+    vessel, case = result.vessel, result.case
+    n, g = case.cargo.units_abreast, case.model.gravity_m_per_s2
+    row = rows[("static", "nonlinear")]
+    P = row.deck_force_N[0].real
+    np.testing.assert_array_equal(ds["deck_deflection_m"].sel(load_case="static").values[0],
+                                  row.excitation.deck_displacement[0, result.model.saddle_deck_dof].real)
+    xs, half = _saddle_patches(result)
+    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, P)))
+    items = tuple(it for it in vessel.loading.items if it.name != "cargo") + patches
+    fresh = still_water_response(vessel.girder, replace(vessel.loading, items=items))
+    x = ds["hull_x_m"].values
+    z_fresh, _ = deck_deflection_at(fresh, x)
+    # M is cubic per element with M' = V: its Hermite spline and that spline's slope are exact
+    spline = CubicHermiteSpline(fresh.x_m, fresh.bending_moment_Nm, fresh.shear_force_N)
+    m_fresh, v_fresh = spline(x), spline(x, 1)
+    z1, z2 = ds["hull_still_water_deflection_m"].values, ds["hull_still_water_deflection_coupled_m"].values
+    m1, m2 = ds["hull_still_water_bending_moment_Nm"].values, ds["hull_still_water_bending_moment_coupled_Nm"].values
+    v2 = ds["hull_still_water_shear_force_coupled_N"].values
+    # the coupling changes the hull by ~9 mm and ~140 MN m: a sign or factor error would show
+    # at that scale; the two routes agree to round-off of the hull solves (1e-9 m, 1e-3 N m
+    # measured) - the bounds leave room for another grid, not for physics
+    assert np.abs(z2 - z1).max() > 5e-3 and np.abs(m2 - m1).max() > 1e8
+    np.testing.assert_allclose(z2, z_fresh, rtol=0, atol=1e-7)
+    np.testing.assert_allclose(m2, m_fresh, rtol=0, atol=1e3)
+    np.testing.assert_allclose(v2, v_fresh, rtol=0, atol=1e-6 * np.abs(v2).max())
+    # the coupled ship is balanced: moment and shear vanish at both ends
+    assert abs(m2[-1]) < 1e-9 * np.abs(m2).max() and abs(v2[-1]) < 1e-9 * np.abs(v2).max()
+
+
+def test_the_coupled_midship_moment_is_the_statics_of_the_saddle_reactions(two_way_run):
+    """The issue's numbers (an outside coupled hull + four-pile model): midship moment -472.5
+    MN m one-way, about -328 MN m coupled; deflection 71.2 -> 61.9 mm. Independent statics: the
+    coupling moves the piles' weight from uniform (one-way) to the saddles, self-equilibrated
+    (the deck forces sum to the weight and keep its moment), so the buoyancy does not change and
+    the moment changes by the statics of point loads,
+    M2(x) = M1(x) + n [W/L int_cargo (x - xi)_+ dxi - sum_s P_s (x - x_s)_+].
+    Away from the saddles the patch loads seafast applies give exactly that; under a saddle the
+    patch of length w rounds the point load's peak off by n P w / 8."""
+    result, rows = two_way_run
+    ds = result.dataset
+    case, model, vessel = result.case, result.model, result.vessel
+    n, g = case.cargo.units_abreast, case.model.gravity_m_per_s2
+    x = ds["hull_x_m"].values
+    m1, m2 = ds["hull_still_water_bending_moment_Nm"].values, ds["hull_still_water_bending_moment_coupled_Nm"].values
+    xs, half = _saddle_patches(result)
+    P = rows[("static", "nonlinear")].deck_force_N[0].real
+    aft, length = vessel.cargo_aft_end_x_m, float(model.cargo.node_x_m[-1] - model.cargo.node_x_m[0])
+    W = model.cargo.mass_kg * g
+    u = np.clip(x, aft, aft + length)
+    statics = m1 + n * (W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u))
+                        - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs)))
+    away = np.all(np.abs(x[:, None] - xs[None, :]) > half[None, :] + 1e-9, axis=1)
+    change = np.abs(m2 - m1).max()
+    assert change > 1e8
+    # away from the saddles: statics to 2e-5 of the change (the lashing springs' moments, a few
+    # kN m per pile, are not applied to the hull; they move the resultant by millimetres)
+    np.testing.assert_allclose(m2[away], statics[away], rtol=0, atol=2e-5 * change)
+    mid = int(np.argmin(np.abs(x - vessel.girder.midship_x_m)))
+    j = int(np.argmin(np.abs(xs - x[mid])))
+    assert abs(xs[j] - x[mid]) < 1e-6  # the middle saddle is amidships
+    rounding = n * P[j] * (2.0 * half[j]) / 8.0
+    assert rounding > 1e6
+    assert m2[mid] == pytest.approx(statics[mid] - rounding, abs=2e-5 * change)
+    # the outside model's numbers (point loads): -472.5 -> -328 MN m, 71.2 -> 61.9 mm
+    assert m1[mid] == pytest.approx(-472.5e6, rel=1e-3)
+    assert statics[mid] == pytest.approx(-328e6, rel=3e-3)
+    z1 = ds["hull_still_water_deflection_m"].values[mid]
+    z2 = ds["hull_still_water_deflection_coupled_m"].values[mid]
+    assert z1 == pytest.approx(71.2e-3, rel=1e-3) and z2 == pytest.approx(61.9e-3, rel=3e-3)
+
+
+def test_the_coupled_wave_hull_carries_the_deck_the_cargo_stood_on(two_way_run):
+    """The coupled hull lines minus the one-way ones (still water + wave, sampled over the
+    period) under the saddles reproduce, harmonic by harmonic, the deck change of the dynamic
+    nonlinear row, which the coupling obtained through its compliance at the saddles only: the
+    lines carry the deck the cargo stood on. The wave part changes too (the piles resist the
+    hull's wave bending), and no harmonic appears that the coupled deck does not have."""
+    result, rows = two_way_run
+    ds = result.dataset
+    row = rows[("dynamic", "nonlinear")]
+    x = ds["hull_x_m"].values
+    xs, _ = _saddle_patches(result)
+    change_lines = (ds["hull_still_water_deflection_coupled_m"].values - ds["hull_still_water_deflection_m"].values
+                    + ds["hull_wave_deflection_coupled_m"].values - ds["hull_wave_deflection_m"].values)  # (n_t, n_x)
+    at_saddles = CubicSpline(x, change_lines, axis=1)(xs)  # between the 0.5 m hull nodes
+    n_t = at_saddles.shape[0]
+    harmonics = np.fft.rfft(at_saddles, axis=0) / n_t
+    harmonics[1:] *= 2.0
+    deck_change = row.deck_change[:, 0::2]  # z under each saddle, harmonics 0 .. K-1
+    K = deck_change.shape[0]
+    assert np.abs(deck_change[0]).max() > 5e-3 and np.abs(deck_change[1]).max() > 1e-3
+    # they differ by the coupling's residual (<= its tolerance, 0.12 um) and the interpolation
+    # between hull nodes (0.3 um measured), against changes of mm
+    assert row.status.tolerance_m < 2e-7
+    np.testing.assert_allclose(harmonics[:K], deck_change, rtol=0, atol=1e-6)
+    assert np.abs(harmonics[K:]).max() < 1e-9
+
+
+# ------------------------------------------------------------------ tolerance on a fine mesh
 @pytest.mark.slow
 def test_a_fine_cargo_mesh_converges_every_row_to_the_coarse_mesh_results(two_way_run):
     """model.element_length_m = 0.1 (740 cargo elements): the cargo's deck forces carry ~1e4

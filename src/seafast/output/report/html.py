@@ -124,8 +124,9 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
     vessel_html = f"<p>Excitation: {exc}. Wave frequency {omega:.4f} rad/s (period {2 * math.pi / omega:.2f} s).</p>" if math.isfinite(omega) and omega > 0 else f"<p>Excitation: {exc}</p>"
     if "coupling_converged" in ds:
         vessel_html += (
-            "<p>Hull-cargo coupling (vessel.coupling = two_way): the deck of each row iterated with the hull girder.</p>"
-            + _table(*coupling_rows(ds))
+            "<p>Hull-cargo coupling (vessel.coupling = two_way): the deck of each row iterated with the hull girder. "
+            "The hull girder figure shows the one-way hull (the cargo as a spread weight) and the two-way coupled one "
+            "(under the nonlinear model's saddle forces).</p>" + _table(*coupling_rows(ds))
         )
     vessel_html += figs_html(["fig-hull-girder", "fig-raos", "fig-deck-motion"])
     if "fig-raos" not in by_id:
