@@ -131,9 +131,11 @@ def solve_nonlinear(
 class CaseResult:
     """Everything computed for one case.
 
-    ``coupling`` holds each row's two-way coupling outcome, keyed ``(load_case, model)``
-    (empty for one-way runs); ``coupled_hull`` the hull girder under the coupled cargo
-    (``None`` for one-way runs).
+    Two-way runs also hold, keyed ``(load_case, model)``: ``coupling``, each row's coupling
+    outcome, and ``deck_couplings``, each row's coupled deck, deck forces and response; and
+    ``compliance``, the hull's at the saddles. ``coupled_hull`` (computed when first asked
+    for, e.g. by :attr:`dataset`; studies never do) is the hull girder under the coupled cargo.
+    One-way runs leave them empty / ``None``.
     """
 
     case: Case
@@ -144,7 +146,19 @@ class CaseResult:
     responses: dict[str, Any]
     attrs: dict[str, Any]
     coupling: Mapping[tuple[str, str], CouplingStatus] = field(default_factory=dict)
-    coupled_hull: CoupledHull | None = None
+    deck_couplings: Mapping[tuple[str, str], DeckCoupling] = field(default_factory=dict)
+    compliance: HullCompliance | None = None
+
+    @functools.cached_property
+    def coupled_hull(self) -> CoupledHull | None:
+        """The hull girder under the nonlinear model's coupled cargo (``None`` one-way)."""
+        if not self.deck_couplings or self.compliance is None:
+            return None
+        v = self.vessel
+        return coupled_hull(
+            v.girder, v.loading, self.compliance, v.still_water, self.deck_couplings[("static", "nonlinear")],
+            v.wave, self.deck_couplings[("dynamic", "nonlinear")] if v.wave is not None else None,
+        )
 
     @property
     def summary(self) -> list[dict[str, Any]]:
@@ -203,7 +217,8 @@ def run_case(
         say("vessel excitation (hull girder, motions)")
         excitation, vessel = _excitation(case, model)
     N = case.solver.time_samples
-    couplings: dict[tuple[str, str], Any] = {}
+    couplings: dict[tuple[str, str], DeckCoupling] = {}
+    compliance: HullCompliance | None = None
     if case.vessel.coupling == "two_way":
         say("two-way hull-cargo coupling (still water and wave, linear and nonlinear)")
         compliance = _compliance(case, model, vessel)
@@ -242,7 +257,6 @@ def run_case(
     if couplings:
         attrs["hull_cargo_coupling"] = "\n".join(s.message for s in statuses.values())
     arrays = case_arrays(model, excitation, series, N, {key: c.excitation for key, c in couplings.items()})
-    hull = None
     if couplings:
         # a row whose deck did not converge is not converged, whatever its cargo solver says;
         # why is in the row's CouplingStatus (solver_message stays the cargo solver's own)
@@ -251,12 +265,8 @@ def run_case(
             for j, mdl in enumerate(MODELS):
                 converged[i, j] &= statuses[(lc, mdl)].converged
         arrays = replace(arrays, converged=converged)
-        hull = coupled_hull(
-            vessel.girder, vessel.loading, compliance, vessel.still_water, couplings[("static", "nonlinear")],
-            vessel.wave, couplings[("dynamic", "nonlinear")] if vessel.wave is not None else None,
-        )
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, hull)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, couplings, compliance)
 
 
 def _compliance(case: Case, model: StructuralModel, vessel: Any) -> HullCompliance:
