@@ -26,7 +26,9 @@ The hull girder is quasi-static and linear while no section emerges, so ``C`` is
 serves every harmonic. The moments of the rotational lashing springs (a few kN m) are not
 applied to the hull. Convergence is judged on the coupling's own residual, relative to the
 deck-motion scale (:data:`COUPLING_RELATIVE_TOLERANCE`), and reported as a
-:class:`~seafast.excitation.coupling_status.CouplingStatus`.
+:class:`~seafast.excitation.coupling_status.CouplingStatus`. The hull girder along the whole
+ship under the coupled cargo is :mod:`seafast.excitation.coupled_hull`. Theory and checks:
+``docs/coupling.md``.
 
 Length: about 470 lines, the compliance, the exchanged loads, the linear Jacobians and the
 quasi-Newton iteration that uses them; they change together.
