@@ -30,7 +30,7 @@ deck-motion scale (:data:`COUPLING_RELATIVE_TOLERANCE`), and reported as a
 ship under the coupled cargo is :mod:`seafast.excitation.coupled_hull`. Theory and checks:
 ``docs/coupling.md``.
 
-Length: about 470 lines, the compliance, the exchanged loads, the linear Jacobians and the
+Length: about 500 lines, the compliance, the exchanged loads, the linear Jacobians and the
 quasi-Newton iteration that uses them; they change together.
 """
 

@@ -35,7 +35,7 @@ load.
 
 Length: the still-water, wave and load-influence solves share private kernels (the grid, the
 hydrostatic balance, the banded beam) that no other module should import, so they stay in
-one module of about 850 lines rather than expose those kernels.
+one module of about 870 lines rather than expose those kernels.
 """
 
 from __future__ import annotations
