@@ -148,15 +148,19 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if not args.quiet:
         print(format_summary_table(rows, title=f"{case.name}: maxima over the cargo, the saddles and one wave period"))
         print(f"excitation: {result.excitation.source}")
-        if "hull_cargo_coupling" in result.attrs:
-            print(result.attrs["hull_cargo_coupling"])
+        for status in result.coupling.values():
+            print(status.message)
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if not r["converged"]]
-    from seafast.results.dataset import LOAD_CASES, MODELS
-
     for r in bad:
-        message = str(result.arrays.solver_message[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])])
-        why = message.split(" | ")[0] if message.startswith("two-way coupling") else f"residual {r['residual_norm']:.3e}"
+        coupling = result.coupling.get((r["load_case"], r["model"]))
+        if coupling is not None and not coupling.converged:
+            why = (
+                f"two-way coupling {coupling.outcome.value.replace('_', ' ')}: coupling residual {coupling.residual_m:.2e} m "
+                f"> tolerance {coupling.tolerance_m:.2e} m after {coupling.iterations} step(s)"
+            )
+        else:
+            why = f"cargo solver residual {r['residual_norm']:.3e}"
         print(
             f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge ({why}); "
             "its numbers are flagged converged=false in summary.csv and must not be trusted",

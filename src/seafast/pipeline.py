@@ -7,7 +7,8 @@ the previous one's output. Nothing here prints or writes files (see :mod:`seafas
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -15,10 +16,21 @@ import xarray as xr
 
 import seafast
 from seafast.config.schema import Case
+from seafast.excitation.coupled_hull import CoupledHull, coupled_hull
+from seafast.excitation.coupling import (
+    DeckCoupling,
+    HullCompliance,
+    couple_deck,
+    deck_forces_N,
+    hull_compliance,
+    linear_coupling_jacobians,
+)
+from seafast.excitation.coupling_status import CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
+from seafast.results.coupling import coupling_dataset, coupling_summary_fields
 from seafast.results.dataset import LOAD_CASES, MODELS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
@@ -117,7 +129,14 @@ def solve_nonlinear(
 
 @dataclass(frozen=True)
 class CaseResult:
-    """Everything computed for one case."""
+    """Everything computed for one case.
+
+    Two-way runs also hold, keyed ``(load_case, model)``: ``coupling``, each row's coupling
+    outcome, and ``deck_couplings``, each row's coupled deck, deck forces and response; and
+    ``compliance``, the hull's at the saddles. ``coupled_hull`` (computed when first asked
+    for, e.g. by :attr:`dataset`; studies never do) is the hull girder under the coupled cargo.
+    One-way runs leave them empty / ``None``.
+    """
 
     case: Case
     model: StructuralModel
@@ -126,11 +145,32 @@ class CaseResult:
     arrays: CaseArrays
     responses: dict[str, Any]
     attrs: dict[str, Any]
+    coupling: Mapping[tuple[str, str], CouplingStatus] = field(default_factory=dict)
+    deck_couplings: Mapping[tuple[str, str], DeckCoupling] = field(default_factory=dict)
+    compliance: HullCompliance | None = None
+
+    @functools.cached_property
+    def coupled_hull(self) -> CoupledHull | None:
+        """The hull girder under the nonlinear model's coupled cargo (``None`` one-way)."""
+        if not self.deck_couplings or self.compliance is None:
+            return None
+        v = self.vessel
+        return coupled_hull(
+            v.girder, v.loading, self.compliance, v.still_water, self.deck_couplings[("static", "nonlinear")],
+            v.wave, self.deck_couplings[("dynamic", "nonlinear")] if v.wave is not None else None,
+        )
 
     @property
     def summary(self) -> list[dict[str, Any]]:
-        """Summary rows (INTERFACE.md columns plus contact_preserved and diagnostics)."""
-        return summary_rows_from_arrays(self.arrays)
+        """Summary rows (summary.csv's columns plus contact_preserved and diagnostics; a two-way
+        run adds each row's coupling_converged, coupling_residual_m, coupling_tolerance_m and
+        coupling_iterations)."""
+        rows = summary_rows_from_arrays(self.arrays)
+        for row in rows:
+            status = self.coupling.get((row["load_case"], row["model"]))
+            if status is not None:
+                row.update(coupling_summary_fields(status))
+        return rows
 
     @functools.cached_property
     def dataset(self) -> xr.Dataset:
@@ -140,6 +180,8 @@ class CaseResult:
             vds = self.vessel.to_dataset()
             ds = xr.merge([ds, vds], combine_attrs="override")
             ds.attrs.update(vds.attrs)
+        if self.coupling:
+            ds = xr.merge([ds, coupling_dataset(self.coupling, self.coupled_hull)], combine_attrs="override")
         return ds
 
 
@@ -175,10 +217,12 @@ def run_case(
         say("vessel excitation (hull girder, motions)")
         excitation, vessel = _excitation(case, model)
     N = case.solver.time_samples
-    couplings: dict[tuple[str, str], Any] = {}
+    couplings: dict[tuple[str, str], DeckCoupling] = {}
+    compliance: HullCompliance | None = None
     if case.vessel.coupling == "two_way":
         say("two-way hull-cargo coupling (still water and wave, linear and nonlinear)")
-        couplings = couple_hull_and_cargo(case, model, excitation, vessel)
+        compliance = _compliance(case, model, vessel)
+        couplings = couple_hull_and_cargo(case, model, excitation, vessel, compliance)
         lin_static = couplings[("static", "linear")].response
         lin_dynamic = couplings[("dynamic", "linear")].response
         nl_static = couplings[("static", "nonlinear")].response
@@ -215,27 +259,32 @@ def run_case(
         "conventions": "x from the cargo's aft end; z up; displacements relative to the vessel's rigid-body frame; "
         "sagging moment positive; saddle compression positive when compressed",
     }
+    statuses = {key: c.status for key, c in couplings.items()}
     if couplings:
-        attrs["hull_cargo_coupling"] = "\n".join(c.message for c in couplings.values())
+        attrs["hull_cargo_coupling"] = "\n".join(s.message for s in statuses.values())
     arrays = case_arrays(model, excitation, series, N, {key: c.excitation for key, c in couplings.items()})
     if couplings:
-        # a row whose deck did not converge is not converged, whatever its cargo solver says
+        # a row whose deck did not converge is not converged, whatever its cargo solver says;
+        # why is in the row's CouplingStatus (solver_message stays the cargo solver's own)
         converged = arrays.converged.copy()
-        messages = arrays.solver_message.astype(object)
         for i, lc in enumerate(LOAD_CASES):
             for j, mdl in enumerate(MODELS):
-                coupling = couplings[(lc, mdl)]
-                if not coupling.converged:
-                    converged[i, j] = False
-                    messages[i, j] = f"{coupling.message} | cargo solver: {messages[i, j]}"
-        arrays = replace(arrays, converged=converged, solver_message=messages.astype(str))
+                converged[i, j] &= statuses[(lc, mdl)].converged
+        arrays = replace(arrays, converged=converged)
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, couplings, compliance)
+
+
+def _compliance(case: Case, model: StructuralModel, vessel: Any) -> HullCompliance:
+    """The hull's compliance at the model's sea-fastening points (two-way coupling)."""
+    if vessel is None or getattr(vessel, "girder", None) is None or getattr(vessel, "loading", None) is None:
+        raise ValueError("vessel.coupling = 'two_way' needs the computed hull girder and its loading (no vessel data was given)")
+    return hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, case.cargo.units_abreast)
 
 
 def couple_hull_and_cargo(
-    case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: Any
-) -> dict[tuple[str, str], Any]:
+    case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: Any, compliance: HullCompliance | None = None
+) -> dict[tuple[str, str], DeckCoupling]:
     """Hull and cargo solved together (``vessel.coupling = 'two_way'``), row by row.
 
     For each (load case, model) the deck under the sea-fastening is iterated until the hull
@@ -243,13 +292,12 @@ def couple_hull_and_cargo(
     (:func:`seafast.excitation.coupling.couple_deck`): the still-water state (harmonic 0) for
     the static rows, harmonics 0 .. H (the linear model: the excitation's harmonics) for the
     dynamic rows. Returns :class:`~seafast.excitation.coupling.DeckCoupling` per row, keyed
-    ``(load_case, model)``; each carries the coupled excitation and the cargo's response.
+    ``(load_case, model)``; each carries the coupled excitation, the cargo's response and its
+    :class:`~seafast.excitation.coupling_status.CouplingStatus`. ``compliance``: the hull's
+    (computed from ``vessel`` when omitted).
     """
-    from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobians
-
-    if vessel is None or getattr(vessel, "girder", None) is None or getattr(vessel, "loading", None) is None:
-        raise ValueError("vessel.coupling = 'two_way' needs the computed hull girder and its loading (no vessel data was given)")
-    compliance = hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, case.cargo.units_abreast)
+    if compliance is None:
+        compliance = _compliance(case, model, vessel)
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
     k_nonlinear = max(case.solver.harmonics + 1, k_linear)

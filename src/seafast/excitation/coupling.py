@@ -17,22 +17,33 @@ lashing spring force, minus the pretension's reaction, which pulls the deck up),
 the same unit's spread load as the one-way model sees it, lumped on the cargo nodes (its weight
 at k = 0; at k >= 1 its rigid-body inertia load, so that the exchange is self-equilibrated and
 the quasi-static hull, which balances no inertia, is not asked to), and ``C`` the hull's
-compliance: deck deflection and slope per newton of downward load at each cargo node (spread
-over the node's tributary length), the ship re-balanced in sinkage and trim.
+compliance: deck deflection and slope per newton of downward load, ``Q`` spread over each
+cargo node's tributary length and ``P`` over a patch of the same length centred on its
+sea-fastening point (so that its resultant acts at the saddle), the ship re-balanced in
+sinkage and trim.
 
 The hull girder is quasi-static and linear while no section emerges, so ``C`` is exact and
 serves every harmonic. The moments of the rotational lashing springs (a few kN m) are not
-applied to the hull. See the README for what the coupling changes on the base case.
+applied to the hull. Convergence is judged on the coupling's own residual, relative to the
+deck-motion scale (:data:`COUPLING_RELATIVE_TOLERANCE`), and reported as a
+:class:`~seafast.excitation.coupling_status.CouplingStatus`. The hull girder along the whole
+ship under the coupled cargo is :mod:`seafast.excitation.coupled_hull`. Theory and checks:
+``docs/coupling.md``.
+
+Length: about 500 lines, the compliance, the exchanged loads, the linear Jacobians and the
+quasi-Newton iteration that uses them; they change together.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.excitation.coupling_status import CouplingOutcome, CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.hull_girder import HullGirder, deck_load_influence
 from seafast.model.structure import StructuralModel
@@ -40,6 +51,9 @@ from seafast.solvers.periodic import harmonics_to_time
 from seafast.vessel.loading import VesselLoading
 
 __all__ = [
+    "COUPLING_RELATIVE_TOLERANCE",
+    "CouplingOutcome",
+    "CouplingStatus",
     "HullCompliance",
     "DeckCoupling",
     "hull_compliance",
@@ -53,7 +67,12 @@ __all__ = [
 
 @dataclass(frozen=True)
 class HullCompliance:
-    """The hull girder's compliance at the sea-fastening points, for loads at the cargo nodes.
+    """The hull girder's compliance at the sea-fastening points, for loads on patches of deck.
+
+    Two kinds of patch: each cargo node's tributary length (where the one-way spread load ``Q``
+    acts, so that the patches tile the cargo and a uniform load stays uniform), then one patch
+    per sea-fastening point centred on it, of its node's tributary length (where the deck force
+    ``P`` acts, so that its resultant sits at the saddle, as a point load's would).
 
     Attributes
     ----------
@@ -61,18 +80,50 @@ class HullCompliance:
         Ship x of the cargo nodes, from the AP [m], shape (n_nodes,).
     saddle_node
         Cargo node of each sea-fastening point, shape (n_s,).
+    patch_start_m, patch_end_m
+        Ship x of the patch ends [m], shape (n_nodes + n_s,): the nodes' tributary lengths,
+        then the patches centred on the sea-fastening points.
     deflection_m_per_N, slope_rad_per_N
         Deck deflection [m] and slope [rad] at sea-fastening point i per newton of downward load
-        at cargo node j (spread over its tributary length; the ship re-balanced), (n_s, n_nodes).
+        spread over patch j (the ship re-balanced), shape (n_s, n_nodes + n_s).
     units_abreast
         Identical cargo units side by side, each on its own saddles at the same x.
     """
 
     node_x_ship_m: NDArray[np.float64]
     saddle_node: NDArray[np.intp]
+    patch_start_m: NDArray[np.float64]
+    patch_end_m: NDArray[np.float64]
     deflection_m_per_N: NDArray[np.float64]
     slope_rad_per_N: NDArray[np.float64]
     units_abreast: int
+
+    @property
+    def saddle_deflection_m_per_N(self) -> NDArray[np.float64]:
+        """Deck deflection at point i per newton of deck force at point j [m/N], (n_s, n_s)."""
+        return self.deflection_m_per_N[:, self.node_x_ship_m.size :]
+
+    @property
+    def saddle_slope_rad_per_N(self) -> NDArray[np.float64]:
+        """Deck slope at point i per newton of deck force at point j [rad/N], (n_s, n_s)."""
+        return self.slope_rad_per_N[:, self.node_x_ship_m.size :]
+
+    def patch_loads_N(self, deck_force_N: NDArray, spread_load_N: NDArray) -> NDArray:
+        """What two-way coupling adds to the one-way hull loading, per unit, on the patches [N].
+
+        ``-Q_k`` on the nodes' patches and ``P_k`` on the sea-fastening points' patches
+        (downward +), shape (K, n_nodes + n_s).
+
+        Parameters
+        ----------
+        deck_force_N
+            ``P_k``: downward force of one unit on the deck at each point [N], (K, n_s).
+        spread_load_N
+            ``Q_k``: the unit's spread load on its nodes, downward [N], (K, n_nodes).
+        """
+        Q = np.asarray(spread_load_N)
+        P = np.asarray(deck_force_N)
+        return np.concatenate([-Q, P], axis=-1).astype(np.result_type(Q, P, float), copy=False)
 
     def deck_change(self, deck_force_N: NDArray, spread_load_N: NDArray) -> NDArray:
         """Deck DOFs (z, theta interleaved per point) of two-way minus one-way, per harmonic.
@@ -84,9 +135,7 @@ class HullCompliance:
         spread_load_N
             ``Q_k``: the unit's spread load on its nodes, downward [N], (K, n_nodes).
         """
-        net = -np.asarray(spread_load_N)
-        net = net.astype(np.result_type(net, deck_force_N, float), copy=True)
-        np.add.at(net, (slice(None), self.saddle_node), np.asarray(deck_force_N))
+        net = self.patch_loads_N(deck_force_N, spread_load_N)
         out = np.empty((net.shape[0], 2 * self.saddle_node.size), dtype=net.dtype)
         out[:, 0::2] = self.units_abreast * net @ self.deflection_m_per_N.T
         out[:, 1::2] = self.units_abreast * net @ self.slope_rad_per_N.T
@@ -98,12 +147,16 @@ def hull_compliance(
 ) -> HullCompliance:
     """:class:`HullCompliance` of ``girder`` under ``loading`` at the model's sea-fastening points.
 
-    One vectorised set of still-water solves: a 1 N probe on each cargo node's tributary length.
+    One vectorised set of still-water solves: a probe load on each patch.
     """
     xn = float(cargo_aft_end_x_m) + model.cargo.node_x_m
     edges = np.concatenate([[xn[0]], 0.5 * (xn[1:] + xn[:-1]), [xn[-1]]])
-    z, s = deck_load_influence(girder, loading, edges[:-1], edges[1:], xn[model.saddle_node])
-    return HullCompliance(xn, np.asarray(model.saddle_node), z, s, int(units_abreast))
+    sad = np.asarray(model.saddle_node)
+    half = 0.5 * (edges[sad + 1] - edges[sad])
+    start = np.concatenate([edges[:-1], xn[sad] - half])
+    end = np.concatenate([edges[1:], xn[sad] + half])
+    z, s = deck_load_influence(girder, loading, start, end, xn[sad])
+    return HullCompliance(xn, sad, start, end, z, s, int(units_abreast))
 
 
 def spread_load_N(model: StructuralModel, excitation: HarmonicExcitation, harmonic_count: int) -> NDArray[np.complex128]:
@@ -164,6 +217,15 @@ def deck_forces_N(model: StructuralModel, excitation: HarmonicExcitation, respon
     return P
 
 
+COUPLING_RELATIVE_TOLERANCE = 1e-6
+"""Default coupling tolerance, relative to the deck-motion scale (see :func:`couple_deck`).
+
+The coupling residual cannot fall below the round-off of the cargo's deck forces, which is
+relative to the displacements (tens of mm) and grows with the cargo's conditioning as the mesh
+is refined (about 5e-10 m at ``model.element_length_m = 0.1`` on the base case, 3e-14 m at
+1 m). 1e-6 of the base case's 74 mm is 74 nm: a saddle-force error of about 80 N on 5 MN."""
+
+
 @dataclass(frozen=True)
 class DeckCoupling:
     """Outcome of :func:`couple_deck`.
@@ -178,18 +240,38 @@ class DeckCoupling:
         Two-way minus one-way deck DOFs, (K, 2 n_s) complex (z [m], theta [rad] interleaved).
     deck_force_N
         ``P_k`` at the coupled state [N], (K, n_s).
-    converged, iterations, residual_m, message
-        Convergence of the coupling (residual: largest deck-DOF mismatch [m or rad]).
+    spread_load_N
+        ``Q_k``, the unit's spread load the one-way hull carries [N], (K, n_nodes).
+    status
+        Convergence of the coupling (:class:`CouplingStatus`).
     """
 
     excitation: HarmonicExcitation
-    response: object
+    response: Any
     deck_change: NDArray[np.complex128]
     deck_force_N: NDArray[np.complex128]
-    converged: bool
-    iterations: int
-    residual_m: float
-    message: str
+    spread_load_N: NDArray[np.complex128]
+    status: CouplingStatus
+
+    @property
+    def converged(self) -> bool:
+        """``status.converged``."""
+        return self.status.converged
+
+    @property
+    def iterations(self) -> int:
+        """``status.iterations``."""
+        return self.status.iterations
+
+    @property
+    def residual_m(self) -> float:
+        """``status.residual_m`` [m]."""
+        return self.status.residual_m
+
+    @property
+    def message(self) -> str:
+        """``status.message``."""
+        return self.status.message
 
 
 def _with_deck_change(excitation: HarmonicExcitation, change: NDArray, note: str) -> HarmonicExcitation:
@@ -229,8 +311,8 @@ def linear_coupling_jacobians(
     n_o = model.deck_dof_count
     sad = model.saddle_deck_dof
     C = np.empty((n_o, model.saddle_count))
-    C[0::2] = compliance.deflection_m_per_N[:, compliance.saddle_node]
-    C[1::2] = compliance.slope_rad_per_N[:, compliance.saddle_node]
+    C[0::2] = compliance.saddle_deflection_m_per_N
+    C[1::2] = compliance.saddle_slope_rad_per_N
     blocks = []
     for k in range(counts[-1]):
         Kd_cc, Kco, Koc, Koo = model.dynamic_stiffness(k * omega_rad_s, include_saddles=True)
@@ -268,7 +350,7 @@ def couple_deck(
     harmonic_count: int,
     *,
     jacobian0: NDArray | None = None,
-    tolerance_m: float = 1e-10,
+    relative_tolerance: float = COUPLING_RELATIVE_TOLERANCE,
     max_iterations: int = 40,
     label: str = "",
 ) -> DeckCoupling:
@@ -295,17 +377,38 @@ def couple_deck(
     jacobian0
         The starting Jacobian, e.g. :func:`linear_coupling_jacobian` (default: finite
         differences of the model itself).
-    tolerance_m, max_iterations
-        Convergence: largest deck-DOF mismatch [m, rad]; iteration limit.
+    relative_tolerance
+        Convergence: the residual (the largest deck mismatch in metres, slopes times half the
+        cargo length) at most this fraction of the deck-motion scale (the largest one-way deck
+        harmonic under the sea-fastening, measured the same way). Relative, because the
+        residual's floor, the round-off of the cargo's deck forces, is relative to the
+        displacements and grows as the cargo mesh is refined.
+    max_iterations
+        Iteration limit.
 
     Returns
     -------
     DeckCoupling
-        Never raises for non-convergence: ``converged=False`` with the residual.
+        Never raises for non-convergence: ``status`` says how the iteration ended, with the
+        coupling's own residual and tolerance.
     """
     K = int(harmonic_count)
     n_o = model.deck_dof_count
     Q = spread_load_N(model, excitation, K)
+    x = model.cargo.node_x_m
+    lever_arm_m = 0.5 * float(x[-1] - x[0])
+    # residual in metres: deflection entries as they are, slope entries times the lever arm
+    weight = np.where(np.arange(n_o * (2 * K - 1)) % 2 == 0, 1.0, lever_arm_m)
+    one_way = np.asarray(excitation.deck_displacement)[:K]
+    scale_m = max(
+        float(np.max(np.abs(one_way[:, model.saddle_deck_dof]), initial=0.0)),
+        lever_arm_m * float(np.max(np.abs(one_way[:, model.saddle_deck_dof + 1]), initial=0.0)),
+        1e-6,
+    )
+    tolerance_m = float(relative_tolerance) * scale_m
+
+    def size_m(r: NDArray) -> float:
+        return float(np.max(np.abs(weight * r)))
 
     def residual_of(forces: Callable[[HarmonicExcitation], NDArray], v: NDArray) -> NDArray:
         exc = _with_deck_change(excitation, _unpack(v, K, n_o), "")
@@ -335,10 +438,12 @@ def couple_deck(
     r = residual_of(forces_of_model, v)
     J = jacobian(forces_of_model, v, r) if jacobian0 is None else np.array(jacobian0, dtype=float)
     it = 0
-    res = float(np.max(np.abs(r)))
+    res = size_m(r)
     refreshed = jacobian0 is None
+    stalled = False
     while res > tolerance_m and it < max_iterations:
         it += 1
+        dv: NDArray | None
         try:
             dv = -np.linalg.solve(J, r)
         except np.linalg.LinAlgError:
@@ -352,26 +457,38 @@ def couple_deck(
                 accepted = True
                 break
             alpha *= 0.5
-        if accepted:
+        if accepted and dv is not None:
             s_v = alpha * dv
             J += np.outer(r_try - r - J @ s_v, s_v) / float(s_v @ s_v)  # Broyden's ("good") update
             v, r = v_try, r_try
-            res = float(np.max(np.abs(r)))
+            res = size_m(r)
             refreshed = False
         elif not refreshed:
             # Broyden's matrix has drifted (contact switches): the model's own Jacobian, once
             J = jacobian(forces_of_model, v, r)
             refreshed = True
         else:
+            stalled = True
             break
     residual_of(forces_of_model, v)  # the response and forces at the final state
-    ok = bool(np.isfinite(res) and res <= tolerance_m)
+    if not np.isfinite(res):
+        outcome = CouplingOutcome.NOT_FINITE
+    elif res <= tolerance_m:
+        outcome = CouplingOutcome.CONVERGED
+    else:
+        outcome = CouplingOutcome.STALLED if stalled else CouplingOutcome.ITERATION_LIMIT
     V = _unpack(v, K, n_o)
-    what = "still-water" if K == 1 else f"harmonics 0..{K - 1}"
-    message = (
-        f"two-way coupling{(' (' + label + ')') if label else ''} of the deck, {what}: "
-        f"{'converged' if ok else 'NOT converged'} in {it} quasi-Newton step(s), residual {res:.1e} m; "
-        f"mean deck change at the saddles {', '.join(f'{1e3 * d:+.2f}' for d in V[0, 0::2].real)} mm"
+    status = CouplingStatus(
+        outcome=outcome,
+        iterations=it,
+        residual_m=res,
+        tolerance_m=tolerance_m,
+        deck_motion_scale_m=scale_m,
+        relative_tolerance=float(relative_tolerance),
+        lever_arm_m=lever_arm_m,
+        harmonic_count=K,
+        mean_deck_change_m=tuple(float(d) for d in V[0, 0::2].real),
+        label=label,
     )
     coupled = _with_deck_change(excitation, V, "two-way coupled deck")
-    return DeckCoupling(coupled, state["response"], V, np.asarray(state["P"]), ok, it, res, message)
+    return DeckCoupling(coupled, state["response"], V, np.asarray(state["P"]), Q, status)

@@ -61,6 +61,17 @@ the RAOs at the case's frequency are interpolated linearly, on a 0.05 rad/s grid
 wavelength / 8) and well beyond the waves that bend a 171 m hull."""
 
 
+_ONE_WAY = "one-way: the cargo as a weight spread over its length (with vessel.coupling = two_way see the *_coupled_* variables)"
+
+
+def _hull_coupling_attr(name: str) -> dict[str, str]:
+    """``hull_coupling = one_way`` on the hull lines that the cargo's load distribution changes."""
+    return {"hull_coupling": "one_way"} if name in _ONE_WAY_LINES else {}
+
+
+_ONE_WAY_LINES = ("hull_still_water_deflection_m", "hull_still_water_bending_moment_Nm", "hull_still_water_shear_force_N", "hull_weight_N_per_m")
+
+
 @dataclass(frozen=True)
 class _Curve:
     """Deflection [m] and slope [rad] along the ship as a C1 Hermite interpolant."""
@@ -145,13 +156,13 @@ class VesselExcitation:
         if isinstance(sw, HullGirderResponse):
             coords["hull_x_m"] = ("hull_x_m", sw.x_m, {"long_name": "x along the ship from the aft perpendicular", "units": "m"})
             for name, values, long_name, units in (
-                ("hull_still_water_deflection_m", sw.deflection_m, "still-water hull deflection (chord through AP and FP)", "m"),
-                ("hull_still_water_bending_moment_Nm", sw.bending_moment_Nm, "still-water hull bending moment (sagging +)", "N m"),
-                ("hull_still_water_shear_force_N", sw.shear_force_N, "still-water hull shear force", "N"),
-                ("hull_weight_N_per_m", sw.weight_N_per_m, "ship weight per metre", "N/m"),
+                ("hull_still_water_deflection_m", sw.deflection_m, f"still-water hull deflection (chord through AP and FP, up +), {_ONE_WAY}", "m"),
+                ("hull_still_water_bending_moment_Nm", sw.bending_moment_Nm, f"still-water hull bending moment (sagging +), {_ONE_WAY}", "N m"),
+                ("hull_still_water_shear_force_N", sw.shear_force_N, f"still-water hull shear force, {_ONE_WAY}", "N"),
+                ("hull_weight_N_per_m", sw.weight_N_per_m, "ship weight per metre, the cargo spread over its length (one-way loading)", "N/m"),
                 ("hull_buoyancy_N_per_m", sw.buoyancy_N_per_m, "still-water buoyancy per metre", "N/m"),
             ):
-                data[name] = ("hull_x_m", values, {"long_name": long_name, "units": units})
+                data[name] = ("hull_x_m", values, {"long_name": long_name, "units": units, **_hull_coupling_attr(name)})
         elif self.still_water_curve is not None:
             c = self.still_water_curve
             coords["hull_x_m"] = ("hull_x_m", c.x_m, {"long_name": "x along the ship from the aft perpendicular", "units": "m"})
@@ -159,8 +170,11 @@ class VesselExcitation:
         wv = self.wave
         if isinstance(wv, WaveHullResponse) and "hull_x_m" in coords and np.array_equal(wv.x_m, coords["hull_x_m"][1]):
             coords["hull_period_fraction"] = ("hull_period_fraction", wv.period_fraction, {"long_name": "t/T of the hull wave balance", "units": "1"})
-            data["hull_wave_deflection_m"] = (("hull_period_fraction", "hull_x_m"), wv.deflection_m, {"long_name": "wave-induced hull deflection", "units": "m"})
-            data["hull_wave_bending_moment_Nm"] = (("hull_period_fraction", "hull_x_m"), wv.bending_moment_Nm, {"long_name": "wave-induced hull bending moment (sagging +)", "units": "N m"})
+            data["hull_wave_deflection_m"] = (("hull_period_fraction", "hull_x_m"), wv.deflection_m,
+                                              {"long_name": f"wave-induced hull deflection, {_ONE_WAY}", "units": "m", "hull_coupling": "one_way"})
+            data["hull_wave_bending_moment_Nm"] = (("hull_period_fraction", "hull_x_m"), wv.bending_moment_Nm,
+                                                   {"long_name": f"wave-induced hull bending moment (sagging +), {_ONE_WAY}", "units": "N m",
+                                                    "hull_coupling": "one_way"})
             if "hull_still_water_bending_moment_Nm" not in data:
                 data["hull_still_water_bending_moment_Nm"] = ("hull_x_m", np.zeros_like(wv.x_m), {"long_name": "not computed", "units": "N m"})
         ds = xr.Dataset(data, coords=coords, attrs=attrs)

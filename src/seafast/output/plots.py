@@ -48,22 +48,26 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
         ax = axes[0]
         x = ds["hull_x_m"].values
         sw = ds["hull_still_water_deflection_m"].values * 1e3
-        ax.plot(x, sw, "k", label="still water")
+        one_way = ", one-way" if "hull_still_water_deflection_coupled_m" in ds else ""
+        ax.plot(x, sw, "k", label=f"still water{one_way}")
         if "hull_wave_deflection_m" in ds:
             w = ds["hull_wave_deflection_m"].values * 1e3
-            ax.fill_between(x, sw + w.min(axis=0), sw + w.max(axis=0), color="0.8", label="still water + wave (envelope)")
+            ax.fill_between(x, sw + w.min(axis=0), sw + w.max(axis=0), color="0.8", label=f"still water + wave (envelope){one_way}")
         xs = aft + ds["saddle_x_m"].values
         ax.plot(xs, np.interp(xs, x, sw), "v", color="tab:green", ms=9, label="saddles")
+        if "hull_still_water_deflection_coupled_m" in ds:
+            ax.plot(x, ds["hull_still_water_deflection_coupled_m"].values * 1e3, "--", color="tab:purple",
+                    label="still water, two-way coupled")
         if ds.attrs.get("hull_cargo_coupling") and "deck_deflection_m" in ds:
-            # the hull line is the one-way solution; mark where the coupled deck sits in still water
-            deck = ds["deck_deflection_m"].sel(load_case="static")  # under the nonlinear model's cargo
-            ax.plot(xs, deck.isel(period_fraction=0).values * 1e3, "o", mfc="none", color="tab:purple", ms=9,
+            # where the coupled deck the cargo stood on sits in still water
+            coupled_deck = ds["deck_deflection_m"].sel(load_case="static")  # under the nonlinear model's cargo
+            ax.plot(xs, coupled_deck.isel(period_fraction=0).values * 1e3, "o", mfc="none", color="tab:purple", ms=9,
                     label="deck under the saddles, two-way coupled (still water)")
         ax.axvspan(aft, aft + float(ds["x_cargo_m"].max()), color="tab:orange", alpha=0.15, label="cargo")
         ax.set_xlabel("x along the ship from the aft perpendicular [m]")
         ax.set_ylabel("hull deflection [mm]")
         ax.set_title("Hull deflection (relative to the chord through the ship's ends)"
-                     + ("; lines: one-way" if ds.attrs.get("hull_cargo_coupling") else ""))
+                     + ("; black and grey: one-way" if ds.attrs.get("hull_cargo_coupling") else ""))
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
     xc = ds["x_cargo_m"].values
@@ -188,23 +192,46 @@ def plot_aft_picture(ds: xr.Dataset, path: Path) -> Path:
     return _save(fig, path)
 
 
-def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
-    """Hull deflection (still water, hog, sag) and hull bending moment along the ship."""
+def _hull_lines(ds: xr.Dataset, suffix: str) -> dict[str, np.ndarray] | None:
+    """Still-water and hog/sag hull lines [mm, MN m] of one coupling (``suffix`` "" or "_coupled")."""
+    names = {k: f"hull_{k}{suffix}_{u}" for k, u in (("still_water_deflection", "m"), ("still_water_bending_moment", "Nm"),
+                                                     ("wave_deflection", "m"), ("wave_bending_moment", "Nm"))}
+    if names["still_water_deflection"] not in ds or names["still_water_bending_moment"] not in ds:
+        return None
     x = ds["hull_x_m"].values
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
-    ax1.plot(x, ds["hull_still_water_deflection_m"].values * 1e3, "k", label="still water")
-    ax2.plot(x, ds["hull_still_water_bending_moment_Nm"].values / 1e6, "k", label="still water")
-    if "hull_wave_deflection_m" in ds:
-        w = ds["hull_wave_deflection_m"].values
-        m = ds["hull_wave_bending_moment_Nm"].values
+    sw, swm = ds[names["still_water_deflection"]].values, ds[names["still_water_bending_moment"]].values
+    out = {"sw_mm": sw * 1e3, "sw_MNm": swm / 1e6}
+    if names["wave_deflection"] in ds and names["wave_bending_moment"] in ds:
+        w, m = ds[names["wave_deflection"]].values, ds[names["wave_bending_moment"]].values
         mid = np.argmin(np.abs(x - 0.5 * x[-1]))
         i_hog, i_sag = int(np.argmin(m[:, mid])), int(np.argmax(m[:, mid]))
-        sw = ds["hull_still_water_deflection_m"].values
-        swm = ds["hull_still_water_bending_moment_Nm"].values
-        ax1.plot(x, (sw + w[i_hog]) * 1e3, "tab:red", label="hog (crest amidships)")
-        ax1.plot(x, (sw + w[i_sag]) * 1e3, "tab:blue", label="sag (trough amidships)")
-        ax2.plot(x, (swm + m[i_hog]) / 1e6, "tab:red", label="hog")
-        ax2.plot(x, (swm + m[i_sag]) / 1e6, "tab:blue", label="sag")
+        out.update(hog_mm=(sw + w[i_hog]) * 1e3, sag_mm=(sw + w[i_sag]) * 1e3, hog_MNm=(swm + m[i_hog]) / 1e6, sag_MNm=(swm + m[i_sag]) / 1e6)
+    return out
+
+
+def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
+    """Hull deflection (still water, hog, sag) and hull bending moment along the ship.
+
+    After a two-way run both hulls are drawn, labelled: one-way (the cargo as a spread weight,
+    solid) and two-way coupled (dashed).
+    """
+    x = ds["hull_x_m"].values
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
+    coupled = _hull_lines(ds, "_coupled")
+    variants = [("", "-", " (one-way)" if coupled else "")]
+    if coupled:
+        variants.append(("_coupled", "--", " (two-way coupled)"))
+    for suffix, style, tag in variants:
+        lines = _hull_lines(ds, suffix)
+        if lines is None:
+            continue
+        ax1.plot(x, lines["sw_mm"], "k", ls=style, label=f"still water{tag}")
+        ax2.plot(x, lines["sw_MNm"], "k", ls=style, label=f"still water{tag}")
+        if "hog_mm" in lines:
+            ax1.plot(x, lines["hog_mm"], "tab:red", ls=style, label=f"hog (crest amidships){tag}")
+            ax1.plot(x, lines["sag_mm"], "tab:blue", ls=style, label=f"sag (trough amidships){tag}")
+            ax2.plot(x, lines["hog_MNm"], "tab:red", ls=style, label=f"hog{tag}")
+            ax2.plot(x, lines["sag_MNm"], "tab:blue", ls=style, label=f"sag{tag}")
     aft = float(ds.attrs.get("cargo_aft_end_x_m", np.nan))
     if np.isfinite(aft):
         for ax in (ax1, ax2):
@@ -213,9 +240,9 @@ def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
     ax2.set_ylabel("hull bending moment [MN m] (sagging +)")
     ax2.set_xlabel("x along the ship from the aft perpendicular [m]")
     for ax in (ax1, ax2):
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=7 if coupled else 8)
         ax.grid(alpha=0.3)
-    ax1.set_title("Hull girder")
+    ax1.set_title("Hull girder: one-way (solid) and two-way coupled (dashed)" if coupled else "Hull girder")
     return _save(fig, path)
 
 

@@ -37,6 +37,13 @@ def write_summary_csv(rows: Iterable[dict[str, Any]], path: str | Path) -> Path:
     return p
 
 
+def _not_converged(row: dict[str, Any]) -> str:
+    """Why a row is flagged: the two-way coupling's residual when it failed, else the cargo solver's."""
+    if row.get("coupling_converged") is False:
+        return f"NO (coupling residual {row['coupling_residual_m']:.2e} m)"
+    return f"NO (residual {row.get('residual_norm', float('nan')):.2e})"
+
+
 def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:
     """Human-readable table in engineering units (mm, MN, MN m, MPa)."""
     head = ("load case", "model", "u_c [mm]", "u_s [mm]", "u_d [mm]", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "contact", "converged")
@@ -53,7 +60,7 @@ def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str
                 f"{r['M_b_Nm'] / 1e6:.2f}",
                 f"{r['sigma_b_Pa'] / 1e6:.2f}",
                 "kept" if r.get("contact_preserved", True) else "LOST",
-                "yes" if r["converged"] else f"NO (residual {r.get('residual_norm', float('nan')):.2e})",
+                "yes" if r["converged"] else _not_converged(r),
             )
         )
     widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]

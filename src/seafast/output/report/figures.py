@@ -61,8 +61,10 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
     x = ds["hull_x_m"].values
     sw = ds["hull_still_water_deflection_m"].values
     has_m = "hull_still_water_bending_moment_Nm" in ds
+    coupled = "hull_still_water_deflection_coupled_m" in ds
+    tag = ", one-way" if coupled else ""
     fig = _subplots(rows=2 if has_m else 1, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    fig.add_trace(go.Scatter(x=x, y=sw * 1e3, name="still water", line=dict(color="black", width=2), legendgroup="sw"), row=1, col=1)
+    fig.add_trace(go.Scatter(x=x, y=sw * 1e3, name=f"still water{tag}", line=dict(color="black", width=2), legendgroup="sw"), row=1, col=1)
     if "hull_wave_deflection_m" in ds:
         w = ds["hull_wave_deflection_m"].values
         fig.add_trace(go.Scatter(x=x, y=(sw + w.min(axis=0)) * 1e3, line=dict(width=0), showlegend=False, hoverinfo="skip"), row=1, col=1)
@@ -76,7 +78,7 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
             mid = int(np.argmin(np.abs(x - 0.5 * (x[0] + x[-1]))))
             i_hog, i_sag = int(np.argmin(m[:, mid])), int(np.argmax(m[:, mid]))
             swm = ds["hull_still_water_bending_moment_Nm"].values
-            for i, name, color in ((i_hog, "hog (crest amidships)", "#d62728"), (i_sag, "sag (trough amidships)", "#1f77b4")):
+            for i, name, color in ((i_hog, f"hog (crest amidships){tag}", "#d62728"), (i_sag, f"sag (trough amidships){tag}", "#1f77b4")):
                 fig.add_trace(go.Scatter(x=x, y=(sw + w[i]) * 1e3, name=name, legendgroup=name, line=dict(color=color)), row=1, col=1)
                 fig.add_trace(
                     go.Scatter(x=x, y=(swm + m[i]) / 1e6, name=name, legendgroup=name, showlegend=False, line=dict(color=color)), row=2, col=1
@@ -88,6 +90,8 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
             row=2, col=1,
         )
         fig.update_yaxes(title_text="hull bending moment [MN m] (sagging +)", row=2, col=1)
+    if coupled:
+        _add_coupled_hull_traces(fig, ds, has_m)
     aft = _attr_float(ds, "cargo_aft_end_x_m")
     if math.isfinite(aft) and "x_cargo_m" in ds.coords:
         fore = aft + float(ds["x_cargo_m"].max())
@@ -102,6 +106,26 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
     fig.update_yaxes(title_text="hull deflection [mm] (up +)", row=1, col=1)
     fig.update_xaxes(title_text="x along the ship from the aft perpendicular [m]", row=2 if has_m else 1, col=1)
     return _style(fig, "Hull girder: deflection (chord through the ship's ends) and bending moment", 620 if has_m else 380)
+
+
+def _add_coupled_hull_traces(fig: Any, ds: xr.Dataset, has_m: bool) -> None:
+    """The two-way coupled hull (dashed): still water, and hog and sag where the wave fields exist."""
+    go = _go()
+    x = ds["hull_x_m"].values
+    sw = ds["hull_still_water_deflection_coupled_m"].values
+    swm = ds["hull_still_water_bending_moment_coupled_Nm"].values if "hull_still_water_bending_moment_coupled_Nm" in ds else None
+    lines = [("still water, two-way coupled", "black", sw, swm)]
+    if "hull_wave_deflection_coupled_m" in ds and swm is not None and "hull_wave_bending_moment_coupled_Nm" in ds:
+        w, m = ds["hull_wave_deflection_coupled_m"].values, ds["hull_wave_bending_moment_coupled_Nm"].values
+        mid = int(np.argmin(np.abs(x - 0.5 * (x[0] + x[-1]))))
+        i_hog, i_sag = int(np.argmin(m[:, mid])), int(np.argmax(m[:, mid]))
+        lines += [("hog, two-way coupled", "#d62728", sw + w[i_hog], swm + m[i_hog]),
+                  ("sag, two-way coupled", "#1f77b4", sw + w[i_sag], swm + m[i_sag])]
+    for name, color, z, moment in lines:
+        style = dict(color=color, dash="dash", width=2 if color == "black" else 1.5)
+        fig.add_trace(go.Scatter(x=x, y=z * 1e3, name=name, legendgroup=name, line=style), row=1, col=1)
+        if has_m and moment is not None:
+            fig.add_trace(go.Scatter(x=x, y=moment / 1e6, name=name, legendgroup=name, showlegend=False, line=style), row=2, col=1)
 
 
 def rao_figure(ds: xr.Dataset) -> Any | None:
@@ -253,7 +277,8 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
     out: list[ReportFigure] = []
     for fid, title, builder, caption in (
         ("fig-hull-girder", "Hull girder", hull_girder_figure,
-         "Still-water deflection and bending moment of the hull, with the wave's hog and sag extremes; the cargo span is shaded."),
+         "Still-water deflection and bending moment of the hull, with the wave's hog and sag extremes; the cargo span is shaded. "
+         "After a two-way run, dashed: the hull under the coupled cargo."),
         ("fig-raos", "Heave and pitch RAOs", rao_figure, "Amplitude and phase of the rigid-body RAOs; the case's wave frequency is the dotted line."),
         ("fig-deck-motion", "Deck deflection under the saddles", deck_motion_figure,
          "The prescribed deck displacement at each saddle over one period (solid) and in still water (dotted)."),

@@ -26,7 +26,8 @@ TENSILE_NOTE_FRACTION = 1e-2
 def run_findings(ds: xr.Dataset) -> list[Finding]:
     """Diagnostics of a run that decide whether its numbers can be trusted.
 
-    WARNING when: a solve did not converge; the harmonic truncation indicator exceeds
+    WARNING when: a solve did not converge (a two-way coupling that did not converge is named
+    as such, with the coupling's own residual and tolerance); the harmonic truncation indicator exceeds
     :data:`TRUNCATION_LIMIT`; a solver message carries a warning (e.g. the quasi-static
     assumption, or excitation harmonics above H dropped); contact is lost while the linear
     (bilateral) model is used — its forces then include tension a saddle cannot carry.
@@ -38,7 +39,18 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
     for lc in lcs:
         for m in models:
             sel = ds.sel(load_case=lc, model=m)
-            if "converged" in sel and not bool(sel["converged"]):
+            coupling_failed = "coupling_converged" in sel and not bool(sel["coupling_converged"])
+            if coupling_failed:
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the two-way hull-cargo coupling did NOT converge ({sel['coupling_outcome'].values.item()})",
+                        f"coupling residual {float(sel['coupling_residual_m']):.2e} m > tolerance {float(sel['coupling_tolerance_m']):.2e} m "
+                        f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): the deck under the saddles and the hull "
+                        "under the cargo's forces disagree, so this row's numbers and the coupled hull must not be trusted.",
+                    )
+                )
+            elif "converged" in sel and not bool(sel["converged"]):
                 res = float(sel["residual_norm"]) if "residual_norm" in sel else math.nan
                 out.append(
                     Finding(

@@ -19,7 +19,7 @@ from seafast.output.report.common import Finding, ReportFigure, _attr_float, _ba
 from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.figures import run_figures
 from seafast.output.report.study_figures import study_figures
-from seafast.output.report.tables import _unit_of, diagnostics_rows, input_rows, ranking_rows, summary_table_rows
+from seafast.output.report.tables import _unit_of, coupling_rows, diagnostics_rows, input_rows, ranking_rows, summary_table_rows
 
 __all__ = ["render_html", "build_report_html"]
 
@@ -122,9 +122,12 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
     omega = _attr_float(ds, "wave_frequency_rad_s")
     exc = html.escape(str(ds.attrs.get("excitation_source", "")))
     vessel_html = f"<p>Excitation: {exc}. Wave frequency {omega:.4f} rad/s (period {2 * math.pi / omega:.2f} s).</p>" if math.isfinite(omega) and omega > 0 else f"<p>Excitation: {exc}</p>"
-    if ds.attrs.get("hull_cargo_coupling"):
-        lines = "".join(f"<li>{html.escape(line)}</li>" for line in str(ds.attrs["hull_cargo_coupling"]).splitlines())
-        vessel_html += f"<p>Hull-cargo coupling (vessel.coupling = two_way): the deck of each row iterated with the hull girder.</p><ul>{lines}</ul>"
+    if "coupling_converged" in ds:
+        vessel_html += (
+            "<p>Hull-cargo coupling (vessel.coupling = two_way): the deck of each row iterated with the hull girder. "
+            "The hull girder figure shows the one-way hull (the cargo as a spread weight) and the two-way coupled one "
+            "(under the nonlinear model's saddle forces).</p>" + _table(*coupling_rows(ds))
+        )
     vessel_html += figs_html(["fig-hull-girder", "fig-raos", "fig-deck-motion"])
     if "fig-raos" not in by_id:
         vessel_html += '<p class="small">No rigid-body motions in this run (vessel.motions = none, or a deck-deflection table), so no RAO figure.</p>'

@@ -15,7 +15,7 @@ import xarray as xr
 
 from seafast.output.report.common import _labels
 
-__all__ = ["flatten_case", "input_rows", "summary_table_rows", "diagnostics_rows", "ranking_rows"]
+__all__ = ["flatten_case", "input_rows", "summary_table_rows", "diagnostics_rows", "coupling_rows", "ranking_rows"]
 
 
 # =============================================================================== inputs
@@ -146,9 +146,13 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
 
     Columns: load case, model, converged, residual norm [-], iterations, largest harmonic
     truncation indicator [-] (share of the contact-force signal above harmonic H), largest
-    tensile force of the regularised contact law [kN], solver message.
+    tensile force of the regularised contact law [kN], solver message; after a two-way run
+    also the coupling's own residual and tolerance [m] and its steps.
     """
     header = ["load case", "model", "converged", "residual norm", "iterations", "truncation indicator", "tensile-force error [kN]", "solver message"]
+    coupled = "coupling_residual_m" in ds
+    if coupled:
+        header[-1:-1] = ["coupling residual [m]", "coupling tolerance [m]", "coupling steps"]
     rows = []
     for lc in _labels(ds["load_case"]):
         for m in _labels(ds["model"]):
@@ -170,7 +174,36 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
                     str(int(sel["iterations"])) if "iterations" in sel else "-",
                     num("harmonic_truncation_indicator", ".2e"),
                     num("tensile_force_error_N", ".1f", 1e-3),
+                    *([num("coupling_residual_m", ".2e"), num("coupling_tolerance_m", ".2e"), str(int(sel["coupling_iterations"]))] if coupled else []),
                     str(sel["solver_message"].values.item()) if "solver_message" in sel else "",
+                ]
+            )
+    return header, rows
+
+
+def coupling_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
+    """The two-way coupling of each (load case, model) from the ``coupling_*`` variables.
+
+    Columns: load case, model, outcome, steps, coupling residual and tolerance [m], period-mean
+    deck change under each saddle [mm] (two-way minus one-way, up +). Empty without them.
+    """
+    header = ["load case", "model", "outcome", "steps", "residual [m]", "tolerance [m]", "mean deck change under the saddles [mm]"]
+    rows: list[list[str]] = []
+    if "coupling_converged" not in ds:
+        return header, rows
+    for lc in _labels(ds["load_case"]):
+        for m in _labels(ds["model"]):
+            sel = ds.sel(load_case=lc, model=m)
+            change = np.asarray(sel["coupling_mean_deck_change_m"].values, dtype=float) * 1e3
+            rows.append(
+                [
+                    lc,
+                    m,
+                    str(sel["coupling_outcome"].values.item()).replace("_", " "),
+                    str(int(sel["coupling_iterations"])),
+                    f"{float(sel['coupling_residual_m']):.2e}",
+                    f"{float(sel['coupling_tolerance_m']):.2e}",
+                    ", ".join(f"{c:+.2f}" for c in change[np.isfinite(change)]),
                 ]
             )
     return header, rows
