@@ -35,8 +35,8 @@ from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.hull_girder import HullGirder, deck_load_influence
+from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
-from seafast.solvers.periodic import harmonics_to_time
 from seafast.vessel.loading import VesselLoading
 
 __all__ = [

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import (
@@ -27,11 +28,8 @@ from seafast.solvers.hbm import (
     HBMOptions,
     _CondensedProblem,
     condensed_operators,
-    real_dft_matrices,
-    real_to_complex_harmonics,
     solve_condensed,
 )
-from seafast.solvers.periodic import harmonics_to_time
 
 __all__ = ["FrequencyResponseBranch", "frequency_response"]
 

@@ -57,7 +57,6 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import asdict, dataclass
-from functools import lru_cache
 from typing import Any, Callable
 
 import numpy as np
@@ -68,9 +67,16 @@ from scipy.optimize import root
 from scipy.sparse.linalg import splu
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    harmonics_to_time,
+    high_harmonic_energy_share,
+    real_dft_matrices,
+    real_to_complex_harmonics,
+)
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import CONTACT_LAWS, ContactLaw
-from seafast.solvers.periodic import PeriodicResponse, harmonics_to_time, high_harmonic_energy_share
+from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
     "HBMOptions",
@@ -172,51 +178,6 @@ class HBMOptions:
     def to_dict(self) -> dict[str, Any]:
         """Plain dict of the settings."""
         return asdict(self)
-
-
-# ====================================================================== DFT matrices
-@lru_cache(maxsize=64)
-def real_dft_matrices(harmonics: int, time_samples: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Real inverse and forward DFT matrices of the layout ``[a0, a1, b1, ..., aH, bH]``.
-
-    Returns
-    -------
-    inverse, forward
-        ``inverse`` (N, 2H+1) maps coefficients to samples at ``t_n = n T / N``;
-        ``forward`` (2H+1, N) maps samples to coefficients (``forward @ inverse = I`` for
-        N >= 2H + 1). Read-only, cached per (H, N).
-    """
-    H, N = int(harmonics), int(time_samples)
-    phase = 2.0 * np.pi * np.outer(np.arange(N), np.arange(1, H + 1)) / N  # (N, H)
-    inverse = np.empty((N, 2 * H + 1))
-    inverse[:, 0] = 1.0
-    inverse[:, 1::2] = np.cos(phase)
-    inverse[:, 2::2] = np.sin(phase)
-    forward = inverse.T * (2.0 / N)
-    forward[0] *= 0.5
-    inverse.flags.writeable = False
-    forward = np.ascontiguousarray(forward)
-    forward.flags.writeable = False
-    return inverse, forward
-
-
-def complex_to_real_harmonics(X: NDArray) -> NDArray[np.float64]:
-    """Complex amplitudes (H+1, ...) to real coefficients (2H+1, ...): a_k = Re X_k, b_k = -Im X_k."""
-    X = np.asarray(X)
-    out = np.empty((2 * X.shape[0] - 1,) + X.shape[1:])
-    out[0] = X[0].real
-    out[1::2] = X[1:].real
-    out[2::2] = -X[1:].imag
-    return out
-
-
-def real_to_complex_harmonics(U: NDArray) -> NDArray[np.complex128]:
-    """Real coefficients (2H+1, ...) to complex amplitudes (H+1, ...): X_k = a_k - i b_k."""
-    U = np.asarray(U, dtype=float)
-    out = np.empty(((U.shape[0] + 1) // 2,) + U.shape[1:], dtype=complex)
-    out[0] = U[0]
-    out[1:] = U[1::2] - 1j * U[2::2]
-    return out
 
 
 # ====================================================================== linear operators

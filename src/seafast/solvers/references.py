@@ -46,9 +46,10 @@ from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse import csr_array
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm import _quadratic_matrices, _solve_dynamic
-from seafast.solvers.periodic import PeriodicResponse, harmonics_to_time, high_harmonic_energy_share
+from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
     "TIME_DOMAIN_FORMULATIONS",
