@@ -37,7 +37,7 @@ Two formulations, giving the same answer (to the solver tolerance):
 Start: the better (smaller residual) of the linear solution and the *quasi-static
 exact-contact predictor* -- each AFT sample of the linear compression corrected by the exact
 static contact problem with the static receptance G_0 (active-set solver of
-:mod:`seafast.solvers.references`), then transformed back to harmonics. For wave excitation
+:mod:`seafast.solvers.exact_contact`), then transformed back to harmonics. For wave excitation
 (far below the cargo's modes) it is within a few per cent of the HBM solution, so Newton
 converges in 2-6 iterations even where the piecewise-linear exact law makes Newton from the
 linear solution cycle.
@@ -55,14 +55,12 @@ continuation was needed and names the start used.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import asdict, dataclass
 from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy import sparse
-from scipy.linalg import solve_banded
 from scipy.optimize import root
 from scipy.sparse.linalg import splu
 
@@ -76,6 +74,8 @@ from seafast.fourier import (
 )
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import CONTACT_LAWS, ContactLaw
+from seafast.solvers.dynamic_stiffness import quadratic_matrices, saddle_selection, solve_dynamic_stack
+from seafast.solvers.exact_contact import solve_exact_contact
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
@@ -182,93 +182,6 @@ class HBMOptions:
 
 # ====================================================================== linear operators
 @dataclass(frozen=True)
-class _QuadraticMatrices:
-    """K, M, D of the cargo DOFs (saddles bilateral) and of the cargo-deck coupling, banded."""
-
-    stiffness: NDArray[np.float64]
-    mass: NDArray[np.float64]
-    damping: NDArray[np.float64]
-    coupling_stiffness: NDArray[np.float64]
-    coupling_mass: NDArray[np.float64]
-    coupling_damping: NDArray[np.float64]
-    bandwidth: int
-    banded_stiffness: NDArray[np.float64]
-    banded_mass: NDArray[np.float64]
-    banded_damping: NDArray[np.float64]
-
-
-_QUADRATIC_CACHE: dict[tuple[int, bool], tuple[weakref.ref, _QuadraticMatrices]] = {}
-
-
-def _to_banded(A: NDArray, bandwidth: int) -> NDArray:
-    n = A.shape[0]
-    ab = np.zeros((2 * bandwidth + 1, n), dtype=A.dtype)
-    for offset in range(-bandwidth, bandwidth + 1):
-        d = np.diagonal(A, offset)
-        if offset >= 0:
-            ab[bandwidth - offset, offset:] = d
-        else:
-            ab[bandwidth - offset, : n + offset] = d
-    return ab
-
-
-def _quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> _QuadraticMatrices:
-    """Split ``model.dynamic_stiffness`` into K - w^2 M + i w D (two evaluations), cached per model."""
-    key = (id(model), bool(include_saddles))
-    hit = _QUADRATIC_CACHE.get(key)
-    if hit is not None and hit[0]() is model:
-        return hit[1]
-    K, Kco, _, _ = model.dynamic_stiffness(0.0, include_saddles)
-    K1, Kco1, _, _ = model.dynamic_stiffness(1.0, include_saddles)
-    K = np.asarray(K, dtype=float)
-    Kco = np.asarray(Kco, dtype=float)
-    M = K - np.real(K1)
-    D = np.imag(K1) * np.ones_like(K)
-    Mco = Kco - np.real(Kco1)
-    Dco = np.imag(Kco1) * np.ones_like(Kco)
-    rows, cols = np.nonzero((K != 0) | (M != 0) | (D != 0))
-    bw = int(np.max(np.abs(rows - cols))) if rows.size else 0
-    q = _QuadraticMatrices(K, M, D, Kco, Mco, Dco, bw, _to_banded(K, bw), _to_banded(M, bw), _to_banded(D, bw))
-    if len(_QUADRATIC_CACHE) > 64:
-        for k in [k for k, (ref, _) in _QUADRATIC_CACHE.items() if ref() is None]:
-            del _QUADRATIC_CACHE[k]
-    try:
-        _QUADRATIC_CACHE[key] = (weakref.ref(model), q)
-    except TypeError:  # pragma: no cover - objects without weakref support are not cached
-        pass
-    return q
-
-
-def _solve_dynamic(q: _QuadraticMatrices, omega: float, rhs: NDArray) -> NDArray:
-    """Solve (K - w^2 M + i w D) x = rhs (banded when the band is narrow)."""
-    n = q.stiffness.shape[0]
-    if q.bandwidth < n // 4:
-        if omega == 0.0:
-            ab = q.banded_stiffness
-        else:
-            ab = q.banded_stiffness - omega**2 * q.banded_mass + 1j * omega * q.banded_damping
-        return solve_banded((q.bandwidth, q.bandwidth), ab, rhs, check_finite=False)
-    A = q.stiffness if omega == 0.0 else q.stiffness - omega**2 * q.mass + 1j * omega * q.damping
-    return np.linalg.solve(A, rhs)
-
-
-def _solve_dynamic_stack(q: _QuadraticMatrices, omegas: NDArray, rhs: NDArray) -> NDArray:
-    """Solve K_d(w_k) x_k = rhs_k for all k at once, shape (n_k, n_c, n_rhs).
-
-    The block-diagonal system of all harmonics is itself banded with the same bandwidth, so a
-    single banded LU (LAPACK gbsv) solves every harmonic in one call.
-    """
-    n_k, n, n_rhs = rhs.shape
-    if q.bandwidth < n // 4:
-        w = np.asarray(omegas, dtype=float)[:, None, None]
-        ab = q.banded_stiffness[None] - w**2 * q.banded_mass[None] + 1j * w * q.banded_damping[None]
-        ab = np.ascontiguousarray(ab.transpose(1, 0, 2)).reshape(2 * q.bandwidth + 1, n_k * n)
-        x = solve_banded((q.bandwidth, q.bandwidth), ab, rhs.reshape(n_k * n, n_rhs), check_finite=False)
-        return x.reshape(n_k, n, n_rhs)
-    return np.stack([_solve_dynamic(q, float(wk), rhs[k]) for k, wk in enumerate(omegas)])
-
-
-@dataclass(frozen=True)
 class CondensedOperators:
     """The linear problem condensed onto the saddle compressions, harmonics 0 .. H.
 
@@ -327,15 +240,14 @@ def condensed_operators(model: StructuralModel, excitation: HarmonicExcitation, 
     The static load of the model (gravity, pretension) is added at k = 0.
     """
     H = int(harmonics)
-    q = _quadratic_matrices(model, True)
+    q = quadratic_matrices(model, True)
     n_c, n_s = model.cargo_dof_count, model.saddle_count
     sad_c = model.saddle_cargo_dof
     sad_o = model.saddle_deck_dof
     n_k = excitation.harmonic_count
     ignored = bool(n_k > H + 1 and (np.any(excitation.deck_displacement[H + 1 :]) or np.any(excitation.cargo_load_N[H + 1 :])))
     w = float(excitation.omega_rad_s)
-    B = np.zeros((n_c, n_s))
-    B[sad_c, np.arange(n_s)] = 1.0
+    B = saddle_selection(model)
     xo = np.zeros((H + 1, model.deck_dof_count), dtype=complex)
     f = np.zeros((H + 1, n_c), dtype=complex)
     m = min(n_k, H + 1)
@@ -350,7 +262,7 @@ def condensed_operators(model: StructuralModel, excitation: HarmonicExcitation, 
     rhs = np.empty((H + 1, n_c, n_s + 1), dtype=complex)
     rhs[:, :, :n_s] = B
     rhs[:, :, n_s] = f - np.einsum("kco,ko->kc", coupling, xo)
-    sol = _solve_dynamic_stack(q, wk, rhs)  # (H+1, n_c, n_s+1)
+    sol = solve_dynamic_stack(q, wk, rhs)  # (H+1, n_c, n_s+1)
     Y = sol[:, :, :n_s]
     X_lin = sol[:, :, n_s]
     X_lin[0] = X_lin[0].real
@@ -384,13 +296,11 @@ def _static_contact_compressions(delta_lin: NDArray, receptance: NDArray, stiffn
     """Exact static contact ``delta = delta_lin - G_0 k max(-delta, 0)`` at every sample (n_t, n_s).
 
     Samples whose linear compressions are all positive keep contact (``delta = delta_lin``);
-    the others go through the exact active-set solver of :mod:`seafast.solvers.references`.
+    the others go through the exact active-set solver of :mod:`seafast.solvers.exact_contact`.
     """
     delta = np.array(delta_lin, dtype=float)
     rows = np.nonzero(np.any(delta < 0.0, axis=1))[0]
     if rows.size:
-        from seafast.solvers.references import solve_exact_contact  # lazy: references imports this module
-
         delta[rows] = solve_exact_contact(delta[rows], receptance, stiffness)[0]
     return delta
 

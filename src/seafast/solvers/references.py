@@ -32,23 +32,21 @@ same grid ``t_n = n T / N`` as HBM.
         The same integration with the saddles bilateral in the linear stiffness and the
         implicit contact problem of each step condensed onto the saddles (the step's
         effective receptance) and solved with the active-set method of
-        :func:`solve_exact_contact`; starts from the linear periodic solution.
+        :class:`~seafast.solvers.exact_contact.ExactContact`; starts from the linear periodic solution.
 """
 
 from __future__ import annotations
 
-from itertools import product
-
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
-from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse import csr_array
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
-from seafast.solvers.hbm import _quadratic_matrices, _solve_dynamic
+from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
+from seafast.solvers.exact_contact import BandedActiveSet, ExactContact, solve_exact_contact
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
@@ -63,115 +61,7 @@ QUASI_STATIC_RATIO_LIMIT = 0.2
 """Quasi-statics is taken as justified when ``H_eff omega / omega_1 <= 0.2``."""
 
 
-# ====================================================================== exact contact on saddles
-class _ExactContact:
-    """Solve ``delta = delta_lin - G c(delta)``, ``c = k max(-delta, 0)``, exactly.
-
-    For a set S of detached saddles the system is linear: ``(I - G diag(k 1_S)) delta =
-    delta_lin``; its inverse is cached per set.
-    """
-
-    def __init__(self, receptance: NDArray, stiffness: NDArray):
-        self.G = np.asarray(receptance, dtype=float)
-        self.k = np.asarray(stiffness, dtype=float)
-        self.n = self.k.size
-        self._inverse: dict[bytes, NDArray] = {}
-        self._bits = (1 << np.arange(self.n, dtype=np.int64)) if self.n < 63 else None
-
-    def operator(self, detached: NDArray[np.bool_]) -> NDArray:
-        key = np.asarray(detached, dtype=bool).tobytes()
-        op = self._inverse.get(key)
-        if op is None:
-            A = np.eye(self.n) - self.G * (self.k * detached)[None, :]
-            op = np.linalg.inv(A)
-            self._inverse[key] = op
-        return op
-
-    @staticmethod
-    def _consistent(delta: NDArray, detached: NDArray, tol: float) -> NDArray[np.bool_]:
-        return np.all(np.where(detached, delta <= tol, delta >= -tol), axis=-1)
-
-    def solve(self, delta_lin: NDArray, detached0: NDArray | None = None) -> tuple[NDArray, NDArray]:
-        """Exact compressions (n_t, n_s) and detached sets for linear compressions (n_t, n_s)."""
-        d_lin = np.atleast_2d(np.asarray(delta_lin, dtype=float))
-        n_t = d_lin.shape[0]
-        tol = 1e-12 * max(float(np.max(np.abs(d_lin))), 1e-9)
-        detached = (d_lin < 0.0) if detached0 is None else np.array(np.broadcast_to(detached0, d_lin.shape), dtype=bool)
-        delta = np.empty_like(d_lin)
-        todo = np.arange(n_t)
-        for _ in range(4 * self.n + 8):
-            if todo.size == 0:
-                break
-            # group the instants by detached set: an integer code per set (bit s = saddle s)
-            if self._bits is not None:
-                codes = detached[todo] @ self._bits
-            else:  # more saddles than bits in an int64: group by the rows themselves
-                codes = np.unique(detached[todo], axis=0, return_inverse=True)[1].ravel()
-            for code in np.unique(codes):
-                rows = todo[codes == code]
-                delta[rows] = d_lin[rows] @ self.operator(detached[rows[0]]).T
-            ok = self._consistent(delta[todo], detached[todo], tol)
-            bad = todo[~ok]
-            detached[bad] = delta[bad] < 0.0
-            todo = bad
-        for i in todo:  # cycling (rare): enumerate every set, keep the consistent one
-            best, best_violation = None, np.inf
-            for bits in product((False, True), repeat=self.n):
-                mask = np.array(bits)
-                d = self.operator(mask) @ d_lin[i]
-                violation = float(np.max(np.where(mask, d, -d), initial=0.0))
-                if violation < best_violation:
-                    best, best_violation = (d, mask), violation
-                if violation <= tol:
-                    break
-            delta[i], detached[i] = best
-        return delta, detached
-
-
-def solve_exact_contact(
-    linear_compression_m: NDArray, receptance_m_per_N: NDArray, stiffness_N_per_m: NDArray
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Exact solution of the condensed static contact problem at many instants.
-
-    Parameters
-    ----------
-    linear_compression_m
-        Saddle compressions with every saddle bilateral, shape (n_t, n_s) [m].
-    receptance_m_per_N
-        ``G = B^T K^-1 B`` with saddles bilateral, (n_s, n_s) [m/N].
-    stiffness_N_per_m
-        Compression-only stiffness k_u per saddle (n_s,) [N/m].
-
-    Returns
-    -------
-    compression_m, correction_N
-        ``delta`` (n_t, n_s) and the correction force ``c = k_u max(-delta, 0)`` (upward on the
-        cargo), with ``delta = delta_lin - G c``.
-    """
-    solver = _ExactContact(receptance_m_per_N, stiffness_N_per_m)
-    delta, _ = solver.solve(linear_compression_m)
-    return delta, np.asarray(stiffness_N_per_m) * np.maximum(-delta, 0.0)
-
-
 # ====================================================================== helpers
-def _selection(model: StructuralModel) -> NDArray[np.float64]:
-    B = np.zeros((model.cargo_dof_count, model.saddle_count))
-    B[model.saddle_cargo_dof, np.arange(model.saddle_count)] = 1.0
-    return B
-
-
-def _linear_force_harmonics(model: StructuralModel, excitation: HarmonicExcitation, quasi_static: bool) -> NDArray:
-    """Harmonics of f_static + f_vessel - K_d^co x_o on the cargo DOFs (n_k, n_c)."""
-    q = _quadratic_matrices(model, True)
-    P = np.zeros((excitation.harmonic_count, model.cargo_dof_count), dtype=complex)
-    for k in range(excitation.harmonic_count):
-        wk = 0.0 if quasi_static else k * excitation.omega_rad_s
-        Kco = q.coupling_stiffness - wk**2 * q.coupling_mass + 1j * wk * q.coupling_damping
-        P[k] = excitation.cargo_load_N[k] + (model.static_load_N if k == 0 else 0.0) - Kco @ excitation.deck_displacement[k]
-    P[0] = P[0].real
-    return P
-
-
 def _effective_harmonic(force: NDArray, omega: float, share: float = 1e-3) -> int:
     """Smallest H whose truncation misses less than ``share`` of the force fluctuation energy."""
     N = force.shape[0]
@@ -242,12 +132,12 @@ def solve_quasi_static(
     N = int(time_samples)
     if N < 2:
         raise ValueError(f"time_samples = {time_samples!r}; allowed: an integer >= 2")
-    q = _quadratic_matrices(model, True)
-    B = _selection(model)
+    q = quadratic_matrices(model, True)
+    B = saddle_selection(model)
     sad_c, sad_o = model.saddle_cargo_dof, model.saddle_deck_dof
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
-    P = _linear_force_harmonics(model, excitation, quasi_static=True)
-    sol = _solve_dynamic(q, 0.0, np.column_stack([B, P.real.T, P.imag.T]))
+    P = linear_force_harmonics(model, excitation, quasi_static=True)
+    sol = solve_dynamic(q, 0.0, np.column_stack([B, P.real.T, P.imag.T]))
     n_s, n_k = model.saddle_count, excitation.harmonic_count
     Y = sol[:, :n_s]
     X_lin = (sol[:, n_s : n_s + n_k] + 1j * sol[:, n_s + n_k :]).T  # (n_k, n_c)
@@ -370,85 +260,6 @@ def solve_time_domain(
     return run(model, excitation, N, S, int(max_periods), float(tolerance), float(hht_alpha), int(harmonics_for_indicator))
 
 
-class _BandedActiveSet:
-    """Solve ``(A0 + B diag(w_A) B^T) q = r + B (w_A z)`` with ``delta = z - B^T q``, ``A = {delta > 0}``.
-
-    ``A0`` is symmetric positive (semi-)definite and banded, the saddle springs ``w`` act on the
-    DOFs ``dofs``. The piecewise-linear problem is solved exactly by a semi-smooth Newton
-    (active-set) iteration from a trial set; it stops when the set repeats. One banded Cholesky
-    factorisation (LAPACK dpbtrf) is cached per active set; a singular set (a mechanism) is
-    skipped, and a cycling iteration falls back to enumerating every set.
-    """
-
-    def __init__(self, A0: NDArray, dofs: NDArray, weights: NDArray, tolerance_m: float):
-        n = A0.shape[0]
-        rows, cols = np.nonzero(A0)
-        self.bw = bw = int(np.max(np.abs(rows - cols))) if rows.size else 0
-        ab = np.zeros((bw + 1, n))
-        for d in range(bw + 1):
-            ab[bw - d, d:] = np.diagonal(A0, d)  # LAPACK upper band storage
-        self.ab0 = ab
-        self.dofs = np.asarray(dofs)
-        self.w = np.asarray(weights, dtype=float)
-        self.tol = float(tolerance_m)
-        self.max_newton = 2 * self.w.size + 4
-        self.factors: dict[bytes, NDArray | None] = {}
-        self.solves = 0
-        self.enumerations = 0
-
-    def factor(self, active: NDArray[np.bool_]) -> NDArray | None:
-        key = active.tobytes()
-        try:
-            return self.factors[key]
-        except KeyError:
-            ab = self.ab0.copy()
-            ab[self.bw, self.dofs] += self.w * active
-            c, info = dpbtrf(ab, lower=0)
-            fac = c if info == 0 else None
-            self.factors[key] = fac
-            return fac
-
-    def _linear(self, fac: NDArray, rhs: NDArray, wz: NDArray, active: NDArray) -> NDArray:
-        b = rhs.copy()
-        b[self.dofs] += wz * active
-        self.solves += 1
-        return dpbtrs(fac, b, lower=0)[0]
-
-    def solve(self, rhs: NDArray, z: NDArray, active: NDArray[np.bool_]):
-        """Exact ``q``, ``delta``, active set from the trial set ``active``."""
-        wz = self.w * z
-        for _ in range(self.max_newton):
-            fac = self.factor(active)
-            if fac is None:
-                break
-            q = self._linear(fac, rhs, wz, active)
-            delta = z - q[self.dofs]
-            new = delta > 0.0
-            if new.tobytes() == active.tobytes() or np.all(np.where(active, delta >= -self.tol, delta <= self.tol)):
-                return q, delta, active
-            active = new
-        return self._enumerate(rhs, z, wz)
-
-    def _enumerate(self, rhs: NDArray, z: NDArray, wz: NDArray):
-        self.enumerations += 1
-        best, best_violation = None, np.inf
-        for bits in product((False, True), repeat=self.w.size):
-            active = np.array(bits)
-            fac = self.factor(active)
-            if fac is None:
-                continue
-            q = self._linear(fac, rhs, wz, active)
-            delta = z - q[self.dofs]
-            violation = float(np.max(np.where(active, -delta, delta), initial=0.0))
-            if violation < best_violation:
-                best, best_violation = (q, delta, active), violation
-            if violation <= self.tol:
-                break
-        if best is None:
-            raise np.linalg.LinAlgError("every contact state is a mechanism (no saddle or lashing holds the cargo)")
-        return best
-
-
 class _PeriodicityCheck:
     """Change of the saddle-force history from one period to the next, over the largest force seen."""
 
@@ -514,7 +325,7 @@ def _time_domain_full(
     z_next = np.roll(z_t, -1, axis=0)
     tol_m = 1e-12 * max(float(np.max(np.abs(z_t))), 1e-3)
     # start: the exact-contact quasi-static state at t = 0, velocity from the states at -dt and +dt
-    static = _BandedActiveSet(K_lin, sad_c, k_u, tol_m)
+    static = BandedActiveSet(K_lin, sad_c, k_u, tol_m)
     active = np.ones(n_s, dtype=bool)
     qs = {}
     for n in (-1, 1, 0):
@@ -526,7 +337,7 @@ def _time_domain_full(
     rhs0[sad_c] += fc
     a0 = np.linalg.solve(M, rhs0)
     # the step: (K0 + (1+alpha) B diag(k_u A) B^T) q_1 = C [q0; v0; a0] + g_n - alpha B f_c,0 + (1+alpha) B k_u A z_1
-    step = _BandedActiveSet(c1 * M + (1.0 + alpha) * (c2 * D + K_lin), sad_c, (1.0 + alpha) * k_u, tol_m)
+    step = BandedActiveSet(c1 * M + (1.0 + alpha) * (c2 * D + K_lin), sad_c, (1.0 + alpha) * k_u, tol_m)
     Cq = c1 * M + (1.0 + alpha) * c2 * D + alpha * K_lin
     Cv = c1 * dt * M + (1.0 + alpha) * (c2 * dt - 1.0) * D + alpha * D
     Ca = c1 * dt * dt * h * M + (1.0 + alpha) * (c2 * dt * dt * h - dt * (1.0 - gamma)) * D
@@ -580,9 +391,9 @@ def _time_domain_condensed(
     hht_alpha: float, harmonics_for_indicator: int,
 ) -> PeriodicResponse:
     """HHT-alpha with the saddles bilateral in K and each step's contact condensed on the saddles."""
-    q = _quadratic_matrices(model, True)
+    q = quadratic_matrices(model, True)
     K, M, D = q.stiffness, q.mass, q.damping
-    B = _selection(model)
+    B = saddle_selection(model)
     sad_c, sad_o = model.saddle_cargo_dof, model.saddle_deck_dof
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     omega = float(excitation.omega_rad_s)
@@ -600,9 +411,9 @@ def _time_domain_condensed(
     Ca = c1 * dt * dt * h * M + (1.0 + alpha) * D * (c2 * dt * dt * h - dt * (1.0 - gamma))
     A_state = K_inv @ np.hstack([Cq, Cv, Ca])  # (n_c, 3 n_c)
     Y = K_inv @ B
-    contact = _ExactContact((1.0 + alpha) * Y[sad_c], k_u)
+    contact = ExactContact((1.0 + alpha) * Y[sad_c], k_u)
     # periodic linear forcing and deck motion at the step times
-    P = _linear_force_harmonics(model, excitation, quasi_static=False)
+    P = linear_force_harmonics(model, excitation, quasi_static=False)
     P_t = harmonics_to_time(P, S)  # (S, n_c)
     g = ((1.0 + alpha) * np.roll(P_t, -1, axis=0) - alpha * P_t) @ K_inv.T  # forcing of step n -> n+1
     deck_z = harmonics_to_time(excitation.deck_displacement[:, sad_o], S)
@@ -611,7 +422,7 @@ def _time_domain_condensed(
     n_k = excitation.harmonic_count
     X = np.zeros((n_k, model.cargo_dof_count), dtype=complex)
     for k in range(n_k):
-        X[k] = _solve_dynamic(q, k * omega, P[k]) if np.any(P[k]) else 0.0
+        X[k] = solve_dynamic(q, k * omega, P[k]) if np.any(P[k]) else 0.0
     kw = 1j * omega * np.arange(n_k)[:, None]
     q_n = np.real(np.sum(X, axis=0))
     v_n = np.real(np.sum(kw * X, axis=0))
