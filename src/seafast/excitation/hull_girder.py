@@ -32,6 +32,11 @@ of the weight at item ends are exact); shear force and bending moment are integr
 for that load (so they vanish at both ends to round-off); the deflection comes from
 ``seafast.model.beam`` Timoshenko elements with consistent nodal loads of the linear element
 load.
+
+Size: over 400 lines because the still-water and wave responses, the deck-load influence and
+the deflection from a bending-moment table share one discretisation and one balance (grid,
+element loads, beam, sinkage and trim); split apart, those kernels would have to become public
+for modules that only exist to hold them.
 """
 
 from __future__ import annotations
