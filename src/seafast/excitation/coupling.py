@@ -30,7 +30,7 @@ deck-motion scale (:data:`COUPLING_RELATIVE_TOLERANCE`), and reported as a
 ship under the coupled cargo is :mod:`seafast.excitation.coupled_hull`. Theory and checks:
 ``docs/coupling.md``.
 
-Length: about 500 lines, the compliance, the exchanged loads, the linear Jacobians and the
+Size: about 500 lines, the compliance, the exchanged loads, the linear Jacobians and the
 quasi-Newton iteration that uses them; they change together.
 """
 
@@ -46,8 +46,8 @@ from numpy.typing import NDArray
 from seafast.excitation.coupling_status import CouplingOutcome, CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.hull_girder import HullGirder, deck_load_influence
+from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
-from seafast.solvers.periodic import harmonics_to_time
 from seafast.vessel.loading import VesselLoading
 
 __all__ = [

@@ -33,9 +33,10 @@ for that load (so they vanish at both ends to round-off); the deflection comes f
 ``seafast.model.beam`` Timoshenko elements with consistent nodal loads of the linear element
 load.
 
-Length: the still-water, wave and load-influence solves share private kernels (the grid, the
-hydrostatic balance, the banded beam) that no other module should import, so they stay in
-one module of about 870 lines rather than expose those kernels.
+Size: over 400 lines because the still-water and wave responses, the deck-load influence and
+the deflection from a bending-moment table share one discretisation and one balance (grid,
+element loads, beam, sinkage and trim); split apart, those kernels would have to become public
+for modules that only exist to hold them.
 """
 
 from __future__ import annotations

@@ -15,9 +15,9 @@ import numpy as np
 import xarray as xr
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, period_fraction
 from seafast.model.structure import StructuralModel
 from seafast.results.timeseries import PeriodTimeSeries, moment_lines
-from seafast.solvers.periodic import harmonics_to_time, period_fraction
 
 __all__ = ["LOAD_CASES", "MODELS", "SUMMARY_COLUMNS", "CaseArrays", "case_arrays", "build_case_dataset", "summary_rows_from_arrays"]
 

@@ -9,10 +9,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import LinearResponse
-from seafast.solvers.periodic import harmonics_to_time
 
 __all__ = ["PeriodTimeSeries", "linear_time_series", "from_periodic_response", "moment_lines"]
 

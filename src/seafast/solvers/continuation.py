@@ -20,18 +20,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
-from seafast.solvers.hbm import (
-    CondensedOperators,
-    HBMOptions,
-    _CondensedProblem,
-    condensed_operators,
-    real_dft_matrices,
-    real_to_complex_harmonics,
-    solve_condensed,
-)
-from seafast.solvers.periodic import harmonics_to_time
+from seafast.solvers.hbm import CondensedOperators, CondensedProblem, HBMOptions, condensed_operators, solve_condensed
 
 __all__ = ["FrequencyResponseBranch", "frequency_response"]
 
@@ -96,10 +88,10 @@ class _Branch:
             self._ops_cache[omega] = ops
         return ops
 
-    def problem(self, omega: float) -> _CondensedProblem:
-        return _CondensedProblem(self.ops(omega), self.options.time_samples)
+    def problem(self, omega: float) -> CondensedProblem:
+        return CondensedProblem(self.ops(omega), self.options.time_samples)
 
-    def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, _CondensedProblem]:
+    def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, CondensedProblem]:
         p = self.problem(omega)
         R, state = p.evaluate(u, self.law, 1.0)
         return R, state, p

@@ -23,63 +23,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+# re-exported: their public import path was this module before the Fourier kernels moved down
+from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, period_fraction
+
 __all__ = [
     "PeriodicResponse",
     "period_fraction",
     "harmonics_to_time",
     "high_harmonic_energy_share",
 ]
-
-
-def period_fraction(time_samples: int) -> NDArray[np.float64]:
-    """The sampling grid ``n / N``, n = 0 .. N-1 (t_n = n T / N)."""
-    return np.arange(int(time_samples), dtype=float) / int(time_samples)
-
-
-def harmonics_to_time(harmonics: NDArray, time_samples: int) -> NDArray[np.float64]:
-    """Sample ``x(t) = Re(sum_k X_k exp(i k omega t))`` at ``t_n = n T / N``.
-
-    Parameters
-    ----------
-    harmonics
-        Complex amplitudes, shape (H+1, ...); row 0 is the (real) static part.
-    time_samples
-        N.
-
-    Returns
-    -------
-    Real samples, shape (N, ...).
-    """
-    X = np.asarray(harmonics)
-    n_k, N = X.shape[0], int(time_samples)
-    phase = 2.0 * np.pi * np.outer(np.arange(N), np.arange(n_k)) / N
-    flat = X.reshape(n_k, -1)
-    # real arithmetic: Re(X e^{i p}) = Re X cos p - Im X sin p
-    out = np.cos(phase) @ np.ascontiguousarray(flat.real) - np.sin(phase) @ np.ascontiguousarray(flat.imag)
-    return out.reshape((N,) + X.shape[1:])
-
-
-def high_harmonic_energy_share(signal: NDArray, harmonics: int) -> NDArray[np.float64]:
-    """Share of the fluctuating signal energy carried by harmonics above ``harmonics``.
-
-    ``signal`` has shape (N, n) (one period, N samples, n channels). The energy of harmonic k
-    is ``|X_k|^2 / 2`` (k >= 1), computed by DFT of the N samples (harmonics up to N/2); the
-    share is ``sum_{k > H} / sum_{k >= 1}`` per channel, 0 for a constant channel. It measures
-    how much of the signal a truncation at H harmonics misses (MODEL.md section 5).
-    """
-    s = np.asarray(signal, dtype=float)
-    N = s.shape[0]
-    spectrum = np.fft.rfft(s, axis=0) / N
-    energy = np.abs(spectrum) ** 2
-    if N % 2 == 0:
-        energy[-1] *= 0.5  # the Nyquist bin is not doubled
-    energy = energy[1:]
-    total = energy.sum(axis=0)
-    above = energy[int(harmonics):].sum(axis=0)
-    scale = np.max(np.abs(s), axis=0) ** 2 if s.size else 0.0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        share = np.where(total > 1e-24 * np.maximum(scale, 1e-300), above / total, 0.0)
-    return share
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,10 @@ with a third tank group, a prescribed still-water bending moment at one position
 what a loading officer does: the ballast plan is chosen to keep the hull girder in moderate
 hogging. The base case (:func:`base_vessel_loading`) uses an aft, a midship (double-bottom
 under the cargo) and a fore tank group.
+
+Size: over 400 lines because it is one documented loading model (lightship, weight items,
+ballast solve, the base case's loading) whose parts are used together, and about half of it is
+the docstrings that give each choice its source.
 """
 
 from __future__ import annotations

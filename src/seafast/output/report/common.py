@@ -23,6 +23,16 @@ __all__ = [
     "Finding",
     "ReportFigure",
     "ReportOutputs",
+    "attr_float",
+    "coord_labels",
+    "has_variables",
+    "saddle_label",
+    "case_mapping",
+    "study_keys",
+    "total_load_case",
+    "total_response",
+    "base_value",
+    "design_limits",
 ]
 
 REPORT_FILENAME = "report.html"
@@ -89,28 +99,33 @@ class ReportOutputs:
 
 
 # =============================================================================== dataset helpers
-def _attr_float(ds: xr.Dataset, name: str, default: float = math.nan) -> float:
+def attr_float(ds: xr.Dataset, name: str, default: float = math.nan) -> float:
+    """Dataset attribute ``name`` as a float, ``default`` when missing or not a number."""
     try:
         return float(ds.attrs.get(name, default))
     except (TypeError, ValueError):
         return default
 
 
-def _labels(da: xr.DataArray) -> list[str]:
+def coord_labels(da: xr.DataArray) -> list[str]:
+    """The values of a coordinate (e.g. ``load_case``, ``model``) as strings."""
     return [str(v) for v in da.values]
 
 
-def _has(ds: xr.Dataset, *names: str) -> bool:
+def has_variables(ds: xr.Dataset, *names: str) -> bool:
+    """Whether every one of ``names`` is a variable or coordinate of ``ds``."""
     return all(n in ds.variables for n in names)
 
 
-def _saddle_label(ds: xr.Dataset, j: int) -> str:
+def saddle_label(ds: xr.Dataset, j: int) -> str:
+    """``saddle j (x = ... m, lashed)``: saddle j named by its position along the cargo [m]."""
     x = float(ds["saddle_x_m"].values[j]) if "saddle_x_m" in ds else math.nan
     lashed = "saddle_lashed" in ds and bool(ds["saddle_lashed"].values[j])
     return f"saddle {j} (x = {x:.1f} m{', lashed' if lashed else ''})"
 
 
-def _case_mapping(text: Any) -> dict[str, Any]:
+def case_mapping(text: Any) -> dict[str, Any]:
+    """The case as a dict from its JSON text (the ``case_json`` attribute); empty when unreadable."""
     if not text:
         return {}
     try:
@@ -121,29 +136,33 @@ def _case_mapping(text: Any) -> dict[str, Any]:
 
 
 # =============================================================================== study dataset helpers
-def _study_keys(sds: xr.Dataset) -> list[str]:
+def study_keys(sds: xr.Dataset) -> list[str]:
+    """The study's axes: the dimensions of the results other than ``load_case`` and ``model``."""
     ref = "F_N" if "F_N" in sds else next(iter(sds.data_vars))
     return [d for d in sds[ref].dims if d not in ("load_case", "model")]
 
 
-def _total_load_case(ds: xr.Dataset) -> str:
+def total_load_case(ds: xr.Dataset) -> str:
     """The load case holding the total response: ``dynamic``, else the last one present."""
-    labels = _labels(ds["load_case"])
+    labels = coord_labels(ds["load_case"])
     return "dynamic" if "dynamic" in labels else labels[-1]
 
 
-def _total(sds: xr.Dataset) -> xr.Dataset:
+def total_response(sds: xr.Dataset) -> xr.Dataset:
+    """The study results at the load case of the total response (see :func:`total_load_case`)."""
     if "load_case" not in sds.dims:
         return sds
-    return sds.sel(load_case=_total_load_case(sds))
+    return sds.sel(load_case=total_load_case(sds))
 
 
-def _base(sds: xr.Dataset, key: str) -> float:
+def base_value(sds: xr.Dataset, key: str) -> float:
+    """The base case's value of the study axis ``key`` (its ``base_value`` attribute), NaN if unknown."""
     try:
         return float(sds[key].attrs.get("base_value", math.nan))
     except (TypeError, ValueError):
         return math.nan
 
 
-def _limits(sds: xr.Dataset) -> dict[str, float]:
-    return {"F_N": _attr_float(sds, "max_saddle_force_N", 7e6), "sigma_b_Pa": _attr_float(sds, "max_bending_stress_Pa", 20e6)}
+def design_limits(sds: xr.Dataset) -> dict[str, float]:
+    """The study's design limits: ``F_N`` [N] and ``sigma_b_Pa`` [Pa] (defaults 7 MN, 20 MPa)."""
+    return {"F_N": attr_float(sds, "max_saddle_force_N", 7e6), "sigma_b_Pa": attr_float(sds, "max_bending_stress_Pa", 20e6)}

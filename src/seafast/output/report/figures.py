@@ -12,32 +12,35 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import ReportFigure, _attr_float, _has, _labels, _saddle_label, _total_load_case
+from seafast.output.report.common import ReportFigure, attr_float, coord_labels, has_variables, saddle_label, total_load_case
 
 __all__ = [
     "hull_girder_figure", "rao_figure", "deck_motion_figure", "saddle_time_history_figure", "deflection_moment_figure",
-    "contact_timeline_figure", "run_figures",
+    "contact_timeline_figure", "run_figures", "MODEL_COLORS", "plotly_go", "subplots", "style_figure",
 ]
 
-_COLORS = {"linear": "#1f77b4", "nonlinear": "#d62728"}
+MODEL_COLORS = {"linear": "#1f77b4", "nonlinear": "#d62728"}
 _FILL = {"linear": "rgba(31,119,180,0.18)", "nonlinear": "rgba(214,39,40,0.18)"}
 _SADDLE_COLORS = ("#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#ff7f0e")
 
 
 # =============================================================================== plotly helpers
-def _go() -> Any:
+def plotly_go() -> Any:
+    """``plotly.graph_objects``, imported on first use (plotly is slow to import)."""
     import plotly.graph_objects as go
 
     return go
 
 
-def _subplots(**kwargs: Any) -> Any:
+def subplots(**kwargs: Any) -> Any:
+    """``plotly.subplots.make_subplots(**kwargs)``, imported on first use."""
     from plotly.subplots import make_subplots
 
     return make_subplots(**kwargs)
 
 
-def _style(fig: Any, title: str, height: int) -> Any:
+def style_figure(fig: Any, title: str, height: int) -> Any:
+    """The report's common layout (title, white template, legend on top); ``height`` in pixels."""
     fig.update_layout(
         title=dict(text=title, x=0.01, xanchor="left"),
         height=height,
@@ -57,13 +60,13 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
     """
     if "hull_x_m" not in ds.coords or "hull_still_water_deflection_m" not in ds:
         return None
-    go = _go()
+    go = plotly_go()
     x = ds["hull_x_m"].values
     sw = ds["hull_still_water_deflection_m"].values
     has_m = "hull_still_water_bending_moment_Nm" in ds
     coupled = "hull_still_water_deflection_coupled_m" in ds
     tag = ", one-way" if coupled else ""
-    fig = _subplots(rows=2 if has_m else 1, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    fig = subplots(rows=2 if has_m else 1, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     fig.add_trace(go.Scatter(x=x, y=sw * 1e3, name=f"still water{tag}", line=dict(color="black", width=2), legendgroup="sw"), row=1, col=1)
     if "hull_wave_deflection_m" in ds:
         w = ds["hull_wave_deflection_m"].values
@@ -92,7 +95,7 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
         fig.update_yaxes(title_text="hull bending moment [MN m] (sagging +)", row=2, col=1)
     if coupled:
         _add_coupled_hull_traces(fig, ds, has_m)
-    aft = _attr_float(ds, "cargo_aft_end_x_m")
+    aft = attr_float(ds, "cargo_aft_end_x_m")
     if math.isfinite(aft) and "x_cargo_m" in ds.coords:
         fore = aft + float(ds["x_cargo_m"].max())
         fig.add_vrect(x0=aft, x1=fore, fillcolor="orange", opacity=0.12, line_width=0, annotation_text="cargo", annotation_position="top left")
@@ -105,12 +108,12 @@ def hull_girder_figure(ds: xr.Dataset) -> Any | None:
             )
     fig.update_yaxes(title_text="hull deflection [mm] (up +)", row=1, col=1)
     fig.update_xaxes(title_text="x along the ship from the aft perpendicular [m]", row=2 if has_m else 1, col=1)
-    return _style(fig, "Hull girder: deflection (chord through the ship's ends) and bending moment", 620 if has_m else 380)
+    return style_figure(fig, "Hull girder: deflection (chord through the ship's ends) and bending moment", 620 if has_m else 380)
 
 
 def _add_coupled_hull_traces(fig: Any, ds: xr.Dataset, has_m: bool) -> None:
     """The two-way coupled hull (dashed): still water, and hog and sag where the wave fields exist."""
-    go = _go()
+    go = plotly_go()
     x = ds["hull_x_m"].values
     sw = ds["hull_still_water_deflection_coupled_m"].values
     swm = ds["hull_still_water_bending_moment_coupled_Nm"].values if "hull_still_water_bending_moment_coupled_Nm" in ds else None
@@ -133,11 +136,11 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
 
     Returns ``None`` without RAOs (``vessel.motions: none``).
     """
-    if "rao_omega_rad_s" not in ds.coords or not _has(ds, "heave_rao_real", "heave_rao_imag", "pitch_rao_real", "pitch_rao_imag"):
+    if "rao_omega_rad_s" not in ds.coords or not has_variables(ds, "heave_rao_real", "heave_rao_imag", "pitch_rao_real", "pitch_rao_imag"):
         return None
-    go = _go()
+    go = plotly_go()
     w = ds["rao_omega_rad_s"].values
-    fig = _subplots(rows=2, cols=2, shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.1,
+    fig = subplots(rows=2, cols=2, shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.1,
                     subplot_titles=("heave amplitude", "pitch amplitude (bow up +)", "heave phase", "pitch phase"))
     for col, (name, scale, unit) in enumerate((("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")), start=1):
         z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
@@ -148,49 +151,49 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
         fig.update_yaxes(title_text=f"{name} RAO [{unit}]", row=1, col=col)
         fig.update_yaxes(title_text=f"{name} phase [deg]", row=2, col=col)
         fig.update_xaxes(title_text="wave frequency [rad/s]", row=2, col=col)
-    omega = _attr_float(ds, "wave_frequency_rad_s")
+    omega = attr_float(ds, "wave_frequency_rad_s")
     if math.isfinite(omega):
         for r in (1, 2):
             for c in (1, 2):
                 fig.add_vline(x=omega, line=dict(color="#d62728", dash="dot"), row=r, col=c)
         fig.add_annotation(x=omega, y=1.0, xref="x", yref="paper", text=f"wave: {omega:.3f} rad/s", showarrow=False,
                            font=dict(color="#d62728"), yanchor="bottom")
-    return _style(fig, "Rigid-body motions: heave and pitch RAOs (head seas)", 560)
+    return style_figure(fig, "Rigid-body motions: heave and pitch RAOs (head seas)", 560)
 
 
 def deck_motion_figure(ds: xr.Dataset) -> Any | None:
     """Deck deflection under each saddle over one wave period [mm] (the cargo's excitation)."""
     if "deck_deflection_m" not in ds:
         return None
-    go = _go()
+    go = plotly_go()
     fig = go.Figure()
     s = ds["period_fraction"].values
     deck = ds["deck_deflection_m"]
-    lc = _total_load_case(ds)
+    lc = total_load_case(ds)
     for j in range(ds.sizes["saddle"]):
         color = _SADDLE_COLORS[j % len(_SADDLE_COLORS)]
-        fig.add_trace(go.Scatter(x=s, y=deck.sel(load_case=lc).isel(saddle=j).values * 1e3, name=_saddle_label(ds, j),
+        fig.add_trace(go.Scatter(x=s, y=deck.sel(load_case=lc).isel(saddle=j).values * 1e3, name=saddle_label(ds, j),
                                  line=dict(color=color), hovertemplate="t/T %{x:.3f}<br>%{y:.2f} mm<extra></extra>"))
-        if "static" in _labels(ds["load_case"]):
+        if "static" in coord_labels(ds["load_case"]):
             fig.add_trace(go.Scatter(x=s, y=deck.sel(load_case="static").isel(saddle=j).values * 1e3, name=f"still water, saddle {j}",
                                      line=dict(color=color, dash="dot"), showlegend=j == 0, legendgroup="sw", hoverinfo="skip"))
     fig.update_xaxes(title_text="period fraction t/T [-]")
     fig.update_yaxes(title_text="deck deflection under the saddle [mm] (up +)")
-    return _style(fig, "Excitation: deck deflection under the saddles over one wave period", 440)
+    return style_figure(fig, "Excitation: deck deflection under the saddles over one wave period", 440)
 
 
 def saddle_time_history_figure(ds: xr.Dataset) -> Any:
     """Force [MN] and compression [mm] (negative = gap) of every saddle over one period, linear vs nonlinear."""
-    go = _go()
+    go = plotly_go()
     n = ds.sizes["saddle"]
-    fig = _subplots(rows=2, cols=n, shared_xaxes=True, shared_yaxes="rows", vertical_spacing=0.1, horizontal_spacing=0.03,
-                    subplot_titles=[_saddle_label(ds, j) for j in range(n)])
+    fig = subplots(rows=2, cols=n, shared_xaxes=True, shared_yaxes="rows", vertical_spacing=0.1, horizontal_spacing=0.03,
+                    subplot_titles=[saddle_label(ds, j) for j in range(n)])
     s = ds["period_fraction"].values
-    lc = _total_load_case(ds)
+    lc = total_load_case(ds)
     for j in range(n):
-        for m in _labels(ds["model"]):
+        for m in coord_labels(ds["model"]):
             sel = ds.sel(load_case=lc, model=m).isel(saddle=j)
-            c = _COLORS.get(m, "black")
+            c = MODEL_COLORS.get(m, "black")
             fig.add_trace(go.Scatter(x=s, y=sel["saddle_force_N"].values / 1e6, name=m, legendgroup=m, showlegend=j == 0, line=dict(color=c),
                                      hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>F %{{y:.3f}} MN<extra></extra>"), row=1, col=j + 1)
             fig.add_trace(go.Scatter(x=s, y=sel["saddle_compression_m"].values * 1e3, name=m, legendgroup=m, showlegend=False, line=dict(color=c),
@@ -200,26 +203,26 @@ def saddle_time_history_figure(ds: xr.Dataset) -> Any:
         fig.update_xaxes(title_text="t/T [-]", row=2, col=j + 1)
     fig.update_yaxes(title_text="saddle force [MN]", row=1, col=1)
     fig.update_yaxes(title_text="compression [mm] (negative = gap)", row=2, col=1)
-    return _style(fig, f"Saddle force and compression/gap over one wave period ({lc}, total response)", 600)
+    return style_figure(fig, f"Saddle force and compression/gap over one wave period ({lc}, total response)", 600)
 
 
 def _envelope(fig: Any, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, model: str, row: int, show: bool, unit: str) -> None:
-    go = _go()
-    fig.add_trace(go.Scatter(x=x, y=lo, line=dict(width=0.5, color=_COLORS.get(model, "gray")), legendgroup=f"{model}-env",
+    go = plotly_go()
+    fig.add_trace(go.Scatter(x=x, y=lo, line=dict(width=0.5, color=MODEL_COLORS.get(model, "gray")), legendgroup=f"{model}-env",
                              showlegend=False, hovertemplate=f"{model} dynamic min<br>x %{{x:.1f}} m<br>%{{y:.2f}} {unit}<extra></extra>"), row=row, col=1)
-    fig.add_trace(go.Scatter(x=x, y=hi, line=dict(width=0.5, color=_COLORS.get(model, "gray")), fill="tonexty", fillcolor=_FILL.get(model, "rgba(0,0,0,0.1)"),
+    fig.add_trace(go.Scatter(x=x, y=hi, line=dict(width=0.5, color=MODEL_COLORS.get(model, "gray")), fill="tonexty", fillcolor=_FILL.get(model, "rgba(0,0,0,0.1)"),
                              name=f"{model}, dynamic envelope", legendgroup=f"{model}-env", showlegend=show,
                              hovertemplate=f"{model} dynamic max<br>x %{{x:.1f}} m<br>%{{y:.2f}} {unit}<extra></extra>"), row=row, col=1)
 
 
 def deflection_moment_figure(ds: xr.Dataset) -> Any:
     """Cargo deflection [mm] and bending moment [MN m] along the cargo: static lines and dynamic envelopes."""
-    go = _go()
-    fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    lcs = _labels(ds["load_case"])
+    go = plotly_go()
+    fig = subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    lcs = coord_labels(ds["load_case"])
     xc, xm = ds["x_cargo_m"].values, ds["x_moment_m"].values
-    for m in _labels(ds["model"]):
-        c = _COLORS.get(m, "black")
+    for m in coord_labels(ds["model"]):
+        c = MODEL_COLORS.get(m, "black")
         if "dynamic" in lcs:
             d = ds["cargo_deflection_m"].sel(load_case="dynamic", model=m).values * 1e3
             _envelope(fig, xc, d.min(axis=0), d.max(axis=0), m, 1, True, "mm")
@@ -237,11 +240,11 @@ def deflection_moment_figure(ds: xr.Dataset) -> Any:
             fig.add_vline(x=float(x), line=dict(color="#2ca02c", dash="dot", width=1))
         fig.add_trace(go.Scatter(x=ds["saddle_x_m"].values, y=np.zeros(ds.sizes["saddle"]), mode="markers", name="saddles",
                                  marker=dict(symbol="triangle-up", size=11, color="#2ca02c"),
-                                 text=[_saddle_label(ds, j) for j in range(ds.sizes["saddle"])], hovertemplate="%{text}<extra></extra>"), row=1, col=1)
+                                 text=[saddle_label(ds, j) for j in range(ds.sizes["saddle"])], hovertemplate="%{text}<extra></extra>"), row=1, col=1)
     fig.update_yaxes(title_text="cargo deflection [mm] (up +)", row=1, col=1)
     fig.update_yaxes(title_text="bending moment [MN m] (sagging +)", row=2, col=1)
     fig.update_xaxes(title_text="x along the cargo from its aft end [m]", row=2, col=1)
-    return _style(fig, "Cargo deflection (relative to the sea-fastening baseline) and bending moment: static and dynamic envelope", 700)
+    return style_figure(fig, "Cargo deflection (relative to the sea-fastening baseline) and bending moment: static and dynamic envelope", 700)
 
 
 def contact_timeline_figure(ds: xr.Dataset) -> Any:
@@ -249,13 +252,13 @@ def contact_timeline_figure(ds: xr.Dataset) -> Any:
 
     For the linear (bilateral) model "detached" marks where the saddle would need tension.
     """
-    go = _go()
-    models = _labels(ds["model"])
-    lc = _total_load_case(ds)
-    fig = _subplots(rows=len(models), cols=1, shared_xaxes=True, vertical_spacing=0.12,
+    go = plotly_go()
+    models = coord_labels(ds["model"])
+    lc = total_load_case(ds)
+    fig = subplots(rows=len(models), cols=1, shared_xaxes=True, vertical_spacing=0.12,
                     subplot_titles=[f"{m} model" + (" (detached = would need tension)" if m == "linear" else "") for m in models])
     s = ds["period_fraction"].values
-    ylabels = [_saddle_label(ds, j) for j in range(ds.sizes["saddle"])]
+    ylabels = [saddle_label(ds, j) for j in range(ds.sizes["saddle"])]
     for i, m in enumerate(models, start=1):
         sel = ds.sel(load_case=lc, model=m)
         z = (sel["saddle_compression_m"].values > 0).astype(int).T if "saddle_compression_m" in sel else sel["contact_state"].values.T
@@ -269,7 +272,7 @@ def contact_timeline_figure(ds: xr.Dataset) -> Any:
         )
         fig.update_yaxes(title_text="saddle", autorange="reversed", row=i, col=1)
     fig.update_xaxes(title_text="period fraction t/T [-]", row=len(models), col=1)
-    return _style(fig, f"Contact state over one wave period ({lc})", 200 + 70 * ds.sizes["saddle"] * len(models))
+    return style_figure(fig, f"Contact state over one wave period ({lc})", 200 + 70 * ds.sizes["saddle"] * len(models))
 
 
 def run_figures(ds: xr.Dataset) -> list[ReportFigure]:

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import Finding, _labels, _saddle_label, _study_keys, _total
+from seafast.output.report.common import Finding, coord_labels, saddle_label, study_keys, total_response
 
 __all__ = ["TRUNCATION_LIMIT", "TENSILE_NOTE_FRACTION", "run_findings", "study_findings"]
 
@@ -35,7 +35,7 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
     :data:`TENSILE_NOTE_FRACTION` of the largest saddle force.
     """
     out: list[Finding] = []
-    lcs, models = _labels(ds["load_case"]), _labels(ds["model"])
+    lcs, models = coord_labels(ds["load_case"]), coord_labels(ds["model"])
     for lc in lcs:
         for m in models:
             sel = ds.sel(load_case=lc, model=m)
@@ -68,7 +68,7 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
                         Finding(
                             "WARNING",
                             f"{lc} {m}: harmonic truncation indicator {np.nanmax(ind):.2e} > {TRUNCATION_LIMIT:g}",
-                            f"at {_saddle_label(ds, j)}: a noticeable share of the contact force lies above harmonic "
+                            f"at {saddle_label(ds, j)}: a noticeable share of the contact force lies above harmonic "
                             f"H = {ds.attrs.get('harmonics', '?')}; increase solver.harmonics (and solver.time_samples) "
                             "until the maxima stop changing.",
                         )
@@ -112,7 +112,7 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
 def study_findings(sds: xr.Dataset) -> list[Finding]:
     """Diagnostics of a study: failed points, non-converged nonlinear points, linear validity."""
     out: list[Finding] = []
-    keys = _study_keys(sds)
+    keys = study_keys(sds)
     n = int(np.prod([sds.sizes[k] for k in keys])) if keys else 1
     if "error" in sds:
         err = np.asarray(sds["error"].values).astype(str)
@@ -126,8 +126,8 @@ def study_findings(sds: xr.Dataset) -> list[Finding]:
                     f"their cells are blank / marked x. First error: {first.splitlines()[0][:300]}",
                 )
             )
-    total = _total(sds)
-    if "converged" in total and "nonlinear" in _labels(total["model"]):
+    total = total_response(sds)
+    if "converged" in total and "nonlinear" in coord_labels(total["model"]):
         conv = np.asarray(total["converged"].sel(model="nonlinear").values).astype(bool)
         evaluated = (np.asarray(sds["error"].values).astype(str) == "") if "error" in sds else np.ones_like(conv)
         bad = int(np.count_nonzero(~conv & evaluated))
@@ -139,7 +139,7 @@ def study_findings(sds: xr.Dataset) -> list[Finding]:
                     "those points never count as compliant; inspect them with 'seafast run --set ...'.",
                 )
             )
-    if "contact_preserved" in total and "linear" in _labels(total["model"]):
+    if "contact_preserved" in total and "linear" in coord_labels(total["model"]):
         lost = int(np.count_nonzero(~np.asarray(total["contact_preserved"].sel(model="linear").values).astype(bool)))
         if lost:
             out.append(

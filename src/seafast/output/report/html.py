@@ -15,11 +15,11 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import Finding, ReportFigure, _attr_float, _base, _case_mapping, _limits, _study_keys
-from seafast.output.report.findings import run_findings, study_findings
+from seafast.output.report.common import Finding, ReportFigure, attr_float, base_value, case_mapping, design_limits, study_keys
 from seafast.output.report.figures import run_figures
+from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.study_figures import study_figures
-from seafast.output.report.tables import _unit_of, coupling_rows, diagnostics_rows, input_rows, ranking_rows, summary_table_rows
+from seafast.output.report.tables import coupling_rows, diagnostics_rows, display_unit, input_rows, ranking_rows, summary_table_rows
 
 __all__ = ["render_html", "build_report_html"]
 
@@ -116,10 +116,10 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
                 first_fig = False
         return "".join(parts)
 
-    case = _case_mapping(ds.attrs.get("case_json"))
+    case = case_mapping(ds.attrs.get("case_json"))
     header, rows = summary_table_rows(ds)
     dheader, drows = diagnostics_rows(ds)
-    omega = _attr_float(ds, "wave_frequency_rad_s")
+    omega = attr_float(ds, "wave_frequency_rad_s")
     exc = html.escape(str(ds.attrs.get("excitation_source", "")))
     vessel_html = f"<p>Excitation: {exc}. Wave frequency {omega:.4f} rad/s (period {2 * math.pi / omega:.2f} s).</p>" if math.isfinite(omega) and omega > 0 else f"<p>Excitation: {exc}</p>"
     if "coupling_converged" in ds:
@@ -154,11 +154,11 @@ def _study_sections(sds: xr.Dataset, figs: list[ReportFigure], findings: list[Fi
     for f in figs:
         parts.append(_figure_html(f, first_fig))
         first_fig = False
-    keys = _study_keys(sds)
+    keys = study_keys(sds)
     axes_rows = []
     for k in keys:
         v = np.asarray(sds[k].values)
-        axes_rows.append([k, _unit_of(k), str(v.size), f"{v.min():.4g} .. {v.max():.4g}", str(sds[k].attrs.get("scale", "")), f"{_base(sds, k):.4g}"])
+        axes_rows.append([k, display_unit(k), str(v.size), f"{v.min():.4g} .. {v.max():.4g}", str(sds[k].attrs.get("scale", "")), f"{base_value(sds, k):.4g}"])
     header, rows = ranking_rows(sds, ranking_csv)
     show = rows[:40]
 
@@ -180,13 +180,13 @@ def _study_sections(sds: xr.Dataset, figs: list[ReportFigure], findings: list[Fi
         + "</p>"
         + (_table(header, [[fmt(r.get(h)) for h in header] for r in show]) if rows else "<p><b>No arrangement of this study complies with the limits.</b></p>")
     )
-    lim = _limits(sds)
+    lim = design_limits(sds)
     overview = (
         f"<p>{html.escape(str(sds.attrs.get('description', '')))}</p>"
         + _table(["axis (dotted key)", "unit", "values", "range", "scale", "base case"], axes_rows)
         + f"<p>Design limits: F &le; {lim['F_N'] / 1e6:g} MN, &sigma;<sub>b</sub> &le; {lim['sigma_b_Pa'] / 1e6:g} MPa.</p>"
     )
-    base = _case_mapping(sds.attrs.get("base_case_json"))
+    base = case_mapping(sds.attrs.get("base_case_json"))
     sections = [
         ("study-overview", "Study", overview + _findings_html(findings)),
         ("study-figures", "Study surfaces and compliance", "".join(parts) or "<p>Single-point study: no surfaces.</p>"),
@@ -227,7 +227,7 @@ def build_report_html(
         sections += s
         figures += rf
         findings += fnd
-        names.append(str(_case_mapping(run.attrs.get("case_json")).get("name", "run")))
+        names.append(str(case_mapping(run.attrs.get("case_json")).get("name", "run")))
     if study is not None:
         sf = study_figures(study)
         fnd = study_findings(study)

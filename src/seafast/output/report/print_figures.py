@@ -15,7 +15,7 @@ from typing import Any, Iterator, Sequence
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import PNG_DPI, _case_mapping, _labels, _total_load_case
+from seafast.output.report.common import PNG_DPI, case_mapping, coord_labels, total_load_case
 from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.tables import summary_table_rows
 
@@ -67,8 +67,8 @@ def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
-    models = _labels(ds["model"])
-    lc = _total_load_case(ds)
+    models = coord_labels(ds["model"])
+    lc = total_load_case(ds)
     n = ds.sizes["saddle"]
     fig, axes = plt.subplots(len(models), 1, figsize=(9, 1.2 + 0.55 * n * len(models) + 0.6), squeeze=False, sharex=True)
     s = ds["period_fraction"].values
@@ -143,7 +143,7 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
             if study is not None:
                 lines += ["", f"study {study.attrs.get('study', '')}: {study.attrs.get('description', '')}"]
                 lines += [f"{f.level}: {f.title}" for f in study_findings(study)]
-            name = _case_mapping(run.attrs.get("case_json")).get("name", "") if run is not None else study.attrs.get("study", "") if study is not None else ""
+            name = case_mapping(run.attrs.get("case_json")).get("name", "") if run is not None else study.attrs.get("study", "") if study is not None else ""
             _summary_page(pdf, f"seafast report: {name}", lines)
         with _print_quality(pdf, PNG_DPI):
             for fname, fn in jobs:

@@ -12,8 +12,8 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import ReportFigure, _base, _labels, _limits, _study_keys, _total
-from seafast.output.report.figures import _COLORS, _go, _style, _subplots
+from seafast.output.report.common import ReportFigure, base_value, coord_labels, design_limits, study_keys, total_response
+from seafast.output.report.figures import MODEL_COLORS, plotly_go, style_figure, subplots
 
 __all__ = ["study_surface_figure", "study_profile_figure", "compliance_map_figure", "study_figures"]
 
@@ -43,7 +43,7 @@ def _study_view(sds: xr.Dataset, keep: int) -> tuple[xr.Dataset, list[str], dict
 
     Returns the reduced dataset, its varying axis keys (outer first) and the held values.
     """
-    keys = _study_keys(sds)
+    keys = study_keys(sds)
     varying = [k for k in keys if sds.sizes[k] > 1]
     held: dict[str, Any] = {}
     view = sds
@@ -51,7 +51,7 @@ def _study_view(sds: xr.Dataset, keep: int) -> tuple[xr.Dataset, list[str], dict
         if k in varying[:keep]:
             continue
         coords = np.asarray(view[k].values)
-        base = _base(view, k)
+        base = base_value(view, k)
         idx = int(np.argmin(np.abs(coords.astype(float) - base))) if math.isfinite(base) and coords.min() <= base <= coords.max() else len(coords) // 2
         held[k] = coords[idx].item()
         view = view.isel({k: idx})
@@ -93,19 +93,19 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
     than two varying axes or without ``model``.
     """
     view, axes, held = _study_view(sds, 2)
-    if len(axes) < 2 or model not in _labels(sds["model"]):
+    if len(axes) < 2 or model not in coord_labels(sds["model"]):
         return None
-    go = _go()
+    go = plotly_go()
     ykey, xkey = axes[0], axes[1]
-    total = _total(view).transpose(ykey, xkey, ...)
+    total = total_response(view).transpose(ykey, xkey, ...)
     x, y = view[xkey].values.astype(float), view[ykey].values.astype(float)
     xlog, ylog = _is_log(view, xkey), _is_log(view, ykey)
     xe, ye = _edges(x, xlog), _edges(y, ylog)
-    ref_model = "nonlinear" if "nonlinear" in _labels(total["model"]) else model
+    ref_model = "nonlinear" if "nonlinear" in coord_labels(total["model"]) else model
     contact = np.asarray(total["contact_preserved"].sel(model=ref_model).values).astype(bool) if "contact_preserved" in total else None
-    lim = _limits(sds)
+    lim = design_limits(sds)
     n = len(_STUDY_QUANTITIES)
-    fig = _subplots(rows=1, cols=n, horizontal_spacing=0.09, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
+    fig = subplots(rows=1, cols=n, horizontal_spacing=0.09, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
     X, Y = np.meshgrid(x, y)
     for i, (name, title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
         z = np.asarray(total[name].sel(model=model).values, dtype=float) * scale
@@ -129,7 +129,7 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
                            name="contact preserved (linear valid)", legendgroup="contact", showlegend=i == 1, hoverinfo="skip"),
                 row=1, col=i,
             )
-        bx, by = _base(view, xkey), _base(view, ykey)
+        bx, by = base_value(view, xkey), base_value(view, ykey)
         if math.isfinite(bx) and math.isfinite(by):
             fig.add_trace(
                 go.Scatter(x=[bx], y=[by], mode="markers", marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5)),
@@ -138,28 +138,28 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
             )
         fig.update_xaxes(title_text=_key_label(view, xkey), **_axis_ticks(view, xkey), row=1, col=i)
         fig.update_yaxes(title_text=_key_label(view, ykey) if i == 1 else None, **_axis_ticks(view, ykey), row=1, col=i)
-    _style(fig, f"Study {sds.attrs.get('study', '')}: {model} model, total (dynamic) response{_held_text(held)}", 560)
+    style_figure(fig, f"Study {sds.attrs.get('study', '')}: {model} model, total (dynamic) response{_held_text(held)}", 560)
     return _bottom_legend(fig, 560)
 
 
 def study_profile_figure(sds: xr.Dataset) -> Any | None:
     """Max force, moment and stress vs the single varying study axis, both models (1-D studies)."""
     view, axes, held = _study_view(sds, 1)
-    keys = _study_keys(view)
+    keys = study_keys(view)
     if not axes and not keys:
         return None
     key = axes[0] if axes else keys[0]
-    go = _go()
-    total = _total(view)
+    go = plotly_go()
+    total = total_response(view)
     x = view[key].values.astype(float)
     log = _is_log(view, key)
-    lim = _limits(sds)
-    fig = _subplots(rows=1, cols=3, horizontal_spacing=0.08, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
-    contact = np.asarray(total["contact_preserved"].sel(model="nonlinear").values).astype(bool) if "nonlinear" in _labels(total["model"]) else None
+    lim = design_limits(sds)
+    fig = subplots(rows=1, cols=3, horizontal_spacing=0.08, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
+    contact = np.asarray(total["contact_preserved"].sel(model="nonlinear").values).astype(bool) if "nonlinear" in coord_labels(total["model"]) else None
     for i, (name, title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
-        for m in _labels(total["model"]):
+        for m in coord_labels(total["model"]):
             fig.add_trace(go.Scatter(x=x, y=np.asarray(total[name].sel(model=m).values, dtype=float) * scale, mode="lines+markers", name=m,
-                                     legendgroup=m, showlegend=i == 1, line=dict(color=_COLORS.get(m, "black"), dash="dash" if m == "linear" else "solid"),
+                                     legendgroup=m, showlegend=i == 1, line=dict(color=MODEL_COLORS.get(m, "black"), dash="dash" if m == "linear" else "solid"),
                                      hovertemplate=f"{key} %{{x:.4g}}<br>%{{y:.3f}} {unit}<extra>{m}</extra>"), row=1, col=i)
         if name in lim:
             fig.add_hline(y=lim[name] * scale, line=dict(color="#d62728", dash="dot"), row=1, col=i)
@@ -167,18 +167,18 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
             yv = np.asarray(total[name].sel(model="nonlinear").values, dtype=float)[contact] * scale
             fig.add_trace(go.Scatter(x=x[contact], y=yv, mode="markers", marker=dict(symbol="circle-open", size=12, color="#1a9850", line=dict(width=2)),
                                      name="contact preserved (linear valid)", legendgroup="contact", showlegend=i == 1, hoverinfo="skip"), row=1, col=i)
-        b = _base(view, key)
+        b = base_value(view, key)
         if math.isfinite(b):
             fig.add_vline(x=b, line=dict(color="black", width=1), row=1, col=i)
         fig.update_xaxes(title_text=_key_label(view, key), **_axis_ticks(view, key), row=1, col=i)
     fig.update_yaxes(title_text="total (dynamic) response", row=1, col=1)
-    _style(fig, f"Study {sds.attrs.get('study', '')}: total (dynamic) response; red dotted = design limit, black = base case{_held_text(held)}", 500)
+    style_figure(fig, f"Study {sds.attrs.get('study', '')}: total (dynamic) response; red dotted = design limit, black = base case{_held_text(held)}", 500)
     return _bottom_legend(fig, 500)
 
 
 def compliance_map_figure(sds: xr.Dataset) -> Any | None:
     """Which model's verdict admits each point (F <= F_max and sigma_b <= sigma_max), over two axes (1-D: one row)."""
-    keys = _study_keys(sds)
+    keys = study_keys(sds)
     if not keys:
         return None
     from seafast.studies.limits import DesignLimits, compliance
@@ -186,7 +186,7 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
     view, axes, held = _study_view(sds, 2)
     if not axes:
         return None
-    go = _go()
+    go = plotly_go()
     comp = compliance(view, DesignLimits.from_attrs(sds.attrs))
     if len(axes) == 1:
         xkey, ykey = axes[0], None
@@ -194,7 +194,7 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
         ykey, xkey = axes
     order = [k for k in (ykey, xkey) if k is not None]
     comp = comp.transpose(*order, ...)
-    models = _labels(comp["model"])
+    models = coord_labels(comp["model"])
 
     def verdict(m: str) -> np.ndarray:
         if m not in models:
@@ -229,14 +229,14 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
             yy, xx = np.nonzero(err)
             fig.add_trace(go.Scatter(x=x[xx], y=yv[yy], mode="markers", marker=dict(symbol="x", size=10, color="black"), name="evaluation failed"))
     if ykey is not None:
-        bx, by = _base(view, xkey), _base(view, ykey)
+        bx, by = base_value(view, xkey), base_value(view, ykey)
         if math.isfinite(bx) and math.isfinite(by):
             fig.add_trace(go.Scatter(x=[bx], y=[by], mode="markers", name="base case",
                                      marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5))))
     fig.update_xaxes(title_text=_key_label(view, xkey), **_axis_ticks(view, xkey))
     fig.update_yaxes(title_text=ylabel, showticklabels=ykey is not None, **(_axis_ticks(view, ykey) if ykey is not None else {}))
-    lim = _limits(sds)
-    _style(
+    lim = design_limits(sds)
+    style_figure(
         fig,
         f"Compliance: F <= {lim['F_N'] / 1e6:g} MN and sigma_b <= {lim['sigma_b_Pa'] / 1e6:g} MPa (total response){_held_text(held)}",
         500 if ykey is not None else 330,
@@ -247,7 +247,7 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
 def study_figures(sds: xr.Dataset) -> list[ReportFigure]:
     """Interactive figures of a study: surfaces per model (>= 2 varying axes) or profiles (1 axis), and the compliance map."""
     out: list[ReportFigure] = []
-    keys = _study_keys(sds)
+    keys = study_keys(sds)
     varying = [k for k in keys if sds.sizes[k] > 1]
     if len(varying) >= 2:
         for m in ("nonlinear", "linear"):

@@ -13,9 +13,9 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import _labels
+from seafast.output.report.common import coord_labels
 
-__all__ = ["flatten_case", "input_rows", "summary_table_rows", "diagnostics_rows", "coupling_rows", "ranking_rows"]
+__all__ = ["flatten_case", "input_rows", "summary_table_rows", "diagnostics_rows", "coupling_rows", "ranking_rows", "display_unit"]
 
 
 # =============================================================================== inputs
@@ -37,7 +37,8 @@ def flatten_case(data: Mapping[str, Any], prefix: str = "") -> list[tuple[str, A
     return out
 
 
-def _unit_of(key: str) -> str:
+def display_unit(key: str) -> str:
+    """The unit of a dotted case key for display (``-`` when dimensionless or unknown)."""
     try:
         from seafast.studies.spec import units_of_key
 
@@ -98,7 +99,7 @@ def input_rows(case: Mapping[str, Any]) -> list[dict[str, str]]:
         ``unit`` (SI, from the key's suffix) and ``description`` (from the case schema).
     """
     return [
-        {"key": k, "value": _format_value(v), "unit": _unit_of(k), "description": _description_of(k)}
+        {"key": k, "value": _format_value(v), "unit": display_unit(k), "description": _description_of(k)}
         for k, v in flatten_case(case)
     ]
 
@@ -124,7 +125,7 @@ def summary_table_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     rows : list of list of str
         One row per quantity of MODEL.md section 6, then ``contact preserved`` and ``converged``.
     """
-    cols = [(lc, m) for lc in _labels(ds["load_case"]) for m in _labels(ds["model"])]
+    cols = [(lc, m) for lc in coord_labels(ds["load_case"]) for m in coord_labels(ds["model"])]
     header = ["quantity", "unit"] + [f"{lc} {m}" for lc, m in cols]
     rows: list[list[str]] = []
     for name, label, scale, unit in _QUANTITIES:
@@ -154,8 +155,8 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     if coupled:
         header[-1:-1] = ["coupling residual [m]", "coupling tolerance [m]", "coupling steps"]
     rows = []
-    for lc in _labels(ds["load_case"]):
-        for m in _labels(ds["model"]):
+    for lc in coord_labels(ds["load_case"]):
+        for m in coord_labels(ds["model"]):
             sel = ds.sel(load_case=lc, model=m)
 
             def num(name: str, fmt: str, scale: float = 1.0, reduce: bool = False) -> str:

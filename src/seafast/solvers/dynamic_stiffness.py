@@ -1,0 +1,158 @@
+"""Dynamic stiffness of the cargo DOFs, banded, and its solves per harmonic.
+
+The structural model gives ``K_d(omega) = K - omega^2 M + i omega D`` of the cargo DOFs (and
+of the cargo-deck coupling). The harmonic balance, the exact references and the continuation
+all solve ``K_d^cc(k omega) x_k = rhs_k`` for many harmonics k; this module splits K_d into
+K, M and D once per model (two evaluations, cached), stores them in LAPACK band form, and
+solves one harmonic (:func:`solve_dynamic`) or all of them in one banded LU
+(:func:`solve_dynamic_stack`).
+
+Units: K [N/m, N m/rad], M [kg, kg m^2], D [N s/m]; rhs in N (N m for rotations); solutions in
+m (rad). Saddles are bilateral springs of their full stiffness when ``include_saddles`` is
+True.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.linalg import solve_banded
+
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.structure import StructuralModel
+
+__all__ = [
+    "QuadraticMatrices",
+    "quadratic_matrices",
+    "to_banded",
+    "solve_dynamic",
+    "solve_dynamic_stack",
+    "saddle_selection",
+    "linear_force_harmonics",
+]
+
+
+@dataclass(frozen=True)
+class QuadraticMatrices:
+    """K, M, D of the cargo DOFs (saddles bilateral) and of the cargo-deck coupling, banded.
+
+    Attributes
+    ----------
+    stiffness, mass, damping
+        Dense K [N/m], M [kg], D [N s/m] of the cargo DOFs, (n_c, n_c).
+    coupling_stiffness, coupling_mass, coupling_damping
+        The cargo-deck blocks, (n_c, n_o).
+    bandwidth
+        Half bandwidth of K, M, D together.
+    banded_stiffness, banded_mass, banded_damping
+        The same in LAPACK general band storage, (2 bandwidth + 1, n_c).
+    """
+
+    stiffness: NDArray[np.float64]
+    mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    coupling_stiffness: NDArray[np.float64]
+    coupling_mass: NDArray[np.float64]
+    coupling_damping: NDArray[np.float64]
+    bandwidth: int
+    banded_stiffness: NDArray[np.float64]
+    banded_mass: NDArray[np.float64]
+    banded_damping: NDArray[np.float64]
+
+
+_QUADRATIC_CACHE: dict[tuple[int, bool], tuple[weakref.ref, QuadraticMatrices]] = {}
+
+
+def to_banded(A: NDArray, bandwidth: int) -> NDArray:
+    """A square matrix in LAPACK general band storage ``ab[bw + i - j, j] = A[i, j]``."""
+    n = A.shape[0]
+    ab = np.zeros((2 * bandwidth + 1, n), dtype=A.dtype)
+    for offset in range(-bandwidth, bandwidth + 1):
+        d = np.diagonal(A, offset)
+        if offset >= 0:
+            ab[bandwidth - offset, offset:] = d
+        else:
+            ab[bandwidth - offset, : n + offset] = d
+    return ab
+
+
+def quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> QuadraticMatrices:
+    """Split ``model.dynamic_stiffness`` into K - w^2 M + i w D (two evaluations), cached per model."""
+    key = (id(model), bool(include_saddles))
+    hit = _QUADRATIC_CACHE.get(key)
+    if hit is not None and hit[0]() is model:
+        return hit[1]
+    K, Kco, _, _ = model.dynamic_stiffness(0.0, include_saddles)
+    K1, Kco1, _, _ = model.dynamic_stiffness(1.0, include_saddles)
+    K = np.asarray(K, dtype=float)
+    Kco = np.asarray(Kco, dtype=float)
+    M = K - np.real(K1)
+    D = np.imag(K1) * np.ones_like(K)
+    Mco = Kco - np.real(Kco1)
+    Dco = np.imag(Kco1) * np.ones_like(Kco)
+    rows, cols = np.nonzero((K != 0) | (M != 0) | (D != 0))
+    bw = int(np.max(np.abs(rows - cols))) if rows.size else 0
+    q = QuadraticMatrices(K, M, D, Kco, Mco, Dco, bw, to_banded(K, bw), to_banded(M, bw), to_banded(D, bw))
+    if len(_QUADRATIC_CACHE) > 64:
+        for k in [k for k, (ref, _) in _QUADRATIC_CACHE.items() if ref() is None]:
+            del _QUADRATIC_CACHE[k]
+    try:
+        _QUADRATIC_CACHE[key] = (weakref.ref(model), q)
+    except TypeError:  # pragma: no cover - objects without weakref support are not cached
+        pass
+    return q
+
+
+def solve_dynamic(q: QuadraticMatrices, omega: float, rhs: NDArray) -> NDArray:
+    """Solve (K - w^2 M + i w D) x = rhs (banded when the band is narrow); omega [rad/s]."""
+    n = q.stiffness.shape[0]
+    if q.bandwidth < n // 4:
+        if omega == 0.0:
+            ab = q.banded_stiffness
+        else:
+            ab = q.banded_stiffness - omega**2 * q.banded_mass + 1j * omega * q.banded_damping
+        return solve_banded((q.bandwidth, q.bandwidth), ab, rhs, check_finite=False)
+    A = q.stiffness if omega == 0.0 else q.stiffness - omega**2 * q.mass + 1j * omega * q.damping
+    return np.linalg.solve(A, rhs)
+
+
+def solve_dynamic_stack(q: QuadraticMatrices, omegas: NDArray, rhs: NDArray) -> NDArray:
+    """Solve K_d(w_k) x_k = rhs_k for all k at once, shape (n_k, n_c, n_rhs); omegas [rad/s].
+
+    The block-diagonal system of all harmonics is itself banded with the same bandwidth, so a
+    single banded LU (LAPACK gbsv) solves every harmonic in one call.
+    """
+    n_k, n, n_rhs = rhs.shape
+    if q.bandwidth < n // 4:
+        w = np.asarray(omegas, dtype=float)[:, None, None]
+        ab = q.banded_stiffness[None] - w**2 * q.banded_mass[None] + 1j * w * q.banded_damping[None]
+        ab = np.ascontiguousarray(ab.transpose(1, 0, 2)).reshape(2 * q.bandwidth + 1, n_k * n)
+        x = solve_banded((q.bandwidth, q.bandwidth), ab, rhs.reshape(n_k * n, n_rhs), check_finite=False)
+        return x.reshape(n_k, n, n_rhs)
+    return np.stack([solve_dynamic(q, float(wk), rhs[k]) for k, wk in enumerate(omegas)])
+
+
+def saddle_selection(model: StructuralModel) -> NDArray[np.float64]:
+    """B (n_c, n_s): column s is 1 at the cargo z DOF over saddle s (saddle force -> cargo load)."""
+    B = np.zeros((model.cargo_dof_count, model.saddle_count))
+    B[model.saddle_cargo_dof, np.arange(model.saddle_count)] = 1.0
+    return B
+
+
+def linear_force_harmonics(model: StructuralModel, excitation: HarmonicExcitation, quasi_static: bool) -> NDArray:
+    """Harmonics of f_static + f_vessel - K_d^co x_o on the cargo DOFs (n_k, n_c) [N, N m].
+
+    ``quasi_static``: the cargo-deck coupling at omega = 0 for every harmonic (no inertia or
+    damping of the deck's motion).
+    """
+    q = quadratic_matrices(model, True)
+    P = np.zeros((excitation.harmonic_count, model.cargo_dof_count), dtype=complex)
+    for k in range(excitation.harmonic_count):
+        wk = 0.0 if quasi_static else k * excitation.omega_rad_s
+        Kco = q.coupling_stiffness - wk**2 * q.coupling_mass + 1j * wk * q.coupling_damping
+        P[k] = excitation.cargo_load_N[k] + (model.static_load_N if k == 0 else 0.0) - Kco @ excitation.deck_displacement[k]
+    P[0] = P[0].real
+    return P

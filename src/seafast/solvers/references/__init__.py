@@ -1,0 +1,52 @@
+"""Exact-contact references for the harmonic balance solver.
+
+Both references use the exact contact law ``f = k_u max(delta, 0)`` (no regularisation, no
+harmonic truncation) and return a :class:`~seafast.solvers.periodic.PeriodicResponse` on the
+same grid ``t_n = n T / N`` as HBM.
+
+``solve_quasi_static``
+    At each of the N instants the static problem (cargo inertia and damping neglected; the
+    vessel loads in ``excitation.cargo_load_N`` -- e.g. rigid-body inertia -- included) with
+    exact contact. Condensed on the saddles: with every saddle bilateral in ``K`` the
+    compressions satisfy ``delta = delta_lin - G_0 c`` where ``G_0 = B^T K^-1 B`` and
+    ``c = k_u max(-delta, 0)`` cancels the tension a bilateral saddle would carry. This
+    piecewise-linear system is solved exactly by an active-set iteration (each iterate solves
+    the linear system of a trial set of detached saddles; it stops when the signs agree) with
+    enumeration of all sets as a fallback, so the answer is exact to round-off.
+``solve_time_domain``
+    HHT-alpha integration (average-acceleration Newmark for ``hht_alpha = 0``) of the cargo
+    equations with the exact law, period by period until the change between two periods is
+    below ``tolerance`` (the periodic steady state). Two formulations of the same equations:
+
+    ``formulation="full"`` (default, the independent reference)
+        All cargo DOFs, ``M q'' + D q' + K_lin q = f_static + f_vessel(t) - K_co x_o(t) +
+        B f_c(delta)`` with ``K_lin`` the cargo beam and the lashing springs only and the
+        saddles as exact unilateral springs ``f_c = k_u max(delta, 0)``, ``delta = z_deck -
+        z_cargo``. Each implicit step is solved by a semi-smooth Newton (active-set)
+        iteration on the full effective stiffness; one banded Cholesky factorisation is cached
+        per active set, so a step costs one banded matrix-vector product and one or two banded
+        triangular solves. It uses the model's matrices directly (none of the receptance /
+        condensation machinery of the HBM) and starts from the exact-contact quasi-static
+        state at t = 0.
+    ``formulation="condensed"``
+        The same integration with the saddles bilateral in the linear stiffness and the
+        implicit contact problem of each step condensed onto the saddles (the step's
+        effective receptance) and solved with the active-set method of
+        :class:`~seafast.solvers.exact_contact.ExactContact`; starts from the linear periodic solution.
+
+The references live in :mod:`~seafast.solvers.references.quasi_static` and
+:mod:`~seafast.solvers.references.time_domain`; the active-set contact solvers they use in
+:mod:`seafast.solvers.exact_contact`. This package keeps their public names.
+"""
+
+from seafast.solvers.exact_contact import solve_exact_contact
+from seafast.solvers.references.quasi_static import QUASI_STATIC_RATIO_LIMIT, solve_quasi_static
+from seafast.solvers.references.time_domain import TIME_DOMAIN_FORMULATIONS, solve_time_domain
+
+__all__ = [
+    "TIME_DOMAIN_FORMULATIONS",
+    "solve_quasi_static",
+    "solve_time_domain",
+    "solve_exact_contact",
+    "QUASI_STATIC_RATIO_LIMIT",
+]

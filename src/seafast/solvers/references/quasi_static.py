@@ -1,0 +1,109 @@
+"""Quasi-static exact-contact reference: the static contact problem at each instant of the period.
+
+At each of the N instants the static problem (cargo inertia and damping neglected; the vessel
+loads in ``excitation.cargo_load_N`` -- e.g. rigid-body inertia -- included) with exact
+contact. Condensed on the saddles: with every saddle bilateral in ``K`` the compressions
+satisfy ``delta = delta_lin - G_0 c`` where ``G_0 = B^T K^-1 B`` and ``c = k_u max(-delta, 0)``
+cancels the tension a bilateral saddle would carry. This piecewise-linear system is solved
+exactly by the active-set iteration of :mod:`seafast.solvers.exact_contact`, so the answer is
+exact to round-off.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.linalg import eigh
+
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, high_harmonic_energy_share
+from seafast.model.structure import StructuralModel
+from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
+from seafast.solvers.exact_contact import solve_exact_contact
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references.common import exact_law_response
+
+__all__ = ["QUASI_STATIC_RATIO_LIMIT", "solve_quasi_static"]
+
+QUASI_STATIC_RATIO_LIMIT = 0.2
+"""Quasi-statics is taken as justified when ``H_eff omega / omega_1 <= 0.2``."""
+
+
+def _effective_harmonic(force: NDArray, omega: float, share: float = 1e-3) -> int:
+    """Smallest H whose truncation misses less than ``share`` of the force fluctuation energy."""
+    N = force.shape[0]
+    for h in range(0, N // 2 + 1):
+        if np.all(high_harmonic_energy_share(force, h) < share):
+            return max(h, 1)
+    return N // 2
+
+
+def solve_quasi_static(
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    time_samples: int = 128,
+    *,
+    harmonics_for_indicator: int = 5,
+) -> PeriodicResponse:
+    """Exact-contact quasi-static response at ``time_samples`` instants of the period.
+
+    Cargo inertia and damping are neglected (each instant is a static problem with the
+    stiffness K); the vessel loads of the excitation (e.g. rigid-body inertia -M a_rb) and the
+    model's static load are included. Every harmonic of the excitation is used.
+
+    The ``message`` states whether quasi-statics is justified: with ``H_eff`` the smallest
+    harmonic above which the contact forces carry < 0.1 % of their fluctuation energy and
+    ``omega_1`` the lowest natural frequency of the cargo over the contact states that occur
+    (saddles that detach removed), it warns when ``H_eff omega / omega_1 > 0.2``.
+
+    Returns
+    -------
+    PeriodicResponse
+        ``method = "quasi_static"``; ``options`` records ``time_samples``,
+        ``effective_harmonic``, ``lowest_natural_frequency_rad_s`` and ``frequency_ratio``.
+    """
+    N = int(time_samples)
+    if N < 2:
+        raise ValueError(f"time_samples = {time_samples!r}; allowed: an integer >= 2")
+    q = quadratic_matrices(model, True)
+    B = saddle_selection(model)
+    sad_c, sad_o = model.saddle_cargo_dof, model.saddle_deck_dof
+    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
+    P = linear_force_harmonics(model, excitation, quasi_static=True)
+    sol = solve_dynamic(q, 0.0, np.column_stack([B, P.real.T, P.imag.T]))
+    n_s, n_k = model.saddle_count, excitation.harmonic_count
+    Y = sol[:, :n_s]
+    X_lin = (sol[:, n_s : n_s + n_k] + 1j * sol[:, n_s + n_k :]).T  # (n_k, n_c)
+    x_lin = harmonics_to_time(X_lin, N)
+    deck_z = harmonics_to_time(excitation.deck_displacement[:, sad_o], N)
+    delta_lin = deck_z - x_lin[:, sad_c]
+    delta, correction = solve_exact_contact(delta_lin, Y[sad_c], k_u)
+    cargo = x_lin + correction @ Y.T
+    # Is quasi-statics justified? Lowest natural frequency over the contact states that occur.
+    force = k_u * np.maximum(delta, 0.0)
+    h_eff = _effective_harmonic(force, excitation.omega_rad_s)
+    states = np.unique(delta <= 0.0, axis=0)
+    w1 = np.inf
+    for detached in states:
+        K = q.stiffness.copy()
+        K[sad_c, sad_c] -= k_u * detached
+        w2 = eigh(K, q.mass, eigvals_only=True, subset_by_index=[0, 0])[0]
+        w1 = min(w1, float(np.sqrt(max(w2, 0.0))))
+    ratio = h_eff * excitation.omega_rad_s / w1 if w1 > 0 else np.inf
+    verdict = (
+        f"quasi-statics justified: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} <= {QUASI_STATIC_RATIO_LIMIT}"
+        if ratio <= QUASI_STATIC_RATIO_LIMIT
+        else f"WARNING: quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
+    )
+    options = {
+        "time_samples": N,
+        "harmonics_for_indicator": int(harmonics_for_indicator),
+        "effective_harmonic": int(h_eff),
+        "lowest_natural_frequency_rad_s": float(w1),
+        "frequency_ratio": float(ratio),
+        "contact_law": "exact",
+    }
+    return exact_law_response(
+        "quasi_static", model, excitation, cargo, delta, True, 0.0, len(states), N,
+        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options,
+    )
