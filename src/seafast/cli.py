@@ -35,8 +35,18 @@ RUN_EXAMPLES = """examples:
   seafast run                                   # the built-in base case
   seafast run case.yaml -o results/             # a case file
   seafast run --set seafastening.saddle_count=4 --set wave.amplitude_m=2
-  seafast run case.yaml --set solver.contact_law=exact --set solver.harmonics=15
+  seafast run case.yaml --set solver.harmonics=32      # a fixed H instead of the adaptive choice
+  seafast run --preset source                   # the source's method (tanh, H = 5, N = 128, Powell)
 """
+
+
+class _PresetAction(argparse.Action):
+    """``--preset NAME`` is ``--set solver.preset=NAME``."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: object, option_string: str | None = None) -> None:
+        overrides = list(getattr(namespace, "overrides", None) or [])
+        overrides.append(f"solver.preset={values}")
+        namespace.overrides = overrides
 
 
 def _add_set(p: argparse.ArgumentParser) -> None:
@@ -47,6 +57,13 @@ def _add_set(p: argparse.ArgumentParser) -> None:
         default=[],
         metavar="KEY=VALUE",
         help="override a case key (dotted, e.g. cargo.length_m=90); repeatable; VALUE is read as YAML",
+    )
+    p.add_argument(
+        "--preset",
+        action=_PresetAction,
+        choices=("default", "source"),
+        help="solver preset: 'source' = the source's method (tanh law, kappa 1000 1/m, H = 5, N = 128, Powell's hybrid "
+        "method) for the solver keys the case leaves unset; same as --set solver.preset=source",
     )
 
 

@@ -87,6 +87,8 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
         formulation=s.formulation,
         solver=s.nonlinear_solver,
         tolerance=s.tolerance,
+        truncation_tolerance=s.truncation_tolerance,
+        max_harmonics=s.max_harmonics,
     )
     settings.update(changes)
     return HBMOptions(**settings)
@@ -115,11 +117,11 @@ def solve_nonlinear(
     if s.method == "quasi_static":
         from seafast.solvers.references import solve_quasi_static
 
-        return solve_quasi_static(model, excitation, time_samples=s.time_samples)
+        return solve_quasi_static(model, excitation, time_samples=s.reference_time_samples)
     if s.method == "time_domain":
         from seafast.solvers.references import solve_time_domain
 
-        return solve_time_domain(model, excitation, time_samples=s.time_samples)
+        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples)
     opts = _hbm_options(case)
     start = None
     if warm_start is not None and s.formulation == "condensed":
@@ -216,7 +218,6 @@ def run_case(
     if excitation is None:
         say("vessel excitation (hull girder, motions)")
         excitation, vessel = _excitation(case, model)
-    N = case.solver.time_samples
     couplings: dict[tuple[str, str], DeckCoupling] = {}
     compliance: HullCompliance | None = None
     if case.vessel.coupling == "two_way":
@@ -233,6 +234,8 @@ def run_case(
         lin_dynamic = solve_linear(model, excitation)
         nl_static = solve_nonlinear(model, excitation, case, static=True)
         nl_dynamic = solve_nonlinear(model, excitation, case, static=False)
+    # one time grid for every row: the nonlinear dynamic solution's (its N follows its harmonics)
+    N = int(nl_dynamic.time_samples)
     series: dict[tuple[str, str], PeriodTimeSeries] = {
         ("static", "linear"): linear_time_series(lin_static, N),
         ("dynamic", "linear"): linear_time_series(lin_dynamic, N),
@@ -247,7 +250,8 @@ def run_case(
         "solver_method": case.solver.method,
         "solver_formulation": case.solver.formulation,
         "contact_law": case.solver.contact_law,
-        "harmonics": case.solver.harmonics,
+        "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == "hbm" else -1,
+        "harmonics_selection": str(nl_dynamic.options.get("harmonics_selection", "fixed")) if case.solver.method == "hbm" else "none",
         "time_samples": N,
         "case_json": case.model_dump_json(),
         # the damping as built, so that an outside code can rebuild the model: D = alpha M + beta K_<stiffness>
@@ -300,7 +304,12 @@ def couple_hull_and_cargo(
         compliance = _compliance(case, model, vessel)
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
-    k_nonlinear = max(case.solver.harmonics + 1, k_linear)
+    if case.solver.method == "hbm" and case.solver.harmonics is None:
+        # the coupling iterates on a fixed set of harmonics: choose H once, on the one-way excitation
+        chosen = solve_nonlinear(model, excitation, case, static=False).options
+        solver = case.solver.model_copy(update={"harmonics": int(chosen["harmonics"]), "time_samples": int(chosen["time_samples"])})
+        case = case.model_copy(update={"solver": solver})
+    k_nonlinear = max((case.solver.harmonics or 0) + 1, k_linear)
     omega = excitation.omega_rad_s
     jac = linear_coupling_jacobians(model, omega, compliance, (1, k_linear, k_nonlinear))
 
@@ -344,6 +353,10 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     return run_case(case).summary
 
 
+SWEEP_HARMONICS = 10
+"""H of a frequency sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
+
+
 def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
     """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
 
@@ -370,6 +383,9 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
     # continuation runs on the condensed system with Newton correctors; its corrector's
     # round-off floor near resonance is ~1e-9, hence the tolerance floor
     opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
+    if opts.harmonics is None:
+        # continuation follows one branch at a fixed H: the case's, else SWEEP_HARMONICS
+        opts = opts.with_harmonics(SWEEP_HARMONICS)
     branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
     return branch, model
 

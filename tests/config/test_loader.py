@@ -41,7 +41,14 @@ def test_base_case_values() -> None:
     assert case.wave.amplitude_m == 3.0 and case.wave.length_m == 171.0
     assert case.vessel.length_m == 171.0 and case.vessel.hull_second_moment_m4 == 103.8
     assert case.cargo_position_m() == 85.5
-    assert case.solver.harmonics == 5 and case.solver.time_samples == 128
+    # issue 12: exact contact and adaptive harmonics by default; the source's method is the 'source' preset
+    assert case.solver.harmonics is None and case.solver.time_samples is None and case.solver.contact_law == "exact"
+    source = load_case(overrides={"solver.preset": "source"}).solver
+    assert (source.contact_law, source.regularisation_per_m, source.harmonics, source.time_samples, source.nonlinear_solver) == (
+        "tanh", 1000.0, 5, 128, "hybr"
+    )
+    # a preset fills only what the case leaves unset
+    assert load_case(overrides={"solver.preset": "source", "solver.harmonics": 9}).solver.harmonics == 9
     assert case.solver.contact_law == "tanh" and case.solver.regularisation_per_m == 1000.0
     assert case.model.element_length_m == 1.0 and case.model.damping_ratio == 0.02
     # the built-in text equals the schema defaults (apart from the name)

@@ -93,7 +93,15 @@ def test_options_are_keyword_only_frozen_and_accept_minimal_grid():
     assert HBMOptions(harmonics=3, time_samples=9).time_samples == 9
     with pytest.raises(Exception):
         o.harmonics = 4  # type: ignore[misc]
-    assert o.to_dict()["contact_law"] == "tanh"
+    # issue 12: the exact law and adaptive harmonics are the defaults; the source's method is one constant away
+    assert o.to_dict()["contact_law"] == "exact"
+    default = HBMOptions()
+    assert default.adaptive and default.harmonics is None and default.time_samples is None
+    assert default.with_harmonics(160).time_samples == 400 and default.with_harmonics(5).time_samples == 128
+    from seafast.solvers.hbm import SOURCE_OPTIONS
+
+    assert (SOURCE_OPTIONS.contact_law, SOURCE_OPTIONS.regularisation_per_m, SOURCE_OPTIONS.harmonics) == ("tanh", 1000.0, 5)
+    assert (SOURCE_OPTIONS.time_samples, SOURCE_OPTIONS.solver) == (128, "hybr")
 
 
 @pytest.mark.parametrize("H, N", [(0, 2), (1, 4), (5, 128), (7, 17)])

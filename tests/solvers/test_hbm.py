@@ -43,7 +43,7 @@ def test_static_calibration_linear_and_nonlinear(model):
 
 def test_response_shapes_and_diagnostics(model):
     ex = wave_excitation(model)
-    r = solve_hbm(model, ex)  # defaults: H = 5, N = 128, tanh, kappa = 1000, condensed, newton
+    r = solve_hbm(model, ex, HBMOptions(harmonics=5, time_samples=128, contact_law="tanh"))  # the source's law and grid
     N, n_c, n_s = 128, model.cargo_dof_count, model.saddle_count
     assert r.method == "hbm" and r.converged and r.residual_norm <= 1e-10
     assert r.period_fraction.shape == (N,) and r.period_fraction[1] == 1 / N
@@ -111,7 +111,7 @@ def test_static_nonlinear_lift_off_matches_quasi_static(coarse):
 
 def test_non_convergence_is_reported_not_raised(model):
     ex = wave_excitation(model)
-    r = solve_hbm(model, ex, HBMOptions(max_iterations=1, continuation=False, tolerance=1e-14))
+    r = solve_hbm(model, ex, HBMOptions(harmonics=5, contact_law="tanh", max_iterations=1, continuation=False, tolerance=1e-14))
     assert not r.converged and r.residual_norm > 1e-14 and "max_iterations" in r.message
 
 
@@ -135,4 +135,4 @@ def test_a_warm_start_from_the_solution_returns_it(model):
     assert warm.converged and warm.iterations <= 1 and "given initial guess" in warm.message
     np.testing.assert_allclose(warm.saddle_force_time_N, cold.saddle_force_time_N, rtol=0, atol=1e-6 * cold.max_saddle_force_N)
     with pytest.raises(ValueError, match="initial_compression_m"):
-        solve_hbm(model, ex, opts, initial_compression_m=np.zeros((3, 3)))
+        solve_hbm(model, ex, opts, initial_compression_m=np.zeros((64, 2)))  # 3 saddles, not 2

@@ -28,6 +28,7 @@ __all__ = [
     "ModelConfig",
     "OutputConfig",
     "BASE_SADDLE_STIFFNESS_N_PER_M",
+    "SOURCE_SOLVER_SETTINGS",
 ]
 
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
@@ -205,27 +206,67 @@ class WaveConfig(_Strict):
     frequency_rad_s: Positive | None = Field(None, description="Wave frequency [rad/s]; default from deep-water dispersion")
 
 
+#: The source's method (``solver.preset: source``): the values it gives the keys the case leaves unset.
+SOURCE_SOLVER_SETTINGS: dict[str, object] = {
+    "contact_law": "tanh",
+    "regularisation_per_m": 1000.0,
+    "harmonics": 5,
+    "time_samples": 128,
+    "nonlinear_solver": "hybr",
+}
+
+
 class SolverConfig(_Strict):
     """Nonlinear (contact) solver settings."""
 
+    preset: Literal["default", "source"] = Field(
+        "default",
+        description="'default' (exact contact law, harmonics chosen adaptively until the saddle-force peaks settle) or "
+        "'source' (the source's method: tanh law with kappa = 1000 1/m, 5 harmonics, 128 samples, Powell's hybrid "
+        "method); a preset only fills the keys the case leaves unset",
+    )
     method: Literal["hbm", "quasi_static", "time_domain"] = "hbm"
     formulation: Literal["condensed", "full"] = "condensed"
-    contact_law: Literal["tanh", "softplus", "exact"] = "tanh"
+    contact_law: Literal["tanh", "softplus", "exact"] = Field(
+        "exact", description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
+    )
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
-    harmonics: Annotated[Count, Field(ge=1, le=100)] = Field(5, description="Number of harmonics H")
-    time_samples: Annotated[Count, Field(ge=4, le=8192)] = Field(128, description="AFT time samples per period N")
+    harmonics: Annotated[Count, Field(ge=1, le=1024)] | None = Field(
+        None, description="Number of harmonics H; default (null): chosen adaptively until the saddle-force peaks settle to "
+        "solver.truncation_tolerance"
+    )
+    time_samples: Annotated[Count, Field(ge=4, le=16384)] | None = Field(
+        None, description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references)"
+    )
     nonlinear_solver: Literal["hybr", "newton"] = Field(
         "newton", description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
     )
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
+    truncation_tolerance: Annotated[float, NotBool, Field(gt=0, lt=1)] = Field(
+        1e-3, description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "
+        "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few"
+    )
+    max_harmonics: Annotated[Count, Field(ge=1, le=1024)] = Field(512, description="Upper bound of the adaptive H")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _apply_preset(cls, data: object) -> object:
+        if isinstance(data, dict) and data.get("preset") == "source":
+            data = {**SOURCE_SOLVER_SETTINGS, **data}
+        return data
 
     @model_validator(mode="after")
     def _check(self) -> "SolverConfig":
-        if self.time_samples < 2 * self.harmonics + 2:
+        if self.harmonics is not None and self.time_samples is not None and self.time_samples < 2 * self.harmonics + 2:
             raise ValueError(
                 f"time_samples = {self.time_samples} must be at least 2 * harmonics + 2 = {2 * self.harmonics + 2} (aliasing)"
             )
         return self
+
+    @property
+    def reference_time_samples(self) -> int:
+        """Output samples per period of the exact references: ``time_samples``, else 512."""
+        return int(self.time_samples) if self.time_samples is not None else 512
 
 
 class ModelConfig(_Strict):

@@ -4,8 +4,7 @@ The structural model gives ``K_d(omega) = K - omega^2 M + i omega D`` of the car
 of the cargo-deck coupling). The harmonic balance, the exact references and the continuation
 all solve ``K_d^cc(k omega) x_k = rhs_k`` for many harmonics k; this module splits K_d into
 K, M and D once per model (two evaluations, cached), stores them in LAPACK band form, and
-solves one harmonic (:func:`solve_dynamic`) or all of them in one banded LU
-(:func:`solve_dynamic_stack`).
+solves one harmonic (:func:`solve_dynamic`) or all of them (:func:`solve_dynamic_stack`).
 
 Units: K [N/m, N m/rad], M [kg, kg m^2], D [N s/m]; rhs in N (N m for rotations); solutions in
 m (rad). Saddles are bilateral springs of their full stiffness when ``include_saddles`` is
@@ -23,6 +22,8 @@ from scipy.linalg import solve_banded
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
+from seafast.solvers.banded import solve_dynamic_band_stack
+from seafast.solvers.banded import to_band as to_banded
 
 __all__ = [
     "QuadraticMatrices",
@@ -64,19 +65,6 @@ class QuadraticMatrices:
 
 
 _QUADRATIC_CACHE: dict[tuple[int, bool], tuple[weakref.ref, QuadraticMatrices]] = {}
-
-
-def to_banded(A: NDArray, bandwidth: int) -> NDArray:
-    """A square matrix in LAPACK general band storage ``ab[bw + i - j, j] = A[i, j]``."""
-    n = A.shape[0]
-    ab = np.zeros((2 * bandwidth + 1, n), dtype=A.dtype)
-    for offset in range(-bandwidth, bandwidth + 1):
-        d = np.diagonal(A, offset)
-        if offset >= 0:
-            ab[bandwidth - offset, offset:] = d
-        else:
-            ab[bandwidth - offset, : n + offset] = d
-    return ab
 
 
 def quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> QuadraticMatrices:
@@ -122,16 +110,13 @@ def solve_dynamic(q: QuadraticMatrices, omega: float, rhs: NDArray) -> NDArray:
 def solve_dynamic_stack(q: QuadraticMatrices, omegas: NDArray, rhs: NDArray) -> NDArray:
     """Solve K_d(w_k) x_k = rhs_k for all k at once, shape (n_k, n_c, n_rhs); omegas [rad/s].
 
-    The block-diagonal system of all harmonics is itself banded with the same bandwidth, so a
-    single banded LU (LAPACK gbsv) solves every harmonic in one call.
+    Banded LU with partial pivoting of every harmonic in one compiled loop
+    (:func:`seafast.solvers.banded.solve_dynamic_band_stack`): its cost is the arithmetic, where
+    LAPACK's banded LU spends most of its time in per-column BLAS calls at this bandwidth.
     """
     n_k, n, n_rhs = rhs.shape
     if q.bandwidth < n // 4:
-        w = np.asarray(omegas, dtype=float)[:, None, None]
-        ab = q.banded_stiffness[None] - w**2 * q.banded_mass[None] + 1j * w * q.banded_damping[None]
-        ab = np.ascontiguousarray(ab.transpose(1, 0, 2)).reshape(2 * q.bandwidth + 1, n_k * n)
-        x = solve_banded((q.bandwidth, q.bandwidth), ab, rhs.reshape(n_k * n, n_rhs), check_finite=False)
-        return x.reshape(n_k, n, n_rhs)
+        return solve_dynamic_band_stack(q.banded_stiffness, q.banded_mass, q.banded_damping, np.asarray(omegas, dtype=float), rhs)
     return np.stack([solve_dynamic(q, float(wk), rhs[k]) for k, wk in enumerate(omegas)])
 
 

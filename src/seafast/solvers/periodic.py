@@ -71,6 +71,10 @@ class PeriodicResponse:
         recorded in ``options`` (what an HBM with that H would miss).
     options
         The settings used (plain dict, safe to serialise).
+    truncation_error
+        Per saddle, the estimated error of the peak force from the harmonics left out, relative to
+        the saddle's force scale [-] (:func:`seafast.solvers.hbm.harmonics.truncation_error`); None
+        for the references (they have no harmonic truncation).
     """
 
     method: str
@@ -86,6 +90,7 @@ class PeriodicResponse:
     harmonic_truncation_indicator: NDArray[np.float64]
     function_evaluations: int
     options: dict[str, Any] = field(default_factory=dict)
+    truncation_error: NDArray[np.float64] | None = None
 
     # ------------------------------------------------- derived from the samples
     @property

@@ -56,17 +56,19 @@ Modules: :mod:`~seafast.solvers.hbm.options` (:class:`HBMOptions`),
 :mod:`~seafast.solvers.hbm.condensed` (operators and problem of the condensed formulation),
 :mod:`~seafast.solvers.hbm.full` (the full-DOF problem), :mod:`~seafast.solvers.hbm.nonlinear`
 (Newton, hybr and the fallback chain, for any :class:`~seafast.solvers.hbm.nonlinear.NonlinearProblem`),
+:mod:`~seafast.solvers.hbm.harmonics` (the truncation indicator and the adaptive choice of H),
 :mod:`~seafast.solvers.hbm.solve` (the entry points). The Fourier kernels are in
 :mod:`seafast.fourier`, the dynamic stiffness in :mod:`seafast.solvers.dynamic_stiffness`.
 """
 
 from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
-from seafast.solvers.hbm.options import FORMULATIONS, SOLVERS, HBMOptions
+from seafast.solvers.hbm.options import FORMULATIONS, SOLVERS, SOURCE_OPTIONS, HBMOptions
 from seafast.solvers.hbm.solve import CondensedSolution, solve_condensed, solve_hbm
 
 __all__ = [
     "HBMOptions",
+    "SOURCE_OPTIONS",
     "FORMULATIONS",
     "SOLVERS",
     "solve_hbm",

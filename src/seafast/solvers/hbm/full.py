@@ -133,8 +133,11 @@ class FullProblem:
         d_lin = self.inverse @ self.ops.linear_compression_at(amplitude)
         if not np.any(d_lin < 0.0):
             return self.initial_guess(amplitude)
-        delta = CondensedProblem(self.ops, self.inverse.shape[0]).predictor_compression(amplitude)
-        C = real_to_complex_harmonics(self.forward @ (self.k_u * np.maximum(-delta, 0.0)))
+        return self.from_compression(CondensedProblem(self.ops, self.inverse.shape[0]).predictor_compression(amplitude))
+
+    def from_compression(self, compression_m: NDArray) -> NDArray:
+        """The unknowns (cargo-DOF corrections) of the exact-law response with these saddle compressions (N, n_s) [m]."""
+        C = real_to_complex_harmonics(self.forward @ (self.k_u * np.maximum(-np.asarray(compression_m), 0.0)))
         return complex_to_real_harmonics(np.einsum("kcs,ks->kc", self.ops.cargo_influence, C)).ravel()
 
     def evaluate(self, u: NDArray, law: ContactLaw, amplitude: float) -> tuple[NDArray, NDArray]:

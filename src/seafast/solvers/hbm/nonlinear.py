@@ -158,6 +158,7 @@ _ARMIJO = 1e-4
 _NONMONOTONE_MEMORY = 4
 _MIN_STEP = 1.0 / 1024
 _STAGNATION_WINDOW = 12
+_LEVENBERG_MARQUARDT_MAX_UNKNOWNS = 800
 
 
 def _newton(problem: NonlinearProblem, law: ContactLaw, amplitude: float, u0: NDArray, tol: float, max_iter: int) -> SolveAttempt:
@@ -208,6 +209,9 @@ def _newton(problem: NonlinearProblem, law: ContactLaw, amplitude: float, u0: ND
                     accepted = True
                     break
                 alpha *= 0.5
+        if not accepted and u.size > _LEVENBERG_MARQUARDT_MAX_UNKNOWNS:
+            # a dense J^T J of this size costs seconds per trial mu: leave it to the caller's fallbacks
+            return SolveAttempt(u, False, rel, it, nfev, f"newton line search failed ({u.size} unknowns: no Levenberg-Marquardt step)")
         if not accepted:
             g = jac.gradient(R)
             mu = 1e-6

@@ -2,16 +2,27 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
+import math
 from typing import Any
 
 import numpy as np
 
 from seafast.solvers.contact import CONTACT_LAWS, ContactLaw
 
-__all__ = ["HBMOptions", "FORMULATIONS", "SOLVERS"]
+__all__ = ["HBMOptions", "FORMULATIONS", "SOLVERS", "SOURCE_OPTIONS", "MINIMUM_TIME_SAMPLES", "samples_for"]
 
 FORMULATIONS: tuple[str, ...] = ("condensed", "full")
+
+MINIMUM_TIME_SAMPLES = 128
+"""N never goes below this by default: the peaks are read on the samples (128 samples miss a smooth peak by
+<= 0.03 %)."""
+
+
+def samples_for(harmonics: int) -> int:
+    """The default AFT samples N for H harmonics: 2.5 H rounded up to an even number, at least 128 and 2H + 2."""
+    H = int(harmonics)
+    return int(max(MINIMUM_TIME_SAMPLES, 2 * H + 2, 2 * math.ceil(1.25 * H)))
 SOLVERS: tuple[str, ...] = ("newton", "hybr")
 
 
@@ -22,11 +33,14 @@ class HBMOptions:
     Parameters
     ----------
     harmonics
-        H >= 0, number of harmonics above the mean (H = 0: the nonlinear static problem).
+        H >= 0, number of harmonics above the mean (H = 0: the nonlinear static problem), or None
+        (default): chosen adaptively until the saddle-force peaks settle to ``truncation_tolerance``
+        (:mod:`seafast.solvers.hbm.harmonics`).
     time_samples
-        N >= 2H + 2 AFT samples per period (any integer; powers of 2 not required).
+        N >= 2H + 2 AFT samples per period (any integer; powers of 2 not required), or None
+        (default): ``max(128, 2.5 H)`` (:func:`~seafast.solvers.hbm.harmonics.samples_for`).
     contact_law
-        ``tanh`` (the source's regularisation), ``softplus`` or ``exact``.
+        ``exact`` (default), ``tanh`` (the source's regularisation) or ``softplus``.
     regularisation_per_m
         kappa [1/m] of ``tanh``/``softplus``, > 0 (default 1000, the source's value).
     formulation
@@ -41,17 +55,25 @@ class HBMOptions:
     continuation
         Whether a failed direct solve falls back on continuation (in kappa, then in the dynamic
         excitation amplitude).
+    truncation_tolerance
+        Largest acceptable estimated error of each saddle's peak force from the harmonics left out,
+        relative to its force scale (> 0, < 1; default 1e-3): the target of the adaptive H, and the
+        level above which a fixed H is reported as too few.
+    max_harmonics
+        Upper bound of the adaptive H (>= 1).
     """
 
-    harmonics: int = 5
-    time_samples: int = 128
-    contact_law: str = "tanh"
+    harmonics: int | None = None
+    time_samples: int | None = None
+    contact_law: str = "exact"
     regularisation_per_m: float = 1000.0
     formulation: str = "condensed"
     solver: str = "newton"
     tolerance: float = 1e-10
     max_iterations: int = 100
     continuation: bool = True
+    truncation_tolerance: float = 1e-3
+    max_harmonics: int = 512
 
     def __post_init__(self) -> None:
         def bad(name: str, allowed: str) -> ValueError:
@@ -60,10 +82,11 @@ class HBMOptions:
         def is_int(v: Any) -> bool:
             return isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
 
-        if not is_int(self.harmonics) or self.harmonics < 0:
-            raise bad("harmonics", "an integer >= 0")
-        if not is_int(self.time_samples) or self.time_samples < 2 * self.harmonics + 2:
-            raise bad("time_samples", f"an integer >= 2*harmonics + 2 = {2 * int(self.harmonics) + 2}")
+        if self.harmonics is not None and (not is_int(self.harmonics) or self.harmonics < 0):
+            raise bad("harmonics", "an integer >= 0, or None (adaptive)")
+        minimum_samples = 2 * int(self.harmonics) + 2 if self.harmonics is not None else 4
+        if self.time_samples is not None and (not is_int(self.time_samples) or self.time_samples < minimum_samples):
+            raise bad("time_samples", f"an integer >= 2*harmonics + 2 = {minimum_samples}, or None")
         if self.contact_law not in CONTACT_LAWS:
             raise bad("contact_law", " | ".join(CONTACT_LAWS))
         if (
@@ -87,6 +110,28 @@ class HBMOptions:
             raise bad("max_iterations", "an integer >= 1")
         if not isinstance(self.continuation, (bool, np.bool_)):
             raise bad("continuation", "True | False")
+        if (
+            isinstance(self.truncation_tolerance, bool)
+            or not isinstance(self.truncation_tolerance, (int, float, np.floating))
+            or not (0.0 < float(self.truncation_tolerance) < 1.0)
+        ):
+            raise bad("truncation_tolerance", "a number in (0, 1)")
+        if not is_int(self.max_harmonics) or self.max_harmonics < 1:
+            raise bad("max_harmonics", "an integer >= 1")
+
+    @property
+    def adaptive(self) -> bool:
+        """Whether H is chosen by the solver."""
+        return self.harmonics is None
+
+    def with_harmonics(self, harmonics: int, time_samples: int | None = None) -> "HBMOptions":
+        """The same settings at a given H (and N: the given one, else this one's if it fits, else the default)."""
+        N = time_samples if time_samples is not None else self.time_samples
+        if N is None or N < 2 * int(harmonics) + 2:
+            N = samples_for(int(harmonics))
+        elif self.adaptive and time_samples is None:
+            N = max(int(N), samples_for(int(harmonics)))  # with H chosen adaptively, a given N is a minimum
+        return replace(self, harmonics=int(harmonics), time_samples=int(N))
 
     @property
     def law(self) -> ContactLaw:
@@ -96,3 +141,7 @@ class HBMOptions:
     def to_dict(self) -> dict[str, Any]:
         """Plain dict of the settings."""
         return asdict(self)
+
+
+SOURCE_OPTIONS = HBMOptions(harmonics=5, time_samples=128, contact_law="tanh", regularisation_per_m=1000.0, solver="hybr")
+"""The source's method: tanh law with kappa = 1000 1/m, H = 5, N = 128, Powell's hybrid method."""

@@ -2,21 +2,26 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_dft_matrices, real_to_complex_harmonics
+from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, high_harmonic_energy_share, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
 from seafast.solvers.hbm.full import FullProblem
+from seafast.solvers.hbm.harmonics import force_scale_N, pad_harmonics, select_harmonics, truncation_error
 from seafast.solvers.hbm.nonlinear import solve_with_fallback
 from seafast.solvers.hbm.options import HBMOptions
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["CondensedSolution", "solve_condensed", "solve_hbm"]
+
+_QUICK_ITERATIONS = 40  # Newton steps from a start near the solution (the march, or the previous H)
+_SAFE_HARMONICS = 16  # where the full fallback chain goes when the march's start does not converge
 
 
 @dataclass(frozen=True)
@@ -42,7 +47,9 @@ def solve_condensed(
     initial_compression: NDArray | None = None,
 ) -> CondensedSolution:
     """Solve the condensed HBM system for given operators (used by :func:`solve_hbm` and continuation)."""
-    problem = CondensedProblem(ops, options.time_samples)
+    if options.time_samples is None or options.harmonics != ops.harmonics:
+        options = options.with_harmonics(ops.harmonics)
+    problem = CondensedProblem(ops, int(options.time_samples))  # type: ignore[arg-type]
     u0 = None if initial_compression is None else np.asarray(initial_compression, dtype=float).ravel()
     a = solve_with_fallback(problem, options.law, options, u0)
     U = a.u.reshape(problem.n_h, problem.n_s)
@@ -65,35 +72,121 @@ def solve_hbm(
     model
         The cargo and sea-fastening model.
     excitation
-        Deck motion and vessel loads per harmonic (harmonics above ``options.harmonics`` are
-        dropped, and the message says so). The model's static load (gravity, pretension) is
-        added at k = 0. With ``harmonics = 0`` only the static part is solved: the nonlinear
-        static solution.
+        Deck motion and vessel loads per harmonic (harmonics above H are dropped, and the message
+        says so). The model's static load (gravity, pretension) is added at k = 0. With
+        ``harmonics = 0`` only the static part is solved: the nonlinear static solution.
     options
-        :class:`HBMOptions` (defaults: H = 5, N = 128, tanh law, kappa = 1000 1/m, condensed,
-        Newton).
+        :class:`HBMOptions` (defaults: exact contact law, H chosen adaptively until the saddle-force
+        peaks settle to 0.1 %, condensed, Newton). :data:`~seafast.solvers.hbm.options.SOURCE_OPTIONS`
+        is the source's method.
     initial_compression_m
-        Optional start: saddle compressions sampled on the options' time grid, (N, n_s) [m]
-        (e.g. a neighbouring solution's ``saddle_compression_time_m``; condensed formulation
-        only). Default: the better of the linear solution and the quasi-static predictor.
+        Optional start: saddle compressions sampled over one period at ``t_n = n T / N'``, (N', n_s)
+        [m], any N' (e.g. a neighbouring solution's ``saddle_compression_time_m``; condensed
+        formulation only); projected on the harmonics solved for. Default: the adaptive choice's
+        periodic march (adaptive H), else the better of the linear solution and the quasi-static
+        predictor.
 
     Returns
     -------
     PeriodicResponse
         ``method = "hbm"``; never raises for non-convergence (``converged=False``). Its
-        ``residual_norm`` is relative (see :class:`HBMOptions` ``tolerance``).
+        ``residual_norm`` is relative (see :class:`HBMOptions` ``tolerance``);
+        ``truncation_error`` estimates each saddle's peak-force error from the harmonics left out;
+        ``options`` records the H and N used (and, adaptive, how they were chosen).
     """
     options = HBMOptions() if options is None else options
-    H, N = int(options.harmonics), int(options.time_samples)
-    law = options.law
+    given = None
+    if initial_compression_m is not None:
+        given = np.asarray(initial_compression_m, dtype=float)
+        if given.ndim != 2 or given.shape[1] != model.saddle_count or given.shape[0] < 2:
+            raise ValueError(f"initial_compression_m: shape {given.shape}; must be (samples, n_saddles = {model.saddle_count})")
+    if not options.adaptive:
+        H = int(options.harmonics)  # type: ignore[arg-type]
+        fixed = options.with_harmonics(H)
+        start = None if given is None else _project(given, H)
+        response = _solve_fixed(model, excitation, fixed, start)
+        if H == 0:
+            return response
+        error = truncation_error(model, excitation.omega_rad_s, _compression_harmonics(response, H), fixed.law)
+        return replace(response, truncation_error=error)
+    selection = select_harmonics(model, excitation, tolerance=options.truncation_tolerance, max_harmonics=options.max_harmonics)
+    H = selection.harmonics
+    # the steps from the march (or from the previous H) are near the solution: a few Newton steps, no fallbacks
+    quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), _QUICK_ITERATIONS))
     ops = condensed_operators(model, excitation, H)
+    response = _solve_fixed(model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops)
+    if not response.converged:
+        # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (or the
+        # given start), then the refinement below from there
+        H = min(H, _SAFE_HARMONICS)
+        ops = condensed_operators(model, excitation, H)
+        response = _solve_fixed(model, excitation, options.with_harmonics(H), None if given is None else _project(given, H), ops)
+    path = [H]
+    settle = np.full(model.saddle_count, np.inf)
+    # "settled": the peaks moved by less than the tolerance from the previous H. The first H comes from the
+    # march; a second, 1.5 times larger, is solved to see the peaks settle (a one-step estimate of the
+    # truncation misses how a re-contact's impact peak converges). Contact kept by the march: the linear
+    # solution with the excitation's harmonics is exact, nothing to settle.
+    while response.converged and H < options.max_harmonics and selection.march_periods > 0:
+        if np.max(settle) <= options.truncation_tolerance:
+            break
+        H_next = min(max(int(math.ceil(1.5 * H)), H + 8), int(options.max_harmonics))
+        previous = response
+        ops = condensed_operators(model, excitation, H_next, reuse=ops)
+        start = pad_harmonics(_compression_harmonics(previous, H), H_next)
+        response = _solve_fixed(model, excitation, quick.with_harmonics(H_next), start, ops)
+        if not response.converged:
+            response = previous  # keep the last converged solution; the estimate below says how far from settled
+            break
+        scale = force_scale_N(np.max(response.saddle_force_time_N, axis=0))
+        settle = np.abs(np.max(response.saddle_force_time_N, axis=0) - np.max(previous.saddle_force_time_N, axis=0)) / scale
+        H = H_next
+        path.append(H)
+    error = truncation_error(model, excitation.omega_rad_s, _compression_harmonics(response, H), options.law)
+    if np.all(np.isfinite(settle)):
+        error = np.maximum(error, settle)
+    record = dict(response.options)
+    record.update(
+        harmonics_selection="adaptive",
+        harmonics_path=path,
+        truncation_tolerance=float(options.truncation_tolerance),
+        max_harmonics=int(options.max_harmonics),
+        march_samples=selection.march_samples,
+        march_periods=selection.march_periods,
+        march_change=selection.march_change,
+    )
+    note = response.message + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
+    return replace(response, truncation_error=error, options=record, message=note)
+
+
+def _project(samples: NDArray, harmonics: int) -> NDArray:
+    """Real-layout harmonics 0 .. H of periodic samples (N', n_s) (an exact DFT projection)."""
+    N = samples.shape[0]
+    X = np.fft.rfft(samples, axis=0) / N
+    C = np.zeros((harmonics + 1, samples.shape[1]), dtype=complex)
+    m = min(harmonics, X.shape[0] - 1)
+    C[0] = X[0].real
+    C[1 : m + 1] = 2.0 * X[1 : m + 1]
+    return complex_to_real_harmonics(C)
+
+
+def _compression_harmonics(response: PeriodicResponse, harmonics: int) -> NDArray:
+    return _project(response.saddle_compression_time_m, harmonics)
+
+
+def _solve_fixed(
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    options: HBMOptions,
+    start: NDArray | None,
+    ops: CondensedOperators | None = None,
+) -> PeriodicResponse:
+    """One harmonic-balance solve at the options' H and N (start: real-layout compression harmonics; ``ops``:
+    operators to extend to H)."""
+    H, N = int(options.harmonics), int(options.time_samples)  # type: ignore[arg-type]
+    law = options.law
+    ops = condensed_operators(model, excitation, H, reuse=ops)
     if options.formulation == "condensed":
-        start = None
-        if initial_compression_m is not None:
-            samples = np.asarray(initial_compression_m, dtype=float)
-            if samples.shape != (N, model.saddle_count):
-                raise ValueError(f"initial_compression_m: shape {samples.shape}; must be (time_samples, n_saddles) = {(N, model.saddle_count)}")
-            start = real_dft_matrices(H, N)[1] @ samples
         sol = solve_condensed(ops, options, start)
         C = real_to_complex_harmonics(sol.correction_force)  # (H+1, n_s)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
@@ -101,7 +194,8 @@ def solve_hbm(
         converged, resid, its, nfev, note = sol.converged, sol.residual_norm, sol.iterations, sol.function_evaluations, sol.message
     else:
         problem = FullProblem(model, excitation, H, N, ops)
-        a = solve_with_fallback(problem, law, options)
+        u0 = None if start is None else problem.from_compression(real_dft_matrices(H, N)[0] @ start)
+        a = solve_with_fallback(problem, law, options, u0)
         Q = problem.cargo_displacement(a.u)
         X = real_to_complex_harmonics(Q)
         U = problem.deck_z - Q[:, model.saddle_cargo_dof]
