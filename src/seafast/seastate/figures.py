@@ -140,7 +140,7 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
                 xx = np.linspace(m.min() - 0.2 * np.ptp(m), m.max() + 0.2 * np.ptp(m), 200)
                 ax.plot(xx, gumbel_r.cdf(xx, loc, sc), "-", color=colour, lw=1, label=f"{stats.model}: Gumbel fit")
             ax.axvline(float(stats.mpm[q]) * scale, color=colour, ls=":", lw=1)
-        spectral = float(ds[q].sel(model="linear", method="spectral"))
+        spectral = float(ds[q].sel(model="linear", estimate_method="spectral"))
         ax.axvline(spectral * scale, color="k", ls="--", lw=1, label="linear spectral MPM")
         ax.set_xlabel(f"{'saddle force F' if q == 'F_N' else 'bending moment M_b'} maximum over the duration [{unit}]")
         ax.set_ylabel("non-exceedance probability [-]")

@@ -6,7 +6,7 @@ method was not run has empty cells (read as NaN), never made-up numbers.
 
 ``seastate.nc`` holds the spectrum, the transfer functions (real and imaginary parts, per metre
 of wave amplitude), the response spectra and spectral statistics, the table of seastate.csv as
-variables over (model, method), and the Monte Carlo engine's per-realisation data when it ran;
+variables over (model, estimate_method), and the Monte Carlo engine's per-realisation data when it ran;
 ``units`` and ``long_name`` on every variable.
 """
 
@@ -153,12 +153,12 @@ def seastate_dataset(analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any
         for r in rows:
             if r[q] is not None:
                 table[models.index(r["model"]), methods.index(r["method"])] = r[q]
-        v[q] = _var(("model", "method"), table, long_name + " (NaN: not computed)", unit)
+        v[q] = _var(("model", "estimate_method"), table, long_name + " (NaN: not computed)", unit)
     conv = np.full((2, 2), -1, dtype=np.int8)
     for r in rows:
         if r["converged"] is not None:
             conv[models.index(r["model"]), methods.index(r["method"])] = int(bool(r["converged"]))
-    v["converged"] = _var(("model", "method"), conv, "all solves converged (1), not (0), not computed (-1)", "1")
+    v["converged"] = _var(("model", "estimate_method"), conv, "all solves converged (1), not (0), not computed (-1)", "1")
     case = analysis.case
     ds = xr.Dataset(
         v,
@@ -167,7 +167,8 @@ def seastate_dataset(analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any
             "saddle": _var(("saddle",), np.arange(analysis.model.saddle_count), "saddle index, aft to fore", "1"),
             "x_moment_m": _var(("x_moment_m",), tf.bending_moment_x_m, "position along the cargo from its aft end", "m"),
             "model": xr.Variable(("model",), models, {"long_name": "cargo model (linear: bilateral saddles)", "units": "1"}),
-            "method": xr.Variable(("method",), methods, {"long_name": "method of the extremes", "units": "1"}),
+            # not "method": xarray's .sel(method=...) is taken
+            "estimate_method": xr.Variable(("estimate_method",), methods, {"long_name": "method of the extremes (seastate.csv column 'method')", "units": "1"}),
         },
         attrs={
             "title": f"seafast sea state: {case.name}",

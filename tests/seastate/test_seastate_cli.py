@@ -1,0 +1,76 @@
+"""`seafast seastate` as a user meets it: outputs, columns, units, exit codes on bad input."""
+
+from __future__ import annotations
+
+import csv
+
+import pytest
+import xarray as xr
+
+import seafast
+from seafast.cli import main
+from seafast.seastate.spectral import SEASTATE_COLUMNS, spectral_analysis
+
+
+@pytest.fixture(scope="module")
+def spectral_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("seastate")
+    assert main(["seastate", "-o", str(out), "--no-monte-carlo", "-q"]) == 0
+    return out
+
+
+def test_seastate_csv_has_the_contract_columns_and_rows(spectral_run):
+    with open(spectral_run / "seastate.csv", newline="") as f:
+        header = f.readline().strip()
+        f.seek(0)
+        rows = list(csv.DictReader(f))
+    assert header == ",".join(SEASTATE_COLUMNS) == "model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged"
+    assert [(r["model"], r["method"]) for r in rows] == [("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo")]
+    spectral = spectral_analysis(seafast.load_case(None)).extremes.totals
+    for q in ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m", "uplift_per_hour"):
+        assert float(rows[0][q]) == pytest.approx(spectral[q], rel=1e-12), q
+    assert rows[0]["converged"] == "true"
+    # not computed: empty cells, never made-up numbers
+    for r in rows[1:]:
+        assert all(r[c] == "" for c in SEASTATE_COLUMNS[2:])
+
+
+def test_seastate_nc_labels_every_variable_and_the_figures_exist(spectral_run):
+    with xr.open_dataset(spectral_run / "seastate.nc") as ds:
+        for name, var in list(ds.data_vars.items()) + list(ds.coords.items()):
+            assert var.attrs.get("units") and var.attrs.get("long_name"), name
+        assert ds["F_N"].sel(model="linear", estimate_method="spectral") > 0
+        assert bool(ds["F_N"].sel(model="nonlinear", estimate_method="monte_carlo").isnull())
+        assert ds.attrs["significant_height_m"] == 3.0 and ds.attrs["duration_s"] == 10800.0
+        for name in ("wave_spectrum_m2_s_per_rad", "saddle_force_transfer_N_per_m_real", "bending_moment_spectrum_Nm2_s_per_rad"):
+            assert name in ds
+    for png in ("seastate_spectrum.png", "seastate_transfer_functions.png"):
+        assert (spectral_run / png).stat().st_size > 10_000
+    assert seafast.load_case(spectral_run / "case.yaml").sea_state.peak_period_s == 10.0
+
+
+@pytest.mark.parametrize(
+    "overrides,needle",
+    [
+        (["sea_state.peak_period_s=3", "sea_state.significant_height_m=0.5"], "sea_state.peak_period_s = 3.0"),
+        (["sea_state.peak_period_s=3"], "allowed Hs <= 0.94 m"),
+        (["sea_state.significant_height_m=-2"], "sea_state.significant_height_m = -2"),
+        (["sea_state.significant_height_m=15"], "allowed Hs <="),
+        (["sea_state.spectrum=missing.csv", "sea_state.peak_period_s=null"], "sea_state.spectrum"),
+        (["sea_state.spectrum=jonswap", "sea_state.peak_period_s=null"], "sea_state.peak_period_s = null"),
+        (["sea_state.duration_s=yes"], "sea_state.duration_s"),
+        (["vessel.coupling=two_way"], "vessel.coupling = 'two_way'"),
+    ],
+)
+def test_bad_sea_state_input_exits_2_with_one_clear_message(tmp_path, capsys, overrides, needle):
+    args = ["seastate", "-o", str(tmp_path / "o"), "--no-monte-carlo", "-q"]
+    for o in overrides:
+        args += ["--set", o]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert needle in err and "Traceback" not in err and err.startswith("seafast: error:")
+
+
+def test_workers_must_be_positive(tmp_path, capsys):
+    assert main(["seastate", "-o", str(tmp_path), "--workers", "0", "-q"]) == 2
+    assert "--workers 0" in capsys.readouterr().err
