@@ -74,3 +74,16 @@ def test_bad_sea_state_input_exits_2_with_one_clear_message(tmp_path, capsys, ov
 def test_workers_must_be_positive(tmp_path, capsys):
     assert main(["seastate", "-o", str(tmp_path), "--workers", "0", "-q"]) == 2
     assert "--workers 0" in capsys.readouterr().err
+
+
+def test_report_of_a_seastate_directory_has_the_sea_state_section(spectral_run, tmp_path):
+    out = tmp_path / "report.html"
+    assert main(["report", str(spectral_run), "-o", str(out), "--no-figures"]) == 0
+    page = out.read_text()
+    for needle in ('id="seastate-summary"', 'data-figure="fig-seastate-spectrum"', 'data-figure="fig-seastate-transfer"',
+                   "uplift events in 3 h", "not computed"):
+        assert needle in page, needle
+    # the table shows the csv's numbers in engineering units
+    with open(spectral_run / "seastate.csv", newline="") as f:
+        spectral = next(csv.DictReader(f))
+    assert f"{float(spectral['F_N']) / 1e6:.3f}" in page

@@ -22,7 +22,7 @@ import xarray as xr
 
 __all__ = ["write_seastate_figures", "FIGURE_DPI"]
 
-FIGURE_DPI = 150
+FIGURE_DPI = 200  # print quality, as the report's figures
 
 
 def _abs(ds: xr.Dataset, name: str) -> np.ndarray:
