@@ -100,22 +100,29 @@ def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
 
 
 def _realisation_figure(example: Any, path: Path) -> Path:
+    """``example``: the engine's ``RealisationTimeSeries`` (time_s, wave_elevation_m, linear/nonlinear_saddle_force_N, saddle_lifted)."""
     import matplotlib.pyplot as plt
 
     t = np.asarray(example.time_s, dtype=float)
-    force = np.asarray(example.saddle_force_N, dtype=float)
-    fig, ax = plt.subplots(figsize=(10, 4.5))
-    for i in range(force.shape[1]):
-        line = ax.plot(t, force[:, i] / 1e6, lw=0.8, label=f"saddle {i}")[0]
-        lifted = force[:, i] <= 0.0
-        if np.any(lifted):
-            ax.plot(t[lifted], np.zeros(int(lifted.sum())), "|", color=line.get_color(), ms=10, label=f"saddle {i} lifted")
+    nonlinear = np.asarray(example.nonlinear_saddle_force_N, dtype=float)
+    linear = np.asarray(example.linear_saddle_force_N, dtype=float)
+    lifted = np.asarray(example.saddle_lifted, dtype=bool)
+    fig, (ax0, ax) = plt.subplots(2, 1, figsize=(11, 6), sharex=True, gridspec_kw={"height_ratios": [1, 2.5]})
+    ax0.plot(t, np.asarray(example.wave_elevation_m, dtype=float), "k", lw=0.6)
+    ax0.set_ylabel("wave at midship ζ [m]")
+    ax0.grid(alpha=0.3)
+    for i in range(nonlinear.shape[1]):
+        colour = f"C{i}"
+        ax.plot(t, linear[:, i] / 1e6, color=colour, lw=0.5, ls="--", alpha=0.6, label=f"saddle {i}, linear" if i == 0 else None)
+        ax.plot(t, nonlinear[:, i] / 1e6, color=colour, lw=0.8, label=f"saddle {i}, nonlinear")
+        if np.any(lifted[:, i]):
+            ax.plot(t[lifted[:, i]], np.zeros(int(lifted[:, i].sum())), "|", color=colour, ms=12, mew=1.5, label=f"saddle {i} lifted off")
     ax.axhline(0.0, color="k", lw=0.6)
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("saddle force F [MN]")
-    ax.set_title(f"One realisation (nonlinear model): saddle forces, lift-off marked | on the zero line")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, ncol=3)
+    fig.suptitle(f"Realisation {getattr(example, 'index', '')}: saddle forces (nonlinear solid, linear dashed), lift-off marked | on F = 0")
     fig.tight_layout()
     fig.savefig(path, dpi=FIGURE_DPI)
     plt.close(fig)
