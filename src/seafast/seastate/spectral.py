@@ -100,7 +100,7 @@ def response_statistics(transfer: NDArray[np.complex128], spectrum: WaveSpectrum
     """Statistics of the responses whose transfer functions are the columns of ``transfer`` (n_w, n_loc)."""
     w = spectrum.omega_rad_s
     s_r = np.abs(transfer) ** 2 * spectrum.density_m2_s_per_rad[:, None]
-    m0, m2, m4 = (np.trapezoid(w[:, None] ** n * s_r, w, axis=0) for n in (0, 2, 4))
+    m0, m2, m4 = (np.atleast_1d(np.trapezoid(w[:, None] ** n * s_r, w, axis=0)) for n in (0, 2, 4))
     with np.errstate(divide="ignore", invalid="ignore"):
         tz = np.where(m2 > 0, 2.0 * np.pi * np.sqrt(m0 / m2), np.inf)
     return ResponseStatistics(s_r, m0, m2, m4, np.sqrt(m0), tz, rayleigh_mpm(m0, m2, duration_s))

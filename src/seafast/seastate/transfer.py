@@ -204,6 +204,7 @@ def transfer_functions(case: Case, model: StructuralModel, omega_rad_s: ArrayLik
     _check_supported(case)
     vessel = vessel_excitation(case)
     aft = vessel.cargo_aft_end_x_m
+    assert vessel.girder is not None and vessel.loading is not None  # a computed hull (checked above)
     hull = wave_transfer_functions(vessel.girder, vessel.loading, w)
     deck_z, deck_slope = hull.deck_at(aft + model.saddle_x_m)
     if vessel.motions is not None:
