@@ -217,13 +217,12 @@ def transfer_functions(case: Case, model: StructuralModel, omega_rad_s: ArrayLik
     # heave and unit pitch once at omega = 1 and superpose (the same numbers as one assembly
     # per frequency, without n_w dense mass products).
     unit = [
-        assemble_excitation(model, aft, 1.0, None, lambda x: (deck_z[0], deck_slope[0]), RigidBodyAmplitudes(h, p, ref_x))
-        for h, p in ((1.0, 0.0), (0.0, 1.0))
+        assemble_excitation(model, aft, 1.0, None, None, RigidBodyAmplitudes(h, p, ref_x)) for h, p in ((1.0, 0.0), (0.0, 1.0))
     ]
     w2 = (w**2)[:, None]
     load = w2 * (heave[:, None] * unit[0].cargo_load_N[1] + pitch[:, None] * unit[1].cargo_load_N[1])
     line = w2 * (heave[:, None] * unit[0].cargo_line_load_N_per_m[1] + pitch[:, None] * unit[1].cargo_line_load_N_per_m[1])
-    deck = np.zeros((n_w, model.deck_dof_count), complex)
+    deck = np.zeros((n_w, model.deck_dof_count), complex)  # (z, slope) per saddle, the assembly's deck-DOF order
     deck[:, model.saddle_deck_dof], deck[:, model.saddle_deck_dof + 1] = deck_z, deck_slope
     disp = _harmonic_solves(model, w, load, deck)
     compression = deck[:, model.saddle_deck_dof] - disp[:, model.saddle_cargo_dof]
