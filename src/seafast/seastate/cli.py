@@ -36,13 +36,16 @@ def _error(message: str) -> int:
     return EXIT_INVALID_INPUT
 
 
-def _monte_carlo_engine() -> Any:
-    """``run_monte_carlo`` when the engine is installed, else None."""
+def _monte_carlo_engine() -> tuple[Any, str]:
+    """``(run_monte_carlo, "")`` when the engine loads, else ``(None, why not)``."""
     try:
         from seafast.seastate import monte_carlo
-    except ImportError:
-        return None
-    return getattr(monte_carlo, "run_monte_carlo", None)
+    except ModuleNotFoundError as exc:
+        if exc.name == "seafast.seastate.monte_carlo":
+            return None, "the Monte Carlo engine is not in this version"
+        return None, f"the Monte Carlo engine cannot be loaded: {exc} (a missing dependency; reinstall seafast)"
+    engine = getattr(monte_carlo, "run_monte_carlo", None)
+    return engine, "" if engine is not None else "the Monte Carlo engine has no run_monte_carlo"
 
 
 def _cmd_seastate(args: argparse.Namespace) -> int:
@@ -68,10 +71,13 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)")
     rows = [analysis.extremes.row()]
     monte_carlo = None
-    engine = None if args.no_monte_carlo else _monte_carlo_engine()
+    engine, why = (None, "--no-monte-carlo") if args.no_monte_carlo else _monte_carlo_engine()
     if engine is None:
-        why = "--no-monte-carlo" if args.no_monte_carlo else "the Monte Carlo engine is not in this version"
-        say(f"Monte Carlo rows not computed ({why})")
+        message = f"Monte Carlo rows not computed ({why})"
+        if args.no_monte_carlo:
+            say(message)
+        else:  # the user asked for it: say so even when quiet
+            print(f"seafast: warning: {message}", file=sys.stderr)
         rows += [not_computed_row(model, method) for model, method in ROWS[1:]]
     else:
         ss = case.sea_state
