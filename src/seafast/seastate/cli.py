@@ -90,8 +90,9 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots)
     if not args.quiet:
         sp = analysis.spectrum
-        print(format_seastate_table(rows, title=f"{case.name}: {sp.description}, most probable maxima over "
-                                    f"{case.sea_state.duration_s / 3600:g} h, still water included"))
+        d = case.sea_state.duration_s
+        span = f"{d / 3600:g} h" if d % 360 == 0 else f"{d:g} s"
+        print(format_seastate_table(rows, title=f"{case.name}: {sp.description}, most probable maxima over {span}, still water included"))
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if r["converged"] is False]
     for r in bad:

@@ -133,19 +133,22 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
     import matplotlib.pyplot as plt
     from scipy.stats import gumbel_r
 
+    from seafast.seastate.extremes import gumbel_fit  # the engine's fit: its mode is the MPM reported
+
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.5))
     for ax, q, scale, unit in ((axes[0], "F_N", 1e-6, "MN"), (axes[1], "M_b_Nm", 1e-6, "MN m")):
-        for stats, colour in ((monte_carlo.linear, "C0"), (monte_carlo.nonlinear, "C3")):
-            m = np.sort(np.asarray(stats.maxima[q], dtype=float)) * scale
+        for stats, colour, marker in ((monte_carlo.linear, "C0", "o"), (monte_carlo.nonlinear, "C3", "x")):
+            m = np.sort(np.asarray(stats.maxima[q], dtype=float))
             m = m[np.isfinite(m)]
             if m.size == 0:
                 continue
             p = (np.arange(1, m.size + 1) - 0.44) / (m.size + 0.12)  # Gringorten plotting positions
-            ax.plot(m, p, "o", color=colour, ms=4, label=f"{stats.model}: maxima of {m.size} realisations")
-            if m.size >= 3:
-                loc, sc = gumbel_r.fit(m)
-                xx = np.linspace(m.min() - 0.2 * np.ptp(m), m.max() + 0.2 * np.ptp(m), 200)
-                ax.plot(xx, gumbel_r.cdf(xx, loc, sc), "-", color=colour, lw=1, label=f"{stats.model}: Gumbel fit")
+            face = "none" if marker == "o" else colour
+            ax.plot(m * scale, p, marker, color=colour, mfc=face, ms=6, ls="none", label=f"{stats.model}: maxima of {m.size} realisations")
+            if m.size >= 3 and np.ptp(m) > 0 and np.all(m > 0):
+                mode, beta = (float(v) for v in gumbel_fit(m))
+                xx = np.linspace(m.min() - 0.3 * np.ptp(m), m.max() + 0.3 * np.ptp(m), 200)
+                ax.plot(xx * scale, gumbel_r.cdf(xx, mode, beta), "-", color=colour, lw=1, label=f"{stats.model}: Gumbel fit")
             ax.axvline(float(stats.mpm[q]) * scale, color=colour, ls=":", lw=1)
         spectral = float(ds[q].sel(model="linear", estimate_method="spectral"))
         ax.axvline(spectral * scale, color="k", ls="--", lw=1, label="linear spectral MPM")
