@@ -87,3 +87,48 @@ def test_report_of_a_seastate_directory_has_the_sea_state_section(spectral_run, 
     with open(spectral_run / "seastate.csv", newline="") as f:
         spectral = next(csv.DictReader(f))
     assert f"{float(spectral['F_N']) / 1e6:.3f}" in page
+
+
+def _fake_statistics(model, converged):
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    maxima = {q: np.array([1.0, 1.1, 1.2]) * v for q, v in (("F_N", 9e6), ("M_b_Nm", 9e7), ("sigma_b_Pa", 2.3e7), ("u_s_m", 9e-3), ("u_d_m", 1e-3))}
+    mpm = {q: float(np.median(m)) for q, m in maxima.items()}
+    return SimpleNamespace(model=model, maxima=maxima, mpm=mpm, uplift_per_hour=1.5, converged=converged)
+
+
+def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monkeypatch, capsys):
+    # the command's side of the contract, with a stand-in engine: rows from the statistics, its
+    # dataset merged into seastate.nc, exit 3 when a nonlinear realisation did not converge
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import seafast.seastate.cli as seastate_cli
+
+    calls = {}
+
+    def engine(case, directory, *, workers=None, scheduler=None, progress=True):
+        calls.update(case=case, directory=directory, workers=workers, scheduler=scheduler)
+        ds = xr.Dataset({"realisation_F_N": xr.Variable(("realisation",), np.array([9e6, 9.9e6, 1.08e7]),
+                                                        {"units": "N", "long_name": "maximum saddle force per realisation"})},
+                        coords={"realisation": xr.Variable(("realisation",), np.arange(3), {"units": "1", "long_name": "realisation index"})})
+        return SimpleNamespace(linear=_fake_statistics("linear", True), nonlinear=_fake_statistics("nonlinear", False),
+                               example=None, to_dataset=lambda: ds)
+
+    monkeypatch.setattr(seastate_cli, "_monte_carlo_engine", lambda: (engine, ""))
+    out = tmp_path / "mc"
+    assert main(["seastate", "-o", str(out), "--workers", "1", "--no-plots", "-q"]) == 3
+    assert "nonlinear monte_carlo" in capsys.readouterr().err
+    assert calls["workers"] == 1 and calls["scheduler"] is None and calls["directory"] == out
+    with open(out / "seastate.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert float(rows[1]["F_N"]) == pytest.approx(9.9e6) and rows[1]["converged"] == "true"
+    assert float(rows[2]["u_d_m"]) == pytest.approx(1.1e-3) and rows[2]["converged"] == "false"
+    assert float(rows[2]["uplift_per_hour"]) == 1.5
+    with xr.open_dataset(out / "seastate.nc") as ds:
+        assert ds["realisation_F_N"].attrs["units"] == "N"
+        assert float(ds["F_N"].sel(model="nonlinear", estimate_method="monte_carlo")) == pytest.approx(9.9e6)
+        assert int(ds["converged"].sel(model="nonlinear", estimate_method="monte_carlo")) == 0
