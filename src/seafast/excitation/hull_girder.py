@@ -293,9 +293,16 @@ def _shear_moment(h: FloatArray, qa: NDArray, qb: NDArray) -> tuple[NDArray, NDA
 
 
 def _end_resultants(h: FloatArray, qa: NDArray, qb: NDArray) -> NDArray:
-    """(V(L), M(L)) stacked on the last axis, for the element loads."""
-    V, M = _shear_moment(h, qa, qb)
-    return np.stack([V[..., -1], M[..., -1]], axis=-1)
+    """(V(L), M(L)) stacked on the last axis, for the element loads.
+
+    The end values of :func:`_shear_moment` without its running sums (the balance needs only
+    these): ``V(L) = sum dV_j`` and ``M(L) = sum_j [dV_j (L - x_{j+1}) + h_j^2 (2 qa_j + qb_j) / 6]``.
+    """
+    dV = 0.5 * h * (qa + qb)
+    arm = np.cumsum(h[::-1])[::-1] - h  # L - x_{j+1}
+    V_end = dV.sum(axis=-1)
+    M_end = dV @ arm + (h * h / 6.0 * (2.0 * qa + qb)).sum(axis=-1)
+    return np.stack([V_end, M_end], axis=-1)
 
 
 _HALF_BANDWIDTH = 3
