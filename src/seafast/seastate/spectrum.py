@@ -22,6 +22,7 @@ OMEGA_MAX_RAD_S]`` is refused (:class:`~seafast.config.CaseError`).
 
 from __future__ import annotations
 
+import csv
 import functools
 import math
 from dataclasses import dataclass
@@ -82,18 +83,19 @@ def _peak_factor(u: NDArray[np.float64], gamma: float) -> NDArray[np.float64]:
     return gamma ** np.exp(-((u - 1.0) ** 2) / (2.0 * sigma**2))
 
 
+def _shape(u: float, gamma: float) -> float:
+    """JONSWAP density with C = 1 per (Hs^2 / omega_p) at u = omega / omega_p (for quadrature)."""
+    return 5.0 / 16.0 * u**-5 * math.exp(-1.25 * u**-4) * float(_peak_factor(np.array(u), gamma))
+
+
 @functools.lru_cache(maxsize=64)
 def jonswap_normalisation(gamma: float) -> float:
     """C(gamma) with ``int_0^inf S_J = Hs^2 / 16`` [-] (1 at gamma = 1; DNV's approximation 1 - 0.287 ln gamma)."""
     if gamma == 1.0:
         return 1.0
-
-    def shape(u: float) -> float:  # S_J / (Hs^2 / omega_p) at u = omega / omega_p, C = 1
-        return 5.0 / 16.0 * u**-5 * math.exp(-1.25 * u**-4) * float(_peak_factor(np.array(u), gamma))
-
-    parts = [quad(shape, a, b, limit=200, epsabs=0, epsrel=1e-12)[0] for a, b in ((0.2, 0.8), (0.8, 1.0), (1.0, 1.3), (1.3, 3.0))]
-    tail = quad(shape, 3.0, np.inf, limit=200, epsabs=0, epsrel=1e-12)[0]
-    return (1.0 / 16.0) / (sum(parts) + tail)
+    pieces = ((0.2, 0.8), (0.8, 1.0), (1.0, 1.3), (1.3, 3.0), (3.0, np.inf))
+    total = sum(quad(_shape, a, b, args=(gamma,), limit=200, epsabs=0, epsrel=1e-12)[0] for a, b in pieces)
+    return (1.0 / 16.0) / total
 
 
 def jonswap_density(
@@ -148,8 +150,6 @@ def read_spectrum_table(path: str | Path, key: str = "sea_state.spectrum") -> tu
     CaseError
         Unreadable file, wrong columns, non-numeric, negative or non-increasing values.
     """
-    import csv
-
     p = Path(path)
     try:
         lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
@@ -216,26 +216,15 @@ def _refuse(key: str, value: object, share: float, where: str, allowed: str) -> 
 
 def _parametric_share_above(u_cap: float, gamma: float) -> float:
     """Share of a JONSWAP/PM spectrum's variance above omega = u_cap omega_p."""
-    c = jonswap_normalisation(gamma)
-
-    def shape(u: float) -> float:
-        return 5.0 / 16.0 * u**-5 * math.exp(-1.25 * u**-4) * float(_peak_factor(np.array(u), gamma))
-
-    if u_cap <= 1.3:
-        upper = quad(shape, u_cap, 1.3, limit=200)[0] + quad(shape, 1.3, np.inf, limit=200)[0]
-    else:
-        upper = quad(shape, u_cap, np.inf, limit=200)[0]
-    return 16.0 * c * upper
+    pieces = ((u_cap, 1.3), (1.3, np.inf)) if u_cap < 1.3 else ((u_cap, np.inf),)
+    return 16.0 * jonswap_normalisation(gamma) * sum(quad(_shape, a, b, args=(gamma,), limit=200)[0] for a, b in pieces)
 
 
 def _parametric_share_below(u_floor: float, gamma: float) -> float:
-    """Share of a JONSWAP/PM spectrum's variance below omega = u_floor omega_p."""
-    c = jonswap_normalisation(gamma)
-
-    def shape(u: float) -> float:
-        return 5.0 / 16.0 * u**-5 * math.exp(-1.25 * u**-4) * float(_peak_factor(np.array(u), gamma))
-
-    return 16.0 * c * quad(shape, 1e-3, u_floor, limit=200)[0] if u_floor > 1e-3 else 0.0
+    """Share of a JONSWAP/PM spectrum's variance below omega = u_floor omega_p (0 below u = 1e-3)."""
+    if u_floor <= 1e-3:
+        return 0.0
+    return 16.0 * jonswap_normalisation(gamma) * quad(_shape, 1e-3, u_floor, args=(gamma,), limit=200)[0]
 
 
 def sea_state_spectrum(case: Case, n_points: int = DEFAULT_GRID_POINTS) -> WaveSpectrum:
