@@ -132,3 +132,42 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
         assert ds["realisation_F_N"].attrs["units"] == "N"
         assert float(ds["F_N"].sel(model="nonlinear", estimate_method="monte_carlo")) == pytest.approx(9.9e6)
         assert int(ds["converged"].sel(model="nonlinear", estimate_method="monte_carlo")) == 0
+
+
+_SEA_KEYS = [
+    "sea_state.significant_height_m", "sea_state.peak_period_s", "sea_state.spectrum", "sea_state.peak_enhancement",
+    "sea_state.duration_s", "sea_state.realisations", "sea_state.seed", "sea_state", "limits.max_saddle_force_N",
+    "limits.max_bending_stress_Pa", "limits",
+]
+
+
+def _fuzz_values():
+    from hypothesis import strategies as st
+
+    return st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.floats(0.1, 20.0), st.integers(-5, 200),
+                     st.text(max_size=8), st.none(), st.booleans(), st.sampled_from(["jonswap", "pierson_moskowitz", "x.csv"]))
+
+
+def test_seastate_never_tracebacks_on_random_sea_state_overrides(tmp_path):
+    import io
+    from contextlib import redirect_stderr, redirect_stdout
+
+    import yaml
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    @settings(max_examples=30, deadline=None, derandomize=True)
+    @given(st.lists(st.tuples(st.sampled_from(_SEA_KEYS), _fuzz_values()), min_size=1, max_size=3))
+    def check(pairs):
+        args = ["seastate", "-o", str(tmp_path / "h"), "--no-monte-carlo", "--no-plots", "-q"]
+        for k, v in pairs:
+            args += ["--set", f"{k}={yaml.safe_dump(v, default_flow_style=True).strip().removesuffix('...').strip()}"]
+        err = io.StringIO()
+        with redirect_stderr(err), redirect_stdout(io.StringIO()):
+            code = main(args)
+        assert code in (0, 2), (code, err.getvalue())
+        assert "Traceback" not in err.getvalue()
+        if code == 2:
+            assert err.getvalue().startswith("seafast: error:")
+
+    check()
