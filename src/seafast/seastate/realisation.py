@@ -459,6 +459,6 @@ def evaluate_realisation(
         nl_comp = np.where(covered[rows][:, None], cap_comp, d_tot[rows])
         wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size))[rows]
         series = RealisationTimeSeries(
-            int(index), rows * grid.time_step_s, wave, lin_force, k * np.maximum(nl_comp, 0.0), cap_lift, plan.saddle_x_m
+            int(index), np.asarray(rows * grid.time_step_s, dtype=np.float64), wave, lin_force, k * np.maximum(nl_comp, 0.0), cap_lift, plan.saddle_x_m
         )
     return record, series

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -83,10 +84,9 @@ class SynthesisGrid:
 
 def synthesis_grid(
     band_rad_s: tuple[float, float],
-    density_m2_s_per_rad: object,
+    density_m2_s_per_rad: Callable[[NDArray[np.float64]], NDArray[np.float64]],
     duration_s: float,
     max_time_step_s: float,
-    multiple_of: int = 1,
 ) -> SynthesisGrid:
     """The synthesis grid over ``band_rad_s`` for a record of ``duration_s``.
 
@@ -99,8 +99,8 @@ def synthesis_grid(
     duration_s
         T [s], > 0.
     max_time_step_s
-        Largest allowed sampling interval [s]; the sample count is the next FFT-friendly size
-        (and a multiple of ``multiple_of``) at or above ``T / max_time_step_s``.
+        Largest allowed sampling interval [s]; the sample count is the next even FFT-friendly
+        size at or above ``T / max_time_step_s``.
     """
     T = float(duration_s)
     d_omega = 2.0 * math.pi / T
@@ -108,12 +108,12 @@ def synthesis_grid(
     j1 = int(math.floor(band_rad_s[1] / d_omega))
     if j1 < j0:
         raise ValueError(f"duration_s = {duration_s!r} is too short to resolve the band {band_rad_s} rad/s")
-    omega = np.arange(j0, j1 + 1) * d_omega
-    S = np.asarray(density_m2_s_per_rad(omega), dtype=float)  # type: ignore[operator]
-    amplitude = np.sqrt(2.0 * np.maximum(S, 0.0) * d_omega)
+    omega = np.asarray(np.arange(j0, j1 + 1) * d_omega, dtype=np.float64)
+    S = np.asarray(density_m2_s_per_rad(omega), dtype=np.float64)
+    amplitude = np.asarray(np.sqrt(2.0 * np.maximum(S, 0.0) * d_omega), dtype=np.float64)
     n = max(int(math.ceil(T / float(max_time_step_s))), 2 * (j1 + 1) + 2)
     n = next_fast_len(n, real=True)
-    while n % (2 * int(multiple_of)):
+    while n % 2:
         n = next_fast_len(n + 1, real=True)
     return SynthesisGrid(T, j0, omega, amplitude, n)
 

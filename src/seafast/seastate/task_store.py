@@ -211,7 +211,7 @@ def run_tasks(
             raise StoreError(f"--scheduler {scheduler}: cannot connect to a Dask scheduler ({exc})") from None
         try:
             shared_future = client.scatter(shared, broadcast=True, hash=False)
-            futures = [client.submit(_dask_task, task, shared_future, i, pure=False) for i in indices]
+            futures: list[Any] = [client.submit(_dask_task, task, shared_future, i, pure=False) for i in indices]
             for future in as_completed(futures, loop=client.loop):
                 yield future.result()
         finally:
@@ -230,8 +230,8 @@ def run_tasks(
         max_workers=min(n, len(indices)), mp_context=context, initializer=_init_worker, initargs=(os.getpid(), shared)
     )
     try:
-        futures = [executor.submit(_call_with_shared, task, i) for i in indices]
-        for future in cf.as_completed(futures):
+        local = [executor.submit(_call_with_shared, task, i) for i in indices]
+        for future in cf.as_completed(local):
             yield future.result()
     finally:
         executor.shutdown(wait=True, cancel_futures=True)

@@ -575,7 +575,8 @@ def march_window(
         state.eta, state.eta_dot, state.eta_ddot, state.force_N, state.detached, ms, mb, mod,
         int(capture_every), cc, cl,
     )
-    return WindowOutcome(int(end), *(float(v) for v in maxima), int(lifted), int(events), bool(solved))
+    F, u_s, u_d, M, sigma = (float(v) for v in maxima)
+    return WindowOutcome(int(end), F, u_s, u_d, M, sigma, int(lifted), int(events), bool(solved))
 
 
 # ====================================================================== whole records
@@ -632,4 +633,4 @@ def integrate_record(
         system, coef, 1, np.zeros(n_s), np.ones(n_t, dtype=bool), 0, n_t - 1, state,
         tolerance_m=0.0, capture_every=1, capture_compression=compression, capture_lifted=lifted,
     )
-    return TransientRecord(np.arange(n_t) * system.time_step_s, compression, system.stiffness_N_per_m * np.maximum(compression, 0.0), outcome.solved)
+    return TransientRecord(np.asarray(np.arange(n_t) * system.time_step_s, dtype=np.float64), compression, system.stiffness_N_per_m * np.maximum(compression, 0.0), outcome.solved)
