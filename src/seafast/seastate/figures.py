@@ -100,28 +100,40 @@ def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
 
 
 def _realisation_figure(example: Any, path: Path) -> Path:
-    """``example``: the engine's ``RealisationTimeSeries`` (time_s, wave_elevation_m, linear/nonlinear_saddle_force_N, saddle_lifted)."""
+    """``example``: the engine's ``RealisationTimeSeries`` (time_s, wave_elevation_m, linear/nonlinear_saddle_force_N, saddle_lifted).
+
+    Top: the wave; middle: the whole record; bottom: 90 s around the lift-off nearest the largest
+    linear force (or around the largest force when no saddle lifts), where the models part.
+    """
     import matplotlib.pyplot as plt
 
     t = np.asarray(example.time_s, dtype=float)
     nonlinear = np.asarray(example.nonlinear_saddle_force_N, dtype=float)
     linear = np.asarray(example.linear_saddle_force_N, dtype=float)
     lifted = np.asarray(example.saddle_lifted, dtype=bool)
-    fig, (ax0, ax) = plt.subplots(2, 1, figsize=(11, 6), sharex=True, gridspec_kw={"height_ratios": [1, 2.5]})
-    ax0.plot(t, np.asarray(example.wave_elevation_m, dtype=float), "k", lw=0.6)
+    peak = int(np.argmax(linear.max(axis=1)))
+    lift_times = np.flatnonzero(lifted.any(axis=1))
+    centre = t[lift_times[np.argmin(np.abs(lift_times - peak))]] if lift_times.size else t[int(np.argmax(nonlinear.max(axis=1)))]
+    zoom = (t >= centre - 45.0) & (t <= centre + 45.0)
+    fig, (ax0, ax1, ax2) = plt.subplots(3, 1, figsize=(11, 8.5), gridspec_kw={"height_ratios": [1, 2, 2]})
+    ax0.plot(t, np.asarray(example.wave_elevation_m, dtype=float), "k", lw=0.4)
     ax0.set_ylabel("wave at midship ζ [m]")
-    ax0.grid(alpha=0.3)
-    for i in range(nonlinear.shape[1]):
-        colour = f"C{i}"
-        ax.plot(t, linear[:, i] / 1e6, color=colour, lw=0.5, ls="--", alpha=0.6, label=f"saddle {i}, linear" if i == 0 else None)
-        ax.plot(t, nonlinear[:, i] / 1e6, color=colour, lw=0.8, label=f"saddle {i}, nonlinear")
-        if np.any(lifted[:, i]):
-            ax.plot(t[lifted[:, i]], np.zeros(int(lifted[:, i].sum())), "|", color=colour, ms=12, mew=1.5, label=f"saddle {i} lifted off")
-    ax.axhline(0.0, color="k", lw=0.6)
-    ax.set_xlabel("time t [s]")
-    ax.set_ylabel("saddle force F [MN]")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=3)
+    for ax, sel in ((ax1, slice(None)), (ax2, zoom)):
+        for i in range(nonlinear.shape[1]):
+            colour = f"C{i}"
+            ax.plot(t[sel], linear[sel, i] / 1e6, color=colour, lw=0.6, ls="--", alpha=0.7, label=f"saddle {i}, linear")
+            ax.plot(t[sel], nonlinear[sel, i] / 1e6, color=colour, lw=0.8, label=f"saddle {i}, nonlinear")
+            mark = lifted[sel, i]
+            if np.any(mark):
+                ax.plot(t[sel][mark], np.zeros(int(mark.sum())), "|", color=colour, ms=12, mew=1.5, label=f"saddle {i} lifted off")
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_ylabel("saddle force F [MN]")
+    ax1.axvspan(centre - 45.0, centre + 45.0, color="0.85", zorder=0)
+    ax2.set_xlabel("time t [s]")
+    ax2.set_title(f"t = {centre - 45:.0f} to {centre + 45:.0f} s (shaded above)", fontsize=9)
+    ax2.legend(fontsize=7, ncol=3)
+    for ax in (ax0, ax1, ax2):
+        ax.grid(alpha=0.3)
     fig.suptitle(f"Realisation {getattr(example, 'index', '')}: saddle forces (nonlinear solid, linear dashed), lift-off marked | on F = 0")
     fig.tight_layout()
     fig.savefig(path, dpi=FIGURE_DPI)
