@@ -112,9 +112,20 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
 
     def engine(case, directory, *, workers=None, scheduler=None, progress=True):
         calls.update(case=case, directory=directory, workers=workers, scheduler=scheduler)
-        ds = xr.Dataset({"realisation_F_N": xr.Variable(("realisation",), np.array([9e6, 9.9e6, 1.08e7]),
-                                                        {"units": "N", "long_name": "maximum saddle force per realisation"})},
-                        coords={"realisation": xr.Variable(("realisation",), np.arange(3), {"units": "1", "long_name": "realisation index"})})
+        def var(dims, data, units):
+            return xr.Variable(dims, np.asarray(data), {"units": units, "long_name": "stand-in"})
+
+        ds = xr.Dataset(
+            {
+                "realisation_F_N": var(("realisation",), [9e6, 9.9e6, 1.08e7], "N"),
+                "mc_F_N": var(("model", "realisation"), [[9e6, 9.9e6, 1.08e7], [8e6, 9e6, 1e7]], "N"),
+                "mc_mpm_F_N": var(("model",), [9.9e6, 9e6], "N"),
+                "mc_M_b_Nm": var(("model", "realisation"), [[9e7, 9.9e7, 1.08e8], [8e7, 9e7, 1e8]], "N m"),
+                "mc_mpm_M_b_Nm": var(("model",), [9.9e7, 9e7], "N m"),
+            },
+            coords={"realisation": xr.Variable(("realisation",), np.arange(3), {"units": "1", "long_name": "realisation index"}),
+                    "model": xr.Variable(("model",), ["linear", "nonlinear"], {"units": "1", "long_name": "model"})},
+        )
         return SimpleNamespace(linear=_fake_statistics("linear", True), nonlinear=_fake_statistics("nonlinear", False),
                                example=None, to_dataset=lambda: ds)
 
@@ -132,6 +143,10 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
         assert ds["realisation_F_N"].attrs["units"] == "N"
         assert float(ds["F_N"].sel(model="nonlinear", estimate_method="monte_carlo")) == pytest.approx(9.9e6)
         assert int(ds["converged"].sel(model="nonlinear", estimate_method="monte_carlo")) == 0
+    # the report shows the Monte Carlo rows and the distribution of the maxima
+    assert main(["report", str(out), "--no-figures"]) == 0
+    page = (out / "report.html").read_text()
+    assert 'data-figure="fig-seastate-maxima"' in page and "9.900" in page
 
 
 _SEA_KEYS = [

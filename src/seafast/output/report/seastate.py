@@ -99,12 +99,71 @@ def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
     tf.update_yaxes(title_text="|F| [MN per m of wave]", row=1, col=1)
     tf.update_yaxes(title_text="|M_b| [MN m per m of wave]", row=1, col=2)
     tf.update_layout(height=420, template="plotly_white")
-    return [
+    figures = [
         ReportFigure("fig-seastate-spectrum", "Wave and response spectra", spec,
                      "The wave spectrum and the response spectra of the governing saddle force and bending moment (normalised)."),
         ReportFigure("fig-seastate-transfer", "Transfer functions", tf,
                      "Magnitude of the linear transfer functions per metre of wave amplitude (head seas)."),
     ]
+    if "mc_F_N" in ds:
+        figures.append(_maxima_figure(ds))
+    if "mc_example_saddle_force_N" in ds:
+        figures.append(_example_figure(ds))
+    return figures
+
+
+def _maxima_figure(ds: xr.Dataset) -> ReportFigure:
+    import plotly.graph_objects as go
+    from plotly.subplots import make_subplots
+
+    fig = make_subplots(rows=1, cols=2, subplot_titles=("saddle force F", "bending moment M_b"))
+    colours = {"linear": "#1f77b4", "nonlinear": "#d62728"}
+    for col, q in ((1, "F_N"), (2, "M_b_Nm")):
+        for model in ("linear", "nonlinear"):
+            m = np.sort(ds[f"mc_{q}"].sel(model=model).values.astype(float))
+            m = m[np.isfinite(m)]
+            p = (np.arange(1, m.size + 1) - 0.44) / (m.size + 0.12)
+            fig.add_trace(go.Scatter(x=m / 1e6, y=p, mode="markers", name=f"{model}: per-realisation maxima",
+                                     marker={"color": colours[model]}, showlegend=col == 1), row=1, col=col)
+            mpm = float(ds[f"mc_mpm_{q}"].sel(model=model))
+            fig.add_vline(x=mpm / 1e6, line={"color": colours[model], "dash": "dot"}, row=1, col=col)
+        fig.add_vline(x=_value(ds, q, "linear", "spectral") / 1e6, line={"color": "black", "dash": "dash"}, row=1, col=col)
+    fig.update_xaxes(title_text="F [MN]", row=1, col=1)
+    fig.update_xaxes(title_text="M_b [MN m]", row=1, col=2)
+    fig.update_yaxes(title_text="non-exceedance probability [-]")
+    fig.update_layout(height=420, template="plotly_white")
+    return ReportFigure("fig-seastate-maxima", "Distribution of the maxima", fig,
+                        "Per-realisation maxima over the duration (Gringorten plotting positions); dotted: Monte Carlo MPM "
+                        "(Gumbel mode) per model, dashed: linear spectral MPM.")
+
+
+def _example_figure(ds: xr.Dataset) -> ReportFigure:
+    import plotly.graph_objects as go
+
+    # 300 s around the lift-off nearest the largest linear force: whole cycles stay readable and the
+    # page small (the full record is in seastate.nc and seastate_realisation.png)
+    t_all = ds["mc_example_time_s"].values
+    lifted_all = ds["mc_example_saddle_lifted"].values.astype(bool)
+    peak = int(np.argmax(ds["mc_example_saddle_force_N"].sel(model="linear").values.max(axis=1)))
+    lifts = np.flatnonzero(lifted_all.any(axis=1))
+    centre = t_all[lifts[np.argmin(np.abs(lifts - peak))]] if lifts.size else t_all[peak]
+    window = (t_all >= centre - 150.0) & (t_all <= centre + 150.0)
+    t, lifted = t_all[window], lifted_all[window]
+    fig = go.Figure()
+    for i in range(ds.sizes["saddle"]):
+        colour = f"hsl({(i * 110) % 360},60%,45%)"
+        for model, dash in (("linear", "dash"), ("nonlinear", "solid")):
+            f = ds["mc_example_saddle_force_N"].sel(model=model).isel(saddle=i).values[window] / 1e6
+            fig.add_trace(go.Scattergl(x=t, y=f, mode="lines", name=f"saddle {i}, {model}", line={"color": colour, "dash": dash, "width": 1}))
+        if lifted[:, i].any():
+            fig.add_trace(go.Scattergl(x=t[lifted[:, i]], y=np.zeros(int(lifted[:, i].sum())), mode="markers", name=f"saddle {i} lifted off",
+                                       marker={"symbol": "line-ns-open", "size": 10, "color": colour}))
+    fig.update_xaxes(title_text="time t [s]")
+    fig.update_yaxes(title_text="saddle force F [MN]")
+    fig.update_layout(height=450, template="plotly_white")
+    return ReportFigure("fig-seastate-realisation", f"One realisation ({ds['mc_example_time_s'].attrs.get('long_name', '')})", fig,
+                        "Saddle forces, nonlinear (solid) and linear (dashed), over 300 s around the lift-off nearest the largest "
+                        "linear force; lift-off marked on F = 0 (the whole record: seastate.nc, seastate_realisation.png).")
 
 
 def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
@@ -147,5 +206,5 @@ def seastate_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[list[t
         + _finding_html(findings)
         + _table_html(SEASTATE_TABLE_HEADER, _rows(ds))
     )
-    sections = [("seastate-summary", "Sea state: extremes", summary), ("seastate-figures", "Sea state: spectra and transfer functions", "".join(parts))]
+    sections = [("seastate-summary", "Sea state: extremes", summary), ("seastate-figures", "Sea state: figures", "".join(parts))]
     return sections, figs, findings, first_figure
