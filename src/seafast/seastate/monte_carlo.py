@@ -226,13 +226,22 @@ def build_plan(case: Case, settings: MonteCarloSettings = MonteCarloSettings()) 
     return realisation_plan(case, model, spectrum, lambda w: transfer_functions(case, model, w), still_water(case, model), settings)
 
 
-def _fingerprint(case: Case, settings: MonteCarloSettings) -> str:
-    """Identity of a run's realisations: the case without the realisation count, the settings."""
+def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan) -> str:
+    """Identity of a run's realisations.
+
+    The case without the realisation count and name, the settings, and the plan's amplitudes and
+    transfer functions to 10 significant digits (so a changed input file behind an unchanged
+    path, e.g. a spectrum table, is a different run).
+    """
     data = json.loads(case.model_dump_json())
     data.get("sea_state", {}).pop("realisations", None)
     data.pop("name", None)
     blob = json.dumps({"case": data, "settings": settings.__dict__, "numerics": _NUMERICS_VERSION}, sort_keys=True, default=str)
-    return hashlib.sha256(blob.encode("utf-8")).hexdigest()[:16]
+    digest = hashlib.sha256(blob.encode("utf-8"))
+    for array in (plan.grid.amplitude_m, plan.transfer.real, plan.transfer.imag, plan.compression_static_m):
+        scale = float(np.max(np.abs(array))) or 1.0
+        digest.update((np.round(np.asarray(array) / scale, 10) + 0.0).tobytes())  # + 0.0: no negative zeros
+    return digest.hexdigest()[:16]
 
 
 def _task(plan: RealisationPlan, index: int) -> dict[str, Any]:
@@ -310,7 +319,7 @@ def run_monte_carlo(
     """
     plan = build_plan(case, settings)
     n_r = int(case.sea_state.realisations)
-    fingerprint = _fingerprint(case, settings)
+    fingerprint = _fingerprint(case, settings, plan)
     manifest = {"case": case.name, "duration_s": plan.duration_s, "seed": plan.seed, "settings": plan.describe()}
     seconds = np.full(n_r, np.nan)
     with TaskStore(Path(directory) / STORE_DIRECTORY, fingerprint, manifest) as store:

@@ -30,6 +30,7 @@ Per realisation
 
 Why a coarse and a fine grid: a 3-hour record at the integrator's step is ~10^6 samples per
 channel; the linear parts vary at wave frequencies (< 4 rad/s) and are exact on the coarse grid.
+(Slightly over the house's ~400 lines: the plan and the realisation that reads it stay together.)
 """
 
 from __future__ import annotations

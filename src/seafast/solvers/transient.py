@@ -54,7 +54,9 @@ free vibration left is below a tolerance (``sum_r max|phi_r| sqrt(eta_r^2 + (eta
 <= tolerance_m``, a bound on the cargo deflection it can still cause); outside windows
 ``q_c = 0`` exactly.
 
-Units: SI throughout (m, rad, N, s). Nothing here prints, reads or writes files.
+Units: SI throughout (m, rad, N, s). Nothing here prints, reads or writes files. (The module is
+longer than the house's ~400 lines because the compiled kernels and the reduction whose arrays
+they take are kept side by side: a change to one needs the other in view.)
 """
 
 from __future__ import annotations
@@ -65,6 +67,7 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
+from scipy.ndimage import spline_filter1d
 
 from seafast.model.structure import StructuralModel
 
@@ -617,8 +620,6 @@ def integrate_record(
         State at t_0; default the quasi-static exact-contact state of ``delta_lin(t_0)``
         (q_c = 0 when every saddle is compressed).
     """
-    from scipy.ndimage import spline_filter1d
-
     d_lin = np.atleast_2d(np.asarray(linear_compression_m, dtype=float))
     n_t, n_s = d_lin.shape
     if n_s != system.saddle_count:
