@@ -127,6 +127,12 @@ def build_parser() -> argparse.ArgumentParser:
     if add_study_subcommand is not None:
         add_study_subcommand(sub)
     try:
+        from seafast.seastate.cli import add_seastate_subcommand
+    except ImportError:  # pragma: no cover - part of the package
+        add_seastate_subcommand = None
+    if add_seastate_subcommand is not None:
+        add_seastate_subcommand(sub)
+    try:
         from seafast.output.report import add_report_subcommand
     except ImportError:  # pragma: no cover
         add_report_subcommand = None

@@ -51,8 +51,11 @@ def test_base_case_values() -> None:
     assert load_case(overrides={"solver.preset": "source", "solver.harmonics": 9}).solver.harmonics == 9
     assert case.solver.contact_law == "tanh" and case.solver.regularisation_per_m == 1000.0
     assert case.model.element_length_m == 1.0 and case.model.damping_ratio == 0.02
-    # the built-in text equals the schema defaults (apart from the name)
-    assert case.model_dump(exclude={"name"}) == Case().model_dump(exclude={"name"})
+    # the built-in text equals the schema defaults (apart from the name, and the base case's
+    # design sea state: the schema leaves Hs and Tp unset, a sea state is chosen consciously)
+    assert case.model_dump(exclude={"name"}) == Case().model_dump(exclude={"name"}) | {"sea_state": case.sea_state.model_dump()}
+    assert Case().sea_state.significant_height_m is None and Case().sea_state.peak_period_s is None
+    assert case.sea_state.model_dump() == Case().sea_state.model_dump() | {"significant_height_m": 3.0, "peak_period_s": 10.0}
     assert "cargo:" in base_case_text()
     assert "properties" in case_json_schema()
 

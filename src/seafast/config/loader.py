@@ -85,6 +85,11 @@ def apply_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> di
 
 
 def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:
+    sea = data.get("sea_state")
+    if isinstance(sea, dict):
+        v = sea.get("spectrum")
+        if isinstance(v, str) and v and v not in ("jonswap", "pierson_moskowitz") and "\0" not in v and not Path(v).is_absolute():
+            sea["spectrum"] = str((base_dir / v).resolve())
     vessel = data.get("vessel")
     if not isinstance(vessel, dict):
         return

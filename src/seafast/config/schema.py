@@ -27,8 +27,11 @@ __all__ = [
     "SolverConfig",
     "ModelConfig",
     "OutputConfig",
+    "SeaStateConfig",
+    "LimitsConfig",
     "BASE_SADDLE_STIFFNESS_N_PER_M",
     "SOURCE_SOLVER_SETTINGS",
+    "max_significant_height_m",
 ]
 
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
@@ -286,8 +289,71 @@ class OutputConfig(_Strict):
     plots: bool = True
 
 
+def max_significant_height_m(peak_period_s: float, gravity_m_per_s2: float = 9.81) -> float:
+    """Steepest sea state that occurs (DNV-RP-C205, 3.5.5.4): Hs at the limiting steepness [m].
+
+    The average steepness ``S_p = 2 pi Hs / (g Tp^2)`` of a sea state does not exceed 1/15 for
+    ``Tp <= 8 s`` and 1/25 for ``Tp >= 15 s`` (linear in Tp between).
+    """
+    tp = float(peak_period_s)
+    s_p = 1.0 / 15.0 if tp <= 8.0 else 1.0 / 25.0 if tp >= 15.0 else 1.0 / 15.0 + (tp - 8.0) / 7.0 * (1.0 / 25.0 - 1.0 / 15.0)
+    return s_p * gravity_m_per_s2 * tp * tp / (2.0 * math.pi)
+
+
+class SeaStateConfig(_Strict):
+    """Irregular head sea for ``seafast seastate`` (not used by ``seafast run``)."""
+
+    significant_height_m: Positive | None = Field(
+        None, description="Significant wave height Hs = 4 sqrt(m0) [m]; required for jonswap/pierson_moskowitz; "
+        "with a spectrum table: null uses the table as given, a value rescales it to this Hs"
+    )
+    peak_period_s: Positive | None = Field(
+        None, description="Spectral peak period Tp [s]; required for jonswap/pierson_moskowitz; must be null with a spectrum table"
+    )
+    spectrum: str = Field(
+        "jonswap", description="'jonswap' (DNV-RP-C205), 'pierson_moskowitz', or a CSV path with columns omega_rad_s,S_m2_s_per_rad"
+    )
+    peak_enhancement: Annotated[float, NotBool, Field(ge=1.0, le=10.0, allow_inf_nan=False)] = Field(
+        3.3, description="JONSWAP peak-enhancement factor gamma [-] (1 = Pierson-Moskowitz)"
+    )
+    duration_s: Annotated[float, NotBool, Field(ge=60.0, le=86400.0, allow_inf_nan=False)] = Field(
+        10800.0, description="Duration of the sea state over which maxima are taken [s] (3 hours)"
+    )
+    realisations: Annotated[Count, Field(ge=3, le=10000)] = Field(
+        20, description="Random-phase realisations of the nonlinear Monte Carlo reference"
+    )
+    seed: Annotated[Count, Field(ge=0)] = Field(0, description="Seed of the random phases (reproducible realisations)")
+
+    @model_validator(mode="after")
+    def _check(self) -> "SeaStateConfig":
+        parametric = self.spectrum in ("jonswap", "pierson_moskowitz")
+        if not parametric:
+            if not self.spectrum.strip() or "\0" in self.spectrum:
+                raise ValueError(f"spectrum = {self.spectrum!r}: allowed 'jonswap', 'pierson_moskowitz' or a CSV file path")
+            if self.peak_period_s is not None:
+                raise ValueError(
+                    f"peak_period_s = {self.peak_period_s}: with a spectrum table the peak period comes from the table; "
+                    "set it to null (significant_height_m, if given, rescales the table)"
+                )
+        if self.significant_height_m is not None and self.peak_period_s is not None:
+            hs_max = max_significant_height_m(self.peak_period_s)
+            if self.significant_height_m > hs_max:
+                raise ValueError(
+                    f"significant_height_m = {self.significant_height_m} at peak_period_s = {self.peak_period_s} is steeper "
+                    f"than any sea state (DNV-RP-C205 limiting steepness 2 pi Hs / (g Tp^2)); allowed Hs <= {hs_max:.2f} m at this Tp"
+                )
+        return self
+
+
+class LimitsConfig(_Strict):
+    """Design limits the sea-state extremes are judged against (the studies' defaults)."""
+
+    max_saddle_force_N: Positive = Field(7.0e6, description="Largest allowed saddle force F [N]")
+    max_bending_stress_Pa: Positive = Field(20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]")
+
+
 class Case(_Strict):
-    """One seafast case: cargo, sea-fastening, vessel, wave, solver."""
+    """One seafast case: cargo, sea-fastening, vessel, wave, solver (and a sea state, limits)."""
 
     name: str = "case"
     cargo: CargoConfig = CargoConfig()
@@ -297,6 +363,8 @@ class Case(_Strict):
     solver: SolverConfig = SolverConfig()
     model: ModelConfig = ModelConfig()
     outputs: OutputConfig = OutputConfig()
+    sea_state: SeaStateConfig = SeaStateConfig()
+    limits: LimitsConfig = LimitsConfig()
 
     @model_validator(mode="after")
     def _check(self) -> "Case":

@@ -36,6 +36,7 @@ from seafast.model.from_case import cargo_geometry
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.hull_girder import (
     DEFAULT_SHEAR_AREA_M2,
     HullGirder,
@@ -377,7 +378,8 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
     motions = _motions(case, hull, loading)
     rigid = None
     if motions is not None and amplitude > 0:
-        heave, pitch = motions.rao_at(omega)
+        # BEM inside its grid, blended into the long-wave limits below it and decayed above it
+        heave, pitch = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
         rigid = RigidBodyAmplitudes(complex(heave) * amplitude, complex(pitch) * amplitude, float(motions.reference_x_m))
         parts.append(f"heave/pitch from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}")
     elif v.motions == "none":

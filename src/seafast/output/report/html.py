@@ -203,6 +203,7 @@ def build_report_html(
     title: str | None = None,
     ranking_csv: Path | None = None,
     files_note: str = "",
+    seastate: xr.Dataset | None = None,
 ) -> tuple[str, list[ReportFigure], list[Finding]]:
     """The report page of a run and/or a study dataset (pure: no files written).
 
@@ -236,7 +237,16 @@ def build_report_html(
         figures += sf
         findings += fnd
         names.append(f"study {study.attrs.get('study', '')}")
-    version = (run if run is not None else study).attrs.get("seafast_version", "") if (run is not None or study is not None) else ""
+    if seastate is not None:
+        from seafast.output.report.seastate import seastate_report_sections
+
+        s, sfigs, sfnd, first = seastate_report_sections(seastate, first)
+        sections += s
+        figures += sfigs
+        findings += sfnd
+        names.append(f"sea state {seastate.attrs.get('title', '').removeprefix('seafast sea state: ')}")
+    sources = [d for d in (run, study, seastate) if d is not None]
+    version = sources[0].attrs.get("seafast_version", "") if sources else ""
     stamp = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     subtitle = f"seafast {version or ''} report, generated {stamp}. SI inputs; results in mm, MN, MN m, MPa."
     page = render_html(title or f"seafast report: {', '.join(names)}", subtitle, sections, len(figures))

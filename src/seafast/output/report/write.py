@@ -45,17 +45,26 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
         raise ReportError(f"directory '{d}' does not exist")
     if not d.is_dir():
         raise ReportError(f"'{d}' is not a directory; give the output directory of 'seafast run' or 'seafast study'")
-    run_nc, study_nc = d / "results.nc", d / "study.nc"
-    if not run_nc.is_file() and not study_nc.is_file():
-        raise ReportError(f"'{d}' holds neither results.nc (from 'seafast run -o DIR') nor study.nc (from 'seafast study NAME -o DIR')")
+    run_nc, study_nc, seastate_nc = d / "results.nc", d / "study.nc", d / "seastate.nc"
+    if not run_nc.is_file() and not study_nc.is_file() and not seastate_nc.is_file():
+        raise ReportError(
+            f"'{d}' holds neither results.nc (from 'seafast run -o DIR'), study.nc (from 'seafast study NAME -o DIR') "
+            "nor seastate.nc (from 'seafast seastate -o DIR')"
+        )
     run = _open(run_nc) if run_nc.is_file() else None
     study = _open(study_nc) if study_nc.is_file() else None
+    seastate = _open(seastate_nc) if seastate_nc.is_file() else None
     out = Path(output) if output is not None else d / REPORT_FILENAME
     out.parent.mkdir(parents=True, exist_ok=True)
     fig_dir, pdf_path = out.parent / FIGURES_DIRNAME, out.parent / PDF_FILENAME
     pngs: list[Path] = []
     if figures:
         pngs = write_print_figures(run, study, fig_dir, pdf_path)
+        if seastate is not None:
+            from seafast.seastate.figures import write_seastate_figures
+
+            fig_dir.mkdir(parents=True, exist_ok=True)
+            pngs = list(pngs) + write_seastate_figures(seastate, fig_dir)
     listed = "".join(f'<li><a href="{html.escape(p.relative_to(out.parent).as_posix())}">{html.escape(p.name)}</a></li>' for p in pngs if p.is_relative_to(out.parent))
     files_note = (
         f'<details><summary>Print figures ({len(pngs)} PNG at {PNG_DPI} dpi, and {PDF_FILENAME})</summary><ul>{listed}'
@@ -63,6 +72,6 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
         if pngs
         else ""
     )
-    page, figs, findings = build_report_html(run, study, ranking_csv=d / "ranking.csv", files_note=files_note)
+    page, figs, findings = build_report_html(run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate)
     out.write_text(page, encoding="utf-8")
     return ReportOutputs(out, tuple(pngs), pdf_path if figures else None, tuple(f.id for f in figs), tuple(findings))

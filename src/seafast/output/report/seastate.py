@@ -1,0 +1,210 @@
+"""The sea-state section of ``seafast report DIR`` (a ``seafast seastate`` directory: seastate.nc).
+
+Pure functions ``Dataset -> (sections, figures, findings)``; the page assembly and the files
+stay in :mod:`~seafast.output.report.html` and :mod:`~seafast.output.report.write`.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+from typing import Any, Sequence
+
+import numpy as np
+import xarray as xr
+
+from seafast.output.report.common import Finding, ReportError, ReportFigure
+
+__all__ = ["seastate_findings", "seastate_figures", "seastate_report_sections", "SEASTATE_TABLE_HEADER"]
+
+SEASTATE_TABLE_HEADER = ("model", "method", "F [MN]", "M_b [MN m]", "sigma_b [MPa]", "u_s [mm]", "u_d [mm]", "uplift [1/h]", "converged")
+_SCALE = (("F_N", 1e-6, 3), ("M_b_Nm", 1e-6, 2), ("sigma_b_Pa", 1e-6, 2), ("u_s_m", 1e3, 2), ("u_d_m", 1e3, 2), ("uplift_per_hour", 1.0, 2))
+_PLOTLY_CONFIG = {"displaylogo": False, "responsive": True}
+
+
+def _value(ds: xr.Dataset, name: str, model: str, method: str) -> float:
+    return float(ds[name].sel({"model": model, "estimate_method": method}).values)
+
+
+def _rows(ds: xr.Dataset) -> list[list[str]]:
+    out = []
+    for model, method in (("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo")):
+        row = [model, method]
+        for name, scale, digits in _SCALE:
+            v = _value(ds, name, model, method)
+            row.append(f"{v * scale:.{digits}f}" if math.isfinite(v) else "not computed")
+        c = int(ds["converged"].sel({"model": model, "estimate_method": method}).values)
+        row.append({1: "yes", 0: "NO", -1: "-"}[c])
+        out.append(row)
+    return out
+
+
+def seastate_findings(ds: xr.Dataset) -> list[Finding]:
+    """WARNING / NOTE / OK statements on a sea-state result."""
+    out: list[Finding] = []
+    hours = float(ds.attrs.get("duration_s", 10800.0)) / 3600.0
+    events = _value(ds, "uplift_per_hour", "linear", "spectral") * hours
+    if events >= 1.0:
+        out.append(Finding("WARNING", f"The linear model predicts {events:.1f} uplift events in {hours:g} h: saddles lift off",
+                           "The linear spectral extremes assume saddles that pull; with lift-off they are not to be trusted. "
+                           "Use the nonlinear Monte Carlo row."))
+    elif events >= 0.01:
+        out.append(Finding("NOTE", f"Lift-off is possible: {events:.2f} expected uplift events in {hours:g} h (linear, Rice)",
+                           "Compare with the nonlinear Monte Carlo row."))
+    else:
+        out.append(Finding("OK", f"No lift-off expected ({events:.1e} uplift events in {hours:g} h): the linear extremes hold", ""))
+    limits = {"F_N": float(ds.attrs.get("max_saddle_force_N", math.nan)), "sigma_b_Pa": float(ds.attrs.get("max_bending_stress_Pa", math.nan))}
+    for model, method in (("linear", "spectral"), ("nonlinear", "monte_carlo")):
+        for name, label, unit, scale in (("F_N", "saddle force", "MN", 1e-6), ("sigma_b_Pa", "bending stress", "MPa", 1e-6)):
+            v = _value(ds, name, model, method)
+            if math.isfinite(v) and math.isfinite(limits[name]) and v > limits[name]:
+                out.append(Finding("WARNING", f"{model} {method}: MPM {label} {v * scale:.2f} {unit} exceeds the limit "
+                                   f"{limits[name] * scale:g} {unit}", "limits.* keys of the case."))
+    conv = ds["converged"].values
+    if np.any(conv == 0):
+        out.append(Finding("WARNING", "A Monte Carlo realisation did not converge", "Its row is flagged converged = NO."))
+    if not math.isfinite(_value(ds, "F_N", "nonlinear", "monte_carlo")):
+        out.append(Finding("NOTE", "The nonlinear Monte Carlo reference was not computed", "Run seafast seastate without --no-monte-carlo."))
+    return out
+
+
+def _abs(ds: xr.Dataset, name: str) -> np.ndarray:
+    return np.hypot(ds[f"{name}_real"].values, ds[f"{name}_imag"].values)
+
+
+def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
+    """Interactive figures: spectra, transfer functions."""
+    import plotly.graph_objects as go
+    from plotly.subplots import make_subplots
+
+    w = ds["omega_rad_s"].values
+    s = int(np.argmax(ds["still_water_saddle_force_N"].values + ds["saddle_force_mpm_dynamic_N"].values))
+    x = int(np.argmax(np.abs(ds["still_water_bending_moment_Nm"].values) + ds["bending_moment_mpm_dynamic_Nm"].values))
+    spec = make_subplots(specs=[[{"secondary_y": True}]])
+    spec.add_trace(go.Scatter(x=w, y=ds["wave_spectrum_m2_s_per_rad"].values, name="wave S(ω)", line={"color": "black"}))
+    for name, idx, label in (("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}"),
+                             ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment at x = {float(ds['x_moment_m'][x]):.1f} m")):
+        r = ds[name].isel(idx).values
+        spec.add_trace(go.Scatter(x=w, y=r / max(float(r.max()), 1e-300), name=f"response: {label}", line={"dash": "dash"}), secondary_y=True)
+    spec.update_xaxes(title_text="wave frequency ω [rad/s]")
+    spec.update_yaxes(title_text="wave spectral density S [m² s/rad]", secondary_y=False)
+    spec.update_yaxes(title_text="response spectrum / its peak [-]", secondary_y=True)
+    spec.update_layout(height=420, template="plotly_white", title=str(ds.attrs.get("spectrum", "")))
+    tf = make_subplots(rows=1, cols=2, subplot_titles=("saddle forces", "bending moment (largest total)"))
+    force = _abs(ds, "saddle_force_transfer_N_per_m")
+    for i in range(force.shape[1]):
+        tf.add_trace(go.Scatter(x=w, y=force[:, i] / 1e6, name=f"saddle {i}"), row=1, col=1)
+    tf.add_trace(go.Scatter(x=w, y=_abs(ds, "bending_moment_transfer_Nm_per_m")[:, x] / 1e6, name=f"M at x = {float(ds['x_moment_m'][x]):.1f} m"), row=1, col=2)
+    tf.update_xaxes(title_text="wave frequency ω [rad/s]")
+    tf.update_yaxes(title_text="|F| [MN per m of wave]", row=1, col=1)
+    tf.update_yaxes(title_text="|M_b| [MN m per m of wave]", row=1, col=2)
+    tf.update_layout(height=420, template="plotly_white")
+    figures = [
+        ReportFigure("fig-seastate-spectrum", "Wave and response spectra", spec,
+                     "The wave spectrum and the response spectra of the governing saddle force and bending moment (normalised)."),
+        ReportFigure("fig-seastate-transfer", "Transfer functions", tf,
+                     "Magnitude of the linear transfer functions per metre of wave amplitude (head seas)."),
+    ]
+    if "mc_F_N" in ds:
+        figures.append(_maxima_figure(ds))
+    if "mc_example_saddle_force_N" in ds:
+        figures.append(_example_figure(ds))
+    return figures
+
+
+def _maxima_figure(ds: xr.Dataset) -> ReportFigure:
+    import plotly.graph_objects as go
+    from plotly.subplots import make_subplots
+
+    fig = make_subplots(rows=1, cols=2, subplot_titles=("saddle force F", "bending moment M_b"))
+    colours = {"linear": "#1f77b4", "nonlinear": "#d62728"}
+    for col, q in ((1, "F_N"), (2, "M_b_Nm")):
+        for model in ("linear", "nonlinear"):
+            m = np.sort(ds[f"mc_{q}"].sel(model=model).values.astype(float))
+            m = m[np.isfinite(m)]
+            p = (np.arange(1, m.size + 1) - 0.44) / (m.size + 0.12)
+            fig.add_trace(go.Scatter(x=m / 1e6, y=p, mode="markers", name=f"{model}: per-realisation maxima",
+                                     marker={"color": colours[model]}, showlegend=col == 1), row=1, col=col)
+            mpm = float(ds[f"mc_mpm_{q}"].sel(model=model))
+            fig.add_vline(x=mpm / 1e6, line={"color": colours[model], "dash": "dot"}, row=1, col=col)
+        fig.add_vline(x=_value(ds, q, "linear", "spectral") / 1e6, line={"color": "black", "dash": "dash"}, row=1, col=col)
+    fig.update_xaxes(title_text="F [MN]", row=1, col=1)
+    fig.update_xaxes(title_text="M_b [MN m]", row=1, col=2)
+    fig.update_yaxes(title_text="non-exceedance probability [-]")
+    fig.update_layout(height=420, template="plotly_white")
+    return ReportFigure("fig-seastate-maxima", "Distribution of the maxima", fig,
+                        "Per-realisation maxima over the duration (Gringorten plotting positions); dotted: Monte Carlo MPM "
+                        "(Gumbel mode) per model, dashed: linear spectral MPM.")
+
+
+def _example_figure(ds: xr.Dataset) -> ReportFigure:
+    import plotly.graph_objects as go
+
+    # 300 s around the lift-off nearest the largest linear force: whole cycles stay readable and the
+    # page small (the full record is in seastate.nc and seastate_realisation.png)
+    t_all = ds["mc_example_time_s"].values
+    lifted_all = ds["mc_example_saddle_lifted"].values.astype(bool)
+    peak = int(np.argmax(ds["mc_example_saddle_force_N"].sel(model="linear").values.max(axis=1)))
+    lifts = np.flatnonzero(lifted_all.any(axis=1))
+    centre = t_all[lifts[np.argmin(np.abs(lifts - peak))]] if lifts.size else t_all[peak]
+    window = (t_all >= centre - 150.0) & (t_all <= centre + 150.0)
+    t, lifted = t_all[window], lifted_all[window]
+    fig = go.Figure()
+    for i in range(ds.sizes["saddle"]):
+        colour = f"hsl({(i * 110) % 360},60%,45%)"
+        for model, dash in (("linear", "dash"), ("nonlinear", "solid")):
+            f = ds["mc_example_saddle_force_N"].sel(model=model).isel(saddle=i).values[window] / 1e6
+            fig.add_trace(go.Scattergl(x=t, y=f, mode="lines", name=f"saddle {i}, {model}", line={"color": colour, "dash": dash, "width": 1}))
+        if lifted[:, i].any():
+            fig.add_trace(go.Scattergl(x=t[lifted[:, i]], y=np.zeros(int(lifted[:, i].sum())), mode="markers", name=f"saddle {i} lifted off",
+                                       marker={"symbol": "line-ns-open", "size": 10, "color": colour}))
+    fig.update_xaxes(title_text="time t [s]")
+    fig.update_yaxes(title_text="saddle force F [MN]")
+    fig.update_layout(height=450, template="plotly_white")
+    return ReportFigure("fig-seastate-realisation", f"One realisation ({ds['mc_example_time_s'].attrs.get('long_name', '')})", fig,
+                        "Saddle forces, nonlinear (solid) and linear (dashed), over 300 s around the lift-off nearest the largest "
+                        "linear force; lift-off marked on F = 0 (the whole record: seastate.nc, seastate_realisation.png).")
+
+
+def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _finding_html(findings: Sequence[Finding]) -> str:
+    return "".join(
+        f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
+        + (f"<div>{html.escape(f.text)}</div>" if f.text else "") + "</div>"
+        for f in findings
+    )
+
+
+def seastate_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
+    """The sea-state sections (id, heading, inner HTML), their figures and findings.
+
+    ``first_figure``: whether plotly.js still has to be embedded (with this section's first
+    figure); returned updated.
+    """
+    needed = ("wave_spectrum_m2_s_per_rad", "saddle_force_transfer_N_per_m_real", "F_N", "converged", "still_water_saddle_force_N")
+    missing = [n for n in needed if n not in ds] + [d for d in ("model", "estimate_method") if d not in ds.dims]
+    if missing:
+        raise ReportError(f"seastate.nc lacks {', '.join(missing)}: write it again with this version's 'seafast seastate'")
+    figs = seastate_figures(ds)
+    findings = seastate_findings(ds)
+    parts = []
+    for f in figs:
+        div = f.figure.to_html(full_html=False, include_plotlyjs=True if first_figure else False, div_id=f.id, config=_PLOTLY_CONFIG)
+        first_figure = False
+        parts.append(f'<div class="figure" data-figure="{html.escape(f.id)}"><h3>{html.escape(f.title)}</h3>{div}'
+                     f'<p class="caption">{html.escape(f.caption)}</p></div>')
+    hs, tp = float(ds.attrs.get("significant_height_m", math.nan)), float(ds.attrs.get("peak_period_s", math.nan))
+    summary = (
+        f"<p>{html.escape(str(ds.attrs.get('spectrum', '')))}: Hs = {hs:g} m, Tp = {tp:.3g} s, head seas; most probable "
+        f"maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included "
+        "(linear spectral: Rayleigh; Monte Carlo: mode of the Gumbel fit to the per-realisation maxima).</p>"
+        + _finding_html(findings)
+        + _table_html(SEASTATE_TABLE_HEADER, _rows(ds))
+    )
+    sections = [("seastate-summary", "Sea state: extremes", summary), ("seastate-figures", "Sea state: figures", "".join(parts))]
+    return sections, figs, findings, first_figure

@@ -1,0 +1,126 @@
+"""The ``seafast seastate`` subcommand: linear spectral extremes and the nonlinear Monte Carlo reference.
+
+``seafast seastate [CASE] -o DIR [--set KEY=VALUE ...] [--workers N | --scheduler ADDRESS]``
+
+Exit codes as ``seafast run``: 0 success; 2 invalid input (one message naming the key, the
+value and what is allowed); 3 a nonlinear part did not converge (results written, flagged).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+__all__ = ["add_seastate_subcommand", "SEASTATE_EXAMPLES"]
+
+SEASTATE_EXAMPLES = """examples:
+  seafast seastate                                         # the base case in Hs = 3 m, Tp = 10 s (JONSWAP, 3 h)
+  seafast seastate case.yaml -o out/hs4 --set sea_state.significant_height_m=4 --set sea_state.peak_period_s=11
+  seafast seastate --set sea_state.spectrum=hindcast.csv --set sea_state.peak_period_s=null
+  seafast seastate --no-monte-carlo                        # linear spectral extremes only (a fraction of a second)
+  seafast seastate --workers 1                              # Monte Carlo serially; --scheduler tcp://host:8786 for Dask
+
+Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged;
+maxima are most probable maxima over sea_state.duration_s, still water included; empty cells = not
+computed), seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
+"""
+
+EXIT_OK, EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED = 0, 2, 3
+
+
+def _error(message: str) -> int:
+    print(f"seafast: error: {message}", file=sys.stderr)
+    return EXIT_INVALID_INPUT
+
+
+def _monte_carlo_engine() -> tuple[Any, str]:
+    """``(run_monte_carlo, "")`` when the engine loads, else ``(None, why not)``."""
+    try:
+        from seafast.seastate import monte_carlo
+    except ModuleNotFoundError as exc:
+        if exc.name == "seafast.seastate.monte_carlo":
+            return None, "the Monte Carlo engine is not in this version"
+        return None, f"the Monte Carlo engine cannot be loaded: {exc} (a missing dependency; reinstall seafast)"
+    engine = getattr(monte_carlo, "run_monte_carlo", None)
+    return engine, "" if engine is not None else "the Monte Carlo engine has no run_monte_carlo"
+
+
+def _cmd_seastate(args: argparse.Namespace) -> int:
+    from seafast.config import CaseError, load_case, parse_overrides
+    from seafast.seastate.outputs import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
+    from seafast.seastate.spectral import spectral_analysis
+
+    if args.workers is not None and args.workers < 1:
+        return _error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")
+    try:
+        case = load_case(args.case, parse_overrides(args.overrides))
+    except CaseError as exc:
+        return _error(str(exc))
+    say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
+    t0 = time.perf_counter()
+    say(f"seafast seastate: '{case.name}'" + (f" from {args.case}" if args.case else " (built-in base case)"))
+    try:
+        say("spectrum, transfer functions and linear spectral extremes")
+        analysis = spectral_analysis(case)
+    except (CaseError, ValueError) as exc:
+        return _error(str(exc))
+    say(f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
+        f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)")
+    rows = [analysis.extremes.row()]
+    monte_carlo = None
+    engine, why = (None, "--no-monte-carlo") if args.no_monte_carlo else _monte_carlo_engine()
+    if engine is None:
+        message = f"Monte Carlo rows not computed ({why})"
+        if args.no_monte_carlo:
+            say(message)
+        else:  # the user asked for it: say so even when quiet
+            print(f"seafast: warning: {message}", file=sys.stderr)
+        rows += [not_computed_row(model, method) for model, method in ROWS[1:]]
+    else:
+        ss = case.sea_state
+        say(f"Monte Carlo reference: {ss.realisations} realisations of {ss.duration_s:g} s, linear and nonlinear (resumable in {args.output})")
+        try:
+            monte_carlo = engine(case, Path(args.output), workers=args.workers, scheduler=args.scheduler, progress=not args.quiet)
+        except (CaseError, ValueError) as exc:
+            return _error(str(exc))
+        rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
+    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots)
+    if not args.quiet:
+        sp = analysis.spectrum
+        d = case.sea_state.duration_s
+        span = f"{d / 3600:g} h" if d % 360 == 0 else f"{d:g} s"
+        print(format_seastate_table(rows, title=f"{case.name}: {sp.description}, most probable maxima over {span}, still water included"))
+        print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    bad = [r for r in rows if r["converged"] is False]
+    for r in bad:
+        print(f"seafast: warning: {r['model']} {r['method']}: not every realisation converged; "
+              "its numbers are flagged converged=false in seastate.csv", file=sys.stderr)
+    return EXIT_NOT_CONVERGED if bad else EXIT_OK
+
+
+def add_seastate_subcommand(subparsers: Any) -> argparse.ArgumentParser:
+    """Register ``seafast seastate`` on an argparse subparsers object (handler returns the exit code)."""
+    p = subparsers.add_parser(
+        "seastate",
+        help="extremes in an irregular head sea: linear spectral and nonlinear Monte Carlo",
+        description="Most probable maxima of saddle force, bending moment and stress, saddle compression and "
+        "detachment over a sea state (Hs, Tp, spectrum, duration), and the uplift rate: linear spectral analysis "
+        "and the nonlinear Monte Carlo reference.",
+        epilog=SEASTATE_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
+    p.add_argument("-o", "--output", default="seafast-seastate", help="output directory (default: %(default)s)")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a case key (dotted, e.g. sea_state.significant_height_m=4); repeatable")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
+    where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")
+    p.add_argument("--no-monte-carlo", action="store_true", help="linear spectral extremes only (Monte Carlo rows left empty)")
+    p.add_argument("--no-plots", action="store_true", help="skip the PNG figures")
+    p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    p.set_defaults(handler=_cmd_seastate)
+    return p
