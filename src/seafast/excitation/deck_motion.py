@@ -30,12 +30,17 @@ DeflectionFn = Callable[[NDArray[np.float64]], tuple[NDArray, NDArray]]
 class RigidBodyAmplitudes:
     """Complex amplitudes of heave [m] and pitch [rad] (bow up positive) at the wave frequency.
 
-    ``reference_x_m`` is the ship x [m] about which pitch rotates.
+    ``reference_x_m`` is the ship x [m] about which pitch rotates. ``surge_m`` [m] (forward +)
+    is the surge of the reference point, ``None`` when the hydrodynamic data hold no surge;
+    ``reference_z_m`` the reference point's height above the keel [m] (docs/axial.md). The
+    vertical excitation uses heave and pitch only.
     """
 
     heave_m: complex
     pitch_rad: complex
     reference_x_m: float
+    surge_m: complex | None = None
+    reference_z_m: float = float("nan")
 
 
 def assemble_excitation(

@@ -220,10 +220,13 @@ def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
 
 
 def plot_raos(ds: xr.Dataset, path: Path) -> Path:
-    """Heave and pitch RAOs (amplitude and phase) with the case's wave frequency marked."""
+    """Heave, pitch (and surge, when present) RAOs (amplitude and phase), the case's wave frequency marked."""
     w = ds["rao_omega_rad_s"].values
-    fig, axes = plt.subplots(2, 2, figsize=(9, 6), sharex=True)
-    for col, (name, scale, unit) in enumerate((("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m"))):
+    dofs = [("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m")]
+    if "surge_rao_real" in ds:
+        dofs.insert(0, ("surge", 1.0, "m/m"))
+    fig, axes = plt.subplots(2, len(dofs), figsize=(4.5 * len(dofs), 6), sharex=True, squeeze=False)
+    for col, (name, scale, unit) in enumerate(dofs):
         z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
         axes[0, col].plot(w, np.abs(z) * scale, "k.-")
         axes[0, col].set_ylabel(f"{name} RAO [{unit}]")
@@ -233,8 +236,9 @@ def plot_raos(ds: xr.Dataset, path: Path) -> Path:
         for ax in axes[:, col]:
             ax.axvline(float(ds.attrs.get("wave_frequency_rad_s", np.nan)), color="tab:red", ls=":")
             ax.grid(alpha=0.3)
-    axes[0, 0].set_title("Heave (head seas)")
-    axes[0, 1].set_title("Pitch (bow up positive, head seas)")
+    titles = {"surge": "Surge (forward positive, head seas)", "heave": "Heave (head seas)", "pitch": "Pitch (bow up positive, head seas)"}
+    for col, (name, _, _) in enumerate(dofs):
+        axes[0, col].set_title(titles[name])
     return _save(fig, path)
 
 

@@ -113,9 +113,13 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
         return None
     go = _go()
     w = ds["rao_omega_rad_s"].values
-    fig = _subplots(rows=2, cols=2, shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.1,
-                    subplot_titles=("heave amplitude", "pitch amplitude (bow up +)", "heave phase", "pitch phase"))
-    for col, (name, scale, unit) in enumerate((("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")), start=1):
+    dofs = [("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")]
+    if _has(ds, "surge_rao_real", "surge_rao_imag"):
+        dofs.insert(0, ("surge", 1.0, "m/m"))
+    extra = {"pitch": " (bow up +)", "surge": " (forward +)"}
+    fig = _subplots(rows=2, cols=len(dofs), shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.08,
+                    subplot_titles=[f"{n} amplitude{extra.get(n, '')}" for n, _, _ in dofs] + [f"{n} phase" for n, _, _ in dofs])
+    for col, (name, scale, unit) in enumerate(dofs, start=1):
         z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
         fig.add_trace(go.Scatter(x=w, y=np.abs(z) * scale, mode="lines+markers", name=f"{name} amplitude", line=dict(color="black"),
                                  hovertemplate=f"omega %{{x:.3f}} rad/s<br>%{{y:.4g}} {unit}<extra></extra>", showlegend=False), row=1, col=col)
@@ -127,11 +131,12 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
     omega = _attr_float(ds, "wave_frequency_rad_s")
     if math.isfinite(omega):
         for r in (1, 2):
-            for c in (1, 2):
+            for c in range(1, len(dofs) + 1):
                 fig.add_vline(x=omega, line=dict(color="#d62728", dash="dot"), row=r, col=c)
         fig.add_annotation(x=omega, y=1.0, xref="x", yref="paper", text=f"wave: {omega:.3f} rad/s", showarrow=False,
                            font=dict(color="#d62728"), yanchor="bottom")
-    return _style(fig, "Rigid-body motions: heave and pitch RAOs (head seas)", 560)
+    names = " and ".join(n for n, _, _ in dofs) if len(dofs) == 2 else "surge, heave and pitch"
+    return _style(fig, f"Rigid-body motions: {names} RAOs (head seas)", 560)
 
 
 def deck_motion_figure(ds: xr.Dataset) -> Any | None:
@@ -254,7 +259,8 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
     for fid, title, builder, caption in (
         ("fig-hull-girder", "Hull girder", hull_girder_figure,
          "Still-water deflection and bending moment of the hull, with the wave's hog and sag extremes; the cargo span is shaded."),
-        ("fig-raos", "Heave and pitch RAOs", rao_figure, "Amplitude and phase of the rigid-body RAOs; the case's wave frequency is the dotted line."),
+        ("fig-raos", "Rigid-body RAOs", rao_figure, "Amplitude and phase of the rigid-body RAOs (surge when the hydrodynamic data hold it, "
+         "heave, pitch); the case's wave frequency is the dotted line."),
         ("fig-deck-motion", "Deck deflection under the saddles", deck_motion_figure,
          "The prescribed deck displacement at each saddle over one period (solid) and in still water (dotted)."),
         ("fig-saddle-histories", "Saddle force and gap over the period", saddle_time_history_figure,
