@@ -19,7 +19,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
-from seafast.results.dataset import LOAD_CASES, MODELS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
+from seafast.results.dataset import LOAD_CASES, MODELS, SUMMARY_COLUMNS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
 
@@ -126,11 +126,24 @@ class CaseResult:
     arrays: CaseArrays
     responses: dict[str, Any]
     attrs: dict[str, Any]
+    axial: Any = None  # seafast.results.axial.AxialCaseArrays when the axial analysis ran
 
     @property
     def summary(self) -> list[dict[str, Any]]:
-        """Summary rows (INTERFACE.md columns plus contact_preserved and diagnostics)."""
-        return summary_rows_from_arrays(self.arrays)
+        """Summary rows (INTERFACE.md columns plus contact_preserved and diagnostics; axial columns when it ran)."""
+        rows = summary_rows_from_arrays(self.arrays)
+        if self.axial is not None:
+            for row in rows:
+                row.update(self.axial.summary_columns(row["load_case"], row["model"]))
+                row["converged"] = row["converged"] and row["axial_converged"]
+        return rows
+
+    @property
+    def summary_columns(self) -> tuple[str, ...]:
+        """The columns of ``summary.csv``: the source's, then the axial ones when the axial analysis ran."""
+        from seafast.results.axial import AXIAL_SUMMARY_COLUMNS
+
+        return SUMMARY_COLUMNS + (AXIAL_SUMMARY_COLUMNS if self.axial is not None else ())
 
     @functools.cached_property
     def dataset(self) -> xr.Dataset:
@@ -140,6 +153,10 @@ class CaseResult:
             vds = self.vessel.to_dataset()
             ds = xr.merge([ds, vds], combine_attrs="override")
             ds.attrs.update(vds.attrs)
+        if self.axial is not None:
+            ads = self.axial.to_dataset()
+            ds = xr.merge([ds, ads], combine_attrs="override")
+            ds.attrs.update(ads.attrs)
         return ds
 
 
@@ -224,7 +241,13 @@ def run_case(
                     messages[i, j] = f"{coupling.message} | cargo solver: {messages[i, j]}"
         arrays = replace(arrays, converged=converged, solver_message=messages.astype(str))
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
+    axial = None
+    if case.seafastening.friction_coefficient is not None:  # the axial analysis (docs/axial.md), one way
+        from seafast.results.axial import run_axial_analysis
+
+        say("axial sliding (friction, lashings, stoppers)")
+        axial = run_axial_analysis(case, model, vessel, series)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, axial)
 
 
 def couple_hull_and_cargo(
