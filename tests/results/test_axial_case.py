@@ -184,3 +184,17 @@ def test_study_over_the_friction_coefficient(tmp_path):
     assert ds["slip_m"].attrs["units"] == "m"
     header = (tmp_path / "study.csv").read_text(encoding="utf-8").splitlines()[0].split(",")
     assert {"slip_m", "friction_utilisation", "axial_force_N", "critical_friction_coefficient"} <= set(header)
+
+
+def test_report_has_the_stick_slip_figure_and_axial_section(tmp_path):
+    from seafast.output.report import write_report
+
+    assert main(["run", "-o", str(tmp_path), "-q", "--set", "seafastening.friction_coefficient=0.05",
+                 "--set", "solver.time_samples=64", "--set", "model.element_length_m=2.0"]) == 0
+    assert (tmp_path / "stick_slip.png").is_file()
+    out = write_report(tmp_path)
+    assert "fig-stick-slip" in out.figure_ids
+    page = out.html.read_text(encoding="utf-8")
+    assert "Axial sliding" in page and "critical friction coefficient" in page
+    assert any("slides on its saddles" in f.title and f.level == "WARNING" for f in out.findings)
+    assert any(p.name == "stick_slip.png" for p in out.pngs)

@@ -23,6 +23,7 @@ __all__ = [
     "plot_aft_picture",
     "plot_hull_girder",
     "plot_raos",
+    "plot_stick_slip",
     "write_case_figures",
 ]
 
@@ -242,6 +243,35 @@ def plot_raos(ds: xr.Dataset, path: Path) -> Path:
     return _save(fig, path)
 
 
+def plot_stick_slip(ds: xr.Dataset, path: Path) -> Path:
+    """Axial stick-slip over one period: displacement, friction against its capacity, sliding phases."""
+    s = ds["period_fraction"].values
+    fig, (ax_u, ax_f) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    for mdl in ("linear", "nonlinear"):
+        sel = ds.sel(load_case="dynamic", model=mdl)
+        c = _COLORS[mdl]
+        ax_u.plot(s, sel["axial_displacement_m"].values * 1e3, color=c, label=f"{mdl}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period")
+        ax_f.plot(s, -sel["friction_force_N"].values / 1e6, color=c, label=f"{mdl}: friction force (resisting u)")
+        cap = sel["friction_capacity_N"].values / 1e6
+        ax_f.plot(s, cap, color=c, ls="--", lw=0.8, label=f"{mdl}: friction available")
+        ax_f.plot(s, -cap, color=c, ls="--", lw=0.8)
+        sliding = sel["sliding"].values.astype(bool)
+        if sliding.any():
+            ax_u.fill_between(s, 0, 1, where=sliding, transform=ax_u.get_xaxis_transform(), color=c, alpha=0.08, lw=0)
+    load = ds["axial_load_N"].sel(load_case="dynamic", model="nonlinear").values / 1e6
+    ax_f.plot(s, load, color="k", lw=1.2, label="axial load F(t) (inertia + gravity)")
+    ax_u.axhline(0.0, color="k", lw=0.8)
+    ax_u.set_ylabel("axial displacement u [mm] (forward +)")
+    ax_u.set_title("Axial stick-slip of the cargo (shaded: sliding)")
+    ax_u.legend(fontsize=8)
+    ax_f.set_xlabel("period fraction t/T [-]")
+    ax_f.set_ylabel("axial force [MN] (forward +)")
+    ax_f.legend(fontsize=8, ncol=2)
+    for ax in (ax_u, ax_f):
+        ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
 def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
     """Write every figure the dataset supports into ``out_dir``; return the paths."""
     out_dir = Path(out_dir)
@@ -256,4 +286,6 @@ def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
         paths.append(plot_hull_girder(ds, out_dir / "hull_girder.png"))
     if "rao_omega_rad_s" in ds.coords:
         paths.append(plot_raos(ds, out_dir / "raos.png"))
+    if "friction_force_N" in ds:
+        paths.append(plot_stick_slip(ds, out_dir / "stick_slip.png"))
     return paths

@@ -16,7 +16,7 @@ from seafast.output.report.common import ReportFigure, _attr_float, _has, _label
 
 __all__ = [
     "hull_girder_figure", "rao_figure", "deck_motion_figure", "saddle_time_history_figure", "deflection_moment_figure",
-    "contact_timeline_figure", "run_figures",
+    "contact_timeline_figure", "stick_slip_figure", "run_figures",
 ]
 
 _COLORS = {"linear": "#1f77b4", "nonlinear": "#d62728"}
@@ -253,6 +253,37 @@ def contact_timeline_figure(ds: xr.Dataset) -> Any:
     return _style(fig, f"Contact state over one wave period ({lc})", 200 + 70 * ds.sizes["saddle"] * len(models))
 
 
+def stick_slip_figure(ds: xr.Dataset) -> Any | None:
+    """Axial stick-slip over one period: displacement [mm] and friction against its capacity [MN].
+
+    Returns ``None`` without the axial analysis (``seafastening.friction_coefficient`` not set).
+    """
+    if "friction_force_N" not in ds:
+        return None
+    go = _go()
+    lc = _total_load_case(ds)
+    s = ds["period_fraction"].values
+    fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    for m in _labels(ds["model"]):
+        sel = ds.sel(load_case=lc, model=m)
+        c = _COLORS.get(m, "black")
+        fig.add_trace(go.Scatter(x=s, y=sel["axial_displacement_m"].values * 1e3, name=f"{m}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period",
+                                 line=dict(color=c), hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>u %{{y:.2f}} mm<extra></extra>"), row=1, col=1)
+        fig.add_trace(go.Scatter(x=s, y=-sel["friction_force_N"].values / 1e6, name=f"{m}: friction (resisting u)", line=dict(color=c),
+                                 hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>%{{y:.3f}} MN<extra></extra>"), row=2, col=1)
+        cap = sel["friction_capacity_N"].values / 1e6
+        for sign, show in ((1, True), (-1, False)):
+            fig.add_trace(go.Scatter(x=s, y=sign * cap, name=f"{m}: friction available", legendgroup=f"{m}-cap", showlegend=show,
+                                     line=dict(color=c, dash="dash", width=1), hoverinfo="skip"), row=2, col=1)
+    fig.add_trace(go.Scatter(x=s, y=ds["axial_load_N"].sel(load_case=lc, model=_labels(ds["model"])[-1]).values / 1e6,
+                             name="axial load F(t)", line=dict(color="black"), hovertemplate="t/T %{x:.3f}<br>F %{y:.3f} MN<extra></extra>"),
+                  row=2, col=1)
+    fig.update_yaxes(title_text="axial displacement u [mm] (forward +)", row=1, col=1)
+    fig.update_yaxes(title_text="axial force [MN] (forward +)", row=2, col=1)
+    fig.update_xaxes(title_text="period fraction t/T [-]", row=2, col=1)
+    return _style(fig, f"Axial stick-slip over one wave period ({lc})", 620)
+
+
 def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
     """Every interactive figure of a run dataset, in report order (vessel first)."""
     out: list[ReportFigure] = []
@@ -269,6 +300,9 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
         ("fig-deflection-moment", "Deflection and bending-moment lines", deflection_moment_figure,
          "Thick lines: still water; shaded bands: range over one wave period of the total response."),
         ("fig-contact-timeline", "Contact-state timeline", contact_timeline_figure, "Green: saddle in contact; orange: detached."),
+        ("fig-stick-slip", "Axial stick-slip", stick_slip_figure,
+         "Axial displacement of the cargo relative to the deck, and the friction force against the friction available "
+         "(sum of mu N over the saddles, from each model's own contact forces); where the friction reaches it, the cargo slides."),
     ):
         try:
             fig = builder(ds)
