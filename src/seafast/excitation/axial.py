@@ -114,11 +114,15 @@ def cargo_axis_height_m(case: Case) -> float:
     return case.vessel.deck_height_m + case.seafastening.saddle_height_m + 0.5 * d
 
 
-def axial_load_of(case: Case, vessel: object) -> AxialLoad:
-    """The case's axial load, from the vessel's rigid-body amplitudes (``VesselExcitation.rigid_body``)."""
+def axial_load_of(case: Case, vessel: object, cargo_mass_kg: float | None = None) -> AxialLoad:
+    """The case's axial load, from the vessel's rigid-body amplitudes (``VesselExcitation.rigid_body``).
+
+    ``cargo_mass_kg``: the cargo's mass when known (the structural model's), else from its geometry.
+    """
     rigid = getattr(vessel, "rigid_body", None)
     omega = case.wave_frequency_rad_s()
-    load = axial_load(cargo_geometry(case).mass_kg(), omega, rigid, cargo_axis_height_m(case), case.model.gravity_m_per_s2)
+    mass = cargo_mass_kg if cargo_mass_kg is not None else cargo_geometry(case).mass_kg()
+    load = axial_load(mass, omega, rigid, cargo_axis_height_m(case), case.model.gravity_m_per_s2)
     if rigid is None:
         why = "vessel.motions = none" if case.vessel.motions == "none" else "no wave (wave.amplitude_m = 0)" if case.wave.amplitude_m == 0 else "no rigid-body motion"
         return AxialLoad(load.omega_rad_s, load.force_N, source=f"{why}: no axial load")

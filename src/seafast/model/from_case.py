@@ -27,8 +27,10 @@ def cargo_geometry(case: Case) -> CargoGeometry:
     return CargoGeometry(segments, c.youngs_modulus_Pa, c.density_kg_per_m3, c.poisson_ratio)
 
 
-def axial_restraint(case: Case) -> AxialRestraint:
+def axial_restraint(case: Case, cargo_mass_kg: float | None = None) -> AxialRestraint:
     """The cargo's axial restraint from the case (friction, Jenkins stiffness, lashings, stoppers).
+
+    ``cargo_mass_kg``: the cargo's mass when known (the structural model's), else from its geometry.
 
     Raises
     ------
@@ -46,7 +48,7 @@ def axial_restraint(case: Case) -> AxialRestraint:
         k_axial = lashing_axial_stiffness_N_per_m(lashing.stiffness_N_per_m, lashing.angle_deg, len(case.lashed_saddle_indices()))
     kt = sf.tangential_stiffness_N_per_m if sf.tangential_stiffness_N_per_m is not None else DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M
     return AxialRestraint(
-        cargo_mass_kg=cargo_geometry(case).mass_kg(),
+        cargo_mass_kg=cargo_mass_kg if cargo_mass_kg is not None else cargo_geometry(case).mass_kg(),
         friction_coefficient=np.array(mu),
         tangential_stiffness_N_per_m=np.full(len(mu), float(kt)),
         lashing_axial_stiffness_N_per_m=k_axial,

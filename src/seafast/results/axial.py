@@ -19,7 +19,7 @@ from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
-from scipy.linalg import cho_factor, cho_solve
+from scipy.linalg import solveh_banded
 
 from seafast.config.schema import Case
 from seafast.excitation.axial import AxialLoad, axial_load_of
@@ -37,7 +37,8 @@ from seafast.solvers.axial import (
     static_response,
 )
 
-__all__ = ["AXIAL_SUMMARY_COLUMNS", "AxialCaseArrays", "run_axial_analysis", "axial_case_arrays", "friction_moment_effect_N"]
+__all__ = ["AXIAL_SUMMARY_COLUMNS", "AxialCaseArrays", "run_axial_analysis", "axial_case_arrays", "friction_moment_effect_N",
+           "saddle_moment_flexibility"]
 
 #: Columns ``summary.csv`` gains (after ``converged``) when the axial analysis runs.
 AXIAL_SUMMARY_COLUMNS = ("slip_m", "friction_utilisation", "axial_force_N")
@@ -112,23 +113,38 @@ class AxialCaseArrays:
         return xr.Dataset(data, attrs=self.attrs)
 
 
-def friction_moment_effect_N(model: StructuralModel, friction_per_saddle_N: np.ndarray, lever_m: np.ndarray) -> float:
+def saddle_moment_flexibility(model: StructuralModel) -> np.ndarray:
+    """Saddle compression change per unit moment at each saddle, quasi-static, bilateral saddles [m/(N m)], (n_s, n_s).
+
+    ``G[i, j]``: ``-dz_i`` at saddle i for a unit bow-up moment on the cargo at saddle j, from one
+    banded Cholesky solve of ``K dq = M`` (the cargo's first natural frequency, 44 rad/s on the
+    base case, is far above the wave's 0.6 rad/s).
+    """
+    K = model.cargo.stiffness + model.spring_matrices(True)[0]
+    n = K.shape[0]
+    band = 3  # Hermite beam elements couple the (z, theta) pairs of neighbouring nodes; springs are diagonal
+    ab = np.zeros((band + 1, n))
+    for d in range(band + 1):
+        ab[band - d, d:] = np.diagonal(K, d)
+    rhs = np.zeros((n, model.saddle_count))
+    rhs[model.saddle_cargo_dof + 1, np.arange(model.saddle_count)] = 1.0
+    dq = solveh_banded(ab, rhs)
+    return -dq[model.saddle_cargo_dof]
+
+
+def friction_moment_effect_N(model: StructuralModel, friction_per_saddle_N: np.ndarray, lever_m: np.ndarray,
+                             flexibility: np.ndarray | None = None) -> float:
     """Largest change of the saddle forces [N] by the friction's moment, quasi-static, bilateral saddles.
 
     Friction ``f_i`` (forward +) at the contact line ``lever_i`` (D/2) below the cargo's axis
-    puts the moment ``+f_i lever_i`` (bow up) on the cargo at saddle ``i``. Well below the
-    cargo's first natural frequency (44 rad/s on the base case against 0.6 rad/s) the response
-    is quasi-static: ``K dq = M``; the saddle force changes by ``-k_u dz`` at each saddle.
+    puts the moment ``+f_i lever_i`` (bow up) on the cargo at saddle ``i``; the saddle forces
+    change by ``k_u G M`` (:func:`saddle_moment_flexibility`).
     """
     moments = np.asarray(friction_per_saddle_N, dtype=float) * np.asarray(lever_m, dtype=float)  # (N, n_s)
     if not np.any(moments):
         return 0.0
-    K = model.cargo.stiffness + model.spring_matrices(True)[0]
-    rhs = np.zeros((model.cargo_dof_count, moments.shape[0]))
-    rhs[model.saddle_cargo_dof + 1] = moments.T
-    dq = cho_solve(cho_factor(K), rhs)
-    dz = dq[model.saddle_cargo_dof]  # (n_s, N)
-    return float(np.max(np.abs(model.saddle_unilateral_stiffness_N_per_m[:, None] * dz)))
+    G = saddle_moment_flexibility(model) if flexibility is None else flexibility
+    return float(np.max(np.abs(model.saddle_unilateral_stiffness_N_per_m[:, None] * (G @ moments.T))))
 
 
 def _row(
@@ -190,6 +206,7 @@ def axial_case_arrays(
     d_el = model.cargo.element_outer_diameter_m
     lever = 0.5 * 0.5 * (d_el[np.maximum(nodes - 1, 0)] + d_el[np.minimum(nodes, d_el.size - 1)])
     start = None
+    flexibility = saddle_moment_flexibility(model)
     for i, lc in enumerate(_LOAD_CASES):
         for j, mdl in enumerate(_MODELS):
             normal = np.maximum(np.asarray(series[(lc, mdl)].saddle_force_N, dtype=float), 0.0)
@@ -208,7 +225,7 @@ def axial_case_arrays(
             rows["friction_utilisation"][i, j] = resp.friction_utilisation
             rows["axial_force_N"][i, j] = resp.axial_force_N
             rows["critical_friction_coefficient"][i, j] = critical_friction_coefficient(resp.load_N, normal)
-            rows["friction_moment_saddle_force_change_N"][i, j] = friction_moment_effect_N(model, per_saddle[i, j], lever)
+            rows["friction_moment_saddle_force_change_N"][i, j] = friction_moment_effect_N(model, per_saddle[i, j], lever, flexibility)
             rows["axial_residual_norm"][i, j] = resp.residual_norm
             rows["axial_iterations"][i, j] = resp.iterations
             converged[i, j] = resp.converged
@@ -249,7 +266,8 @@ def run_axial_analysis(case: Case, model: StructuralModel, vessel: Any, series: 
     ValueError
         If the hydrodynamic data hold no surge (message says so) or the friction is not set.
     """
-    restraint = axial_restraint(case)
-    load = axial_load_of(case, vessel)
+    mass = model.cargo.mass_kg  # the structural model's cargo: one mass for the vertical and the axial analysis
+    restraint = axial_restraint(case, mass)
+    load = axial_load_of(case, vessel, mass)
     method = "time_domain" if case.solver.method == "time_domain" else "hbm"
     return axial_case_arrays(restraint, load, series, model, axial_options(case, case.solver.time_samples), method)

@@ -26,7 +26,7 @@ the row with the time-domain reference.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -142,12 +142,15 @@ class _Problem:
         return X if np.all(np.isfinite(X)) else None
 
 
-def _newton(p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int) -> tuple[NDArray, float, int, bool]:
-    R, jen, u = p.evaluate(X, capacity)
+def _newton(p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int,
+            first: tuple[NDArray, Any, NDArray] | None = None) -> tuple[NDArray, float, int, bool, tuple[NDArray, Any, NDArray]]:
+    """Damped Newton; returns the iterate, its relative residual, iterations, success and its evaluation."""
+    ev = first if first is not None else p.evaluate(X, capacity)
+    R, jen, u = ev
     norm = float(np.max(np.abs(R))) / p.scale
     for it in range(1, max_iter + 1):
         if norm <= tol:
-            return X, norm, it - 1, True
+            return X, norm, it - 1, True, ev
         J = p.jacobian(jen, u)
         try:
             dX = np.linalg.solve(J, -R)
@@ -156,15 +159,16 @@ def _newton(p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: in
         step = 1.0
         for _ in range(30):
             X_try = X + step * dX
-            R_try, jen_try, u_try = p.evaluate(X_try, capacity)
-            n_try = float(np.max(np.abs(R_try))) / p.scale
+            ev_try = p.evaluate(X_try, capacity)
+            n_try = float(np.max(np.abs(ev_try[0]))) / p.scale
             if n_try < (1.0 - 1e-4 * step) * norm or n_try <= tol:
                 break
             step *= 0.5
         else:
-            return X, norm, it, False
-        X, R, jen, u, norm = X_try, R_try, jen_try, u_try, n_try
-    return X, norm, max_iter, norm <= tol
+            return X, norm, it, False, ev
+        X, ev, norm = X_try, ev_try, n_try
+        R, jen, u = ev
+    return X, norm, max_iter, norm <= tol, ev
 
 
 def solve_axial_hbm(
@@ -201,27 +205,31 @@ def solve_axial_hbm(
     capacity = restraint.capacity_N(normal)
     p = _Problem(restraint, load, capacity, H, N)
 
-    def best_start(extra: list[tuple[str, NDArray]]) -> tuple[str, NDArray]:
-        starts = [("stuck", p.stick_guess())]
-        free = p.free_guess()
-        if free is not None:
-            starts.append(("frictionless", free))
-        starts += extra
-        scored = [(float(np.max(np.abs(p.evaluate(X, capacity)[0]))), i, name, X) for i, (name, X) in enumerate(starts)]
-        _, _, name, X = min(scored, key=lambda t: t[:2])
-        return name, X
-
-    given: list[tuple[str, NDArray]] = []
-    if initial_harmonics is not None:
+    def given() -> NDArray | None:
+        if initial_harmonics is None:
+            return None
         x0 = np.zeros(H + 1, dtype=complex)
         n0 = min(H + 1, len(initial_harmonics))
         x0[:n0] = np.asarray(initial_harmonics)[:n0]
-        given.append(("given", complex_to_real_harmonics(x0)))
-    start_name, X0 = best_start(given)
-    X, norm, iters, ok = _newton(p, X0, capacity, options.tolerance, options.max_iterations)
+        return complex_to_real_harmonics(x0)
+
+    # the candidates are built lazily: when the friction holds, the stick solution is the answer
+    starts = (("stuck", p.stick_guess), ("frictionless", p.free_guess), ("given", given))
+    best = None
+    for name, make in starts:
+        X_start = make()
+        if X_start is None:
+            continue
+        ev = p.evaluate(X_start, capacity)
+        r = float(np.max(np.abs(ev[0])))
+        if best is None or r < best[0]:
+            best = (r, name, X_start, ev)
+        if r <= options.tolerance * p.scale:
+            break
+    assert best is not None
+    _, start_name, X0, ev0 = best
+    X, norm, iters, ok, (R, jen, u) = _newton(p, X0, capacity, options.tolerance, options.max_iterations, ev0)
     path = f"from the {start_name} solution" if ok else f"did not converge (Newton from the {start_name} solution)"
-    R, jen, u = p.evaluate(X, capacity)
-    norm = float(np.max(np.abs(R))) / p.scale
     lam = jen.force_N
     lashing, stop = restraint.restoring_force_N(u)
     V = np.zeros_like(X)
@@ -234,5 +242,6 @@ def solve_axial_hbm(
     return AxialResponse(
         "hbm", load.omega_rad_s, u, p.E @ V, -lam, capacity, -lashing, -stop, p.load_t, jen.slipped,
         jen.slip_path_m, bool(ok), norm, int(iters), msg, real_to_complex_harmonics(X),
-        {**asdict(options), "tangential_stiffness_N_per_m": p.kt},
+        {"harmonics": H, "time_samples": N, "tolerance": options.tolerance, "max_iterations": options.max_iterations,
+         "tangential_stiffness_N_per_m": p.kt},
     )

@@ -41,8 +41,9 @@ def clamp_prefix(lo: NDArray[np.float64], hi: NDArray[np.float64]) -> tuple[NDAr
     n = a.size
     while d < n:
         # earlier segment (ending at i - d) first, then the later one (ending at i)
-        a_new = np.clip(a[:-d], a[d:], b[d:])
-        b_new = np.clip(b[:-d], a[d:], b[d:])
+        lo_d, hi_d = a[d:], b[d:]
+        a_new = np.minimum(np.maximum(a[:-d], lo_d), hi_d)
+        b_new = np.minimum(np.maximum(b[:-d], lo_d), hi_d)
         a[d:], b[d:] = a_new, b_new
         d *= 2
     return a, b
@@ -93,7 +94,7 @@ def march_jenkins(u_m: NDArray[np.float64], capacity_N: NDArray[np.float64], sti
     lo, hi = u - half, u + half
     a, b = clamp_prefix(lo, hi)
     w0 = min(max(float(w_init_m), a[-1]), b[-1])  # state after one period: a fixed point of the period's clamp
-    w = np.clip(w0, a, b)
+    w = np.minimum(np.maximum(w0, a), b)
     prev = np.empty_like(w)
     prev[0] = w0
     prev[1:] = w[:-1]
