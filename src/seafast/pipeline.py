@@ -132,18 +132,12 @@ class CaseResult:
     def summary(self) -> list[dict[str, Any]]:
         """Summary rows (INTERFACE.md columns plus contact_preserved and diagnostics; axial columns when it ran)."""
         rows = summary_rows_from_arrays(self.arrays)
-        if self.axial is not None:
-            for row in rows:
-                row.update(self.axial.summary_columns(row["load_case"], row["model"]))
-                row["converged"] = row["converged"] and row["axial_converged"]
-        return rows
+        return rows if self.axial is None else self.axial.extend_summary(rows)
 
     @property
     def summary_columns(self) -> tuple[str, ...]:
         """The columns of ``summary.csv``: the source's, then the axial ones when the axial analysis ran."""
-        from seafast.results.axial import AXIAL_SUMMARY_COLUMNS
-
-        return SUMMARY_COLUMNS + (AXIAL_SUMMARY_COLUMNS if self.axial is not None else ())
+        return SUMMARY_COLUMNS + (self.axial.summary_column_names if self.axial is not None else ())
 
     @functools.cached_property
     def dataset(self) -> xr.Dataset:
@@ -153,11 +147,7 @@ class CaseResult:
             vds = self.vessel.to_dataset()
             ds = xr.merge([ds, vds], combine_attrs="override")
             ds.attrs.update(vds.attrs)
-        if self.axial is not None:
-            ads = self.axial.to_dataset()
-            ds = xr.merge([ds, ads], combine_attrs="override")
-            ds.attrs.update(ads.attrs)
-        return ds
+        return ds if self.axial is None else self.axial.merged_into(ds)
 
 
 def _excitation(case: Case, model: StructuralModel) -> tuple[HarmonicExcitation, Any]:
@@ -247,7 +237,7 @@ def run_case(
 
         say("axial sliding (friction, lashings, stoppers)")
         axial = run_axial_analysis(case, model, vessel, series)
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, axial)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, axial=axial)
 
 
 def couple_hull_and_cargo(

@@ -91,6 +91,26 @@ class AxialCaseArrays:
         out["axial_converged"] = bool(self.converged[i, j])
         return out
 
+    @property
+    def summary_column_names(self) -> tuple[str, ...]:
+        """The columns ``summary.csv`` gains: :data:`AXIAL_SUMMARY_COLUMNS`."""
+        return AXIAL_SUMMARY_COLUMNS
+
+    def extend_summary(self, rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+        """The summary rows with the axial columns added; ``converged`` then includes the axial solve."""
+        for row in rows:
+            row.update(self.summary_columns(row["load_case"], row["model"]))
+            row["converged"] = bool(row["converged"] and row["axial_converged"])
+        return rows
+
+    def merged_into(self, ds: xr.Dataset) -> xr.Dataset:
+        """``ds`` (the case's results) with the axial variables and attributes merged in."""
+        axial = self.to_dataset()
+        out = xr.merge([ds, axial], combine_attrs="override")
+        out.attrs.update(ds.attrs)
+        out.attrs.update(axial.attrs)
+        return out
+
     def to_dataset(self) -> xr.Dataset:
         """The axial variables of ``results.nc`` (units and long names on every one)."""
         dims3 = ("load_case", "model", "period_fraction")

@@ -114,7 +114,7 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
     go = _go()
     w = ds["rao_omega_rad_s"].values
     dofs = [("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")]
-    if _has(ds, "surge_rao_real", "surge_rao_imag"):
+    if "surge_rao_real" in ds and "surge_rao_imag" in ds:
         dofs.insert(0, ("surge", 1.0, "m/m"))
     extra = {"pitch": " (bow up +)", "surge": " (forward +)"}
     fig = _subplots(rows=2, cols=len(dofs), shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.08,
@@ -261,10 +261,11 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
     if "friction_force_N" not in ds:
         return None
     go = _go()
-    lc = _total_load_case(ds)
+    lc = "dynamic" if "dynamic" in [str(v) for v in ds["load_case"].values] else str(ds["load_case"].values[-1])
+    models = [str(v) for v in ds["model"].values]
     s = ds["period_fraction"].values
     fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
-    for m in _labels(ds["model"]):
+    for m in models:
         sel = ds.sel(load_case=lc, model=m)
         c = _COLORS.get(m, "black")
         fig.add_trace(go.Scatter(x=s, y=sel["axial_displacement_m"].values * 1e3, name=f"{m}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period",
@@ -275,7 +276,7 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
         for sign, show in ((1, True), (-1, False)):
             fig.add_trace(go.Scatter(x=s, y=sign * cap, name=f"{m}: friction available", legendgroup=f"{m}-cap", showlegend=show,
                                      line=dict(color=c, dash="dash", width=1), hoverinfo="skip"), row=2, col=1)
-    fig.add_trace(go.Scatter(x=s, y=ds["axial_load_N"].sel(load_case=lc, model=_labels(ds["model"])[-1]).values / 1e6,
+    fig.add_trace(go.Scatter(x=s, y=ds["axial_load_N"].sel(load_case=lc, model=models[-1]).values / 1e6,
                              name="axial load F(t)", line=dict(color="black"), hovertemplate="t/T %{x:.3f}<br>F %{y:.3f} MN<extra></extra>"),
                   row=2, col=1)
     fig.update_yaxes(title_text="axial displacement u [mm] (forward +)", row=1, col=1)

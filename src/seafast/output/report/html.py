@@ -15,7 +15,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import Finding, ReportFigure, _attr_float, _base, _case_mapping, _labels, _limits, _study_keys
+from seafast.output.report.common import Finding, ReportFigure, _attr_float, _base, _case_mapping, _limits, _study_keys
 from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.figures import run_figures
 from seafast.output.report.study_figures import study_figures
@@ -151,8 +151,8 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
 def _axial_html(ds: xr.Dataset) -> str:
     """The axial analysis's table (docs/axial.md): slip, utilisation, lashing/stopper force, critical coefficient."""
     rows = []
-    for lc in _labels(ds["load_case"]):
-        for m in _labels(ds["model"]):
+    for lc in [str(v) for v in ds["load_case"].values]:  # plain xarray: no report helper needed
+        for m in [str(v) for v in ds["model"].values]:
             sel = ds.sel(load_case=lc, model=m)
             rows.append([lc, m, f"{float(sel['slip_m']) * 1e3:.2f}", f"{float(sel['friction_utilisation']):.3f}",
                          f"{float(sel['axial_force_N']) / 1e3:.1f}", f"{float(sel['critical_friction_coefficient']):.4f}",
