@@ -49,3 +49,10 @@ def test_axis_height_from_the_case():
     assert cargo_axis_height_m(case) == pytest.approx(12.0 + 1.0 + 4.0)
     tall = load_case(None, {"vessel.deck_height_m": 14.0, "seafastening.saddle_height_m": 2.0})
     assert cargo_axis_height_m(tall) == pytest.approx(20.0)
+
+
+def test_axial_load_uses_the_coupled_pitch():
+    """Surge and pitch of one solution: the coupled pitch, not the 2-DOF one the vertical analysis may use."""
+    rb = RigidBodyAmplitudes(0.1 + 0j, 0.02 + 0j, 85.0, surge_m=0.0j, reference_z_m=8.0, coupled_pitch_rad=0.01 + 0j)
+    f = axial_load(M, W, rb, axis_height_above_keel_m=17.0, gravity_m_per_s2=G)
+    assert f.gravity_N == pytest.approx(-M * G * 0.01)

@@ -105,14 +105,18 @@ def test_surge_long_wave_limit_and_coupling(coarse, hull):
     u = coarse.surge_at(0.15)
     assert abs(u) == pytest.approx(1.0, abs=0.03)
     assert np.degrees(np.angle(u)) == pytest.approx(90.0, abs=5.0)
-    # the 2-DOF solution of the same heave-pitch coefficients (surge dropped) differs only through coupling
+    # heave and pitch stay the 2-DOF solution of their coefficients (the source's model) ...
     f2 = coarse.excitation_force
     z2 = -(OMEGA[:, None, None] ** 2) * (coarse.mass_matrix + coarse.added_mass) + 1j * OMEGA[:, None, None] * coarse.radiation_damping + coarse.hydrostatic_stiffness
     x2 = np.linalg.solve(z2, f2[..., None])[..., 0]
-    assert np.max(np.abs(x2[:, 0] - coarse.heave_rao_m_per_m)) < 0.02
-    rel = np.abs(np.abs(x2[:, 1]) / np.abs(coarse.pitch_rao_rad_per_m) - 1.0)
+    np.testing.assert_allclose(x2[:, 0], coarse.heave_rao_m_per_m, rtol=1e-12)
+    np.testing.assert_allclose(x2[:, 1], coarse.pitch_rao_rad_per_m, rtol=1e-12)
+    # ... and the coupled solution differs from it through the surge coupling only, by a few per cent
+    assert np.max(np.abs(coarse.coupled_heave_rao_m_per_m - coarse.heave_rao_m_per_m)) < 0.02
+    rel = np.abs(np.abs(coarse.coupled_pitch_rao_rad_per_m) / np.abs(coarse.pitch_rao_rad_per_m) - 1.0)
     assert np.max(rel[OMEGA <= 0.8]) < 0.06
-    assert np.max(rel[OMEGA <= 0.8]) > 1e-4  # coupling is real, not dropped
+    assert np.max(rel[OMEGA <= 0.8]) > 1e-4  # the coupling is real, not dropped
+    assert abs(coarse.coupled_at(0.15)[2]) == pytest.approx(0.15**2 / G, rel=0.05)  # coupled pitch -> wave slope too
     with pytest.raises(ValueError, match="no surge"):
         RigidBodyMotions(OMEGA, coarse.heave_rao_m_per_m, coarse.pitch_rao_rad_per_m, coarse.added_mass,
                          coarse.radiation_damping, coarse.excitation_force, coarse.reference_x_m).surge_at(0.6)
@@ -130,8 +134,12 @@ def test_capytaine_file_without_surge_has_no_surge(hull, mass_props, cache_dir, 
     m = load_motions(path, hull, **mass_props)
     assert not m.has_surge and m.surge_rao_m_per_m is None
     assert "surge_rao_real" not in m.to_dataset()
-    # heave is barely affected by surge; pitch within the coupling's few per cent
-    np.testing.assert_allclose(m.heave_rao_m_per_m, coarse.heave_rao_m_per_m, atol=0.02)
+    # heave and pitch are the same 2-DOF solution, bit for bit (surge problems do not change them)
+    np.testing.assert_array_equal(m.heave_rao_m_per_m, coarse.heave_rao_m_per_m)
+    np.testing.assert_array_equal(m.pitch_rao_rad_per_m, coarse.pitch_rao_rad_per_m)
+    assert m.coupled_pitch_rao_rad_per_m is None
+    with pytest.raises(ValueError, match="no surge"):
+        m.coupled_at(0.6)
 
 
 def test_strip_theory_agrees_at_low_frequency(coarse, hull, mass_props):

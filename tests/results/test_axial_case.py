@@ -198,3 +198,17 @@ def test_report_has_the_stick_slip_figure_and_axial_section(tmp_path):
     assert "Axial sliding" in page and "critical friction coefficient" in page
     assert any("slides on its saddles" in f.title and f.level == "WARNING" for f in out.findings)
     assert any(p.name == "stick_slip.png" for p in out.pngs)
+
+
+def test_vertical_motion_coupling_switch(plain):
+    """vessel.motion_coupling: the vertical analysis on the 2-DOF heave-pitch (default, the source's) or
+    the surge-coupled motions; the switch changes the dynamic saddle force by a fraction of a per cent."""
+    coupled = run_case(load_case(None, {**FAST, "vessel.motion_coupling": "surge_heave_pitch"}))
+    rb, rb0 = coupled.vessel.rigid_body, plain.vessel.rigid_body
+    assert rb.pitch_rad == rb.coupled_pitch_rad and rb0.pitch_rad != rb0.coupled_pitch_rad
+    assert abs(abs(rb.pitch_rad) / abs(rb0.pitch_rad) - 1) < 0.05
+    for a, b in zip(plain.summary, coupled.summary):
+        if a["load_case"] == "static":
+            assert a["F_N"] == b["F_N"]
+        else:
+            assert 0 < abs(b["F_N"] / a["F_N"] - 1) < 0.01

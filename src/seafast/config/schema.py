@@ -230,6 +230,12 @@ class VesselConfig(_Strict):
         "bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output"
     )
     bem_panel_size_m: Positive = Field(3.0, description="Target panel size of the BEM mesh [m]")
+    motion_coupling: Literal["heave_pitch", "surge_heave_pitch"] = Field(
+        "heave_pitch",
+        description="Rigid-body motions the vertical analysis uses: 'heave_pitch' (the 2-DOF solution, the source's model) or "
+        "'surge_heave_pitch' (coupled with surge, when the hydrodynamic data hold it; docs/axial.md). The axial analysis "
+        "always uses the coupled surge and pitch",
+    )
     deck_height_m: Positive = Field(
         12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
     )

@@ -100,9 +100,11 @@ def axial_load(
         raise ValueError("the axial analysis needs the height of the pitch reference above the keel (unknown for these motions)")
     m, w2, g = float(cargo_mass_kg), float(omega_rad_s) ** 2, float(gravity_m_per_s2)
     h = float(axis_height_above_keel_m) - float(rigid_body.reference_z_m)
+    # surge and pitch of one (the coupled) solution; the 2-DOF pitch if only it is given
+    theta = complex(rigid_body.coupled_pitch_rad if rigid_body.coupled_pitch_rad is not None else rigid_body.pitch_rad)
     surge = m * w2 * complex(rigid_body.surge_m)
-    pitch = -m * w2 * h * complex(rigid_body.pitch_rad)
-    gravity = -m * g * complex(rigid_body.pitch_rad)
+    pitch = -m * w2 * h * theta
+    gravity = -m * g * theta
     force[1] = surge + pitch + gravity
     return AxialLoad(float(omega_rad_s), force, surge, pitch, gravity, h, "surge, pitch and gravity along the pitched deck")
 

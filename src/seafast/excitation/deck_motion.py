@@ -30,10 +30,11 @@ DeflectionFn = Callable[[NDArray[np.float64]], tuple[NDArray, NDArray]]
 class RigidBodyAmplitudes:
     """Complex amplitudes of heave [m] and pitch [rad] (bow up positive) at the wave frequency.
 
-    ``reference_x_m`` is the ship x [m] about which pitch rotates. ``surge_m`` [m] (forward +)
-    is the surge of the reference point, ``None`` when the hydrodynamic data hold no surge;
-    ``reference_z_m`` the reference point's height above the keel [m] (docs/axial.md). The
-    vertical excitation uses heave and pitch only.
+    ``reference_x_m`` is the ship x [m] about which pitch rotates. The vertical excitation uses
+    ``heave_m`` and ``pitch_rad`` only. ``surge_m`` [m] (forward +) and ``coupled_pitch_rad``
+    [rad] are the surge of the reference point and the pitch of the coupled surge-heave-pitch
+    solution (the axial load, docs/axial.md), ``None`` when the hydrodynamic data hold no surge;
+    ``reference_z_m`` the reference point's height above the keel [m].
     """
 
     heave_m: complex
@@ -41,6 +42,7 @@ class RigidBodyAmplitudes:
     reference_x_m: float
     surge_m: complex | None = None
     reference_z_m: float = float("nan")
+    coupled_pitch_rad: complex | None = None
 
 
 def assemble_excitation(

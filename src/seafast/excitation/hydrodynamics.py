@@ -35,11 +35,12 @@ Long-wave limit (checked in the tests): the ship follows the wave, the vertical 
 Surge (for the cargo's axial analysis, docs/axial.md): ``x`` displacement of the pitch reference
 point (the CoG: ``x = reference_x_m`` at ``reference_z_m`` above the keel), positive forward. When
 the hydrodynamic data hold surge (capytaine's ``Surge`` dof, WAMIT mode 1), surge, heave and pitch
-are solved as one coupled 3-DOF system (head seas couple surge and pitch through added mass,
-damping and excitation); the DOF order is then (surge, heave, pitch) in the 3-DOF helpers, and the
-2x2 heave-pitch fields of :class:`RigidBodyMotions` hold the heave-pitch blocks. Without surge in
-the data, ``surge_rao_m_per_m`` is ``None`` (never silently zero) and heave and pitch are the
-2-DOF solution. A point at height ``z`` above the keel moves forward by ``surge - theta (z - z_ref)``.
+are also solved as one coupled 3-DOF system (head seas couple surge and pitch through added mass,
+damping and excitation; DOF order (surge, heave, pitch) in the 3-DOF helpers): ``surge_rao_m_per_m``,
+``coupled_heave_rao_m_per_m``, ``coupled_pitch_rao_rad_per_m``. The heave-pitch fields stay the
+2-DOF solution of the heave-pitch coefficients (the source's model, unchanged bit for bit). Without
+surge in the data the surge and coupled fields are ``None`` (never silently zero). A point at height
+``z`` above the keel moves forward by ``surge - theta (z - z_ref)``.
 """
 
 from __future__ import annotations
@@ -50,7 +51,7 @@ import json
 import math
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal, Sequence
 
@@ -122,6 +123,8 @@ class RigidBodyMotions:
     surge_rao_m_per_m
         Complex surge (forward +) of the reference point per metre of wave amplitude [m/m], from
         the coupled surge-heave-pitch solution; ``None`` when the data hold no surge.
+    coupled_heave_rao_m_per_m, coupled_pitch_rao_rad_per_m
+        Heave [m/m] and pitch [rad/m] of the same coupled solution (``None`` without surge).
     reference_z_m
         Height above the keel of the reference point (pitch axis, surge point) [m]; NaN if unknown.
     """
@@ -140,6 +143,8 @@ class RigidBodyMotions:
     source: str = ""
     surge_rao_m_per_m: NDArray[np.complex128] | None = None
     reference_z_m: float = float("nan")
+    coupled_heave_rao_m_per_m: NDArray[np.complex128] | None = None
+    coupled_pitch_rao_rad_per_m: NDArray[np.complex128] | None = None
 
     def __post_init__(self) -> None:
         w = np.asarray(self.omega_rad_s, dtype=float)
@@ -167,12 +172,13 @@ class RigidBodyMotions:
             if k.shape != (n,):
                 raise ValueError("RigidBodyMotions: wavenumber_rad_per_m must have the shape of omega_rad_s")
             object.__setattr__(self, "wavenumber_rad_per_m", k)
-        if self.surge_rao_m_per_m is not None:
-            u = np.asarray(self.surge_rao_m_per_m, dtype=np.complex128)
-            if u.shape != (n,):
-                raise ValueError(f"RigidBodyMotions: surge_rao_m_per_m has shape {u.shape}, expected {(n,)}")
-            u.setflags(write=False)
-            object.__setattr__(self, "surge_rao_m_per_m", u)
+        for name in ("surge_rao_m_per_m", "coupled_heave_rao_m_per_m", "coupled_pitch_rao_rad_per_m"):
+            if getattr(self, name) is not None:
+                u = np.asarray(getattr(self, name), dtype=np.complex128)
+                if u.shape != (n,):
+                    raise ValueError(f"RigidBodyMotions: {name} has shape {u.shape}, expected {(n,)}")
+                u.setflags(write=False)
+                object.__setattr__(self, name, u)
         w.setflags(write=False)
 
     @property
@@ -191,6 +197,19 @@ class RigidBodyMotions:
         if self.surge_rao_m_per_m is None:
             raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
         return self._interp(omega, self.surge_rao_m_per_m)
+
+    def coupled_at(self, omega: ArrayLike):
+        """Surge [m/m], heave [m/m] and pitch [rad/m] of the coupled 3-DOF solution at ``omega``, interpolated.
+
+        Raises
+        ------
+        ValueError
+            If the data hold no surge, or ``omega`` is outside the range.
+        """
+        if self.coupled_heave_rao_m_per_m is None or self.coupled_pitch_rao_rad_per_m is None:
+            raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
+        return (self.surge_at(omega), self._interp(omega, self.coupled_heave_rao_m_per_m),
+                self._interp(omega, self.coupled_pitch_rao_rad_per_m))
 
     # ---------------------------------------------------------------- interpolation
     def _check_range(self, omega: NDArray[np.float64]) -> None:
@@ -273,6 +292,9 @@ class RigidBodyMotions:
         add_complex("pitch_rao", self.pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO theta=dz/dx, bow up")
         if self.surge_rao_m_per_m is not None:
             add_complex("surge_rao", self.surge_rao_m_per_m, ("omega",), "m/m", "surge RAO (forward +) at the reference point")
+        if self.coupled_heave_rao_m_per_m is not None and self.coupled_pitch_rao_rad_per_m is not None:
+            add_complex("coupled_heave_rao", self.coupled_heave_rao_m_per_m, ("omega",), "m/m", "heave RAO, coupled with surge")
+            add_complex("coupled_pitch_rao", self.coupled_pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO (bow up), coupled with surge")
         add_complex("excitation_force", self.excitation_force, ("omega", "dof"), "N/m (heave), N m/m (pitch)",
                     "wave excitation per metre of wave amplitude")
         ds["added_mass"] = xr.Variable(("omega", "dof", "radiating_dof"), self.added_mass,
@@ -731,12 +753,20 @@ def _motions_from_rigid_coefficients(
     waterline), and surge, heave and pitch are solved together (:func:`_coupled_surge_motions`).
     """
     if np.shape(a_eta)[-1] == 3:
-        return _coupled_surge_motions(
+        # heave and pitch by the 2-DOF solve of their block (unchanged), plus the coupled solution
+        two = _motions_from_rigid_coefficients(
+            omega, k, np.asarray(a_eta)[:, 1:, 1:], np.asarray(b_eta)[:, 1:, 1:], np.asarray(f_eta_plus)[:, 1:], hull,
+            coeff_reference_x_m=coeff_reference_x_m, wave_phase_origin_x_m=wave_phase_origin_x_m, mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+        )
+        x3 = _coupled_surge_motions(
             omega, k, a_eta, b_eta, f_eta_plus, hull, coeff_reference_x_m=coeff_reference_x_m,
             coeff_reference_z_wl_m=coeff_reference_z_wl_m, wave_phase_origin_x_m=wave_phase_origin_x_m,
             mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
         )
+        return replace(two, surge_rao_m_per_m=x3[:, 0], coupled_heave_rao_m_per_m=x3[:, 1], coupled_pitch_rao_rad_per_m=x3[:, 2])
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     x_g = float(centre_of_gravity_m[0])
     # eta5 -> theta (bow up)
@@ -775,13 +805,17 @@ def _shift_reference_3(dx_new_minus_old: float, dz_new_minus_old: float) -> NDAr
 
 def _coupled_surge_motions(
     omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, coeff_reference_z_wl_m, wave_phase_origin_x_m,
-    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2, source,
-) -> RigidBodyMotions:
+    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2,
+) -> NDArray[np.complex128]:
     """Surge, heave and pitch solved together about the CoG (x_G, z_G), from (surge, heave, eta5) data.
 
     Mass ``diag(m, m, m r^2)`` about the CoG; hydrostatic stiffness: the heave-pitch block of
-    :func:`hydrostatic_stiffness_matrix` (no restoring in surge). The returned 2x2 fields hold
-    the heave-pitch blocks about the CoG.
+    :func:`hydrostatic_stiffness_matrix` (no restoring in surge).
+
+    Returns
+    -------
+    ndarray (n_w, 3)
+        (surge [m/m], heave [m/m], pitch [rad/m]) per metre of wave amplitude, seafast conventions.
     """
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     x_g, z_g_keel = float(centre_of_gravity_m[0]), float(centre_of_gravity_m[2])
@@ -793,21 +827,13 @@ def _coupled_surge_motions(
     a = p.T @ a @ p
     b = p.T @ b @ p
     f = f @ p
-    m2 = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c2 = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                      water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
     m3 = np.zeros((3, 3))
     c3 = np.zeros((3, 3))
     m3[0, 0] = float(mass_kg)
-    m3[1:, 1:] = m2
-    c3[1:, 1:] = c2
-    x = solve_rigid_body(omega, a, b, f, m3, c3)
-    return RigidBodyMotions(
-        omega_rad_s=omega, heave_rao_m_per_m=x[:, 1], pitch_rao_rad_per_m=x[:, 2], added_mass=a[:, 1:, 1:],
-        radiation_damping=b[:, 1:, 1:], excitation_force=f[:, 1:], reference_x_m=x_g, mass_matrix=m2,
-        hydrostatic_stiffness=c2, wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source=source,
-        surge_rao_m_per_m=x[:, 0], reference_z_m=z_g_keel,
-    )
+    m3[1:, 1:] = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
+    c3[1:, 1:] = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+                                              water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
+    return solve_rigid_body(omega, a, b, f, m3, c3)
 
 
 # ---------------------------------------------------------------------------------- WAMIT

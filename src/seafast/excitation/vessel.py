@@ -373,11 +373,18 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
     rigid = None
     if motions is not None and amplitude > 0:
         heave, pitch = motions.rao_at(omega)
-        surge = complex(motions.surge_at(omega)) * amplitude if motions.has_surge else None
+        surge = coupled_pitch = None
+        if motions.has_surge:
+            surge_c, heave_c, pitch_c = (complex(q) * amplitude for q in motions.coupled_at(omega))
+            surge, coupled_pitch = surge_c, pitch_c
+        vertical = "heave/pitch (2-DOF)"
+        if v.motion_coupling == "surge_heave_pitch" and motions.has_surge:
+            heave, pitch = heave_c / amplitude, pitch_c / amplitude
+            vertical = "heave/pitch coupled with surge"
         rigid = RigidBodyAmplitudes(complex(heave) * amplitude, complex(pitch) * amplitude, float(motions.reference_x_m),
-                                    surge_m=surge, reference_z_m=float(motions.reference_z_m))
-        dofs = "surge/heave/pitch (coupled)" if motions.has_surge else "heave/pitch (no surge in the data)"
-        parts.append(f"{dofs} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}")
+                                    surge_m=surge, reference_z_m=float(motions.reference_z_m), coupled_pitch_rad=coupled_pitch)
+        axial = "; surge (coupled) for the axial analysis" if motions.has_surge else "; no surge in the data"
+        parts.append(f"{vertical} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}{axial}")
     elif v.motions == "none":
         parts.append("no rigid-body motion")
     girder_used = None if v.deck_deflection_table is not None else girder
