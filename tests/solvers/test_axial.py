@@ -168,3 +168,27 @@ def test_failure_is_reported_not_raised():
     res = solve_axial_hbm(r, AxialLoad(1.5, np.array([0.0, P0], dtype=complex)), np.full((64, 1), 1e6),
                           AxialHBMOptions(harmonics=25, time_samples=512, max_iterations=1))
     assert not res.converged and "did not converge" in res.message and res.residual_norm > 1e-9
+
+
+def test_walking_cargo():
+    """Friction stronger on the forward push than on the aft one: the cargo walks aft. Held by
+    lashings it settles where their force balances the walk (the reference extrapolates the
+    geometric walk to its limit: 8 periods); with nothing else holding it, it walks for ever and
+    the reference says how far per period."""
+    w = 0.6
+    t = np.arange(128) / 128
+    normal = (1e6 * (1 + 0.5 * np.cos(2 * np.pi * t)))[:, None]  # most friction when the load pushes forward
+    load = AxialLoad(w, np.array([0.0, 0.4 * P0], dtype=complex))
+    held = AxialRestraint(M, np.array([0.3]), np.array([KT]), lashing_axial_stiffness_N_per_m=2e5)
+    td = solve_axial_time_domain(held, load, normal, time_samples=512)
+    assert td.converged and td.iterations < 30
+    assert np.mean(td.displacement_m) < -0.1  # settled aft
+    assert np.mean(td.lashing_force_N) > 0  # the lashings pull it forward
+    # where it settled, the period's mean friction balances the mean lashing force (the 0th harmonic)
+    # (to the sampling of the switching friction: 1 % of the lashing force)
+    assert abs(np.mean(td.friction_force_N + td.lashing_force_N)) < 0.01 * np.mean(td.lashing_force_N)
+    free = AxialRestraint(M, np.array([0.3]), np.array([KT]))
+    walk = solve_axial_time_domain(free, load, normal, time_samples=512, max_periods=30)
+    assert not walk.converged and "walks" in walk.message
+    drift = float(walk.message.split("moves ")[1].split(" m per period")[0])
+    assert drift < -0.01

@@ -8,8 +8,12 @@ step ends and the scheme keeps its 4th order); the event ``u' = 0`` is located i
 on the cubic Hermite interpolant of the velocity, and there the cargo sticks if
 ``|F - r(u)| <= C`` and reverses otherwise. A stuck cargo breaks loose at the first instant
 ``|F(t) - r(u)| > C(t)``, located by Brent's method. Periods are integrated from the as-placed
-state (``u = u' = 0``, stuck) until the state at the period's start repeats. ``C(t)`` is the
-linear interpolation of the vertical solution's samples, as in the harmonic balance.
+state (``u = u' = 0``, stuck) until the state at the period's start repeats. While the cargo
+walks (its start position converging geometrically as the lashings take the walk up), the start
+position is extrapolated to its limit (Aitken's delta-squared) every three periods: a shorter
+path, the same periodic state. A cargo that nothing restrains walks for ever: the message gives
+its drift per period. ``C(t)`` is the linear interpolation of the vertical solution's samples, as
+in the harmonic balance.
 
 Independent of the harmonic balance (no harmonics, no AFT, no Jenkins spring): the reference the
 HBM is checked against, and the limit the Jenkins element converges to as its stiffness grows.
@@ -130,6 +134,17 @@ def _advance(sys_: _System, t: float, h: float, state: list) -> float:
     return te if s > 0 else t + min(h, 1e-9 * sys_.T)
 
 
+def _aitken(x: list[float]) -> float | None:
+    """Aitken's limit of three terms of a geometrically converging sequence (None if it is not one)."""
+    d1, d2 = x[1] - x[0], x[2] - x[1]
+    if d1 == 0.0 or d2 == 0.0 or d1 * d2 < 0.0:
+        return None
+    ratio = d2 / d1
+    if not 0.0 < ratio < 1.0 - 1e-9:
+        return None
+    return x[2] + d2 * ratio / (1.0 - ratio)
+
+
 def solve_axial_time_domain(
     restraint: AxialRestraint,
     load: AxialLoad,
@@ -171,8 +186,18 @@ def solve_axial_time_domain(
     converged, change, periods = False, math.inf, 0
     rec = np.zeros((time_samples, 3))
     slip = 0.0
+    history: list[float] = []  # start positions of periods that start stuck (for the extrapolation)
     for periods in range(1, max_periods + 1):
         t0 = (periods - 1) * s.T
+        if state[0] == 0:
+            history.append(state[1])
+            if len(history) >= 3:
+                jump = _aitken(history[-3:])
+                if jump is not None and abs(s.demand(t0, jump)) <= s.capacity(t0):
+                    state[1] = jump  # the walk converges geometrically: jump to its limit
+                    history.clear()
+        else:
+            history.clear()
         start = tuple(state)
         slip = 0.0
         for j in range(steps):
@@ -198,6 +223,8 @@ def solve_axial_time_domain(
     msg = (f"axial time domain (rigid Coulomb, event-driven RK4, {steps} steps per period): "
            f"{'periodic' if converged else 'NOT periodic'} after {periods} periods, last change {change:.2e} "
            f"of the displacement scale {u_scale:.3g} m")
+    if not converged:
+        msg += f"; the cargo moves {state[1] - start[1]:+.4g} m per period (walks)" if abs(state[2] - start[2]) <= tolerance * v_scale else ""
     return AxialResponse(
         "time_domain", s.w, u, v, friction, cap, -lashing, -stop, load_t, sign != 0, slip, converged, float(change),
         periods, msg, None,
