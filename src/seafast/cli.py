@@ -170,6 +170,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
     rows = result.summary
     if not args.quiet:
         print(format_summary_table(rows, title=f"{case.name}: maxima over the cargo, the saddles and one wave period"))
+        if result.axial is not None:
+            from seafast.output.tables import format_axial_table
+
+            print(format_axial_table(rows))
         print(f"excitation: {result.excitation.source}")
         for status in result.coupling.values():
             print(status.message)

@@ -31,7 +31,7 @@ from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
-from seafast.results.dataset import LOAD_CASES, MODELS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
+from seafast.results.dataset import LOAD_CASES, MODELS, SUMMARY_COLUMNS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.solvers.linear import solve_linear
 
@@ -150,6 +150,7 @@ class CaseResult:
     coupling: Mapping[tuple[str, str], CouplingStatus] = field(default_factory=dict)
     deck_couplings: Mapping[tuple[str, str], DeckCoupling] = field(default_factory=dict)
     compliance: HullCompliance | None = None
+    axial: Any = None  # seafast.results.axial.AxialCaseArrays when the axial analysis ran
 
     @functools.cached_property
     def coupled_hull(self) -> CoupledHull | None:
@@ -166,13 +167,18 @@ class CaseResult:
     def summary(self) -> list[dict[str, Any]]:
         """Summary rows (summary.csv's columns plus contact_preserved and diagnostics; a two-way
         run adds each row's coupling_converged, coupling_residual_m, coupling_tolerance_m and
-        coupling_iterations)."""
+        coupling_iterations; the axial columns when the axial analysis ran)."""
         rows = summary_rows_from_arrays(self.arrays)
         for row in rows:
             status = self.coupling.get((row["load_case"], row["model"]))
             if status is not None:
                 row.update(coupling_summary_fields(status))
-        return rows
+        return rows if self.axial is None else self.axial.extend_summary(rows)
+
+    @property
+    def summary_columns(self) -> tuple[str, ...]:
+        """The columns of ``summary.csv``: the source's, then the axial ones when the axial analysis ran."""
+        return SUMMARY_COLUMNS + (self.axial.summary_column_names if self.axial is not None else ())
 
     @functools.cached_property
     def dataset(self) -> xr.Dataset:
@@ -184,7 +190,7 @@ class CaseResult:
             ds.attrs.update(vds.attrs)
         if self.coupling:
             ds = xr.merge([ds, coupling_dataset(self.coupling, self.coupled_hull)], combine_attrs="override")
-        return ds
+        return ds if self.axial is None else self.axial.merged_into(ds)
 
 
 def _excitation(case: Case, model: StructuralModel) -> tuple[HarmonicExcitation, Any]:
@@ -276,7 +282,13 @@ def run_case(
                 converged[i, j] &= statuses[(lc, mdl)].converged
         arrays = replace(arrays, converged=converged)
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, couplings, compliance)
+    axial = None
+    if case.seafastening.friction_coefficient is not None:  # the axial analysis (docs/axial.md), one way
+        from seafast.results.axial import run_axial_analysis
+
+        say("axial sliding (friction, lashings, stoppers)")
+        axial = run_axial_analysis(case, model, vessel, series)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, couplings, compliance, axial=axial)
 
 
 def _compliance(case: Case, model: StructuralModel, vessel: Any) -> HullCompliance:

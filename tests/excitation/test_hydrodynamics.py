@@ -98,6 +98,50 @@ def test_long_wave_limit_conventions(coarse, hull):
     assert coarse.wave_phase_reference_x_m == pytest.approx(x_mid)
 
 
+def test_surge_long_wave_limit_and_coupling(coarse, hull):
+    """Surge: in long waves the ship follows the orbital motion (|X| -> 1 m/m, phase +90 deg for a
+    wave travelling towards -x); the surge-pitch coupling changes pitch by a few per cent at most."""
+    assert coarse.has_surge and coarse.reference_z_m == pytest.approx(8.0)
+    u = coarse.surge_at(0.15)
+    assert abs(u) == pytest.approx(1.0, abs=0.03)
+    assert np.degrees(np.angle(u)) == pytest.approx(90.0, abs=5.0)
+    # heave and pitch stay the 2-DOF solution of their coefficients (the source's model) ...
+    f2 = coarse.excitation_force
+    z2 = -(OMEGA[:, None, None] ** 2) * (coarse.mass_matrix + coarse.added_mass) + 1j * OMEGA[:, None, None] * coarse.radiation_damping + coarse.hydrostatic_stiffness
+    x2 = np.linalg.solve(z2, f2[..., None])[..., 0]
+    np.testing.assert_allclose(x2[:, 0], coarse.heave_rao_m_per_m, rtol=1e-12)
+    np.testing.assert_allclose(x2[:, 1], coarse.pitch_rao_rad_per_m, rtol=1e-12)
+    # ... and the coupled solution differs from it through the surge coupling only, by a few per cent
+    assert np.max(np.abs(coarse.coupled_heave_rao_m_per_m - coarse.heave_rao_m_per_m)) < 0.02
+    rel = np.abs(np.abs(coarse.coupled_pitch_rao_rad_per_m) / np.abs(coarse.pitch_rao_rad_per_m) - 1.0)
+    assert np.max(rel[OMEGA <= 0.8]) < 0.06
+    assert np.max(rel[OMEGA <= 0.8]) > 1e-4  # the coupling is real, not dropped
+    assert abs(coarse.coupled_at(0.15)[2]) == pytest.approx(0.15**2 / G, rel=0.05)  # coupled pitch -> wave slope too
+    with pytest.raises(ValueError, match="no surge"):
+        RigidBodyMotions(OMEGA, coarse.heave_rao_m_per_m, coarse.pitch_rao_rad_per_m, coarse.added_mass,
+                         coarse.radiation_damping, coarse.excitation_force, coarse.reference_x_m).surge_at(0.6)
+
+
+def test_capytaine_file_without_surge_has_no_surge(hull, mass_props, cache_dir, coarse, tmp_path):
+    """Imported heave/pitch-only data: no surge (None, never zero), heave and pitch by the 2-DOF solve."""
+    import capytaine as cpt
+
+    files = sorted(cache_dir.glob("motions_*.nc"))
+    ds = hd._read_capytaine_netcdf(files[0])
+    two = ds.sel(influenced_dof=["Heave", "Pitch"], radiating_dof=["Heave", "Pitch"])
+    path = tmp_path / "heave_pitch.nc"
+    cpt.export_dataset(path, two)
+    m = load_motions(path, hull, **mass_props)
+    assert not m.has_surge and m.surge_rao_m_per_m is None
+    assert "surge_rao_real" not in m.to_dataset()
+    # heave and pitch are the same 2-DOF solution, bit for bit (surge problems do not change them)
+    np.testing.assert_array_equal(m.heave_rao_m_per_m, coarse.heave_rao_m_per_m)
+    np.testing.assert_array_equal(m.pitch_rao_rad_per_m, coarse.pitch_rao_rad_per_m)
+    assert m.coupled_pitch_rao_rad_per_m is None
+    with pytest.raises(ValueError, match="no surge"):
+        m.coupled_at(0.6)
+
+
 def test_strip_theory_agrees_at_low_frequency(coarse, hull, mass_props):
     s = strip_theory_estimate(hull, **mass_props, omega_rad_s=OMEGA)
     low = OMEGA <= 0.5
@@ -146,6 +190,7 @@ def test_load_capytaine_netcdf_and_reference_shift(hull, mass_props, cache_dir, 
     assert shifted.reference_x_m == fresh.reference_x_m
     np.testing.assert_allclose(shifted.heave_rao_m_per_m, fresh.heave_rao_m_per_m, rtol=1e-3, atol=1e-5)
     np.testing.assert_allclose(shifted.pitch_rao_rad_per_m, fresh.pitch_rao_rad_per_m, rtol=1e-3, atol=1e-7)
+    np.testing.assert_allclose(shifted.surge_rao_m_per_m, fresh.surge_rao_m_per_m, rtol=1e-3, atol=1e-5)
 
 
 def _write_wamit(stem, omega, a, b, x, ulen, rho, g, heading=180.0):
@@ -216,6 +261,9 @@ def test_wamit_import_matches_capytaine(hull, mass_props, tmp_path):
     np.testing.assert_allclose(wam.omega_rad_s, ref.omega_rad_s, rtol=1e-6)
     np.testing.assert_allclose(wam.heave_rao_m_per_m, ref.heave_rao_m_per_m, rtol=1e-3, atol=1e-5)
     np.testing.assert_allclose(wam.pitch_rao_rad_per_m, ref.pitch_rao_rad_per_m, rtol=1e-3, atol=1e-7)
+    # mode 1 (surge) is read and solved with heave and pitch, as the capytaine file's Surge dof
+    assert ref.has_surge and wam.has_surge
+    np.testing.assert_allclose(wam.surge_rao_m_per_m, ref.surge_rao_m_per_m, rtol=1e-3, atol=1e-5)
 
 
 # ------------------------------------------------------------------------------ container

@@ -22,6 +22,7 @@ __all__ = [
     "CargoSectionConfig",
     "SeaFasteningConfig",
     "LashingConfig",
+    "StopperConfig",
     "VesselConfig",
     "WaveConfig",
     "SolverConfig",
@@ -126,6 +127,28 @@ class LashingConfig(_Strict):
         37.5e3, description="Wire axial stiffness k_l [N/m]; k_z and k_theta scale with it from 6.5 kN/m and 1.46 MN m/rad"
     )
     pretension_N: NonNegative = Field(210e3, description="Total pretension T_l [N], shared by the lashed saddles, acting downward")
+    angle_deg: Annotated[float, NotBool, Field(gt=0, le=90, allow_inf_nan=False)] = Field(
+        45.0,
+        description="Angle of the lashing wires from the deck [deg], fore/aft pairs in the ship's vertical-longitudinal plane: "
+        "axial stiffness k_l cos^2(angle) per lashed saddle, axial pretension components cancel (axial analysis only, docs/axial.md)",
+    )
+    axial_stiffness_N_per_m: NonNegative | None = Field(
+        None, description="Total axial stiffness of the lashings [N/m], given directly; replaces the one from angle_deg (axial analysis only)"
+    )
+
+
+class StopperConfig(_Strict):
+    """Optional end stoppers fore and aft of the cargo: unilateral axial springs with a gap (axial analysis)."""
+
+    gap_m: NonNegative | None = Field(None, description="Axial gap between the cargo and each stopper, fore and aft [m]; null = no stoppers")
+    stiffness_N_per_m: Positive | None = Field(None, description="Axial stiffness of each stopper [N/m] (needed with gap_m)")
+
+    @model_validator(mode="after")
+    def _check(self) -> "StopperConfig":
+        if (self.gap_m is None) != (self.stiffness_N_per_m is None):
+            given, missing = ("gap_m", "stiffness_N_per_m") if self.stiffness_N_per_m is None else ("stiffness_N_per_m", "gap_m")
+            raise ValueError(f"{given} is set but {missing} is not; give both (stoppers) or neither (no stoppers)")
+        return self
 
 
 class SeaFasteningConfig(_Strict):
@@ -144,6 +167,34 @@ class SeaFasteningConfig(_Strict):
         None, description="Indices (0-based, aft to fore) of lashed saddles; default the two outermost"
     )
     lashing: LashingConfig = LashingConfig()
+    friction_coefficient: NonNegative | tuple[NonNegative, ...] | None = Field(
+        None,
+        description="Coulomb friction coefficient between cargo and saddles [-]: one value for all, or one per saddle; "
+        "null = no axial analysis (the source's vertical model alone). Setting it runs the axial sliding analysis (docs/axial.md)",
+    )
+    tangential_stiffness_N_per_m: Positive | None = Field(
+        None,
+        description="Tangential (stick) stiffness of each saddle's friction contact, the Jenkins element's spring [N/m]; "
+        "null = 1e12 N/m, a rigid contact (the results are then independent of it, docs/axial.md; axial analysis only)",
+    )
+    saddle_height_m: NonNegative = Field(
+        1.0, description="Height of the cargo's underside (the saddles' contact line) above the deck [m] (axial analysis only)"
+    )
+    stopper: StopperConfig = StopperConfig()
+
+    @field_validator("friction_coefficient", mode="before")
+    @classmethod
+    def _friction(cls, v: object) -> object:
+        # one clear message instead of pydantic's two union-branch errors
+        if v is None:
+            return v
+        values = list(v) if isinstance(v, (list, tuple)) else [v]
+        if not values:
+            raise ValueError("must list at least one value, or be null (no axial analysis)")
+        for x in values:
+            if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or x < 0:
+                raise ValueError(f"{x!r} is not allowed; a friction coefficient is a finite number >= 0 (one value, or one per saddle)")
+        return tuple(float(x) for x in values) if isinstance(v, (list, tuple)) else float(values[0])
 
     @field_validator("saddle_positions_m")
     @classmethod
@@ -183,6 +234,15 @@ class VesselConfig(_Strict):
         "bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output"
     )
     bem_panel_size_m: Positive = Field(3.0, description="Target panel size of the BEM mesh [m]")
+    motion_coupling: Literal["heave_pitch", "surge_heave_pitch"] = Field(
+        "heave_pitch",
+        description="Rigid-body motions the vertical analysis uses: 'heave_pitch' (the 2-DOF solution, the source's model) or "
+        "'surge_heave_pitch' (coupled with surge, when the hydrodynamic data hold it; docs/axial.md). The axial analysis "
+        "always uses the coupled surge and pitch",
+    )
+    deck_height_m: Positive = Field(
+        12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
+    )
     coupling: Literal["one_way", "two_way"] = Field(
         "one_way",
         description="'one_way' (the source's: the hull carries the cargo as a spread weight, the cargo follows the deck) or "
@@ -245,6 +305,9 @@ class SolverConfig(_Strict):
         "newton", description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
     )
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
+    axial_harmonics: Annotated[Count, Field(ge=1, le=100)] = Field(
+        25, description="Number of harmonics of the axial (friction) harmonic balance (axial analysis only)"
+    )
     truncation_tolerance: Annotated[float, NotBool, Field(gt=0, lt=1)] = Field(
         1e-3, description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "
         "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few"
@@ -381,6 +444,12 @@ class Case(_Strict):
                 f"seafastening.saddle_stiffness_N_per_m has {len(sf.saddle_stiffness_N_per_m)} values for "
                 f"{len(positions)} saddles; give one value, or one per saddle"
             )
+        mu = sf.friction_coefficient
+        if isinstance(mu, tuple) and len(mu) not in (1, len(positions)):
+            raise ValueError(
+                f"seafastening.friction_coefficient has {len(mu)} values for {len(positions)} saddles; "
+                "give one value, or one per saddle"
+            )
         if sf.lashed_saddles is not None:
             bad = [i for i in sf.lashed_saddles if i >= len(positions)]
             if bad:
@@ -420,6 +489,16 @@ class Case(_Strict):
         if isinstance(k, tuple):
             return k * n if len(k) == 1 else k
         return (float(k),) * n
+
+    def friction_coefficients(self) -> tuple[float, ...] | None:
+        """Friction coefficient of each saddle [-], or None when the axial analysis is off."""
+        mu = self.seafastening.friction_coefficient
+        if mu is None:
+            return None
+        n = len(self.saddle_positions_m())
+        if isinstance(mu, tuple):
+            return tuple(float(m) for m in mu) * n if len(mu) == 1 else tuple(float(m) for m in mu)
+        return (float(mu),) * n
 
     def lashed_saddle_indices(self) -> tuple[int, ...]:
         """Indices of the lashed saddles (default: the two outermost)."""

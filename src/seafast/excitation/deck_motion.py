@@ -30,12 +30,19 @@ DeflectionFn = Callable[[NDArray[np.float64]], tuple[NDArray, NDArray]]
 class RigidBodyAmplitudes:
     """Complex amplitudes of heave [m] and pitch [rad] (bow up positive) at the wave frequency.
 
-    ``reference_x_m`` is the ship x [m] about which pitch rotates.
+    ``reference_x_m`` is the ship x [m] about which pitch rotates. The vertical excitation uses
+    ``heave_m`` and ``pitch_rad`` only. ``surge_m`` [m] (forward +) and ``coupled_pitch_rad``
+    [rad] are the surge of the reference point and the pitch of the coupled surge-heave-pitch
+    solution (the axial load, docs/axial.md), ``None`` when the hydrodynamic data hold no surge;
+    ``reference_z_m`` the reference point's height above the keel [m].
     """
 
     heave_m: complex
     pitch_rad: complex
     reference_x_m: float
+    surge_m: complex | None = None
+    reference_z_m: float = float("nan")
+    coupled_pitch_rad: complex | None = None
 
 
 def assemble_excitation(

@@ -31,6 +31,16 @@ which with ``x`` forward is bow *down*, so ``theta = -eta_5``. Capytaine uses
 Long-wave limit (checked in the tests): the ship follows the wave, the vertical displacement at
 ``x_mid`` tends to ``1`` m/m with zero phase and ``theta/zeta_a`` tends to the wave slope ``i k``
 (magnitude ``k`` rad/m, phase +90 deg).
+
+Surge (for the cargo's axial analysis, docs/axial.md): ``x`` displacement of the pitch reference
+point (the CoG: ``x = reference_x_m`` at ``reference_z_m`` above the keel), positive forward. When
+the hydrodynamic data hold surge (capytaine's ``Surge`` dof, WAMIT mode 1), surge, heave and pitch
+are also solved as one coupled 3-DOF system (head seas couple surge and pitch through added mass,
+damping and excitation; DOF order (surge, heave, pitch) in the 3-DOF helpers): ``surge_rao_m_per_m``,
+``coupled_heave_rao_m_per_m``, ``coupled_pitch_rao_rad_per_m``. The heave-pitch fields stay the
+2-DOF solution of the heave-pitch coefficients (the source's model, unchanged bit for bit). Without
+surge in the data the surge and coupled fields are ``None`` (never silently zero). A point at height
+``z`` above the keel moves forward by ``surge - theta (z - z_ref)``.
 """
 
 from __future__ import annotations
@@ -41,7 +51,7 @@ import json
 import math
 import os
 import tempfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Literal, Sequence
 
@@ -62,6 +72,8 @@ __all__ = [
     "hydrostatic_stiffness_matrix",
     "mass_matrix",
     "solve_heave_pitch",
+    "solve_rigid_body",
+    "BEM_DOFS",
     "strip_theory_estimate",
     "wavenumber_rad_per_m",
     "default_cache_dir",
@@ -72,6 +84,9 @@ __all__ = [
 MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
 
 _T = np.diag([1.0, -1.0])  # capytaine/WAMIT (heave, eta5) -> seafast (heave, theta)
+_T3 = np.diag([1.0, 1.0, -1.0])  # capytaine/WAMIT (surge, heave, eta5) -> seafast (surge, heave, theta)
+#: Radiating DOFs of the BEM run (surge added for the axial analysis; part of the cache key).
+BEM_DOFS: tuple[str, ...] = ("Surge", "Heave", "Pitch")
 
 
 # ---------------------------------------------------------------------------------- results
@@ -105,6 +120,13 @@ class RigidBodyMotions:
         Wave number of each frequency [rad/m] (finite depth if applicable).
     source
         Free text describing where the coefficients come from.
+    surge_rao_m_per_m
+        Complex surge (forward +) of the reference point per metre of wave amplitude [m/m], from
+        the coupled surge-heave-pitch solution; ``None`` when the data hold no surge.
+    coupled_heave_rao_m_per_m, coupled_pitch_rao_rad_per_m
+        Heave [m/m] and pitch [rad/m] of the same coupled solution (``None`` without surge).
+    reference_z_m
+        Height above the keel of the reference point (pitch axis, surge point) [m]; NaN if unknown.
     """
 
     omega_rad_s: NDArray[np.float64]
@@ -119,6 +141,10 @@ class RigidBodyMotions:
     wave_phase_reference_x_m: float = float("nan")
     wavenumber_rad_per_m: NDArray[np.float64] | None = None
     source: str = ""
+    surge_rao_m_per_m: NDArray[np.complex128] | None = None
+    reference_z_m: float = float("nan")
+    coupled_heave_rao_m_per_m: NDArray[np.complex128] | None = None
+    coupled_pitch_rao_rad_per_m: NDArray[np.complex128] | None = None
 
     def __post_init__(self) -> None:
         w = np.asarray(self.omega_rad_s, dtype=float)
@@ -146,7 +172,44 @@ class RigidBodyMotions:
             if k.shape != (n,):
                 raise ValueError("RigidBodyMotions: wavenumber_rad_per_m must have the shape of omega_rad_s")
             object.__setattr__(self, "wavenumber_rad_per_m", k)
+        for name in ("surge_rao_m_per_m", "coupled_heave_rao_m_per_m", "coupled_pitch_rao_rad_per_m"):
+            if getattr(self, name) is not None:
+                u = np.asarray(getattr(self, name), dtype=np.complex128)
+                if u.shape != (n,):
+                    raise ValueError(f"RigidBodyMotions: {name} has shape {u.shape}, expected {(n,)}")
+                u.setflags(write=False)
+                object.__setattr__(self, name, u)
         w.setflags(write=False)
+
+    @property
+    def has_surge(self) -> bool:
+        """Whether the hydrodynamic data held surge (``surge_rao_m_per_m`` is not ``None``)."""
+        return self.surge_rao_m_per_m is not None
+
+    def surge_at(self, omega: ArrayLike):
+        """Surge RAO at ``omega`` [rad/s] (forward +, of the reference point) [m/m], interpolated.
+
+        Raises
+        ------
+        ValueError
+            If the data hold no surge (message says so), or ``omega`` is outside the range.
+        """
+        if self.surge_rao_m_per_m is None:
+            raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
+        return self._interp(omega, self.surge_rao_m_per_m)
+
+    def coupled_at(self, omega: ArrayLike):
+        """Surge [m/m], heave [m/m] and pitch [rad/m] of the coupled 3-DOF solution at ``omega``, interpolated.
+
+        Raises
+        ------
+        ValueError
+            If the data hold no surge, or ``omega`` is outside the range.
+        """
+        if self.coupled_heave_rao_m_per_m is None or self.coupled_pitch_rao_rad_per_m is None:
+            raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
+        return (self.surge_at(omega), self._interp(omega, self.coupled_heave_rao_m_per_m),
+                self._interp(omega, self.coupled_pitch_rao_rad_per_m))
 
     # ---------------------------------------------------------------- interpolation
     def _check_range(self, omega: NDArray[np.float64]) -> None:
@@ -227,6 +290,11 @@ class RigidBodyMotions:
 
         add_complex("heave_rao", self.heave_rao_m_per_m, ("omega",), "m/m", "heave RAO at reference_x_m")
         add_complex("pitch_rao", self.pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO theta=dz/dx, bow up")
+        if self.surge_rao_m_per_m is not None:
+            add_complex("surge_rao", self.surge_rao_m_per_m, ("omega",), "m/m", "surge RAO (forward +) at the reference point")
+        if self.coupled_heave_rao_m_per_m is not None and self.coupled_pitch_rao_rad_per_m is not None:
+            add_complex("coupled_heave_rao", self.coupled_heave_rao_m_per_m, ("omega",), "m/m", "heave RAO, coupled with surge")
+            add_complex("coupled_pitch_rao", self.coupled_pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO (bow up), coupled with surge")
         add_complex("excitation_force", self.excitation_force, ("omega", "dof"), "N/m (heave), N m/m (pitch)",
                     "wave excitation per metre of wave amplitude")
         ds["added_mass"] = xr.Variable(("omega", "dof", "radiating_dof"), self.added_mass,
@@ -247,6 +315,8 @@ class RigidBodyMotions:
             wave_convention="zeta = zeta_a cos(omega t + k (x - wave_phase_reference_x_m)), head seas towards -x",
             pitch_convention="theta = dz/dx, bow up positive, about x = reference_x_m",
             source=self.source,
+            reference_z_m=float(self.reference_z_m),
+            has_surge=int(self.has_surge),
         )
         return ds
 
@@ -348,6 +418,27 @@ def solve_heave_pitch(
     return x[:, 0], x[:, 1]
 
 
+def solve_rigid_body(
+    omega_rad_s: ArrayLike,
+    added_mass: ArrayLike,
+    radiation_damping: ArrayLike,
+    excitation_force: ArrayLike,
+    mass_matrix_: ArrayLike,
+    hydrostatic_stiffness: ArrayLike,
+) -> NDArray[np.complex128]:
+    """Solve ``[-omega^2 (M + A) + i omega B + C] X = F`` per frequency, any number of DOFs.
+
+    Returns
+    -------
+    ndarray (n_w, n_dof)
+        Complex amplitudes per metre of wave amplitude, in the DOF order of the inputs.
+    """
+    w = np.asarray(omega_rad_s, dtype=float)
+    z = (-(w[:, None, None] ** 2) * (np.asarray(mass_matrix_, dtype=float)[None] + np.asarray(added_mass, dtype=float))
+         + 1j * w[:, None, None] * np.asarray(radiation_damping, dtype=float) + np.asarray(hydrostatic_stiffness, dtype=float)[None])
+    return np.linalg.solve(z, np.asarray(excitation_force, dtype=complex)[..., None])[..., 0]
+
+
 def _shift_reference(dx_ref_minus_new: float) -> NDArray[np.float64]:
     """Matrix ``P`` with ``q_old = P q_new`` when pitch moves from ``x_old`` to ``x_new``.
 
@@ -391,7 +482,7 @@ def _run_bem(
     g: float,
     depth: float,
 ) -> xr.Dataset:
-    """Radiation (heave, pitch) and head-sea diffraction problems; returns capytaine's dataset.
+    """Radiation (:data:`BEM_DOFS`: surge, heave, pitch) and head-sea diffraction; returns capytaine's dataset.
 
     Frame: origin at midship on the waterline (see :mod:`seafast.vessel.hull_mesh`).
     """
@@ -402,7 +493,7 @@ def _run_bem(
     body = cpt.FloatingBody(
         mesh=mesh,
         lid_mesh=lid,
-        dofs=cpt.rigid_body_dofs(only=["Heave", "Pitch"], rotation_center=rotation_center_wl),
+        dofs=cpt.rigid_body_dofs(only=list(BEM_DOFS), rotation_center=rotation_center_wl),
         center_of_mass=rotation_center_wl,
         name="seafast_vessel",
     )
@@ -410,7 +501,7 @@ def _run_bem(
     problems = []
     for w in omega:
         kw = dict(body=body, omega=float(w), rho=rho, g=g, water_depth=depth)
-        problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in ("Heave", "Pitch")]
+        problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in BEM_DOFS]
         problems.append(cpt.DiffractionProblem(wave_direction=np.pi, **kw))
     from threadpoolctl import threadpool_limits
 
@@ -510,6 +601,7 @@ def compute_motions(
         "depth": repr(depth),
         "capytaine": cpt.__version__,
         "mesh": MESH_ALGORITHM_VERSION,
+        "dofs": list(BEM_DOFS),
     }
     key = _cache_key(payload)
     cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
@@ -555,6 +647,10 @@ def _read_capytaine_netcdf_cached(path: str, mtime_ns: int, size: int) -> xr.Dat
     with xr.open_dataset(path) as raw:
         ds = merge_complex_values(raw.load())
     return ds
+
+
+def _has_dof(values, name: str) -> bool:
+    return name.lower() in [str(v).lower() for v in values]
 
 
 def _dof_index(values, name: str) -> int:
@@ -606,16 +702,20 @@ def _motions_from_capytaine(
     rad_dofs = ds["radiating_dof"].values
     ih, ip = _dof_index(inf_dofs, "Heave"), _dof_index(inf_dofs, "Pitch")
     jh, jp = _dof_index(rad_dofs, "Heave"), _dof_index(rad_dofs, "Pitch")
+    rows, cols = [ih, ip], [jh, jp]
+    has_surge = _has_dof(inf_dofs, "Surge") and _has_dof(rad_dofs, "Surge")
+    if has_surge:  # (surge, heave, eta5)
+        rows, cols = [_dof_index(inf_dofs, "Surge"), *rows], [_dof_index(rad_dofs, "Surge"), *cols]
 
     def mat(v: str) -> NDArray[np.float64]:
         da = ds[v]
         for d in [d for d in da.dims if d not in ("omega", "influenced_dof", "radiating_dof")]:
             da = da.isel({d: 0})
         da = da.transpose("omega", "influenced_dof", "radiating_dof").values
-        return np.real(da[:, [ih, ip]][:, :, [jh, jp]])
+        return np.real(da[:, rows][:, :, cols])
 
     a_c, b_c = mat("added_mass"), mat("radiation_damping")
-    f_c = exc.transpose("omega", "influenced_dof").values[:, [ih, ip]]
+    f_c = exc.transpose("omega", "influenced_dof").values[:, rows]
     if "wavenumber" in ds.coords or "wavenumber" in ds:
         k = np.broadcast_to(np.asarray(ds["wavenumber"].values, dtype=float), omega.shape).copy()
     else:
@@ -623,14 +723,16 @@ def _motions_from_capytaine(
         k = wavenumber_rad_per_m(omega, depth, gravity_m_per_s2)
 
     # rotation centre of the dataset (capytaine frame: x relative to origin_x_m)
+    z_rot_wl = 0.0
     if "rotation_center" in ds.coords or "rotation_center" in ds:
         rc = np.asarray(ds["rotation_center"].values, dtype=float).reshape(-1)[:3]
         x_rot = origin_x_m + float(rc[0])
+        z_rot_wl = float(rc[2])
     else:
         x_rot = origin_x_m
     return _motions_from_rigid_coefficients(
         omega, k, a_c, b_c, np.conj(f_c), hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m,
+        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m, coeff_reference_z_wl_m=z_rot_wl,
         mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
         pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
         water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
@@ -640,13 +742,31 @@ def _motions_from_capytaine(
 def _motions_from_rigid_coefficients(
     omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, wave_phase_origin_x_m,
     mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2, source,
+    coeff_reference_z_wl_m=0.0,
 ) -> RigidBodyMotions:
     """Common back end of the importers.
 
     Inputs in (heave, eta5) DOFs (eta5 = rotation about +y, bow down) about
     ``coeff_reference_x_m``, excitation in the ``exp(+i omega t)`` convention with the incident
-    wave phase referred to ``wave_phase_origin_x_m``.
+    wave phase referred to ``wave_phase_origin_x_m``. With 3x3 inputs the DOFs are (surge,
+    heave, eta5) about the point (``coeff_reference_x_m``, ``coeff_reference_z_wl_m`` above the
+    waterline), and surge, heave and pitch are solved together (:func:`_coupled_surge_motions`).
     """
+    if np.shape(a_eta)[-1] == 3:
+        # heave and pitch by the 2-DOF solve of their block (unchanged), plus the coupled solution
+        two = _motions_from_rigid_coefficients(
+            omega, k, np.asarray(a_eta)[:, 1:, 1:], np.asarray(b_eta)[:, 1:, 1:], np.asarray(f_eta_plus)[:, 1:], hull,
+            coeff_reference_x_m=coeff_reference_x_m, wave_phase_origin_x_m=wave_phase_origin_x_m, mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+        )
+        x3 = _coupled_surge_motions(
+            omega, k, a_eta, b_eta, f_eta_plus, hull, coeff_reference_x_m=coeff_reference_x_m,
+            coeff_reference_z_wl_m=coeff_reference_z_wl_m, wave_phase_origin_x_m=wave_phase_origin_x_m,
+            mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+        )
+        return replace(two, surge_rao_m_per_m=x3[:, 0], coupled_heave_rao_m_per_m=x3[:, 1], coupled_pitch_rao_rad_per_m=x3[:, 2])
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     x_g = float(centre_of_gravity_m[0])
     # eta5 -> theta (bow up)
@@ -669,13 +789,57 @@ def _motions_from_rigid_coefficients(
         omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a,
         radiation_damping=b, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
         wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source=source,
+        reference_z_m=float(centre_of_gravity_m[2]),
     )
+
+
+def _shift_reference_3(dx_new_minus_old: float, dz_new_minus_old: float) -> NDArray[np.float64]:
+    """``P`` with ``q_old = P q_new`` for (surge, heave, theta) when the reference point moves.
+
+    A point's displacement is ``(X - theta (z - z_ref), W + theta (x - x_ref))``, so
+    ``X_old = X_new + theta dz`` and ``W_old = W_new - theta dx`` (``d = new - old``);
+    forces transform with ``P^T``.
+    """
+    return np.array([[1.0, 0.0, dz_new_minus_old], [0.0, 1.0, -dx_new_minus_old], [0.0, 0.0, 1.0]])
+
+
+def _coupled_surge_motions(
+    omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, coeff_reference_z_wl_m, wave_phase_origin_x_m,
+    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2,
+) -> NDArray[np.complex128]:
+    """Surge, heave and pitch solved together about the CoG (x_G, z_G), from (surge, heave, eta5) data.
+
+    Mass ``diag(m, m, m r^2)`` about the CoG; hydrostatic stiffness: the heave-pitch block of
+    :func:`hydrostatic_stiffness_matrix` (no restoring in surge).
+
+    Returns
+    -------
+    ndarray (n_w, 3)
+        (surge [m/m], heave [m/m], pitch [rad/m]) per metre of wave amplitude, seafast conventions.
+    """
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    x_g, z_g_keel = float(centre_of_gravity_m[0]), float(centre_of_gravity_m[2])
+    a = _T3 @ np.asarray(a_eta, dtype=float) @ _T3
+    b = _T3 @ np.asarray(b_eta, dtype=float) @ _T3
+    f = np.asarray(f_eta_plus, dtype=complex) @ _T3
+    f = f * np.exp(1j * k * (wave_phase_origin_x_m - x_mid))[:, None]
+    p = _shift_reference_3(x_g - coeff_reference_x_m, (z_g_keel - hull.draft_m) - coeff_reference_z_wl_m)
+    a = p.T @ a @ p
+    b = p.T @ b @ p
+    f = f @ p
+    m3 = np.zeros((3, 3))
+    c3 = np.zeros((3, 3))
+    m3[0, 0] = float(mass_kg)
+    m3[1:, 1:] = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
+    c3[1:, 1:] = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+                                              water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
+    return solve_rigid_body(omega, a, b, f, m3, c3)
 
 
 # ---------------------------------------------------------------------------------- WAMIT
 def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
-                 frequency_column: Literal["period", "omega"] = "period"):
-    """Read heave/pitch added mass and damping from a WAMIT ``.1`` file (dimensional SI result).
+                 frequency_column: Literal["period", "omega"] = "period", modes: tuple[int, ...] = (3, 5)):
+    """Read heave/pitch (``modes``: also surge, mode 1) added mass and damping from a WAMIT ``.1`` file.
 
     Lines ``PER I J Abar Bbar``; ``Abar = A / (rho L^k)``, ``Bbar = B / (rho L^k omega)`` with
     ``k = 3`` (translation-translation), 4 (mixed), 5 (rotation-rotation), ``L = ULEN``.
@@ -683,7 +847,7 @@ def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
 
     Returns
     -------
-    omega [rad/s] (n_w,), A (n_w, 2, 2), B (n_w, 2, 2) in WAMIT modes (3, 5).
+    omega [rad/s] (n_w,), A (n_w, n, n), B (n_w, n, n) in WAMIT ``modes`` (default (3, 5), n = 2).
     """
     rows: dict[float, dict[tuple[int, int], tuple[float, float]]] = {}
     for line in Path(path).read_text().splitlines():
@@ -691,32 +855,33 @@ def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
         if len(parts) < 5:
             continue
         per, i, j, abar, bbar = float(parts[0]), int(parts[1]), int(parts[2]), float(parts[3]), float(parts[4])
-        if per <= 0 or i not in (3, 5) or j not in (3, 5):
+        if per <= 0 or i not in modes or j not in modes:
             continue
         w = 2 * math.pi / per if frequency_column == "period" else per
         rows.setdefault(round(w, 12), {})[(i, j)] = (abar, bbar)
     if not rows:
-        raise ValueError(f"WAMIT .1 file {path}: no heave/pitch (modes 3, 5) coefficients found")
+        raise ValueError(f"WAMIT .1 file {path}: no coefficients of modes {modes} found")
     omega = np.array(sorted(rows))
-    a = np.zeros((omega.size, 2, 2))
-    b = np.zeros((omega.size, 2, 2))
-    idx = {3: 0, 5: 1}
+    n_m = len(modes)
+    a = np.zeros((omega.size, n_m, n_m))
+    b = np.zeros((omega.size, n_m, n_m))
+    idx = {m: q for q, m in enumerate(modes)}
     for n, w in enumerate(omega):
         for (i, j), (abar, bbar) in rows[w].items():
             kexp = 3 + (i > 3) + (j > 3)
             scale = water_density_kg_per_m3 * ulen_m**kexp
             a[n, idx[i], idx[j]] = abar * scale
             b[n, idx[i], idx[j]] = bbar * scale * w
-        missing = {(3, 3), (3, 5), (5, 3), (5, 5)} - set(rows[w])
-        if {(3, 3), (5, 5)} & missing:
-            raise ValueError(f"WAMIT .1 file {path}: diagonal heave/pitch terms missing at omega = {w:.6g} rad/s")
+        missing = {(i, i) for i in modes} - set(rows[w])
+        if missing:
+            raise ValueError(f"WAMIT .1 file {path}: diagonal terms {sorted(missing)} missing at omega = {w:.6g} rad/s")
     return omega, a, b
 
 
 def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
                  gravity_m_per_s2: float, heading_deg: float = 180.0,
-                 frequency_column: Literal["period", "omega"] = "period"):
-    """Read heave/pitch wave excitation from a WAMIT ``.3`` file for one heading.
+                 frequency_column: Literal["period", "omega"] = "period", modes: tuple[int, ...] = (3, 5)):
+    """Read heave/pitch (``modes``: also surge, mode 1) wave excitation from a WAMIT ``.3`` file, one heading.
 
     Lines ``PER BETA I |X| phase Re Im``; ``Xbar = X / (rho g A L^m)``, ``m = 2`` for forces,
     3 for moments; ``exp(+i omega t)`` convention, phase relative to the incident wave at the
@@ -724,7 +889,7 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
 
     Returns
     -------
-    omega [rad/s] (n_w,), X (n_w, 2) complex per metre of wave amplitude, modes (3, 5).
+    omega [rad/s] (n_w,), X (n_w, n) complex per metre of wave amplitude, in ``modes``.
     """
     rows: dict[float, dict[int, complex]] = {}
     headings: set[float] = set()
@@ -734,7 +899,7 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
             continue
         per, beta, i = float(parts[0]), float(parts[1]), int(parts[2])
         headings.add(beta)
-        if per <= 0 or i not in (3, 5) or abs((beta - heading_deg + 180.0) % 360.0 - 180.0) > 1e-3:
+        if per <= 0 or i not in modes or abs((beta - heading_deg + 180.0) % 360.0 - 180.0) > 1e-3:
             continue
         w = 2 * math.pi / per if frequency_column == "period" else per
         m = 2 if i <= 3 else 3
@@ -743,16 +908,33 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
         )
     if not rows:
         raise ValueError(
-            f"WAMIT .3 file {path}: no heave/pitch excitation for heading {heading_deg} deg "
+            f"WAMIT .3 file {path}: no excitation of modes {modes} for heading {heading_deg} deg "
             f"(headings found: {sorted(headings)})"
         )
     omega = np.array(sorted(rows))
-    x = np.zeros((omega.size, 2), dtype=complex)
+    x = np.zeros((omega.size, len(modes)), dtype=complex)
     for n, w in enumerate(omega):
-        if set(rows[w]) != {3, 5}:
-            raise ValueError(f"WAMIT .3 file {path}: heave or pitch missing at omega = {w:.6g} rad/s")
-        x[n] = rows[w][3], rows[w][5]
+        if set(rows[w]) != set(modes):
+            raise ValueError(f"WAMIT .3 file {path}: modes {sorted(set(modes) - set(rows[w]))} missing at omega = {w:.6g} rad/s")
+        x[n] = [rows[w][m] for m in modes]
     return omega, x
+
+
+def _wamit_has_surge(f1: Path, f3: Path) -> bool:
+    """Whether both WAMIT files hold mode 1 (surge): the .1 file its diagonal term, the .3 file its force."""
+    def has(path: Path, test) -> bool:
+        for line in path.read_text().splitlines():
+            parts = line.split()
+            try:
+                if test(parts):
+                    return True
+            except (ValueError, IndexError):
+                continue
+        return False
+
+    return has(f1, lambda q: len(q) >= 5 and float(q[0]) > 0 and int(q[1]) == 1 and int(q[2]) == 1) and has(
+        f3, lambda q: len(q) >= 7 and float(q[0]) > 0 and int(q[2]) == 1
+    )
 
 
 def load_motions(
@@ -803,8 +985,11 @@ def load_motions(
     WAMIT assumptions: modes 3 (heave) and 5 (pitch, rotation about +y, i.e. bow down with the
     body x-axis pointing forward, parallel to seafast x), coefficients about the WAMIT body
     origin, which lies on the waterline at ``x = origin_x_m``; head seas ``beta = 180 deg``;
-    ``exp(+i omega t)`` with phases relative to the incident wave crest at the origin. The
-    heave-pitch coefficients are transferred to the CoG x; couplings with surge are ignored.
+    ``exp(+i omega t)`` with phases relative to the incident wave crest at the origin. When both
+    files hold mode 1 (surge), surge, heave and pitch are solved together about the CoG (x and
+    height); otherwise the heave-pitch coefficients are transferred to the CoG x, couplings
+    with surge are ignored and the motions carry no surge (``surge_rao_m_per_m = None``).
+    A capytaine file with a ``Surge`` dof is treated the same way.
     """
     p = Path(path)
     fmt = format
@@ -824,10 +1009,11 @@ def load_motions(
     for f in (f1, f3):
         if not f.is_file():
             raise FileNotFoundError(f"load_motions: WAMIT file {f} not found")
+    modes = (1, 3, 5) if _wamit_has_surge(f1, f3) else (3, 5)
     w1, a, b = read_wamit_1(f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
-                            frequency_column=frequency_column)
+                            frequency_column=frequency_column, modes=modes)
     w3, x = read_wamit_3(f3, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
-                         gravity_m_per_s2=gravity_m_per_s2, frequency_column=frequency_column)
+                         gravity_m_per_s2=gravity_m_per_s2, frequency_column=frequency_column, modes=modes)
     if w1.shape != w3.shape or not np.allclose(w1, w3, rtol=1e-6):
         common_w = np.intersect1d(np.round(w1, 9), np.round(w3, 9))
         if common_w.size == 0:

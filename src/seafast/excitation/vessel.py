@@ -10,8 +10,9 @@ Sources, in order of precedence (MODEL.md section 3, INTERFACE.md):
   Prohaska distribution, the cargo units abreast, ballast balanced to even keel) on the
   tapered-box hull, still water and quasi-static regular wave.
 
-Rigid-body heave and pitch: ``vessel.motions`` = ``bem`` (capytaine on the same hull form,
-cached on disk), ``none``, or a path to capytaine NetCDF / WAMIT output.
+Rigid-body heave and pitch (and surge, coupled, when the data hold it: the BEM does):
+``vessel.motions`` = ``bem`` (capytaine on the same hull form, cached on disk), ``none``, or a
+path to capytaine NetCDF / WAMIT output.
 
 Everything here depends only on the vessel, cargo-mass and wave parts of the case, so it is
 memoised per process: a parametric study over saddles computes it once.
@@ -190,6 +191,11 @@ class VesselExcitation:
                 },
                 coords={"rao_omega_rad_s": ("rao_omega_rad_s", m.omega_rad_s, {"long_name": "wave frequency", "units": "rad/s"})},
             )
+            if getattr(m, "surge_rao_m_per_m", None) is not None:
+                rao["surge_rao_real"] = ("rao_omega_rad_s", m.surge_rao_m_per_m.real,
+                                         {"long_name": "surge RAO (forward +, at the pitch reference), real part", "units": "m/m"})
+                rao["surge_rao_imag"] = ("rao_omega_rad_s", m.surge_rao_m_per_m.imag,
+                                         {"long_name": "surge RAO (forward +, at the pitch reference), imaginary part", "units": "m/m"})
             ds = xr.merge([ds, rao])
             if self.rigid_body is not None:
                 rb = self.rigid_body
@@ -198,6 +204,9 @@ class VesselExcitation:
                     pitch_amplitude_rad=abs(rb.pitch_rad), pitch_phase_rad=float(np.angle(rb.pitch_rad)),
                     pitch_reference_x_m=rb.reference_x_m,
                 )
+                if rb.surge_m is not None:
+                    ds.attrs.update(surge_amplitude_m=abs(rb.surge_m), surge_phase_rad=float(np.angle(rb.surge_m)),
+                                    pitch_reference_z_m=rb.reference_z_m)
         ds.attrs.update(attrs)
         return ds
 
@@ -380,8 +389,19 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
     if motions is not None and amplitude > 0:
         # BEM inside its grid, blended into the long-wave limits below it and decayed above it
         heave, pitch = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
-        rigid = RigidBodyAmplitudes(complex(heave) * amplitude, complex(pitch) * amplitude, float(motions.reference_x_m))
-        parts.append(f"heave/pitch from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}")
+        surge = coupled_pitch = None
+        inside = bool(motions.omega_rad_s[0] <= omega <= motions.omega_rad_s[-1])
+        if motions.has_surge and inside:
+            surge_c, heave_c, pitch_c = (complex(q) * amplitude for q in motions.coupled_at(omega))
+            surge, coupled_pitch = surge_c, pitch_c
+        vertical = "heave/pitch (2-DOF)"
+        if v.motion_coupling == "surge_heave_pitch" and motions.has_surge and inside:
+            heave, pitch = heave_c / amplitude, pitch_c / amplitude
+            vertical = "heave/pitch coupled with surge"
+        rigid = RigidBodyAmplitudes(complex(heave) * amplitude, complex(pitch) * amplitude, float(motions.reference_x_m),
+                                    surge_m=surge, reference_z_m=float(motions.reference_z_m), coupled_pitch_rad=coupled_pitch)
+        axial = ("; surge (coupled) for the axial analysis" if inside else "; no surge outside the BEM grid") if motions.has_surge else "; no surge in the data"
+        parts.append(f"{vertical} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}{axial}")
     elif v.motions == "none":
         parts.append("no rigid-body motion")
     girder_used = None if v.deck_deflection_table is not None else girder

@@ -2,10 +2,17 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from seafast.config.schema import Case
+from seafast.model.axial import AxialRestraint, lashing_axial_stiffness_N_per_m
 from seafast.model.sections import CargoGeometry, TubeSegment
 
-__all__ = ["cargo_geometry"]
+__all__ = ["cargo_geometry", "axial_restraint", "DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M"]
+
+#: Default stick stiffness of each saddle's friction contact [N/m]: a rigid contact, 1000 times the
+#: base saddle's compression stiffness (docs/axial.md: the results do not depend on it).
+DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M = 1e12
 
 
 def cargo_geometry(case: Case) -> CargoGeometry:
@@ -18,3 +25,33 @@ def cargo_geometry(case: Case) -> CargoGeometry:
             TubeSegment(s.x_start_m, s.x_end_m, s.diameter_start_m, s.diameter_end_m, s.wall_thickness_m) for s in c.sections
         )
     return CargoGeometry(segments, c.youngs_modulus_Pa, c.density_kg_per_m3, c.poisson_ratio)
+
+
+def axial_restraint(case: Case, cargo_mass_kg: float | None = None) -> AxialRestraint:
+    """The cargo's axial restraint from the case (friction, Jenkins stiffness, lashings, stoppers).
+
+    ``cargo_mass_kg``: the cargo's mass when known (the structural model's), else from its geometry.
+
+    Raises
+    ------
+    ValueError
+        If ``seafastening.friction_coefficient`` is not set (no axial analysis).
+    """
+    mu = case.friction_coefficients()
+    if mu is None:
+        raise ValueError("seafastening.friction_coefficient is not set: there is no axial analysis to build")
+    sf = case.seafastening
+    lashing = sf.lashing
+    if lashing.axial_stiffness_N_per_m is not None:
+        k_axial = float(lashing.axial_stiffness_N_per_m)
+    else:
+        k_axial = lashing_axial_stiffness_N_per_m(lashing.stiffness_N_per_m, lashing.angle_deg, len(case.lashed_saddle_indices()))
+    kt = sf.tangential_stiffness_N_per_m if sf.tangential_stiffness_N_per_m is not None else DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M
+    return AxialRestraint(
+        cargo_mass_kg=cargo_mass_kg if cargo_mass_kg is not None else cargo_geometry(case).mass_kg(),
+        friction_coefficient=np.array(mu),
+        tangential_stiffness_N_per_m=np.full(len(mu), float(kt)),
+        lashing_axial_stiffness_N_per_m=k_axial,
+        stopper_gap_m=sf.stopper.gap_m,
+        stopper_stiffness_N_per_m=float(sf.stopper.stiffness_N_per_m or 0.0),
+    )

@@ -24,7 +24,7 @@ def write_run_outputs(result: Any, out_dir: str | Path) -> dict[str, Path]:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths: dict[str, Path] = {}
-    paths["summary"] = write_summary_csv(result.summary, out / "summary.csv")
+    paths["summary"] = write_summary_csv(result.summary, out / "summary.csv", getattr(result, "summary_columns", None))
     case_yaml = out / "case.yaml"
     case_yaml.write_text(
         "# the case as run (all defaults filled in)\n" + yaml.safe_dump(result.case.model_dump(mode="json"), sort_keys=False),

@@ -23,6 +23,7 @@ __all__ = [
     "plot_aft_picture",
     "plot_hull_girder",
     "plot_raos",
+    "plot_stick_slip",
     "write_case_figures",
 ]
 
@@ -247,10 +248,13 @@ def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
 
 
 def plot_raos(ds: xr.Dataset, path: Path) -> Path:
-    """Heave and pitch RAOs (amplitude and phase) with the case's wave frequency marked."""
+    """Heave, pitch (and surge, when present) RAOs (amplitude and phase), the case's wave frequency marked."""
     w = ds["rao_omega_rad_s"].values
-    fig, axes = plt.subplots(2, 2, figsize=(9, 6), sharex=True)
-    for col, (name, scale, unit) in enumerate((("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m"))):
+    dofs = [("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m")]
+    if "surge_rao_real" in ds:
+        dofs.insert(0, ("surge", 1.0, "m/m"))
+    fig, axes = plt.subplots(2, len(dofs), figsize=(4.5 * len(dofs), 6), sharex=True, squeeze=False)
+    for col, (name, scale, unit) in enumerate(dofs):
         z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
         axes[0, col].plot(w, np.abs(z) * scale, "k.-")
         axes[0, col].set_ylabel(f"{name} RAO [{unit}]")
@@ -260,8 +264,38 @@ def plot_raos(ds: xr.Dataset, path: Path) -> Path:
         for ax in axes[:, col]:
             ax.axvline(float(ds.attrs.get("wave_frequency_rad_s", np.nan)), color="tab:red", ls=":")
             ax.grid(alpha=0.3)
-    axes[0, 0].set_title("Heave (head seas)")
-    axes[0, 1].set_title("Pitch (bow up positive, head seas)")
+    titles = {"surge": "Surge (forward positive, head seas)", "heave": "Heave (head seas)", "pitch": "Pitch (bow up positive, head seas)"}
+    for col, (name, _, _) in enumerate(dofs):
+        axes[0, col].set_title(titles[name])
+    return _save(fig, path)
+
+
+def plot_stick_slip(ds: xr.Dataset, path: Path) -> Path:
+    """Axial stick-slip over one period: displacement, friction against its capacity, sliding phases."""
+    s = ds["period_fraction"].values
+    fig, (ax_u, ax_f) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    for mdl in ("linear", "nonlinear"):
+        sel = ds.sel(load_case="dynamic", model=mdl)
+        c = _COLORS[mdl]
+        ax_u.plot(s, sel["axial_displacement_m"].values * 1e3, color=c, label=f"{mdl}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period")
+        ax_f.plot(s, -sel["friction_force_N"].values / 1e6, color=c, label=f"{mdl}: friction force (resisting u)")
+        cap = sel["friction_capacity_N"].values / 1e6
+        ax_f.plot(s, cap, color=c, ls="--", lw=0.8, label=f"{mdl}: friction available")
+        ax_f.plot(s, -cap, color=c, ls="--", lw=0.8)
+        sliding = sel["sliding"].values.astype(bool)
+        if sliding.any():
+            ax_u.fill_between(s, 0, 1, where=sliding, transform=ax_u.get_xaxis_transform(), color=c, alpha=0.08, lw=0)
+    load = ds["axial_load_N"].sel(load_case="dynamic", model="nonlinear").values / 1e6
+    ax_f.plot(s, load, color="k", lw=1.2, label="axial load F(t) (inertia + gravity)")
+    ax_u.axhline(0.0, color="k", lw=0.8)
+    ax_u.set_ylabel("axial displacement u [mm] (forward +)")
+    ax_u.set_title("Axial stick-slip of the cargo (shaded: sliding)")
+    ax_u.legend(fontsize=8)
+    ax_f.set_xlabel("period fraction t/T [-]")
+    ax_f.set_ylabel("axial force [MN] (forward +)")
+    ax_f.legend(fontsize=8, ncol=2)
+    for ax in (ax_u, ax_f):
+        ax.grid(alpha=0.3)
     return _save(fig, path)
 
 
@@ -279,4 +313,6 @@ def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
         paths.append(plot_hull_girder(ds, out_dir / "hull_girder.png"))
     if "rao_omega_rad_s" in ds.coords:
         paths.append(plot_raos(ds, out_dir / "raos.png"))
+    if "friction_force_N" in ds:
+        paths.append(plot_stick_slip(ds, out_dir / "stick_slip.png"))
     return paths

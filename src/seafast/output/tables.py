@@ -9,7 +9,7 @@ from typing import Any, Iterable, Sequence
 
 from seafast.results.dataset import SUMMARY_COLUMNS
 
-__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table"]
+__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table", "format_axial_table"]
 
 
 def _cell(value: Any) -> str:
@@ -30,10 +30,10 @@ def summary_csv_text(rows: Iterable[dict[str, Any]], columns: Sequence[str] = SU
     return buf.getvalue()
 
 
-def write_summary_csv(rows: Iterable[dict[str, Any]], path: str | Path) -> Path:
-    """Write ``summary.csv`` (INTERFACE.md columns) and return its path."""
+def write_summary_csv(rows: Iterable[dict[str, Any]], path: str | Path, columns: Sequence[str] | None = None) -> Path:
+    """Write ``summary.csv`` (INTERFACE.md columns, or ``columns``, e.g. with the axial ones) and return its path."""
     p = Path(path)
-    p.write_text(summary_csv_text(rows), encoding="utf-8")
+    p.write_text(summary_csv_text(rows, columns or SUMMARY_COLUMNS), encoding="utf-8")
     return p
 
 
@@ -42,6 +42,22 @@ def _not_converged(row: dict[str, Any]) -> str:
     if row.get("coupling_converged") is False:
         return f"NO (coupling residual {row['coupling_residual_m']:.2e} m)"
     return f"NO (residual {row.get('residual_norm', float('nan')):.2e})"
+
+
+def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
+    """The axial columns of the summary rows in engineering units (mm, kN)."""
+    head = ("load case", "model", "slip [mm]", "friction utilisation", "axial force [kN]", "mu_crit [-]", "converged")
+    lines = [
+        (
+            r["load_case"], r["model"], f"{r['slip_m'] * 1e3:.2f}", f"{r['friction_utilisation']:.3f}",
+            f"{r['axial_force_N'] / 1e3:.1f}", f"{r['critical_friction_coefficient']:.4f}",
+            "yes" if r.get("axial_converged", True) else "NO",
+        )
+        for r in rows
+    ]
+    widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
+    fmt = lambda cells: "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))  # noqa: E731
+    return "\n".join(["axial sliding (per period; slides where utilisation = 1)", fmt(head), fmt(["-" * w for w in widths])] + [fmt(l) for l in lines])
 
 
 def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:

@@ -158,6 +158,7 @@ _UNIT_SUFFIXES: tuple[tuple[str, str], ...] = (
     ("_m_per_s2", "m/s^2"),
     ("_N_per_m", "N/m"),
     ("_rad_s", "rad/s"),
+    ("_deg", "deg"),
     ("_per_m", "1/m"),
     ("_Nm", "N m"),
     ("_Pa", "Pa"),

@@ -55,6 +55,7 @@ from seafast.output.report.figures import (
     rao_figure,
     run_figures,
     saddle_time_history_figure,
+    stick_slip_figure,
 )
 from seafast.output.report.findings import TENSILE_NOTE_FRACTION, TRUNCATION_LIMIT, run_findings, study_findings
 from seafast.output.report.html import build_report_html, render_html
@@ -85,6 +86,7 @@ __all__ = [
     "saddle_time_history_figure",
     "deflection_moment_figure",
     "contact_timeline_figure",
+    "stick_slip_figure",
     "run_figures",
     "study_surface_figure",
     "study_profile_figure",

@@ -16,7 +16,7 @@ from seafast.output.report.common import ReportFigure, attr_float, coord_labels,
 
 __all__ = [
     "hull_girder_figure", "rao_figure", "deck_motion_figure", "saddle_time_history_figure", "deflection_moment_figure",
-    "contact_timeline_figure", "run_figures", "MODEL_COLORS", "plotly_go", "subplots", "style_figure",
+    "contact_timeline_figure", "stick_slip_figure", "run_figures", "MODEL_COLORS", "plotly_go", "subplots", "style_figure",
 ]
 
 MODEL_COLORS = {"linear": "#1f77b4", "nonlinear": "#d62728"}
@@ -140,9 +140,13 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
         return None
     go = plotly_go()
     w = ds["rao_omega_rad_s"].values
-    fig = subplots(rows=2, cols=2, shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.1,
-                    subplot_titles=("heave amplitude", "pitch amplitude (bow up +)", "heave phase", "pitch phase"))
-    for col, (name, scale, unit) in enumerate((("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")), start=1):
+    dofs = [("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")]
+    if "surge_rao_real" in ds and "surge_rao_imag" in ds:
+        dofs.insert(0, ("surge", 1.0, "m/m"))
+    extra = {"pitch": " (bow up +)", "surge": " (forward +)"}
+    fig = subplots(rows=2, cols=len(dofs), shared_xaxes=True, vertical_spacing=0.1, horizontal_spacing=0.08,
+                    subplot_titles=[f"{n} amplitude{extra.get(n, '')}" for n, _, _ in dofs] + [f"{n} phase" for n, _, _ in dofs])
+    for col, (name, scale, unit) in enumerate(dofs, start=1):
         z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
         fig.add_trace(go.Scatter(x=w, y=np.abs(z) * scale, mode="lines+markers", name=f"{name} amplitude", line=dict(color="black"),
                                  hovertemplate=f"omega %{{x:.3f}} rad/s<br>%{{y:.4g}} {unit}<extra></extra>", showlegend=False), row=1, col=col)
@@ -154,11 +158,12 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
     omega = attr_float(ds, "wave_frequency_rad_s")
     if math.isfinite(omega):
         for r in (1, 2):
-            for c in (1, 2):
+            for c in range(1, len(dofs) + 1):
                 fig.add_vline(x=omega, line=dict(color="#d62728", dash="dot"), row=r, col=c)
         fig.add_annotation(x=omega, y=1.0, xref="x", yref="paper", text=f"wave: {omega:.3f} rad/s", showarrow=False,
                            font=dict(color="#d62728"), yanchor="bottom")
-    return style_figure(fig, "Rigid-body motions: heave and pitch RAOs (head seas)", 560)
+    names = " and ".join(n for n, _, _ in dofs) if len(dofs) == 2 else "surge, heave and pitch"
+    return style_figure(fig, f"Rigid-body motions: {names} RAOs (head seas)", 560)
 
 
 def deck_motion_figure(ds: xr.Dataset) -> Any | None:
@@ -275,6 +280,38 @@ def contact_timeline_figure(ds: xr.Dataset) -> Any:
     return style_figure(fig, f"Contact state over one wave period ({lc})", 200 + 70 * ds.sizes["saddle"] * len(models))
 
 
+def stick_slip_figure(ds: xr.Dataset) -> Any | None:
+    """Axial stick-slip over one period: displacement [mm] and friction against its capacity [MN].
+
+    Returns ``None`` without the axial analysis (``seafastening.friction_coefficient`` not set).
+    """
+    if "friction_force_N" not in ds:
+        return None
+    go = _go()
+    lc = "dynamic" if "dynamic" in [str(v) for v in ds["load_case"].values] else str(ds["load_case"].values[-1])
+    models = [str(v) for v in ds["model"].values]
+    s = ds["period_fraction"].values
+    fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    for m in models:
+        sel = ds.sel(load_case=lc, model=m)
+        c = _COLORS.get(m, "black")
+        fig.add_trace(go.Scatter(x=s, y=sel["axial_displacement_m"].values * 1e3, name=f"{m}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period",
+                                 line=dict(color=c), hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>u %{{y:.2f}} mm<extra></extra>"), row=1, col=1)
+        fig.add_trace(go.Scatter(x=s, y=-sel["friction_force_N"].values / 1e6, name=f"{m}: friction (resisting u)", line=dict(color=c),
+                                 hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>%{{y:.3f}} MN<extra></extra>"), row=2, col=1)
+        cap = sel["friction_capacity_N"].values / 1e6
+        for sign, show in ((1, True), (-1, False)):
+            fig.add_trace(go.Scatter(x=s, y=sign * cap, name=f"{m}: friction available", legendgroup=f"{m}-cap", showlegend=show,
+                                     line=dict(color=c, dash="dash", width=1), hoverinfo="skip"), row=2, col=1)
+    fig.add_trace(go.Scatter(x=s, y=ds["axial_load_N"].sel(load_case=lc, model=models[-1]).values / 1e6,
+                             name="axial load F(t)", line=dict(color="black"), hovertemplate="t/T %{x:.3f}<br>F %{y:.3f} MN<extra></extra>"),
+                  row=2, col=1)
+    fig.update_yaxes(title_text="axial displacement u [mm] (forward +)", row=1, col=1)
+    fig.update_yaxes(title_text="axial force [MN] (forward +)", row=2, col=1)
+    fig.update_xaxes(title_text="period fraction t/T [-]", row=2, col=1)
+    return _style(fig, f"Axial stick-slip over one wave period ({lc})", 620)
+
+
 def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
     """Every interactive figure of a run dataset, in report order (vessel first)."""
     out: list[ReportFigure] = []
@@ -282,7 +319,8 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
         ("fig-hull-girder", "Hull girder", hull_girder_figure,
          "Still-water deflection and bending moment of the hull, with the wave's hog and sag extremes; the cargo span is shaded. "
          "After a two-way run, dashed: the hull under the coupled cargo."),
-        ("fig-raos", "Heave and pitch RAOs", rao_figure, "Amplitude and phase of the rigid-body RAOs; the case's wave frequency is the dotted line."),
+        ("fig-raos", "Rigid-body RAOs", rao_figure, "Amplitude and phase of the rigid-body RAOs (surge when the hydrodynamic data hold it, "
+         "heave, pitch); the case's wave frequency is the dotted line."),
         ("fig-deck-motion", "Deck deflection under the saddles", deck_motion_figure,
          "The prescribed deck displacement at each saddle over one period (solid) and in still water (dotted)."),
         ("fig-saddle-histories", "Saddle force and gap over the period", saddle_time_history_figure,
@@ -291,6 +329,9 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
         ("fig-deflection-moment", "Deflection and bending-moment lines", deflection_moment_figure,
          "Thick lines: still water; shaded bands: range over one wave period of the total response."),
         ("fig-contact-timeline", "Contact-state timeline", contact_timeline_figure, "Green: saddle in contact; orange: detached."),
+        ("fig-stick-slip", "Axial stick-slip", stick_slip_figure,
+         "Axial displacement of the cargo relative to the deck, and the friction force against the friction available "
+         "(sum of mu N over the saddles, from each model's own contact forces); where the friction reaches it, the cargo slides."),
     ):
         try:
             fig = builder(ds)

@@ -146,7 +146,29 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
         ("run-saddles", "Saddles over the period", figs_html(["fig-saddle-histories", "fig-contact-timeline"])),
         ("run-lines", "Deflection and bending moment", figs_html(["fig-deflection-moment"])),
     ]
+    if "slip_m" in ds:
+        sections.append(("run-axial", "Axial sliding", _axial_html(ds) + figs_html(["fig-stick-slip"])))
     return sections, first_fig
+
+
+def _axial_html(ds: xr.Dataset) -> str:
+    """The axial analysis's table (docs/axial.md): slip, utilisation, lashing/stopper force, critical coefficient."""
+    rows = []
+    for lc in [str(v) for v in ds["load_case"].values]:  # plain xarray: no report helper needed
+        for m in [str(v) for v in ds["model"].values]:
+            sel = ds.sel(load_case=lc, model=m)
+            rows.append([lc, m, f"{float(sel['slip_m']) * 1e3:.2f}", f"{float(sel['friction_utilisation']):.3f}",
+                         f"{float(sel['axial_force_N']) / 1e3:.1f}", f"{float(sel['critical_friction_coefficient']):.4f}",
+                         "yes" if int(sel["axial_converged"]) else "NO"])
+    mu = ", ".join(f"{v:.3g}" for v in np.asarray(ds["friction_coefficient"].values)) if "friction_coefficient" in ds else "?"
+    return (
+        f"<p>Coulomb friction at the saddles (coefficients {html.escape(mu)}) with each model's own saddle contact forces, "
+        f"lashings {float(ds.attrs.get('axial_lashing_stiffness_N_per_m', math.nan)) / 1e3:.1f} kN/m axially; axial load amplitude "
+        f"{float(ds.attrs.get('axial_load_amplitude_N', math.nan)) / 1e3:.0f} kN (surge, pitch inertia, gravity). "
+        "Utilisation 1 = the cargo slides; it slides whenever the friction coefficient is below the critical one.</p>"
+        + _table(["load case", "model", "slip per period [mm]", "friction utilisation [-]", "lashing + stopper force [kN]",
+                  "critical friction coefficient [-]", "converged"], rows)
+    )
 
 
 def _study_sections(sds: xr.Dataset, figs: list[ReportFigure], findings: list[Finding], first_fig: bool, ranking_csv: Path | None) -> tuple[list[tuple[str, str, str]], bool]:

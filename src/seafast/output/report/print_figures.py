@@ -127,6 +127,8 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
             ("saddle_time_histories.png", plots.plot_saddle_time_histories),
             ("contact_timeline.png", plot_contact_timeline),
         ]
+        if "friction_force_N" in run:
+            jobs.append(("stick_slip.png", plots.plot_stick_slip))
     paths: list[Path] = []
     pdf = PdfPages(pdf_path) if pdf_path is not None else None
     try:

@@ -1,0 +1,194 @@
+"""Axial stick-slip solvers: the Jenkins AFT kernel, the HBM and the rigid-Coulomb time-domain reference
+against closed forms (Den Hartog 1931, the frictionless oscillator, stick statics) and each other."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from seafast.excitation.axial import AxialLoad
+from seafast.model.axial import AxialRestraint
+from seafast.solvers.axial import (
+    AxialHBMOptions,
+    clamp_prefix,
+    critical_friction_coefficient,
+    march_jenkins,
+    solve_axial_hbm,
+    solve_axial_time_domain,
+)
+from seafast.solvers.axial.harmonic_balance import _Problem
+
+M, K, P0 = 1.0e6, 1.0e6, 1.0e6  # mass [kg], spring [N/m] (omega_n = 1 rad/s), force amplitude [N]
+KT = 1e12  # rigid contact
+
+
+def _den_hartog_amplitude(beta: float, friction_N: float) -> float:
+    """Den Hartog (1931), motion without stops: x0 = sqrt(q^2 - (F0/k)^2 U^2),
+    q = P0 / (k (1 - beta^2)), U = sin(pi/beta) / (beta (1 + cos(pi/beta)))."""
+    q = P0 / (K * (1.0 - beta**2))
+    g = math.pi / beta
+    u = math.sin(g) / (beta * (1.0 + math.cos(g)))
+    return math.sqrt(q * q - (friction_N / K) ** 2 * u * u)
+
+
+def _oscillator(mu: float, **kw) -> AxialRestraint:
+    return AxialRestraint(M, np.array([mu]), np.array([KT]), lashing_axial_stiffness_N_per_m=K, **kw)
+
+
+# ------------------------------------------------------------------------------ Jenkins kernel
+def _march_loop(u, cap, k, w0=0.0):
+    """Sample-by-sample return mapping, two periods (the definition the prefix scan must reproduce)."""
+    w = w0
+    for _ in range(2):
+        out = []
+        for un, cn in zip(u, cap):
+            w = min(max(w, un - cn / k), un + cn / k)
+            out.append(w)
+    return np.array(out)
+
+
+@settings(derandomize=True, max_examples=60, deadline=None)
+@given(st.integers(2, 200), st.integers(0, 2**31 - 1))
+def test_prefix_scan_equals_the_sample_loop(n, seed):
+    rng = np.random.default_rng(seed)
+    u = np.cumsum(rng.normal(size=n))
+    cap = np.abs(rng.normal(size=n)) * rng.choice([0.0, 1.0, 5.0])
+    jen = march_jenkins(u, cap, 2.0)
+    np.testing.assert_allclose(jen.slider_m, _march_loop(u, cap, 2.0), atol=1e-12)
+    a, b = clamp_prefix(u - cap / 2, u + cap / 2)
+    assert np.all(a <= b + 1e-12)
+    # the period is closed: marching again from the end state returns the same period
+    again = march_jenkins(u, cap, 2.0, w_init_m=float(jen.slider_m[-1]))
+    np.testing.assert_allclose(again.slider_m, jen.slider_m, atol=1e-12)
+    assert np.all(np.abs(jen.force_N) <= cap + 1e-9)
+
+
+def test_jacobian_equals_finite_differences():
+    r = AxialRestraint(M, np.array([0.2, 0.1]), np.array([1e9, 1e9]), lashing_axial_stiffness_N_per_m=K,
+                       stopper_gap_m=0.3, stopper_stiffness_N_per_m=5e7)
+    load = AxialLoad(0.8, np.array([0.0, 1.2 * P0 - 0.4j * P0]))
+    cap = r.capacity_N(np.column_stack([np.full(256, 1e6), 1e6 * (1 + 0.5 * np.sin(2 * np.pi * np.arange(256) / 256))]))
+    p = _Problem(r, load, cap, 7, 256)
+    X = np.random.default_rng(3).normal(size=15) * 0.3
+    R, jen, u = p.evaluate(X, cap)
+    J = p.jacobian(jen, u)
+    h = 1e-8
+    fd = np.column_stack([(p.evaluate(X + h * e, cap)[0] - R) / h for e in np.eye(15)])
+    assert np.max(np.abs(fd - J)) < 1e-5 * np.max(np.abs(J))
+
+
+# ------------------------------------------------------------------------------ closed forms
+@pytest.mark.parametrize("beta", [0.6, 1.5])
+def test_den_hartog_closed_form(beta):
+    """Harmonically forced mass on a spring with Coulomb friction under a constant normal force,
+    steady motion without stops (Den Hartog 1931): amplitude within 1 % (HBM) and 1e-4 (time domain)."""
+    mu, normal = 0.3, 1.0e6
+    x0 = _den_hartog_amplitude(beta, mu * normal)
+    load = AxialLoad(beta, np.array([0.0, P0], dtype=complex))
+    n = np.full((128, 1), normal)
+    hbm = solve_axial_hbm(_oscillator(mu), load, n, AxialHBMOptions(harmonics=25, time_samples=512))
+    td = solve_axial_time_domain(_oscillator(mu), load, n, time_samples=1024)
+    assert hbm.converged and td.converged
+    for res, tol in ((hbm, 0.01), (td, 1e-4)):
+        amp = 0.5 * np.ptp(res.displacement_m)
+        assert amp == pytest.approx(x0, rel=tol)
+        assert res.slip_m == pytest.approx(4 * x0, rel=tol)  # slides all the time: 4 x0 per period
+        assert not np.any(res.friction_utilisation < 1.0)
+    # friction opposes the sliding velocity (a sign error would flip it)
+    moving = np.abs(td.velocity_m_per_s) > 1e-3 * np.max(np.abs(td.velocity_m_per_s))
+    assert np.all(np.sign(td.friction_force_N[moving]) == -np.sign(td.velocity_m_per_s[moving]))
+
+
+def test_frictionless_gives_the_lashing_oscillator():
+    """mu = 0: u = F / (k_a - m w^2 + i w c), both solvers (5 % damping lets the time domain settle)."""
+    w = 0.6
+    c = 2 * 0.05 * math.sqrt(K * M)
+    load = AxialLoad(w, np.array([0.0, P0 * (0.3 - 0.8j)]))
+    x = load.force_N[1] / (K - M * w**2 + 1j * w * c)
+    n = np.full((64, 1), 1e6)
+    hbm = solve_axial_hbm(_oscillator(0.0, damping_N_s_per_m=c), load, n, AxialHBMOptions(harmonics=5, time_samples=64))
+    td = solve_axial_time_domain(_oscillator(0.0, damping_N_s_per_m=c), load, n, time_samples=64)
+    assert td.converged
+    assert hbm.harmonics[1] == pytest.approx(x, rel=1e-9)
+    exact = np.real(x * np.exp(2j * np.pi * np.arange(64) / 64))
+    np.testing.assert_allclose(td.displacement_m, exact, atol=1e-5 * abs(x))
+    assert hbm.axial_force_N == pytest.approx(K * np.max(np.abs(exact)), rel=1e-9)  # lashing force, sampled peak
+
+
+def test_large_coefficient_sticks_with_the_statics_utilisation():
+    """Friction that holds: no slip, utilisation = max|F| / (mu N) (the statics), lashings unloaded."""
+    w, mu = 0.6, 0.5
+    load = AxialLoad(w, np.array([0.0, 0.2 * P0 + 0.1j * P0]))
+    t = np.arange(128) / 128
+    normal = np.column_stack([1e6 * (1 + 0.3 * np.cos(2 * np.pi * t)), np.full(128, 0.8e6)])
+    r = AxialRestraint(M, np.array([mu, mu]), np.array([KT, KT]), lashing_axial_stiffness_N_per_m=K)
+    f = np.real(load.force_N[1] * np.exp(2j * np.pi * t))
+    statics = float(np.max(np.abs(f) / (mu * normal.sum(axis=1))))
+    assert statics < 1.0
+    for res in (solve_axial_hbm(r, load, normal, AxialHBMOptions(harmonics=15, time_samples=256)),
+                solve_axial_time_domain(r, load, normal, time_samples=128)):
+        assert res.converged and res.slip_m == 0.0 and not res.sliding.any()
+        assert res.friction_utilisation == pytest.approx(statics, rel=1e-4)
+        assert res.axial_force_N < 1e-6 * P0
+    assert critical_friction_coefficient(f, normal) == pytest.approx(statics * mu, rel=1e-12)
+
+
+def test_stoppers_against_the_time_domain():
+    """Sliding into stiff end stoppers: HBM and the time-domain reference agree within 1 %."""
+    w = 0.6
+    r = AxialRestraint(M, np.array([0.1]), np.array([KT]), lashing_axial_stiffness_N_per_m=K,
+                       stopper_gap_m=0.3, stopper_stiffness_N_per_m=5e6)
+    load = AxialLoad(w, np.array([0.0, P0], dtype=complex))
+    n = np.full((128, 1), 1e6)
+    hbm = solve_axial_hbm(r, load, n, AxialHBMOptions(harmonics=25, time_samples=512))
+    td = solve_axial_time_domain(r, load, n, time_samples=512)
+    assert hbm.converged and td.converged
+    assert hbm.axial_force_N == pytest.approx(td.axial_force_N, rel=0.01)
+    assert np.max(hbm.stopper_force_N) > 0 > np.min(hbm.stopper_force_N)  # both stoppers hit
+    assert hbm.slip_m == pytest.approx(td.slip_m, rel=0.01)
+
+
+def test_tangential_stiffness_does_not_change_the_sliding_solution():
+    """The Jenkins spring is the AFT's regularisation: 1e11 .. 1e13 N/m give the same answer."""
+    load = AxialLoad(1.5, np.array([0.0, P0], dtype=complex))
+    n = np.full((128, 1), 1e6)
+    slips = []
+    for kt in (1e11, 1e12, 1e13):
+        r = AxialRestraint(M, np.array([0.3]), np.array([kt]), lashing_axial_stiffness_N_per_m=K)
+        slips.append(solve_axial_hbm(r, load, n, AxialHBMOptions(harmonics=25, time_samples=512)).slip_m)
+    assert max(slips) / min(slips) - 1 < 1e-4
+
+
+def test_failure_is_reported_not_raised():
+    r = _oscillator(0.3)
+    res = solve_axial_hbm(r, AxialLoad(1.5, np.array([0.0, P0], dtype=complex)), np.full((64, 1), 1e6),
+                          AxialHBMOptions(harmonics=25, time_samples=512, max_iterations=1))
+    assert not res.converged and "did not converge" in res.message and res.residual_norm > 1e-9
+
+
+def test_walking_cargo():
+    """Friction stronger on the forward push than on the aft one: the cargo walks aft. Held by
+    lashings it settles where their force balances the walk (the reference extrapolates the
+    geometric walk to its limit: 8 periods); with nothing else holding it, it walks for ever and
+    the reference says how far per period."""
+    w = 0.6
+    t = np.arange(128) / 128
+    normal = (1e6 * (1 + 0.5 * np.cos(2 * np.pi * t)))[:, None]  # most friction when the load pushes forward
+    load = AxialLoad(w, np.array([0.0, 0.4 * P0], dtype=complex))
+    held = AxialRestraint(M, np.array([0.3]), np.array([KT]), lashing_axial_stiffness_N_per_m=2e5)
+    td = solve_axial_time_domain(held, load, normal, time_samples=512)
+    assert td.converged and td.iterations < 30
+    assert np.mean(td.displacement_m) < -0.1  # settled aft
+    assert np.mean(td.lashing_force_N) > 0  # the lashings pull it forward
+    # where it settled, the period's mean friction balances the mean lashing force (the 0th harmonic)
+    # (to the sampling of the switching friction: 1 % of the lashing force)
+    assert abs(np.mean(td.friction_force_N + td.lashing_force_N)) < 0.01 * np.mean(td.lashing_force_N)
+    free = AxialRestraint(M, np.array([0.3]), np.array([KT]))
+    walk = solve_axial_time_domain(free, load, normal, time_samples=512, max_periods=30)
+    assert not walk.converged and "walks" in walk.message
+    drift = float(walk.message.split("moves ")[1].split(" m per period")[0])
+    assert drift < -0.01
