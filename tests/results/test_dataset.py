@@ -14,7 +14,7 @@ from seafast.results.dataset import SUMMARY_COLUMNS
 
 @pytest.fixture(scope="module")
 def result():
-    return run_case(load_case(overrides={"vessel.motions": "none", "solver.time_samples": 64}))
+    return run_case(load_case(overrides={"vessel.motions": "none", "solver.harmonics": 16, "solver.time_samples": 64}))
 
 
 def test_every_variable_carries_units_and_a_long_name(result):
