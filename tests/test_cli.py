@@ -173,3 +173,27 @@ def test_sweep_says_it_cannot_couple(capsys):
     code = main(["sweep", "--set", "vessel.coupling=two_way", "--set", "vessel.motions=none"])
     assert code == 2
     assert "vessel.coupling" in capsys.readouterr().err
+
+
+def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(tmp_path, capsys, monkeypatch):
+    """The warning is built from the typed outcome and residual, not from the solver's message."""
+    import seafast.pipeline as pipeline
+
+    original = pipeline._hbm_options
+    monkeypatch.setattr(pipeline, "_hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
+    assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 3
+    err = capsys.readouterr().err
+    assert "dynamic nonlinear solution did NOT converge (not converged, residual" in err
+    with open(tmp_path / "run" / "summary.csv", newline="") as f:
+        rows = {(r["load_case"], r["model"]): r["converged"] for r in csv.DictReader(f)}
+    assert rows[("dynamic", "nonlinear")] == "false" and rows[("dynamic", "linear")] == "true"
+
+
+def test_a_coupling_that_does_not_converge_is_named_in_the_warning(tmp_path, capsys, monkeypatch):
+    import seafast.excitation.coupling as coupling
+
+    original = coupling.couple_deck
+    monkeypatch.setattr(coupling, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
+    assert main(["run", "-o", str(tmp_path / "run"), *FAST, "--set", "vessel.coupling=two_way"]) == 3
+    err = capsys.readouterr().err
+    assert err.count("two-way hull-cargo coupling not converged: deck residual") == 4

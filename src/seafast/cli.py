@@ -155,8 +155,12 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from seafast.results.dataset import LOAD_CASES, MODELS
 
     for r in bad:
-        message = str(result.arrays.solver_message[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])])
-        why = message.split(" | ")[0] if message.startswith("two-way coupling") else f"residual {r['residual_norm']:.3e}"
+        coupling = result.couplings.get((r["load_case"], r["model"]))
+        if coupling is not None and not coupling.converged:
+            why = f"two-way hull-cargo coupling not converged: deck residual {coupling.residual_m:.3e} after {coupling.iterations} step(s)"
+        else:
+            outcome = result.arrays.solver_outcome[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])]
+            why = f"{outcome.replace('_', ' ')}, residual {r['residual_norm']:.3e}"
         print(
             f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge ({why}); "
             "its numbers are flagged converged=false in summary.csv and must not be trusted",

@@ -7,7 +7,7 @@ the previous one's output. Nothing here prints or writes files (see :mod:`seafas
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -126,6 +126,8 @@ class CaseResult:
     arrays: CaseArrays
     responses: dict[str, Any]
     attrs: dict[str, Any]
+    couplings: dict[tuple[str, str], Any] = field(default_factory=dict)
+    """Two-way coupling: each row's :class:`~seafast.excitation.coupling.DeckCoupling`, keyed (load_case, model)."""
 
     @property
     def summary(self) -> list[dict[str, Any]]:
@@ -224,7 +226,7 @@ def run_case(
                     messages[i, j] = f"{coupling.message} | cargo solver: {messages[i, j]}"
         arrays = replace(arrays, converged=converged, solver_message=messages.astype(str))
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
-    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs)
+    return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, couplings)
 
 
 def couple_hull_and_cargo(

@@ -14,7 +14,7 @@ from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
 from seafast.model.structure import build_structural_model
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import PeriodicResponse, SolverOutcome, SolverWarning
 from seafast.solvers.references import solve_exact_contact, solve_quasi_static, solve_time_domain
 from solver_cases import base_model, moments, wave_excitation
 
@@ -48,7 +48,8 @@ def base():
 def test_references_agree_with_each_other(base):
     model, ex, qs, td = base
     assert qs.converged and td.converged
-    assert "justified" in qs.message and "WARNING" not in qs.message
+    assert qs.outcome is SolverOutcome.CONVERGED and qs.warnings == ()
+    assert "justified" in qs.message
     assert not qs.contact_preserved and qs.max_gap_m > 1e-3
     e_f, e_m = force_error(td, qs), moment_error(model, td, qs)
     print(f"\ntime domain vs quasi-static: force {e_f:.2%}, moment {e_m:.2%} ({td.message})")
@@ -117,7 +118,8 @@ def test_quasi_static_warns_for_a_seesaw(base):
     """Outer saddles lifting together leave the cargo rocking on the middle saddle (~0.1 rad/s)."""
     model = base[0]
     qs = solve_quasi_static(model, wave_excitation(model, relative_mm=16.0, second_harmonic_mm=0.0))
-    assert "WARNING" in qs.message and qs.options["frequency_ratio"] > 0.2
+    assert qs.warnings == (SolverWarning.QUASI_STATICS_QUESTIONABLE,) and qs.options["frequency_ratio"] > 0.2
+    assert qs.converged and "questionable" in qs.message
 
 
 def test_exact_contact_solver_small_problem():
@@ -279,7 +281,7 @@ def test_time_domain_full_real_case(real_case):
 def test_time_domain_non_convergence_is_reported(base, formulation):
     model, ex = base[0], base[1]
     r = solve_time_domain(model, ex, time_samples=16, formulation=formulation, max_periods=2, tolerance=1e-15)
-    assert not r.converged
+    assert not r.converged and r.outcome is SolverOutcome.NOT_PERIODIC
     assert "NOT periodic after 2 periods" in r.message and r.iterations == 2 and r.residual_norm > 1e-15
     assert r.saddle_force_time_N.shape == (16, model.saddle_count)
 
@@ -298,7 +300,7 @@ def test_exact_law_converges_from_the_sharpest_soft_solution_reached():
         model, ex = random_case(3, np.array([0.01, 1.0, 1.0]), 1.0, [3.0, 0.0, 1.0], [0.0, 0.0, 0.0], 2.0)
         r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact"))
         ref = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="softplus"))
-    assert r.converged, r.message
+    assert r.outcome is SolverOutcome.CONVERGED_BY_CONTINUATION, r.message
     assert "continuation in kappa" in r.message
     assert r.saddle_force_time_N.min() >= 0.0
     assert r.max_saddle_force_N == pytest.approx(ref.max_saddle_force_N, rel=0.01)

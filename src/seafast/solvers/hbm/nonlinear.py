@@ -23,6 +23,7 @@ from scipy.sparse.linalg import splu
 
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.outcome import SolverOutcome
 
 __all__ = [
     "FactorisedJacobian",
@@ -146,12 +147,26 @@ class SparseJacobian:
 
 @dataclass
 class SolveAttempt:
+    """One nonlinear solve (or the whole fallback chain): the iterate reached and how.
+
+    ``residual`` is relative (max |R| over the problem's ``scale``); ``note`` tells people the
+    path taken; ``by_continuation`` whether a continuation (not the direct solve) converged.
+    """
+
     u: NDArray
     converged: bool
-    residual: float  # relative, inf-norm
+    residual: float
     iterations: int
     evaluations: int
     note: str
+    by_continuation: bool = False
+
+    @property
+    def outcome(self) -> SolverOutcome:
+        """The typed outcome of this attempt."""
+        if not self.converged:
+            return SolverOutcome.NOT_CONVERGED
+        return SolverOutcome.CONVERGED_BY_CONTINUATION if self.by_continuation else SolverOutcome.CONVERGED
 
 
 _ARMIJO = 1e-4
@@ -328,7 +343,7 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
             total_ev += final.evaluations
             if final.converged:
                 notes.append(f"converged by continuation in kappa over {reached} of {len(kappas)} step(s)")
-                return SolveAttempt(final.u, True, final.residual, total_it, total_ev, "; ".join(notes))
+                return SolveAttempt(final.u, True, final.residual, total_it, total_ev, "; ".join(notes), by_continuation=True)
             best = final if final.residual < best.residual else best
         notes.append("kappa continuation failed")
 
@@ -354,7 +369,9 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
         if lam >= 1.0:
             R, _ = problem.evaluate(u, law, 1.0)
             notes.append(f"converged by continuation in excitation amplitude ({n_steps} step(s))")
-            return SolveAttempt(u, True, float(np.max(np.abs(R))) / problem.scale, total_it, total_ev, "; ".join(notes))
+            return SolveAttempt(
+                u, True, float(np.max(np.abs(R))) / problem.scale, total_it, total_ev, "; ".join(notes), by_continuation=True
+            )
         notes.append(f"amplitude continuation stalled at {lam:.3g} of the excitation")
     else:
         notes.append("the static state did not converge")

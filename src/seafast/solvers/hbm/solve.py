@@ -14,6 +14,7 @@ from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, 
 from seafast.solvers.hbm.full import FullProblem
 from seafast.solvers.hbm.nonlinear import solve_with_fallback
 from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["CondensedSolution", "solve_condensed", "solve_hbm"]
@@ -29,11 +30,16 @@ class CondensedSolution:
 
     saddle_compression: NDArray[np.float64]
     correction_force: NDArray[np.float64]
-    converged: bool
+    outcome: SolverOutcome
     residual_norm: float
     iterations: int
     function_evaluations: int
     message: str
+
+    @property
+    def converged(self) -> bool:
+        """Whether the solve met the tolerance (from :attr:`outcome`)."""
+        return self.outcome.converged
 
 
 def solve_condensed(
@@ -48,7 +54,7 @@ def solve_condensed(
     U = a.u.reshape(problem.n_h, problem.n_s)
     delta = problem.inverse @ U
     corr = problem.forward @ (options.law.force(delta, problem.k_u) - problem.k_u * delta)
-    return CondensedSolution(U, corr, a.converged, a.residual, a.iterations, a.evaluations, a.note)
+    return CondensedSolution(U, corr, a.outcome, a.residual, a.iterations, a.evaluations, a.note)
 
 
 def solve_hbm(
@@ -66,7 +72,7 @@ def solve_hbm(
         The cargo and sea-fastening model.
     excitation
         Deck motion and vessel loads per harmonic (harmonics above ``options.harmonics`` are
-        dropped, and the message says so). The model's static load (gravity, pretension) is
+        dropped, with ``SolverWarning.HARMONICS_ABOVE_H_IGNORED`` in ``warnings``). The model's static load (gravity, pretension) is
         added at k = 0. With ``harmonics = 0`` only the static part is solved: the nonlinear
         static solution.
     options
@@ -80,7 +86,8 @@ def solve_hbm(
     Returns
     -------
     PeriodicResponse
-        ``method = "hbm"``; never raises for non-convergence (``converged=False``). Its
+        ``method = "hbm"``; ``outcome`` ``CONVERGED`` (direct solve),
+        ``CONVERGED_BY_CONTINUATION`` or ``NOT_CONVERGED`` (never raised). Its
         ``residual_norm`` is relative (see :class:`HBMOptions` ``tolerance``).
     """
     options = HBMOptions() if options is None else options
@@ -98,19 +105,21 @@ def solve_hbm(
         C = real_to_complex_harmonics(sol.correction_force)  # (H+1, n_s)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
         U = sol.saddle_compression
-        converged, resid, its, nfev, note = sol.converged, sol.residual_norm, sol.iterations, sol.function_evaluations, sol.message
+        outcome, resid, its, nfev, note = sol.outcome, sol.residual_norm, sol.iterations, sol.function_evaluations, sol.message
     else:
         problem = FullProblem(model, excitation, H, N, ops)
         a = solve_with_fallback(problem, law, options)
         Q = problem.cargo_displacement(a.u)
         X = real_to_complex_harmonics(Q)
         U = problem.deck_z - Q[:, model.saddle_cargo_dof]
-        converged, resid, its, nfev, note = a.converged, a.residual, a.iterations, a.evaluations, a.note
+        outcome, resid, its, nfev, note = a.outcome, a.residual, a.iterations, a.evaluations, a.note
     inverse, _ = real_dft_matrices(H, N)
     delta = inverse @ U
     force = law.force(delta, ops.saddle_stiffness_N_per_m)
+    warnings: tuple[SolverWarning, ...] = ()
     if ops.ignored_harmonics:
-        note += f"; WARNING: excitation harmonics above H={H} were ignored"
+        note += f"; excitation harmonics above H={H} were ignored"
+        warnings = (SolverWarning.HARMONICS_ABOVE_H_IGNORED,)
     return PeriodicResponse(
         method="hbm",
         omega_rad_s=float(excitation.omega_rad_s),
@@ -118,11 +127,12 @@ def solve_hbm(
         cargo_displacement_harmonics=X,
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
-        converged=bool(converged),
+        outcome=outcome,
         residual_norm=float(resid),
         iterations=int(its),
         message=note,
         harmonic_truncation_indicator=high_harmonic_energy_share(force, H),
         function_evaluations=int(nfev),
         options=options.to_dict(),
+        warnings=warnings,
     )

@@ -20,6 +20,7 @@ from seafast.fourier import harmonics_to_time, high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
 from seafast.solvers.exact_contact import solve_exact_contact
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
 
@@ -51,10 +52,11 @@ def solve_quasi_static(
     stiffness K); the vessel loads of the excitation (e.g. rigid-body inertia -M a_rb) and the
     model's static load are included. Every harmonic of the excitation is used.
 
-    The ``message`` states whether quasi-statics is justified: with ``H_eff`` the smallest
-    harmonic above which the contact forces carry < 0.1 % of their fluctuation energy and
-    ``omega_1`` the lowest natural frequency of the cargo over the contact states that occur
-    (saddles that detach removed), it warns when ``H_eff omega / omega_1 > 0.2``.
+    Whether quasi-statics is justified: with ``H_eff`` the smallest harmonic above which the
+    contact forces carry < 0.1 % of their fluctuation energy and ``omega_1`` the lowest natural
+    frequency of the cargo over the contact states that occur (saddles that detach removed),
+    ``warnings`` holds ``SolverWarning.QUASI_STATICS_QUESTIONABLE`` when
+    ``H_eff omega / omega_1 > 0.2``; the ``message`` says it in words.
 
     Returns
     -------
@@ -93,7 +95,7 @@ def solve_quasi_static(
     verdict = (
         f"quasi-statics justified: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} <= {QUASI_STATIC_RATIO_LIMIT}"
         if ratio <= QUASI_STATIC_RATIO_LIMIT
-        else f"WARNING: quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
+        else f"quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
     )
     options = {
         "time_samples": N,
@@ -103,7 +105,8 @@ def solve_quasi_static(
         "frequency_ratio": float(ratio),
         "contact_law": "exact",
     }
+    warnings = () if ratio <= QUASI_STATIC_RATIO_LIMIT else (SolverWarning.QUASI_STATICS_QUESTIONABLE,)
     return exact_law_response(
-        "quasi_static", model, excitation, cargo, delta, True, 0.0, len(states), N,
-        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options,
+        "quasi_static", model, excitation, cargo, delta, SolverOutcome.CONVERGED, 0.0, len(states), N,
+        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options, warnings,
     )

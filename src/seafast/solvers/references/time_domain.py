@@ -32,6 +32,7 @@ from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
 from seafast.solvers.exact_contact import BandedActiveSet, ExactContact
+from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
 
@@ -99,8 +100,8 @@ def solve_time_domain(
     Returns
     -------
     PeriodicResponse
-        ``method = "time_domain"`` (last period); ``converged`` False if the periodic steady
-        state was not reached in ``max_periods``; ``iterations`` = periods integrated,
+        ``method = "time_domain"`` (last period); ``outcome`` ``NOT_PERIODIC`` (``converged``
+        False) if the periodic steady state was not reached in ``max_periods``; ``iterations`` = periods integrated,
         ``function_evaluations`` = time steps, ``residual_norm`` = last period-to-period change;
         ``message`` and ``options["formulation"]`` name the formulation.
     """
@@ -241,7 +242,8 @@ def _time_domain_full(
         + check.describe(periods)
     )
     return exact_law_response(
-        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(), converged, change, periods, steps,
+        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(),
+        SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_PERIODIC, change, periods, steps,
         msg, harmonics_for_indicator, options,
     )
 
@@ -329,6 +331,7 @@ def _time_domain_condensed(
         + check.describe(periods)
     )
     return exact_law_response(
-        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(), converged, change, periods, steps,
+        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(),
+        SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_PERIODIC, change, periods, steps,
         msg, harmonics_for_indicator, options,
     )
