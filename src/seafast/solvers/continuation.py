@@ -219,6 +219,7 @@ def frequency_response(
         J = p.jacobian(state) * u_scale  # dR / d(u/u_scale)
         Rw = branch.d_residual_d_omega(u, omega) * w_scale
         n = u.size
+        t: NDArray
         if previous is None:
             t_u = np.linalg.solve(J, -Rw)
             t = np.append(t_u, 1.0) * direction
@@ -316,7 +317,7 @@ def frequency_response(
 
 
 def _finish(pts: list, message: str, steps: int, options: HBMOptions, end: BranchEnd) -> FrequencyResponseBranch:
-    a = list(zip(*pts)) if pts else [[]] * 6
+    a: list[Any] = list(zip(*pts)) if pts else [[]] * 6
     return FrequencyResponseBranch(
         omega_rad_s=np.asarray(a[0], dtype=float),
         max_saddle_force_N=np.asarray(a[1], dtype=float),
