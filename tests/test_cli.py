@@ -197,3 +197,57 @@ def test_a_coupling_that_does_not_converge_is_named_in_the_warning(tmp_path, cap
     assert main(["run", "-o", str(tmp_path / "run"), *FAST, "--set", "vessel.coupling=two_way"]) == 3
     err = capsys.readouterr().err
     assert err.count("two-way hull-cargo coupling not converged: deck residual") == 4
+
+
+@pytest.mark.parametrize(
+    "argv, progress, debug, table",
+    [
+        ([], True, False, True),
+        (["-v"], True, True, True),
+        (["-q"], False, False, False),
+        (["--quiet"], False, False, False),
+    ],
+)
+def test_global_verbosity(tmp_path, capsys, argv, progress, debug, table):
+    """Progress by default, debug lines (solver path) with -v, nothing but warnings with -q."""
+    assert main([*argv, "run", "-o", str(tmp_path / "run"), *FAST[:-1]]) == 0
+    out, err = capsys.readouterr()
+    assert ("running 'base-case'" in err) is progress
+    assert ("seafast: debug: seafast.solvers.hbm.nonlinear: direct solve" in err) is debug
+    assert ("maxima over the cargo" in out) is table
+    if not progress:
+        assert err == ""
+
+
+def test_run_quiet_still_works_and_verbose_and_quiet_exclude_each_other(tmp_path, capsys):
+    assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 0
+    assert capsys.readouterr() == ("", "")
+    with pytest.raises(SystemExit) as info:
+        main(["-v", "-q", "run"])
+    assert info.value.code == 2
+    assert "not allowed with argument" in capsys.readouterr().err
+
+
+def test_the_library_prints_nothing_unless_logging_is_configured(tmp_path):
+    """A solver warning (quasi-statics questionable) reaches a configured logger, never stderr by itself."""
+    import subprocess
+    import sys
+
+    script = (
+        "import logging, sys\n"
+        "sys.path.insert(0, 'tests/solvers')\n"
+        "from solver_cases import base_model, wave_excitation\n"
+        "from seafast.solvers.references import solve_quasi_static\n"
+        "model = base_model()\n"
+        "ex = wave_excitation(model, relative_mm=16.0, second_harmonic_mm=0.0)\n"
+        "r = solve_quasi_static(model, ex)\n"
+        "assert r.warnings, r.message\n"
+        "if len(sys.argv) > 1:\n"
+        "    logging.basicConfig(level=logging.WARNING)\n"
+        "    solve_quasi_static(model, ex)\n"
+    )
+    root = __import__("pathlib").Path(__file__).resolve().parents[1]
+    silent = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True, text=True, check=True)
+    assert silent.stdout == "" and silent.stderr == ""
+    logged = subprocess.run([sys.executable, "-c", script, "log"], cwd=root, capture_output=True, text=True, check=True)
+    assert "WARNING:seafast.solvers.references.quasi_static:quasi-static reference: quasi-statics questionable" in logged.stderr

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +19,8 @@ from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["CondensedSolution", "solve_condensed", "solve_hbm"]
+
+logger = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -119,6 +122,7 @@ def solve_hbm(
     warnings: tuple[SolverWarning, ...] = ()
     if ops.ignored_harmonics:
         note += f"; excitation harmonics above H={H} were ignored"
+        logger.warning("harmonic balance: the excitation has harmonics above H = %d; they were ignored (raise solver.harmonics)", H)
         warnings = (SolverWarning.HARMONICS_ABOVE_H_IGNORED,)
     return PeriodicResponse(
         method="hbm",

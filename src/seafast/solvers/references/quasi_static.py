@@ -11,6 +11,8 @@ exact to round-off.
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
@@ -25,6 +27,8 @@ from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
 
 __all__ = ["QUASI_STATIC_RATIO_LIMIT", "solve_quasi_static"]
+
+logger = logging.getLogger(__name__)
 
 QUASI_STATIC_RATIO_LIMIT = 0.2
 """Quasi-statics is taken as justified when ``H_eff omega / omega_1 <= 0.2``."""
@@ -106,6 +110,10 @@ def solve_quasi_static(
         "contact_law": "exact",
     }
     warnings = () if ratio <= QUASI_STATIC_RATIO_LIMIT else (SolverWarning.QUASI_STATICS_QUESTIONABLE,)
+    if warnings:
+        logger.warning("quasi-static reference: %s", verdict)
+    else:
+        logger.debug("quasi-static reference: %s", verdict)
     return exact_law_response(
         "quasi_static", model, excitation, cargo, delta, SolverOutcome.CONVERGED, 0.0, len(states), N,
         f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options, warnings,

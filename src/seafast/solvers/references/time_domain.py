@@ -23,6 +23,8 @@ below ``tolerance`` (the periodic steady state). Two formulations of the same eq
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 from numpy.typing import NDArray
 from scipy.sparse import csr_array
@@ -37,6 +39,8 @@ from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
 
 __all__ = ["TIME_DOMAIN_FORMULATIONS", "solve_time_domain"]
+
+logger = logging.getLogger(__name__)
 
 TIME_DOMAIN_FORMULATIONS = ("full", "condensed")
 
@@ -118,7 +122,9 @@ def solve_time_domain(
     if int(max_periods) < 2:
         raise ValueError(f"max_periods = {max_periods!r}; allowed: an integer >= 2")
     run = _time_domain_full if formulation == "full" else _time_domain_condensed
-    return run(model, excitation, N, S, int(max_periods), float(tolerance), float(hht_alpha), int(harmonics_for_indicator))
+    response = run(model, excitation, N, S, int(max_periods), float(tolerance), float(hht_alpha), int(harmonics_for_indicator))
+    logger.log(logging.DEBUG if response.converged else logging.INFO, "time-domain reference: %s", response.message)
+    return response
 
 
 class _PeriodicityCheck:
