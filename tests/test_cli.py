@@ -251,3 +251,27 @@ def test_the_library_prints_nothing_unless_logging_is_configured(tmp_path):
     assert silent.stdout == "" and silent.stderr == ""
     logged = subprocess.run([sys.executable, "-c", script, "log"], cwd=root, capture_output=True, text=True, check=True)
     assert "WARNING:seafast.solvers.references.quasi_static:quasi-static reference: quasi-statics questionable" in logged.stderr
+
+
+@pytest.mark.parametrize("text", ["", "\n\n", "# my case, to be written\n# cargo: {length_m: 90}\n", "---\n"])
+def test_an_empty_case_file_is_refused_and_init_suggested(tmp_path, capsys, text):
+    """An empty file (or only comments) used to run the base case without a word."""
+    empty = tmp_path / "case.yaml"
+    empty.write_text(text)
+    assert main(["run", str(empty), "-o", str(tmp_path / "out"), *FAST]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("seafast: error: case file") and str(empty) in err and "is empty" in err
+    assert f"seafast init {empty} --force" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_explicitly_empty_mapping_runs_every_default(tmp_path):
+    case = tmp_path / "defaults.yaml"
+    case.write_text("{}  # every default, on purpose\n")
+    assert main(["run", str(case), "-o", str(tmp_path / "out"), *FAST]) == 0
+    assert _summary(tmp_path / "out" / "summary.csv")[0]["F_N"] == _summary_of_base(tmp_path)
+
+
+def _summary_of_base(tmp_path):
+    assert main(["run", "-o", str(tmp_path / "base"), *FAST]) == 0
+    return _summary(tmp_path / "base" / "summary.csv")[0]["F_N"]
