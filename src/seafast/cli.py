@@ -168,7 +168,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from seafast.results.dataset import LOAD_CASES, MODELS
 
     for r in bad:
-        coupling = result.couplings.get((r["load_case"], r["model"]))
+        coupling = result.coupling.get((r["load_case"], r["model"]))
         if coupling is not None and not coupling.converged:
             why = f"two-way hull-cargo coupling not converged: deck residual {coupling.residual_m:.3e} after {coupling.iterations} step(s)"
         else:

@@ -126,8 +126,9 @@ class CaseResult:
     arrays: CaseArrays
     responses: dict[str, Any]
     attrs: dict[str, Any]
-    couplings: dict[tuple[str, str], Any] = field(default_factory=dict)
-    """Two-way coupling: each row's :class:`~seafast.excitation.coupling.DeckCoupling`, keyed (load_case, model)."""
+    coupling: dict[tuple[str, str], Any] = field(default_factory=dict)
+    """Two-way coupling: each row's :class:`~seafast.excitation.coupling.DeckCoupling` (its typed
+    ``converged``, ``iterations``, ``residual_m``), keyed (load_case, model); empty one-way."""
 
     @property
     def summary(self) -> list[dict[str, Any]]:

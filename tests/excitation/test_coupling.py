@@ -183,7 +183,6 @@ def test_a_coupling_that_does_not_converge_is_flagged_not_hidden(monkeypatch):
     monkeypatch.setattr(coupling, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
     result = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way"}))
     assert not any(row["converged"] for row in result.summary)
-    assert all(not c.converged for c in result.couplings.values()) and len(result.couplings) == 4
     for message in result.arrays.solver_message.ravel():
         assert message.startswith("two-way coupling") and "NOT converged" in message
 
