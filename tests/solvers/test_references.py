@@ -122,6 +122,17 @@ def test_quasi_static_warns_for_a_seesaw(base):
     assert qs.converged and "questionable" in qs.message
 
 
+def test_a_still_water_reference_is_exactly_static(base):
+    """The static load case has no dynamics to justify: no warning, whatever the cargo's frequencies."""
+    model, ex = base[0], base[1]
+    soft = base_model(stiffness_scale=1e-3)
+    for m in (model, soft):
+        qs = solve_quasi_static(m, ex.static_part(), time_samples=2)
+        assert qs.warnings == () and qs.options["effective_harmonic"] == 0 and qs.options["frequency_ratio"] == 0.0
+    # the same soft model in the wave: its dynamics matter, and the reference says so
+    assert solve_quasi_static(soft, wave_excitation(soft)).warnings == (SolverWarning.QUASI_STATICS_QUESTIONABLE,)
+
+
 def test_exact_contact_solver_small_problem():
     G = np.array([[5e-10, 1e-10], [1e-10, 5e-10]])
     k = np.array([1e9, 1e9])

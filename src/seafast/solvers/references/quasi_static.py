@@ -60,7 +60,8 @@ def solve_quasi_static(
     contact forces carry < 0.1 % of their fluctuation energy and ``omega_1`` the lowest natural
     frequency of the cargo over the contact states that occur (saddles that detach removed),
     ``warnings`` holds ``SolverWarning.QUASI_STATICS_QUESTIONABLE`` when
-    ``H_eff omega / omega_1 > 0.2``; the ``message`` says it in words.
+    ``H_eff omega / omega_1 > 0.2``; the ``message`` says it in words. A still-water excitation
+    (no harmonic above k = 0) is exactly static: ``H_eff = 0``.
 
     Returns
     -------
@@ -87,7 +88,9 @@ def solve_quasi_static(
     cargo = x_lin + correction @ Y.T
     # Is quasi-statics justified? Lowest natural frequency over the contact states that occur.
     force = k_u * np.maximum(delta, 0.0)
-    h_eff = _effective_harmonic(force, excitation.omega_rad_s)
+    # a still-water excitation (no harmonic above k = 0) is exactly static: nothing to justify
+    static = not (np.any(excitation.deck_displacement[1:]) or np.any(excitation.cargo_load_N[1:]))
+    h_eff = 0 if static else _effective_harmonic(force, excitation.omega_rad_s)
     states = np.unique(delta <= 0.0, axis=0)
     w1 = np.inf
     for detached in states:
