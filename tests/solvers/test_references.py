@@ -253,9 +253,10 @@ def test_random_cases_hbm_consistent_with_quasi_static(case):
             if r.converged:
                 assert r.saddle_force_time_N.min() >= 0.0
         r = solve_hbm(model, ex, HBMOptions(harmonics=H, time_samples=64, contact_law="exact"))
-    assert r.converged, r.message
     ratio = qs.options["frequency_ratio"]
     assume(ratio <= QUASI_STATIC_RATIO_LIMIT)
+    # near the quasi-static state a periodic solution exists and the predictor starts next to it
+    assert r.converged, r.message
     amplification = 1.0 / (1.0 - ratio**2)
     inertia_force, inertia_displacement = neglected_inertia(model, qs)
     gap = max(qs.max_gap_m, r.max_gap_m)
@@ -274,6 +275,33 @@ def test_random_cases_hbm_consistent_with_quasi_static(case):
     tol_delta = tolerance(float(np.max(np.abs(inertia_displacement[:, model.saddle_cargo_dof]))), delta_qs, gap)
     clear = np.abs(delta_qs) > tol_delta
     assert np.array_equal(r.contact_state[clear], qs.contact_state[clear])
+
+
+NO_STEADY_STATE_CASE = (3, 10.0 ** np.array([0.25, 0.0, -2.0]), 2.0, [0.1875, 2.0, 0.0], [0.0, 0.0, 0.0], 0.0)
+"""Found by Hypothesis: a 1 % saddle and deck motions out of phase rock the cargo far above its
+lowest contact state's frequency (H_eff omega / omega_1 = 22.6, gaps of 30 to 55 mm). The
+time-domain reference does not become periodic in 200 periods (change 1.5 % per period); the
+exact-law HBM reports NOT_CONVERGED at H = 10 and finds different periodic solutions at H = 5
+and H = 20 (gaps 54 and 30 mm)."""
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case_strategy)
+@example(NO_STEADY_STATE_CASE)
+def test_random_cases_hbm_reports_how_it_ended(case):
+    """Anywhere in the strategy, quasi-static or far from it: the HBM returns (never raises) and its
+    typed outcome is what its residual says. Convergence itself is required only where a periodic
+    state near the quasi-static one exists (the test above); far above the cargo's lowest contact
+    frequency the steady state may not be periodic at all (:data:`NO_STEADY_STATE_CASE`)."""
+    n, factors, amplitude, phases, static_mm, heave = case
+    tolerance = 1e-10
+    with threadpool_limits(1):
+        model, ex = random_case(n, factors, amplitude, phases, static_mm, heave)
+        r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact", tolerance=tolerance))
+    assert np.isfinite(r.residual_norm) and np.all(np.isfinite(r.saddle_force_time_N))
+    assert r.converged == (r.residual_norm <= tolerance), (r.outcome, r.residual_norm)
+    assert r.outcome in (SolverOutcome.CONVERGED, SolverOutcome.CONVERGED_BY_CONTINUATION, SolverOutcome.NOT_CONVERGED)
+    assert r.saddle_force_time_N.min() >= 0.0  # the exact law never pulls, converged or not
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
