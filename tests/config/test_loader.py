@@ -274,9 +274,20 @@ def test_top_level_not_a_mapping(tmp_path: Path, text: str, typename: str) -> No
     assert "top.yaml" in msg and "top level must be a mapping" in msg and typename in msg
 
 
-def test_empty_file_is_the_default_case(tmp_path: Path) -> None:
+@pytest.mark.parametrize("text", ["", "# nothing\n", "\n  \n", "---\n# only a document marker\n"])
+def test_an_empty_file_is_refused(tmp_path: Path, text: str) -> None:
+    """Issue 13: an empty file ran the base case without a word; it now says what to do."""
     p = tmp_path / "empty.yaml"
-    p.write_text("# nothing\n", encoding="utf-8")
+    p.write_text(text, encoding="utf-8")
+    with pytest.raises(CaseError) as exc:
+        load_case(p, {"wave.amplitude_m": 2.0})
+    msg = str(exc.value)
+    assert str(p) in msg and "is empty" in msg and "seafast init" in msg
+
+
+def test_an_explicit_empty_mapping_is_the_default_case(tmp_path: Path) -> None:
+    p = tmp_path / "defaults.yaml"
+    p.write_text("{}\n", encoding="utf-8")
     assert load_case(p) == Case()
 
 
