@@ -173,3 +173,109 @@ def test_sweep_says_it_cannot_couple(capsys):
     code = main(["sweep", "--set", "vessel.coupling=two_way", "--set", "vessel.motions=none"])
     assert code == 2
     assert "vessel.coupling" in capsys.readouterr().err
+
+
+def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(tmp_path, capsys, monkeypatch):
+    """The warning is built from the typed outcome and residual, not from the solver's message."""
+    import seafast.pipeline as pipeline
+
+    original = pipeline._hbm_options
+    monkeypatch.setattr(pipeline, "_hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
+    assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 3
+    err = capsys.readouterr().err
+    assert "dynamic nonlinear solution did NOT converge (not converged, residual" in err
+    with open(tmp_path / "run" / "summary.csv", newline="") as f:
+        rows = {(r["load_case"], r["model"]): r["converged"] for r in csv.DictReader(f)}
+    assert rows[("dynamic", "nonlinear")] == "false" and rows[("dynamic", "linear")] == "true"
+
+
+def test_a_coupling_that_does_not_converge_is_named_in_the_warning(tmp_path, capsys, monkeypatch):
+    """The warning is built from the coupling's typed outcome, not from a message."""
+    import seafast.excitation.coupling as coupling
+    import seafast.pipeline as pipeline
+
+    original = coupling.couple_deck
+    stopped = lambda *a, **k: original(*a, **{**k, "max_iterations": 0})  # noqa: E731
+    monkeypatch.setattr(coupling, "couple_deck", stopped)
+    monkeypatch.setattr(pipeline, "couple_deck", stopped, raising=False)  # where the pipeline imports it at module level
+    assert main(["run", "-o", str(tmp_path / "run"), *FAST, "--set", "vessel.coupling=two_way"]) == 3
+    err = capsys.readouterr().err
+    assert err.count("solution did NOT converge (two-way") == 4 and "residual" in err
+
+
+@pytest.mark.parametrize(
+    "argv, progress, debug, table",
+    [
+        ([], True, False, True),
+        (["-v"], True, True, True),
+        (["-q"], False, False, False),
+        (["--quiet"], False, False, False),
+    ],
+)
+def test_global_verbosity(tmp_path, capsys, argv, progress, debug, table):
+    """Progress by default, debug lines (solver path) with -v, nothing but warnings with -q."""
+    assert main([*argv, "run", "-o", str(tmp_path / "run"), *FAST[:-1]]) == 0
+    out, err = capsys.readouterr()
+    assert ("running 'base-case'" in err) is progress
+    assert ("seafast: debug: seafast.solvers.hbm.nonlinear: direct solve" in err) is debug
+    assert ("maxima over the cargo" in out) is table
+    if not progress:
+        assert err == ""
+
+
+def test_run_quiet_still_works_and_verbose_and_quiet_exclude_each_other(tmp_path, capsys):
+    assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 0
+    assert capsys.readouterr() == ("", "")
+    with pytest.raises(SystemExit) as info:
+        main(["-v", "-q", "run"])
+    assert info.value.code == 2
+    assert "not allowed with argument" in capsys.readouterr().err
+
+
+def test_the_library_prints_nothing_unless_logging_is_configured(tmp_path):
+    """A solver warning (quasi-statics questionable) reaches a configured logger, never stderr by itself."""
+    import subprocess
+    import sys
+
+    script = (
+        "import logging, sys\n"
+        "sys.path.insert(0, 'tests/solvers')\n"
+        "from solver_cases import base_model, wave_excitation\n"
+        "from seafast.solvers.references import solve_quasi_static\n"
+        "model = base_model()\n"
+        "ex = wave_excitation(model, relative_mm=16.0, second_harmonic_mm=0.0)\n"
+        "r = solve_quasi_static(model, ex)\n"
+        "assert r.warnings, r.message\n"
+        "if len(sys.argv) > 1:\n"
+        "    logging.basicConfig(level=logging.WARNING)\n"
+        "    solve_quasi_static(model, ex)\n"
+    )
+    root = __import__("pathlib").Path(__file__).resolve().parents[1]
+    silent = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True, text=True, check=True)
+    assert silent.stdout == "" and silent.stderr == ""
+    logged = subprocess.run([sys.executable, "-c", script, "log"], cwd=root, capture_output=True, text=True, check=True)
+    assert "WARNING:seafast.solvers.references.quasi_static:quasi-static reference: quasi-statics questionable" in logged.stderr
+
+
+@pytest.mark.parametrize("text", ["", "\n\n", "# my case, to be written\n# cargo: {length_m: 90}\n", "---\n"])
+def test_an_empty_case_file_is_refused_and_init_suggested(tmp_path, capsys, text):
+    """An empty file (or only comments) used to run the base case without a word."""
+    empty = tmp_path / "case.yaml"
+    empty.write_text(text)
+    assert main(["run", str(empty), "-o", str(tmp_path / "out"), *FAST]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("seafast: error: case file") and str(empty) in err and "is empty" in err
+    assert f"seafast init {empty} --force" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_explicitly_empty_mapping_runs_every_default(tmp_path):
+    case = tmp_path / "defaults.yaml"
+    case.write_text("{}  # every default, on purpose\n")
+    assert main(["run", str(case), "-o", str(tmp_path / "out"), *FAST]) == 0
+    assert _summary(tmp_path / "out" / "summary.csv")[0]["F_N"] == _summary_of_base(tmp_path)
+
+
+def _summary_of_base(tmp_path):
+    assert main(["run", "-o", str(tmp_path / "base"), *FAST]) == 0
+    return _summary(tmp_path / "base" / "summary.csv")[0]["F_N"]

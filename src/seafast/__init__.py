@@ -12,13 +12,21 @@ Scripting::
     result.dataset            # everything, labelled (xarray)
 
 The package imports its numerical stack lazily, so ``seafast.cli`` can pin BLAS threads first.
+Modules log to ``logging.getLogger(__name__)`` (the ``seafast`` hierarchy): solver paths and
+fallbacks at DEBUG/INFO, BEM cache misses and study progress at INFO, typed solver warnings at
+WARNING.
 """
 
 from __future__ import annotations
 
+import logging
 from typing import Any
 
 __version__ = "0.1.0"
+
+# A library logs and lets the application decide what to show: nothing, unless it configures
+# logging (the ``seafast`` command does, see :func:`seafast.cli.main`).
+logging.getLogger(__name__).addHandler(logging.NullHandler())
 
 __all__ = ["__version__", "load_case", "run_case", "Case", "CaseError", "CaseResult"]
 

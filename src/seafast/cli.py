@@ -2,12 +2,18 @@
 
 Exit codes: 0 success; 2 invalid input (one clear message on stderr, no traceback); 3 the
 case ran but the nonlinear solver did not converge (results are still written, flagged).
+
+Messages: :func:`main` routes the package's logging (``seafast.*`` loggers) to stderr for the
+duration of the command: progress at INFO (shown by default), warnings as
+``seafast: warning: ...``; ``-v/--verbose`` adds DEBUG (solver paths, cache hits), ``-q/--quiet``
+keeps warnings and errors only (``seafast run -q`` and ``seafast study -q`` as well).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import logging
 import math
 import os
 import sys
@@ -26,6 +32,8 @@ import numpy as np  # noqa: E402
 import seafast
 
 __all__ = ["main", "build_parser"]
+
+logger = logging.getLogger(__name__)
 
 EXIT_OK = 0
 EXIT_INVALID_INPUT = 2
@@ -76,6 +84,11 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="Run 'seafast COMMAND --help' for a command's options and examples.",
     )
     parser.add_argument("--version", action="version", version=f"seafast {seafast.__version__}")
+    verbosity = parser.add_mutually_exclusive_group()
+    verbosity.add_argument(
+        "-v", "--verbose", action="store_true", help="also print debug messages (solver paths, fallbacks, cache hits)"
+    )
+    verbosity.add_argument("-q", "--quiet", dest="global_quiet", action="store_true", help="print only warnings and errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     run = sub.add_parser(
@@ -159,11 +172,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
         case = load_case(args.case, overrides)
     except CaseError as exc:
         return _error(str(exc))
-    say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
-    say(f"seafast {seafast.__version__}: running '{case.name}'" + (f" from {args.case}" if args.case else " (built-in base case)"))
+    source = f"from {args.case}" if args.case else "(built-in base case)"
+    logger.info("seafast %s: running '%s' %s", seafast.__version__, case.name, source)
     t0 = time.perf_counter()
     try:
-        result = run_case(case, progress=say)
+        result = run_case(case, progress=logger.info)
     except (CaseError, ValueError) as exc:
         return _error(str(exc))
     paths = write_run_outputs(result, args.output)
@@ -187,7 +200,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"> tolerance {coupling.tolerance_m:.2e} m after {coupling.iterations} step(s)"
             )
         else:
-            why = f"cargo solver residual {r['residual_norm']:.3e}"
+            outcome = result.arrays.solver_outcome[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])]
+            why = f"{outcome.replace('_', ' ')}, residual {r['residual_norm']:.3e}"
         print(
             f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge ({why}); "
             "its numbers are flagged converged=false in summary.csv and must not be trusted",
@@ -236,6 +250,25 @@ def _cmd_schema(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+class _CliFormatter(logging.Formatter):
+    """Progress as plain lines; warnings and errors as ``seafast: warning: ...``; debug with its logger."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        message = record.getMessage()
+        if record.levelno >= logging.WARNING:
+            return f"seafast: {record.levelname.lower()}: {message}"
+        if record.levelno < logging.INFO:
+            return f"seafast: debug: {record.name}: {message}"
+        return message
+
+
+def _log_level(args: argparse.Namespace) -> int:
+    """DEBUG with --verbose, WARNING with a -q (global or the command's), else INFO."""
+    if args.global_quiet or getattr(args, "quiet", False):
+        return logging.WARNING
+    return logging.DEBUG if args.verbose else logging.INFO
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``seafast`` command; returns the exit code."""
     import scipy.linalg  # noqa: F401 - load scipy's BLAS now so the limit below reaches it
@@ -246,10 +279,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "handler", None):
         parser.print_help()
         return EXIT_OK
-    # seafast's dense solves are small (~100-5000 unknowns): one BLAS thread is fastest on few
-    # cores, and leaves the cores to study workers (the BEM step lifts this limit for itself).
-    with threadpool_limits(limits=1, user_api="blas"):
-        return int(args.handler(args))
+    if args.global_quiet and hasattr(args, "quiet"):
+        args.quiet = True  # the command's own quiet mode (no tables) follows the global one
+    # the package's log records go to stderr for this command only (main can be called again,
+    # e.g. by tests or scripts, and must not leave a handler on a stale stream)
+    package_logger = logging.getLogger("seafast")
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(_CliFormatter())
+    saved = package_logger.level, package_logger.propagate
+    package_logger.addHandler(handler)
+    package_logger.setLevel(_log_level(args))
+    package_logger.propagate = False
+    try:
+        # seafast's dense solves are small (~100-5000 unknowns): one BLAS thread is fastest on
+        # few cores, and leaves the cores to study workers (the BEM step lifts this limit for itself).
+        with threadpool_limits(limits=1, user_api="blas"):
+            return int(args.handler(args))
+    finally:
+        package_logger.removeHandler(handler)
+        package_logger.setLevel(saved[0])
+        package_logger.propagate = saved[1]
 
 
 if __name__ == "__main__":  # pragma: no cover

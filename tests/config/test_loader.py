@@ -49,7 +49,7 @@ def test_base_case_values() -> None:
     )
     # a preset fills only what the case leaves unset
     assert load_case(overrides={"solver.preset": "source", "solver.harmonics": 9}).solver.harmonics == 9
-    assert case.solver.contact_law == "tanh" and case.solver.regularisation_per_m == 1000.0
+    assert case.solver.regularisation_per_m == 1000.0
     assert case.model.element_length_m == 1.0 and case.model.damping_ratio == 0.02
     # the built-in text equals the schema defaults (apart from the name, and the base case's
     # design sea state: the schema leaves Hs and Tp unset, a sea state is chosen consciously)
@@ -212,7 +212,7 @@ INVALID = [
     ("lashed-out-of-range", {"seafastening": {"lashed_saddles": [0, 3]}}, ["seafastening.lashed_saddles = [0, 3]", "[3]", "0..2"]),
     ("lashed-negative", {"seafastening": {"lashed_saddles": [-1]}}, ["seafastening.lashed_saddles[0] = -1"]),
     ("time-samples", {"solver": {"harmonics": 5, "time_samples": 11}}, ["time_samples = 11", "2 * harmonics + 2 = 12"]),
-    ("time-samples-H", {"solver": {"harmonics": 70}}, ["time_samples = 128", "2 * harmonics + 2 = 142"]),
+    ("time-samples-H", {"solver": {"harmonics": 70, "time_samples": 128}}, ["time_samples = 128", "2 * harmonics + 2 = 142"]),
     ("bad-literal", {"solver": {"contact_law": "hertz"}}, ["solver.contact_law = 'hertz'", "tanh"]),
     ("damping-1", {"model": {"damping_ratio": 1.0}}, ["model.damping_ratio = 1.0", "less than 1"]),
     ("poisson", {"cargo": {"poisson_ratio": 0.5}}, ["cargo.poisson_ratio = 0.5"]),
@@ -277,9 +277,20 @@ def test_top_level_not_a_mapping(tmp_path: Path, text: str, typename: str) -> No
     assert "top.yaml" in msg and "top level must be a mapping" in msg and typename in msg
 
 
-def test_empty_file_is_the_default_case(tmp_path: Path) -> None:
+@pytest.mark.parametrize("text", ["", "# nothing\n", "\n  \n", "---\n# only a document marker\n"])
+def test_an_empty_file_is_refused(tmp_path: Path, text: str) -> None:
+    """Issue 13: an empty file ran the base case without a word; it now says what to do."""
     p = tmp_path / "empty.yaml"
-    p.write_text("# nothing\n", encoding="utf-8")
+    p.write_text(text, encoding="utf-8")
+    with pytest.raises(CaseError) as exc:
+        load_case(p, {"wave.amplitude_m": 2.0})
+    msg = str(exc.value)
+    assert str(p) in msg and "is empty" in msg and "seafast init" in msg
+
+
+def test_an_explicit_empty_mapping_is_the_default_case(tmp_path: Path) -> None:
+    p = tmp_path / "defaults.yaml"
+    p.write_text("{}\n", encoding="utf-8")
     assert load_case(p) == Case()
 
 
@@ -395,7 +406,8 @@ def test_random_mappings_give_case_or_case_error(data: Any) -> None:
     assert all(0 < x < case.cargo.length_m for x in pos)
     assert len(case.saddle_stiffnesses_N_per_m()) == len(pos)
     assert all(0 <= i < len(pos) for i in case.lashed_saddle_indices())
-    assert case.solver.time_samples >= 2 * case.solver.harmonics + 2
+    if case.solver.time_samples is not None and case.solver.harmonics is not None:
+        assert case.solver.time_samples >= 2 * case.solver.harmonics + 2
 
 
 override_keys = st.sampled_from(

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -9,12 +11,14 @@ import xarray as xr
 from seafast.config import load_case
 from seafast.output.files import write_netcdf
 from seafast.pipeline import run_case
-from seafast.results.dataset import SUMMARY_COLUMNS
+from seafast.results.dataset import SUMMARY_COLUMNS, build_case_dataset, case_arrays
+from seafast.results.timeseries import from_periodic_response, linear_time_series
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 
 
 @pytest.fixture(scope="module")
 def result():
-    return run_case(load_case(overrides={"vessel.motions": "none", "solver.time_samples": 64}))
+    return run_case(load_case(overrides={"vessel.motions": "none", "solver.harmonics": 16, "solver.time_samples": 64}))
 
 
 def test_every_variable_carries_units_and_a_long_name(result):
@@ -65,6 +69,38 @@ def test_netcdf_round_trip(result, tmp_path):
     xr.testing.assert_allclose(back["saddle_force_N"], result.dataset["saddle_force_N"])
     assert back["bending_moment_Nm"].attrs["units"] == "N m"
     assert back.attrs["excitation_source"] == result.excitation.source
+
+
+def test_typed_outcomes_and_warnings_reach_results_nc(result, tmp_path):
+    """The solver's typed outcome and warnings are labelled variables, read back without parsing text."""
+    ds = result.dataset
+    assert set(ds["solver_outcome"].values.ravel()) == {"converged"}
+    assert list(ds["solver_warning"].values) == [w.value for w in SolverWarning]
+    assert int(ds["solver_warning_flag"].sum()) == 0
+    # the dynamic nonlinear row: not converged, with a warning (what a solver can report)
+    bad = replace(
+        result.responses["nonlinear_dynamic"],
+        outcome=SolverOutcome.NOT_CONVERGED,
+        warnings=(SolverWarning.QUASI_STATICS_QUESTIONABLE,),
+    )
+    N = result.case.solver.time_samples
+    series = {
+        ("static", "linear"): linear_time_series(result.responses["linear_static"], N),
+        ("dynamic", "linear"): linear_time_series(result.responses["linear_dynamic"], N),
+        ("static", "nonlinear"): from_periodic_response(result.responses["nonlinear_static"], N),
+        ("dynamic", "nonlinear"): from_periodic_response(bad, N),
+    }
+    arrays = case_arrays(result.model, result.excitation, series, N)
+    back = xr.open_dataset(write_netcdf(build_case_dataset(arrays, result.model), tmp_path / "results.nc")).load()
+    row = back.sel(load_case="dynamic", model="nonlinear")
+    assert SolverOutcome(str(row["solver_outcome"].values)) is SolverOutcome.NOT_CONVERGED
+    assert int(row["converged"]) == 0
+    flags = row["solver_warning_flag"]
+    assert int(flags.sel(solver_warning="quasi_statics_questionable")) == 1
+    assert int(flags.sel(solver_warning="harmonics_above_h_ignored")) == 0
+    assert int(back["solver_warning_flag"].sum()) == 1
+    for name in ("solver_outcome", "solver_warning_flag"):
+        assert {"units", "long_name"} <= set(back[name].attrs), name
 
 
 def test_sea_fastening_frame_deflection_is_fixed_by_the_saddle_reactions(tmp_path):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
-from seafast.solvers.continuation import frequency_response
+from seafast.solvers.continuation import BranchEnd, frequency_response
 from seafast.solvers.hbm import HBMOptions
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.periodic import harmonics_to_time
@@ -34,6 +34,7 @@ def test_wave_frequencies_are_quasi_static():
     opts = HBMOptions(harmonics=10, time_samples=64, contact_law="exact")
     branch = frequency_response(model, excitation_at, 0.2, 2.0, opts)
     assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(2.0, rel=1e-6)
+    assert branch.end is BranchEnd.REACHED_END
     assert not branch.contact_preserved.any()  # the middle saddle lifts off throughout
     qs = solve_quasi_static(model, excitation_at(0.2), time_samples=64)
     print(f"\nomega 0.2..2 rad/s: max force {branch.max_saddle_force_N.min() / 1e6:.4f}..{branch.max_saddle_force_N.max() / 1e6:.4f} MN, quasi-static {qs.max_saddle_force_N / 1e6:.4f} MN; {len(branch.omega_rad_s)} points")
@@ -70,6 +71,7 @@ def test_nonlinear_resonance_is_passed_with_lift_off():
     # the 20 mm this test used no longer lifts the cargo off at resonance
     branch = frequency_response(model, deck_only(model, 40.0), 1.0, 10.0, opts)
     assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(10.0, rel=1e-6)
+    assert branch.end is BranchEnd.REACHED_END
     assert not branch.contact_preserved.all() and branch.max_gap_m.max() > 1e-3
     assert 4.5 < branch.peak_omega_rad_s < 5.6
 
@@ -78,3 +80,10 @@ def test_invalid_sweep_is_rejected():
     model = base_model(element_length_m=8.0)
     with pytest.raises(ValueError, match="omega"):
         frequency_response(model, deck_only(model, 1.0), 1.0, 1.0)
+
+
+def test_a_branch_whose_first_point_fails_says_so():
+    model = base_model()
+    options = HBMOptions(max_iterations=1, continuation=False, tolerance=1e-14)
+    branch = frequency_response(model, wave_excitation(model).at_frequency, 0.5, 1.0, options)
+    assert branch.end is BranchEnd.FIRST_POINT_FAILED and branch.converged.tolist() == [False]

@@ -8,6 +8,7 @@ from threadpoolctl import threadpool_limits
 
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.references import solve_quasi_static
 from solver_cases import base_model, peak_moment, static_excitation, wave_excitation
 
@@ -112,7 +113,8 @@ def test_static_nonlinear_lift_off_matches_quasi_static(coarse):
 def test_non_convergence_is_reported_not_raised(model):
     ex = wave_excitation(model)
     r = solve_hbm(model, ex, HBMOptions(harmonics=5, contact_law="tanh", max_iterations=1, continuation=False, tolerance=1e-14))
-    assert not r.converged and r.residual_norm > 1e-14 and "max_iterations" in r.message
+    assert not r.converged and r.outcome is SolverOutcome.NOT_CONVERGED
+    assert r.residual_norm > 1e-14 and "max_iterations" in r.message
 
 
 def test_fallback_continuation_reaches_the_solution(model):
@@ -124,7 +126,8 @@ def test_fallback_continuation_reaches_the_solution(model):
 
 def test_dropped_harmonics_are_reported(model):
     r = solve_hbm(model, wave_excitation(model), HBMOptions(harmonics=1, time_samples=8))
-    assert r.converged and "ignored" in r.message
+    assert r.converged and r.warnings == (SolverWarning.HARMONICS_ABOVE_H_IGNORED,) and "ignored" in r.message
+    assert solve_hbm(model, wave_excitation(model), HBMOptions(harmonics=2, time_samples=8)).warnings == ()
 
 
 def test_a_warm_start_from_the_solution_returns_it(model):

@@ -6,7 +6,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 from threadpoolctl import threadpool_limits
 
@@ -16,8 +16,8 @@ from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
 from seafast.model.structure import build_structural_model, rayleigh_coefficients
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.periodic import PeriodicResponse
-from seafast.solvers.references import solve_exact_contact, solve_quasi_static, solve_time_domain
+from seafast.solvers.periodic import PeriodicResponse, SolverOutcome, SolverWarning
+from seafast.solvers.references import QUASI_STATIC_RATIO_LIMIT, solve_exact_contact, solve_quasi_static, solve_time_domain
 from solver_cases import base_model, moments, wave_excitation
 
 
@@ -50,7 +50,8 @@ def base():
 def test_references_agree_with_each_other(base):
     model, ex, qs, td = base
     assert qs.converged and td.converged
-    assert "justified" in qs.message and "WARNING" not in qs.message
+    assert qs.outcome is SolverOutcome.CONVERGED and qs.warnings == ()
+    assert "justified" in qs.message
     assert not qs.contact_preserved and qs.max_gap_m > 1e-3
     e_f, e_m = force_error(td, qs), moment_error(model, td, qs)
     print(f"\ntime domain vs quasi-static: force {e_f:.2%}, moment {e_m:.2%} ({td.message})")
@@ -119,7 +120,19 @@ def test_quasi_static_warns_for_a_seesaw(base):
     """Outer saddles lifting together leave the cargo rocking on the middle saddle (~0.1 rad/s)."""
     model = base[0]
     qs = solve_quasi_static(model, wave_excitation(model, relative_mm=16.0, second_harmonic_mm=0.0))
-    assert "WARNING" in qs.message and qs.options["frequency_ratio"] > 0.2
+    assert qs.warnings == (SolverWarning.QUASI_STATICS_QUESTIONABLE,) and qs.options["frequency_ratio"] > 0.2
+    assert qs.converged and "questionable" in qs.message
+
+
+def test_a_still_water_reference_is_exactly_static(base):
+    """The static load case has no dynamics to justify: no warning, whatever the cargo's frequencies."""
+    model, ex = base[0], base[1]
+    soft = base_model(stiffness_scale=1e-3)
+    for m in (model, soft):
+        qs = solve_quasi_static(m, ex.static_part(), time_samples=2)
+        assert qs.warnings == () and qs.options["effective_harmonic"] == 0 and qs.options["frequency_ratio"] == 0.0
+    # the same soft model in the wave: its dynamics matter, and the reference says so
+    assert solve_quasi_static(soft, wave_excitation(soft)).warnings == (SolverWarning.QUASI_STATICS_QUESTIONABLE,)
 
 
 def test_exact_contact_solver_small_problem():
@@ -170,26 +183,127 @@ case_strategy = st.integers(2, 7).flatmap(
 )
 
 
+def neglected_inertia(model, qs: PeriodicResponse) -> tuple[np.ndarray, np.ndarray]:
+    """What the quasi-static reference neglects, to first order: its own motion's inertia.
+
+    The d'Alembert load ``-M a(t)`` of the quasi-static cargo motion (``a`` by spectral
+    differentiation of the N samples), applied statically in each instant's contact state
+    (the saddles that the reference finds detached removed from K). Returns the saddle-force
+    change (N, n_s) [N] and the cargo-DOF change (N, n_c) [m, rad]. At a frequency ratio r the
+    dynamic response amplifies it by at most ``1 / (1 - r^2)``.
+    """
+    N = qs.time_samples
+    spectrum = np.fft.rfft(qs.cargo_displacement_time_m, axis=0)
+    k = np.arange(spectrum.shape[0])[:, None]
+    acceleration = np.fft.irfft(-((k * qs.omega_rad_s) ** 2) * spectrum, n=N, axis=0)
+    load = -acceleration @ np.asarray(model.cargo.mass, dtype=float).T
+    K = np.asarray(model.dynamic_stiffness(0.0, True)[0], dtype=float)
+    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
+    sad = model.saddle_cargo_dof
+    force = np.zeros((N, model.saddle_count))
+    displacement = np.zeros_like(load)
+    for n in range(N):
+        detached = qs.saddle_compression_time_m[n] <= 0.0
+        K_n = K.copy()
+        K_n[sad, sad] -= k_u * detached
+        displacement[n] = np.linalg.solve(K_n, load[n])
+        force[n] = np.where(detached, 0.0, -k_u * displacement[n, sad])
+    return force, displacement
+
+
+def above_harmonic(signal: np.ndarray, harmonics: int) -> float:
+    """Largest |signal - its first ``harmonics`` harmonics| over the samples: what H harmonics cannot represent."""
+    spectrum = np.fft.rfft(signal, axis=0)
+    spectrum[harmonics + 1 :] = 0.0
+    return float(np.max(np.abs(signal - np.fft.irfft(spectrum, n=signal.shape[0], axis=0))))
+
+
+HBM_QS_SAFETY = 2.0
+"""Margin on the first-order estimate below: over 1574 random cases of this strategy the
+largest measured difference was 0.96 of it (peak force), 0.93 (peak deflection) and 0.89
+(compression at a contact-state mismatch)."""
+HBM_QS_FLOOR = 1e-3
+"""Share of each quantity's scale left to what the first-order estimate omits (the Rayleigh
+damping forces the reference also neglects, higher-order dynamics, round-off)."""
+
+
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case_strategy)
 def test_random_cases_hbm_consistent_with_quasi_static(case):
+    """Where quasi-statics is justified (the reference says so: H_eff omega / omega_1 <= 0.2), the
+    exact-law HBM (H = 10) agrees with the quasi-static reference within what separates them:
+
+    * the cargo's inertia, which the reference neglects: to first order the static response to
+      the d'Alembert load of its own motion (:func:`neglected_inertia`), amplified by
+      ``1 / (1 - r^2)`` at the case's frequency ratio r (up to 4 % at r = 0.2 -- more than the
+      old fixed 2 %, which is why that test failed now and then);
+    * the HBM's truncation: the reference's content above H (:func:`above_harmonic`);
+    * where a saddle lifts off, the gap: the detached cargo is free to move within it, and its
+      position there is set by dynamics, not statics (deflections and compressions only);
+
+    with the margin :data:`HBM_QS_SAFETY` and the floor :data:`HBM_QS_FLOOR`. Contact states are
+    compared, and must agree, wherever the compression is clear of zero by that same tolerance
+    (a median 12 % of the compression scale over random cases); near a switch they may differ.
+    """
     n, factors, amplitude, phases, static_mm, heave = case
+    H = 10
     with threadpool_limits(1):
         model, ex = random_case(n, factors, amplitude, phases, static_mm, heave)
         qs = solve_quasi_static(model, ex, time_samples=64)
         for law in ("exact", "softplus"):
-            r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law=law))
+            r = solve_hbm(model, ex, HBMOptions(harmonics=H, time_samples=64, contact_law=law))
             if r.converged:
                 assert r.saddle_force_time_N.min() >= 0.0
-        r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact"))
+        r = solve_hbm(model, ex, HBMOptions(harmonics=H, time_samples=64, contact_law="exact"))
+    ratio = qs.options["frequency_ratio"]
+    assume(ratio <= QUASI_STATIC_RATIO_LIMIT)
+    # near the quasi-static state a periodic solution exists and the predictor starts next to it
     assert r.converged, r.message
-    # compare where quasi-statics is justified (the reference says so itself)
-    assume(qs.options["frequency_ratio"] <= 0.2)
-    assert r.max_saddle_force_N == pytest.approx(qs.max_saddle_force_N, rel=0.02)
-    z, z_qs = r.max_cargo_deflection_m(), qs.max_cargo_deflection_m()
-    assert z == pytest.approx(z_qs, rel=0.02, abs=2e-4)
-    # the contact state agrees except near switches
-    assert np.mean(r.contact_state == qs.contact_state) > 0.9
+    amplification = 1.0 / (1.0 - ratio**2)
+    inertia_force, inertia_displacement = neglected_inertia(model, qs)
+    gap = max(qs.max_gap_m, r.max_gap_m)
+
+    def tolerance(first_order: float, reference: np.ndarray, free_play: float) -> float:
+        return HBM_QS_SAFETY * (
+            amplification * first_order + above_harmonic(reference, H) + free_play + HBM_QS_FLOOR * float(np.max(np.abs(reference)))
+        )
+
+    tol_force = tolerance(float(np.max(np.abs(inertia_force))), qs.saddle_force_time_N, 0.0)
+    assert abs(r.max_saddle_force_N - qs.max_saddle_force_N) <= tol_force
+    z_qs = qs.cargo_displacement_time_m[:, 0::2]
+    tol_z = tolerance(float(np.max(np.abs(inertia_displacement[:, 0::2]))), z_qs, gap)
+    assert abs(r.max_cargo_deflection_m() - qs.max_cargo_deflection_m()) <= tol_z
+    delta_qs = qs.saddle_compression_time_m
+    tol_delta = tolerance(float(np.max(np.abs(inertia_displacement[:, model.saddle_cargo_dof]))), delta_qs, gap)
+    clear = np.abs(delta_qs) > tol_delta
+    assert np.array_equal(r.contact_state[clear], qs.contact_state[clear])
+
+
+NO_STEADY_STATE_CASE = (3, 10.0 ** np.array([0.25, 0.0, -2.0]), 2.0, [0.1875, 2.0, 0.0], [0.0, 0.0, 0.0], 0.0)
+"""Found by Hypothesis: a 1 % saddle and deck motions out of phase rock the cargo far above its
+lowest contact state's frequency (H_eff omega / omega_1 = 22.6, gaps of 30 to 55 mm). The
+time-domain reference does not become periodic in 200 periods (change 1.5 % per period); the
+exact-law HBM reports NOT_CONVERGED at H = 10 and finds different periodic solutions at H = 5
+and H = 20 (gaps 54 and 30 mm)."""
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case_strategy)
+@example(NO_STEADY_STATE_CASE)
+def test_random_cases_hbm_reports_how_it_ended(case):
+    """Anywhere in the strategy, quasi-static or far from it: the HBM returns (never raises) and its
+    typed outcome is what its residual says. Convergence itself is required only where a periodic
+    state near the quasi-static one exists (the test above); far above the cargo's lowest contact
+    frequency the steady state may not be periodic at all (:data:`NO_STEADY_STATE_CASE`)."""
+    n, factors, amplitude, phases, static_mm, heave = case
+    tolerance = 1e-10
+    with threadpool_limits(1):
+        model, ex = random_case(n, factors, amplitude, phases, static_mm, heave)
+        r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact", tolerance=tolerance))
+    assert np.isfinite(r.residual_norm) and np.all(np.isfinite(r.saddle_force_time_N))
+    assert r.converged == (r.residual_norm <= tolerance), (r.outcome, r.residual_norm)
+    assert r.outcome in (SolverOutcome.CONVERGED, SolverOutcome.CONVERGED_BY_CONTINUATION, SolverOutcome.NOT_CONVERGED)
+    assert r.saddle_force_time_N.min() >= 0.0  # the exact law never pulls, converged or not
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -235,14 +349,27 @@ def test_time_domain_full_equals_condensed(base):
     assert td.max_saddle_force_N == pytest.approx(qs.max_saddle_force_N, rel=0.01)
 
 
+TWO_ORBIT_CASE = (3, np.array([0.08420277, 1.0, 1.0]), 1.1423779289169924, [0.84375, 4.265625, 0.296875], [0.0, -2.25, -2.75], 1.625)
+"""Found by Hypothesis: two saddles lift off (gaps of 6 mm and 1-2 mm) and each re-contact rings
+the cargo's 21 rad/s mode. With 16 steps per output sample (512 per period, omega_1 dt = 0.43)
+the two formulations, started from different states, settle on two periodic states 0.2 % apart
+in saddle force, both within the period-to-period tolerance down to 1e-11 (the non-smooth
+discrete map has more than one periodic orbit at that step); with 64 steps per sample (2048 per
+period) they agree to 4e-11."""
+
+
 @settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case_strategy)
+@example(TWO_ORBIT_CASE)
 def test_random_cases_time_domain_full_equals_condensed(case):
+    """Both formulations integrate the same discrete equations; at a step fine enough for their
+    periodic state to be unique (64 per output sample, see :data:`TWO_ORBIT_CASE`) they reach it
+    to the period-to-period tolerance."""
     n, factors, amplitude, phases, static_mm, heave = case
     with threadpool_limits(1):
         model, ex = random_case(n, factors, amplitude, phases, static_mm, heave, element_length_m=8.0)
-        rf = solve_time_domain(model, ex, time_samples=32, formulation="full")
-        rc = solve_time_domain(model, ex, time_samples=32, formulation="condensed")
+        rf = solve_time_domain(model, ex, time_samples=32, formulation="full", steps_per_period=64 * 32)
+        rc = solve_time_domain(model, ex, time_samples=32, formulation="condensed", steps_per_period=64 * 32)
     assume(rf.converged and rc.converged)
     scale = max(rc.max_saddle_force_N, 1.0)
     assert np.abs(rf.saddle_force_time_N - rc.saddle_force_time_N).max() <= 1e-6 * scale
@@ -281,7 +408,7 @@ def test_time_domain_full_real_case(real_case):
 def test_time_domain_non_convergence_is_reported(base, formulation):
     model, ex = base[0], base[1]
     r = solve_time_domain(model, ex, time_samples=16, formulation=formulation, max_periods=2, tolerance=1e-15)
-    assert not r.converged
+    assert not r.converged and r.outcome is SolverOutcome.NOT_PERIODIC
     assert "NOT periodic after 2 periods" in r.message and r.iterations == 2 and r.residual_norm > 1e-15
     assert r.saddle_force_time_N.shape == (16, model.saddle_count)
 
@@ -304,7 +431,7 @@ def test_exact_law_converges_from_the_sharpest_soft_solution_reached():
         model = replace(model, rayleigh_alpha_per_s=alpha, rayleigh_beta_s=beta, _springs={})
         r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact"))
         ref = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="softplus"))
-    assert r.converged, r.message
+    assert r.outcome is SolverOutcome.CONVERGED_BY_CONTINUATION, r.message
     assert "continuation in kappa" in r.message
     assert r.saddle_force_time_N.min() >= 0.0
     assert r.max_saddle_force_N == pytest.approx(ref.max_saddle_force_N, rel=0.01)

@@ -124,7 +124,8 @@ def load_case(path: str | Path | None = None, overrides: Mapping[str, Any] | Non
     Raises
     ------
     CaseError
-        If the file cannot be read or parsed, or any value is invalid.
+        If the file cannot be read or parsed, is empty (only blank lines or comments; ``{}``
+        runs every default on purpose), or any value is invalid.
     """
     if path is None:
         text, source, base_dir = base_case_text(), "(built-in base case)", Path.cwd()
@@ -137,7 +138,16 @@ def load_case(path: str | Path | None = None, overrides: Mapping[str, Any] | Non
         except (OSError, UnicodeDecodeError) as exc:
             raise CaseError(f"cannot read case file '{p}': {exc.strerror if isinstance(exc, OSError) else exc}") from None
         source, base_dir = f"'{p}'", p.resolve().parent
-    return case_from_mapping(parse_yaml(text, source), source, overrides, base_dir)
+    data = parse_yaml(text, source)
+    if data is None and path is not None:
+        # an empty file is a truncated copy or the wrong file far more often than a wish for the
+        # base case (which needs no file); '{}' says "all defaults" explicitly
+        raise CaseError(
+            f"case file '{path}' is empty (no keys, only blank lines or comments): nothing says what to run. "
+            f"Write a case to edit with 'seafast init {path} --force', run the built-in base case with "
+            f"'seafast run' and no file, or put '{{}}' in the file to run every default on purpose"
+        )
+    return case_from_mapping(data, source, overrides, base_dir)
 
 
 def parse_yaml(text: str, source: str, error: type[CaseError] = CaseError, kind: str = "case") -> Any:

@@ -48,6 +48,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
+import logging
 import math
 import os
 import tempfile
@@ -79,6 +80,8 @@ __all__ = [
     "default_cache_dir",
     "MESH_ALGORITHM_VERSION",
 ]
+
+logger = logging.getLogger(__name__)
 
 #: Bump when the mesher or the post-processing changes, to invalidate cached BEM results.
 MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
@@ -610,9 +613,12 @@ def compute_motions(
     if use_cache and path.is_file():
         try:
             ds = _read_capytaine_netcdf(path)
+            logger.debug("BEM cache hit: %s", path)
         except Exception:  # corrupt or foreign file: recompute
+            logger.warning("BEM cache file %s is unreadable; recomputing it", path)
             ds = None
     if ds is None:
+        logger.info("computing the vessel's hydrodynamics with capytaine (BEM, tens of seconds); cache: %s", path if use_cache else "off")
         ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3),
                       float(gravity_m_per_s2), depth)
         if use_cache:

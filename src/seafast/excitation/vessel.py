@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import csv
 import json
+import logging
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -54,6 +55,8 @@ from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_distribution_kg_per_m
 
 __all__ = ["VesselExcitation", "vessel_excitation", "BEM_FREQUENCIES_RAD_S", "hull_form_of", "vessel_loading_of"]
+
+logger = logging.getLogger(__name__)
 
 BEM_FREQUENCIES_RAD_S = np.round(np.concatenate([np.linspace(0.2, 0.95, 16), np.linspace(1.0, 1.8, 9)]), 6)
 """Frequencies of the BEM run [rad/s]: fixed, so the disk cache serves every wave length;
@@ -287,7 +290,9 @@ def vessel_loading_of(case: Case, hull: HullForm) -> tuple[VesselLoading, str]:
     except ValueError:
         pass
     try:
-        return base_vessel_loading(still_water_moment_Nm=None, **common), "default loading, ballast for even keel only (cargo too heavy for the default hogging plan)"
+        loading = base_vessel_loading(still_water_moment_Nm=None, **common)
+        logger.debug("vessel loading: the cargo is too heavy for the default hogging ballast plan; ballast for even keel only")
+        return loading, "default loading, ballast for even keel only (cargo too heavy for the default hogging plan)"
     except ValueError as exc:
         raise ValueError(
             f"vessel loading: {exc}; the cargo ({case.cargo.units_abreast} units abreast, "

@@ -2,8 +2,11 @@
 
 Dimensions: ``load_case`` (static, dynamic), ``model`` (linear, nonlinear), ``period_fraction``
 (t / T over one wave period), ``saddle``, ``x_cargo_m`` (cargo nodes), ``x_moment_m``
-(bending-moment sample points; element ends appear twice so jumps show).
-``dynamic`` is the total response (still water included).
+(bending-moment sample points; element ends appear twice so jumps show), ``solver_warning``
+(the :class:`~seafast.solvers.outcome.SolverWarning` values; ``solver_warning_flag`` is 1 where
+a row raised one).
+``dynamic`` is the total response (still water included). ``solver_outcome`` holds each row's
+:class:`~seafast.solvers.outcome.SolverOutcome` value (``SolverOutcome(value)`` reads it back).
 """
 
 from __future__ import annotations
@@ -18,9 +21,22 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, period_fraction
 from seafast.model.structure import StructuralModel
 from seafast.results.timeseries import PeriodTimeSeries, moment_lines
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 
-__all__ = ["LOAD_CASES", "MODELS", "SUMMARY_COLUMNS", "CaseArrays", "case_arrays", "build_case_dataset", "summary_rows_from_arrays"]
+__all__ = [
+    "LOAD_CASES",
+    "MODELS",
+    "SUMMARY_COLUMNS",
+    "SOLVER_OUTCOMES",
+    "SOLVER_WARNINGS",
+    "CaseArrays",
+    "case_arrays",
+    "build_case_dataset",
+    "summary_rows_from_arrays",
+]
 
+SOLVER_OUTCOMES = tuple(o.value for o in SolverOutcome)
+SOLVER_WARNINGS = tuple(w.value for w in SolverWarning)
 LOAD_CASES = ("static", "dynamic")
 MODELS = ("linear", "nonlinear")
 SUMMARY_COLUMNS = ("load_case", "model", "u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa", "converged")
@@ -83,6 +99,8 @@ class CaseArrays:
     solver_message: np.ndarray
     harmonic_truncation_indicator: np.ndarray  # (load_case, model, saddle)
     tensile_force_error_N: np.ndarray
+    solver_outcome: np.ndarray  # (load_case, model): SolverOutcome values
+    solver_warning: np.ndarray  # (load_case, model, solver_warning): bool, one per SolverWarning
 
     def maxima(self) -> dict[str, np.ndarray]:
         """Summary quantities (MODEL.md section 6), each of shape (load_case, model)."""
@@ -123,6 +141,8 @@ def case_arrays(
     truncation = np.full((2, 2, n_s), np.nan)
     tensile = np.full((2, 2), np.nan)
     messages = np.empty((2, 2), dtype=object)
+    outcomes = np.empty((2, 2), dtype=object)
+    flags = np.zeros((2, 2, len(SOLVER_WARNINGS)), dtype=bool)
     deck_all = np.zeros((2, 2, time_samples, n_s))
     baseline = np.zeros((2, 2, time_samples, nodes.size))
     for i, lc in enumerate(LOAD_CASES):
@@ -142,6 +162,8 @@ def case_arrays(
             residual[i, j] = ts.diagnostics.get("residual_norm", np.nan)
             iterations[i, j] = ts.diagnostics.get("iterations", 0)
             messages[i, j] = ts.diagnostics.get("message", "")
+            outcomes[i, j] = ts.outcome.value
+            flags[i, j] = [w in ts.warnings for w in SolverWarning]
             if "harmonic_truncation_indicator" in ts.diagnostics:
                 truncation[i, j] = np.broadcast_to(ts.diagnostics["harmonic_truncation_indicator"], (n_s,))
             if "tensile_force_error_N" in ts.diagnostics:
@@ -165,6 +187,8 @@ def case_arrays(
         solver_message=messages.astype(str),
         harmonic_truncation_indicator=truncation,
         tensile_force_error_N=tensile,
+        solver_outcome=outcomes.astype(str),
+        solver_warning=flags,
     )
 
 
@@ -235,6 +259,14 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
         ),
         "tensile_force_error_N": _var(("load_case", "model"), a.tensile_force_error_N, "largest tensile force of the regularised contact law", "N"),
         "converged": _var(("load_case", "model"), a.converged.astype(np.int8), *_SUMMARY_ATTRS["converged"]),
+        "solver_outcome": xr.Variable(
+            ("load_case", "model"), a.solver_outcome,
+            {"long_name": "how the solve ended (" + ", ".join(SOLVER_OUTCOMES) + ")", "units": "1"},
+        ),
+        "solver_warning_flag": _var(
+            ("load_case", "model", "solver_warning"), a.solver_warning.astype(np.int8),
+            "typed solver warning raised (1) or not (0), one per solver_warning", "1",
+        ),
     }
     for name, values in a.maxima().items():
         data_vars[name] = _var(("load_case", "model"), values.astype(np.int8) if values.dtype == bool else values, *_SUMMARY_ATTRS[name])
@@ -247,6 +279,7 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
             "saddle": np.arange(model.saddle_count),
             "x_cargo_m": _var(("x_cargo_m",), model.cargo.node_x_m, "position along the cargo from its aft end", "m"),
             "x_moment_m": _var(("x_moment_m",), a.x_moment_m, "position along the cargo from its aft end", "m"),
+            "solver_warning": _var(("solver_warning",), list(SOLVER_WARNINGS), "solver warning (SolverWarning value)", "1"),
         },
         attrs=dict(attrs or {}),
     )

@@ -13,6 +13,7 @@ from seafast.fourier import harmonics_to_time
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import LinearResponse
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 
 __all__ = ["PeriodTimeSeries", "linear_time_series", "from_periodic_response", "moment_lines"]
 
@@ -29,6 +30,8 @@ class PeriodTimeSeries:
     saddle_force_N: NDArray[np.float64]  # (N, n_s), compression part of the saddle, + pushes cargo up
     converged: bool = True
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    outcome: SolverOutcome = SolverOutcome.CONVERGED
+    warnings: tuple[SolverWarning, ...] = ()
 
 
 def linear_time_series(response: LinearResponse, time_samples: int) -> PeriodTimeSeries:
@@ -64,7 +67,11 @@ def from_periodic_response(response: Any, time_samples: int | None = None) -> Pe
     for name in ("harmonic_truncation_indicator", "tensile_force_error_N"):
         if hasattr(response, name) and getattr(response, name) is not None:
             diag[name] = np.asarray(getattr(response, name), dtype=float)
-    return PeriodTimeSeries(disp, comp, force, bool(response.converged), diag)
+    outcome = getattr(response, "outcome", None)
+    if not isinstance(outcome, SolverOutcome):  # a response object from elsewhere: its flag decides
+        outcome = SolverOutcome.CONVERGED if response.converged else SolverOutcome.NOT_CONVERGED
+    warnings = tuple(getattr(response, "warnings", ()))
+    return PeriodTimeSeries(disp, comp, force, bool(response.converged), diag, outcome, warnings)
 
 
 def moment_lines(

@@ -5,13 +5,15 @@
 * :func:`solve_quasi_static`, :func:`solve_time_domain` - exact-contact references.
 * :func:`frequency_response` - pseudo-arclength continuation in frequency.
 
-Non-convergence is reported in the result (``converged``, ``residual_norm``, ``message``), never raised.
+Non-convergence is reported in the result (``outcome``, ``converged``, ``residual_norm``; ``message`` for
+people), never raised; typed warnings are in ``warnings``.
 """
 
 from seafast.solvers.contact import CONTACT_LAWS, ContactLaw, contact_law
-from seafast.solvers.continuation import FrequencyResponseBranch, frequency_response
+from seafast.solvers.continuation import BranchEnd, FrequencyResponseBranch, frequency_response
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import LinearResponse, solve_linear
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references import solve_quasi_static, solve_time_domain
 
@@ -24,8 +26,11 @@ __all__ = [
     "LinearResponse",
     "solve_linear",
     "PeriodicResponse",
+    "SolverOutcome",
+    "SolverWarning",
     "solve_quasi_static",
     "solve_time_domain",
+    "BranchEnd",
     "FrequencyResponseBranch",
     "frequency_response",
 ]

@@ -14,6 +14,7 @@ through the cargo's first resonance for soft saddles.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import Enum
 from typing import Any, Callable
 
 import numpy as np
@@ -25,7 +26,20 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, CondensedProblem, HBMOptions, condensed_operators, solve_condensed
 
-__all__ = ["FrequencyResponseBranch", "frequency_response"]
+__all__ = ["BranchEnd", "FrequencyResponseBranch", "frequency_response"]
+
+
+class BranchEnd(Enum):
+    """Why a frequency-response branch ended."""
+
+    REACHED_END = "reached_end"
+    """The branch reached ``omega_end``."""
+    FIRST_POINT_FAILED = "first_point_failed"
+    """The HBM solve at ``omega_start`` did not converge: no branch to follow."""
+    STEP_BELOW_MIN = "step_below_min"
+    """The corrector kept failing until the step fell below ``min_step`` (e.g. a sharp grazing fold)."""
+    MAX_POINTS = "max_points"
+    """``max_points`` points were recorded."""
 
 
 @dataclass(frozen=True)
@@ -47,7 +61,9 @@ class FrequencyResponseBranch:
     contact_preserved
         Whether every saddle stayed in contact over the whole period at each point.
     message
-        How the sweep ended.
+        How the sweep ended, for people.
+    end
+        How the sweep ended (:class:`BranchEnd`).
     """
 
     omega_rad_s: NDArray[np.float64]
@@ -59,6 +75,7 @@ class FrequencyResponseBranch:
     message: str = ""
     steps: int = 0
     options: dict[str, Any] = field(default_factory=dict)
+    end: BranchEnd = BranchEnd.REACHED_END
 
     @property
     def peak_omega_rad_s(self) -> float:
@@ -156,7 +173,7 @@ def frequency_response(
     Returns
     -------
     FrequencyResponseBranch
-        The branch; points that could not be continued end it (``message`` says why). Never
+        The branch; points that could not be continued end it (``end`` and ``message`` say why). Never
         raises for non-convergence.
     """
     options = HBMOptions() if options is None else options
@@ -193,7 +210,7 @@ def frequency_response(
 
     record(first.saddle_compression.ravel(), w0, first.converged)
     if not first.converged:
-        return _finish(pts, "the first point did not converge", 0, options)
+        return _finish(pts, "the first point did not converge", 0, options, BranchEnd.FIRST_POINT_FAILED)
     u = first.saddle_compression.ravel().copy()
     omega = w0
 
@@ -202,6 +219,7 @@ def frequency_response(
         J = p.jacobian(state) * u_scale  # dR / d(u/u_scale)
         Rw = branch.d_residual_d_omega(u, omega) * w_scale
         n = u.size
+        t: NDArray
         if previous is None:
             t_u = np.linalg.solve(J, -Rw)
             t = np.append(t_u, 1.0) * direction
@@ -217,6 +235,7 @@ def frequency_response(
     ds = float(initial_step)
     steps = 0
     message = "reached omega_end"
+    ending = BranchEnd.REACHED_END
 
     def augmented(yk: NDArray, y_pred: NDArray, t: NDArray) -> tuple[NDArray, Any]:
         uk, wk = yk[:-1] * u_scale, yk[-1] * w_scale
@@ -269,6 +288,7 @@ def frequency_response(
             ds = 0.5 * ds_try
             if ds < min_step:
                 message = f"step size fell below min_step at omega = {omega:.6g} rad/s"
+                ending = BranchEnd.STEP_BELOW_MIN
                 break
             continue
         u_new, w_new = yk[:-1] * u_scale, yk[-1] * w_scale
@@ -285,18 +305,19 @@ def frequency_response(
         ds = float(np.clip(ds_try * grow, min_step, max_step))
     else:
         message = f"stopped at max_points = {max_points}"
-    if message == "reached omega_end" and omega != w1:
+        ending = BranchEnd.MAX_POINTS
+    if ending is BranchEnd.REACHED_END and omega != w1:
         # land exactly on omega_end (the corrector moves omega slightly off the predictor)
         end = solve_condensed(branch.ops(w1), options, initial_compression=u)
         if end.converged:
             if direction * (omega - w1) > 0:
                 pts.pop()
             record(end.saddle_compression.ravel(), w1, True)
-    return _finish(pts, message, steps, options)
+    return _finish(pts, message, steps, options, ending)
 
 
-def _finish(pts: list, message: str, steps: int, options: HBMOptions) -> FrequencyResponseBranch:
-    a = list(zip(*pts)) if pts else [[]] * 6
+def _finish(pts: list, message: str, steps: int, options: HBMOptions, end: BranchEnd) -> FrequencyResponseBranch:
+    a: list[Any] = list(zip(*pts)) if pts else [[]] * 6
     return FrequencyResponseBranch(
         omega_rad_s=np.asarray(a[0], dtype=float),
         max_saddle_force_N=np.asarray(a[1], dtype=float),
@@ -307,4 +328,5 @@ def _finish(pts: list, message: str, steps: int, options: HBMOptions) -> Frequen
         message=message,
         steps=steps,
         options=options.to_dict(),
+        end=end,
     )

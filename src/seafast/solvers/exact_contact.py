@@ -82,7 +82,8 @@ class ExactContact:
             detached[bad] = delta[bad] < 0.0
             todo = bad
         for i in todo:  # cycling (rare): enumerate every set, keep the consistent one
-            best, best_violation = None, np.inf
+            best: tuple[NDArray, NDArray] | None = None
+            best_violation = np.inf
             for bits in product((False, True), repeat=self.n):
                 mask = np.array(bits)
                 d = self.operator(mask) @ d_lin[i]
@@ -91,6 +92,7 @@ class ExactContact:
                     best, best_violation = (d, mask), violation
                 if violation <= tol:
                     break
+            assert best is not None  # the first set tried has a finite violation
             delta[i], detached[i] = best
         return delta, detached
 

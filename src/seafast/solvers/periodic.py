@@ -25,9 +25,12 @@ from numpy.typing import NDArray
 
 # re-exported: their public import path was this module before the Fourier kernels moved down
 from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, period_fraction
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 
 __all__ = [
     "PeriodicResponse",
+    "SolverOutcome",
+    "SolverWarning",
     "period_fraction",
     "harmonics_to_time",
     "high_harmonic_energy_share",
@@ -55,16 +58,19 @@ class PeriodicResponse:
     saddle_force_time_N
         Contact force of the compression-only saddle part on the cargo [N], shape (N, n_s),
         from the contact law used (exact law for the references).
-    converged
-        Whether the solver met its tolerance. A non-converged response is returned (never an
-        exception) so callers can report it.
+    outcome
+        How the solve ended (:class:`~seafast.solvers.outcome.SolverOutcome`). A response that
+        did not converge is returned (never an exception) so callers can report it;
+        :attr:`converged` is derived from it.
     residual_norm
         Final residual (relative, dimensionless; see the solver for its normalisation).
     iterations, function_evaluations
         Nonlinear iterations (Newton steps, continuation steps included) and residual
         evaluations (time steps for the time-domain reference).
     message
-        Human-readable account of the solution path and any warnings.
+        Human-readable account of the solution path (for people; decide nothing from it).
+    warnings
+        Typed warnings (:class:`~seafast.solvers.outcome.SolverWarning`), empty when none.
     harmonic_truncation_indicator
         Per saddle, the share of the fluctuating contact-force energy above harmonic H
         (see :func:`high_harmonic_energy_share`); for the references H is the ``harmonics``
@@ -83,7 +89,7 @@ class PeriodicResponse:
     cargo_displacement_harmonics: NDArray[np.complex128] | None
     saddle_compression_time_m: NDArray[np.float64]
     saddle_force_time_N: NDArray[np.float64]
-    converged: bool
+    outcome: SolverOutcome
     residual_norm: float
     iterations: int
     message: str
@@ -91,6 +97,12 @@ class PeriodicResponse:
     function_evaluations: int
     options: dict[str, Any] = field(default_factory=dict)
     truncation_error: NDArray[np.float64] | None = None
+    warnings: tuple[SolverWarning, ...] = ()
+
+    @property
+    def converged(self) -> bool:
+        """Whether the solver met its tolerance (from :attr:`outcome`)."""
+        return self.outcome.converged
 
     # ------------------------------------------------- derived from the samples
     @property

@@ -18,6 +18,7 @@ import concurrent.futures as cf
 import csv
 import importlib
 import json
+import logging
 import math
 import multiprocessing
 import os
@@ -53,6 +54,8 @@ __all__ = [
     "write_study_csv",
     "write_study_netcdf",
 ]
+
+logger = logging.getLogger(__name__)
 
 Evaluator = Callable[[Case], list[dict]]
 
@@ -758,6 +761,9 @@ def run_study(
         workers = execution.worker_count() if mode == "processes" else 1
         batches = plan_batches(pending, workers if mode != "dask" else max(2, workers), execution.batch_size)
         computed = 0
+        logger.info(
+            "study '%s': %d points, %d already stored in %s, %d to compute (%s)", grid.spec.name, grid.size, reused, out, len(pending), mode
+        )
         bar = _progress_bar(grid.size, reused, execution.progress, grid.spec.name)
         try:
             if not batches:
@@ -783,4 +789,5 @@ def run_study(
         "store": out / PointStore.POINTS,
     }
     failed = sum(1 for r in records.values() if r.error)
+    logger.info("study '%s': %d computed, %d failed, %.1f s", grid.spec.name, computed, failed, time.perf_counter() - t0)
     return StudyRun(dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files)

@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import Finding, coord_labels, saddle_label, study_keys, total_response
+from seafast.solvers.outcome import SolverWarning
 
 __all__ = ["TRUNCATION_LIMIT", "TENSILE_NOTE_FRACTION", "run_findings", "study_findings"]
 
@@ -23,13 +24,20 @@ TENSILE_NOTE_FRACTION = 1e-2
 
 
 # =============================================================================== findings
+def _warning_title(value: str) -> str:
+    try:
+        return SolverWarning(value).description
+    except ValueError:  # a results.nc from another version of seafast
+        return f"solver warning '{value}'"
+
+
 def run_findings(ds: xr.Dataset) -> list[Finding]:
     """Diagnostics of a run that decide whether its numbers can be trusted.
 
     WARNING when: a solve did not converge (a two-way coupling that did not converge is named
     as such, with the coupling's own residual and tolerance); the harmonic truncation indicator exceeds
-    :data:`TRUNCATION_LIMIT`; a solver message carries a warning (e.g. the quasi-static
-    assumption, or excitation harmonics above H dropped); contact is lost while the linear
+    :data:`TRUNCATION_LIMIT`; a solve raised a typed warning (``solver_warning_flag``: e.g. the
+    quasi-static assumption, or excitation harmonics above H dropped); contact is lost while the linear
     (bilateral) model is used — its forces then include tension a saddle cannot carry.
     NOTE when the regularised contact law's tensile force exceeds
     :data:`TENSILE_NOTE_FRACTION` of the largest saddle force.
@@ -73,11 +81,11 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
                             "until the maxima stop changing.",
                         )
                     )
-            msg = str(sel["solver_message"].values.item()) if "solver_message" in sel else ""
-            low = msg.lower()
-            if "warning" in low or "quasi-static" in low or "quasi static" in low:
-                title = "quasi-static assumption questionable" if "quasi" in low else "solver warning"
-                out.append(Finding("WARNING", f"{lc} {m}: {title}", msg))
+            if "solver_warning_flag" in sel:
+                msg = str(sel["solver_message"].values.item()) if "solver_message" in sel else ""
+                for name in coord_labels(ds["solver_warning"]):
+                    if bool(sel["solver_warning_flag"].sel(solver_warning=name)):
+                        out.append(Finding("WARNING", f"{lc} {m}: {_warning_title(name)}", msg))
     if "contact_preserved" in ds and "linear" in models:
         lost = [lc for lc in lcs if not bool(ds["contact_preserved"].sel(load_case=lc, model="linear"))]
         if lost:

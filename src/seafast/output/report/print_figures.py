@@ -7,7 +7,7 @@ them into the PDF without changing those modules.
 
 from __future__ import annotations
 
-import sys
+import logging
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator, Sequence
@@ -20,6 +20,8 @@ from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.tables import summary_table_rows
 
 __all__ = ["plot_contact_timeline", "write_print_figures"]
+
+logger = logging.getLogger(__name__)
 
 
 @contextmanager
@@ -152,14 +154,14 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                 try:
                     paths.append(fn(run, fig_dir / fname))
                 except Exception as exc:  # noqa: BLE001 - one bad figure must not lose the report
-                    print(f"seafast: warning: print figure {fname} skipped ({type(exc).__name__}: {exc})", file=sys.stderr)
+                    logger.warning("print figure %s skipped (%s: %s)", fname, type(exc).__name__, exc)
             if study is not None:
                 try:
                     from seafast.studies.figures import plot_study
 
                     paths += list(plot_study(study, fig_dir))
                 except Exception as exc:  # noqa: BLE001
-                    print(f"seafast: warning: study print figures skipped ({type(exc).__name__}: {exc})", file=sys.stderr)
+                    logger.warning("study print figures skipped (%s: %s)", type(exc).__name__, exc)
     finally:
         if pdf is not None:
             pdf.close()

@@ -192,8 +192,8 @@ def coupling_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     rows: list[list[str]] = []
     if "coupling_converged" not in ds:
         return header, rows
-    for lc in _labels(ds["load_case"]):
-        for m in _labels(ds["model"]):
+    for lc in coord_labels(ds["load_case"]):
+        for m in coord_labels(ds["model"]):
             sel = ds.sel(load_case=lc, model=m)
             change = np.asarray(sel["coupling_mean_deck_change_m"].values, dtype=float) * 1e3
             rows.append(

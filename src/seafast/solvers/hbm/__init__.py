@@ -48,9 +48,10 @@ and an early exit on stagnation) and ``hybr`` (MINPACK's Powell hybrid method vi
 ``scipy.optimize.root`` with the analytic Jacobian, as the source). If the direct solve fails,
 a second direct solve starts from the linear solution, then the solver continues in the
 contact-law sharpness kappa (soft to the requested law) and then in the dynamic excitation
-amplitude (static state to full amplitude) before giving up; failure is reported
-(``converged=False``), never raised. The message starts with ``"direct: "`` when no
-continuation was needed and names the start used.
+amplitude (static state to full amplitude) before giving up; the response's ``outcome``
+(:class:`~seafast.solvers.outcome.SolverOutcome`) says which: ``CONVERGED`` (direct solve),
+``CONVERGED_BY_CONTINUATION`` or ``NOT_CONVERGED`` (reported, never raised); the message
+tells people the path and the start used.
 
 Modules: :mod:`~seafast.solvers.hbm.options` (:class:`HBMOptions`),
 :mod:`~seafast.solvers.hbm.condensed` (operators and problem of the condensed formulation),

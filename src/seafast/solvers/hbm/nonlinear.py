@@ -12,6 +12,7 @@ reported (``converged=False``), never raised.
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 from typing import Any, Callable, Protocol
 
@@ -23,6 +24,9 @@ from scipy.sparse.linalg import splu
 
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.outcome import SolverOutcome
+
+logger = logging.getLogger(__name__)
 
 __all__ = [
     "FactorisedJacobian",
@@ -146,12 +150,26 @@ class SparseJacobian:
 
 @dataclass
 class SolveAttempt:
+    """One nonlinear solve (or the whole fallback chain): the iterate reached and how.
+
+    ``residual`` is relative (max |R| over the problem's ``scale``); ``note`` tells people the
+    path taken; ``by_continuation`` whether a continuation (not the direct solve) converged.
+    """
+
     u: NDArray
     converged: bool
-    residual: float  # relative, inf-norm
+    residual: float
     iterations: int
     evaluations: int
     note: str
+    by_continuation: bool = False
+
+    @property
+    def outcome(self) -> SolverOutcome:
+        """The typed outcome of this attempt."""
+        if not self.converged:
+            return SolverOutcome.NOT_CONVERGED
+        return SolverOutcome.CONVERGED_BY_CONTINUATION if self.by_continuation else SolverOutcome.CONVERGED
 
 
 _ARMIJO = 1e-4
@@ -283,8 +301,9 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
     """Direct solve; on failure continuation in kappa, then in the dynamic amplitude.
 
     The direct solve starts from ``u_start`` if given, else from the better of the linear
-    solution and the quasi-static exact-contact predictor. ``note`` records the path taken:
-    it starts with ``"direct: "`` for a direct solve and says ``"continuation"`` otherwise.
+    solution and the quasi-static exact-contact predictor. The attempt's ``outcome`` says how
+    it ended; ``note`` tells people the path taken (also logged: DEBUG for a direct solve, INFO
+    for the fallbacks).
     """
     solve = _SOLVER_FUNCTIONS[options.solver]
     tol, maxit = float(options.tolerance), int(options.max_iterations)
@@ -295,8 +314,10 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
     first = solve(problem, law, 1.0, u0, tol, maxit)
     total_it, total_ev = first.iterations, first.evaluations
     if first.converged or not options.continuation:
+        logger.log(logging.DEBUG if first.converged else logging.INFO, "direct solve: %s (start: %s)", first.note, origin)
         return SolveAttempt(first.u, first.converged, first.residual, total_it, total_ev, f"direct: {first.note} (start: {origin})")
     notes = [f"direct solve failed ({first.note}, start: {origin}, residual {first.residual:.2e})"]
+    logger.info("%s; falling back", notes[0])
     best = first
     if u_start is None and origin != "linear solution":
         # a second direct attempt from the linear solution (another path across the kinks)
@@ -304,6 +325,7 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
         total_it += second.iterations
         total_ev += second.evaluations
         if second.converged:
+            logger.info("direct solve from the linear solution converged: %s", second.note)
             return SolveAttempt(second.u, True, second.residual, total_it, total_ev, f"direct: {second.note} (start: linear solution, after a failed start from the {origin})")
         notes.append(f"direct solve from the linear solution failed ({second.note}, residual {second.residual:.2e})")
         best = second if second.residual < best.residual else best
@@ -332,7 +354,8 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
             total_ev += final.evaluations
             if final.converged:
                 notes.append(f"converged by continuation in kappa over {reached} of {len(kappas)} step(s)")
-                return SolveAttempt(final.u, True, final.residual, total_it, total_ev, "; ".join(notes))
+                logger.info(notes[-1])
+                return SolveAttempt(final.u, True, final.residual, total_it, total_ev, "; ".join(notes), by_continuation=True)
             best = final if final.residual < best.residual else best
         notes.append("kappa continuation failed")
 
@@ -358,8 +381,12 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
         if lam >= 1.0:
             R, _ = problem.evaluate(u, law, 1.0)
             notes.append(f"converged by continuation in excitation amplitude ({n_steps} step(s))")
-            return SolveAttempt(u, True, float(np.max(np.abs(R))) / problem.scale, total_it, total_ev, "; ".join(notes))
+            logger.info(notes[-1])
+            return SolveAttempt(
+                u, True, float(np.max(np.abs(R))) / problem.scale, total_it, total_ev, "; ".join(notes), by_continuation=True
+            )
         notes.append(f"amplitude continuation stalled at {lam:.3g} of the excitation")
     else:
         notes.append("the static state did not converge")
+    logger.info("not converged (residual %.2e): %s", best.residual, "; ".join(notes[1:]))
     return SolveAttempt(best.u, False, best.residual, total_it, total_ev, "; ".join(notes) + "; NOT CONVERGED")

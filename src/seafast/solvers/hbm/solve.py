@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass, replace
 
@@ -16,9 +17,12 @@ from seafast.solvers.hbm.full import FullProblem
 from seafast.solvers.hbm.harmonics import force_scale_N, pad_harmonics, select_harmonics, truncation_error
 from seafast.solvers.hbm.nonlinear import solve_with_fallback
 from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["CondensedSolution", "solve_condensed", "solve_hbm"]
+
+logger = logging.getLogger(__name__)
 
 _QUICK_ITERATIONS = 40  # Newton steps from a start near the solution (the march, or the previous H)
 _SAFE_HARMONICS = 16  # where the full fallback chain goes when the march's start does not converge
@@ -34,11 +38,16 @@ class CondensedSolution:
 
     saddle_compression: NDArray[np.float64]
     correction_force: NDArray[np.float64]
-    converged: bool
+    outcome: SolverOutcome
     residual_norm: float
     iterations: int
     function_evaluations: int
     message: str
+
+    @property
+    def converged(self) -> bool:
+        """Whether the solve met the tolerance (from :attr:`outcome`)."""
+        return self.outcome.converged
 
 
 def solve_condensed(
@@ -55,7 +64,7 @@ def solve_condensed(
     U = a.u.reshape(problem.n_h, problem.n_s)
     delta = problem.inverse @ U
     corr = problem.forward @ (options.law.force(delta, problem.k_u) - problem.k_u * delta)
-    return CondensedSolution(U, corr, a.converged, a.residual, a.iterations, a.evaluations, a.note)
+    return CondensedSolution(U, corr, a.outcome, a.residual, a.iterations, a.evaluations, a.note)
 
 
 def solve_hbm(
@@ -72,9 +81,10 @@ def solve_hbm(
     model
         The cargo and sea-fastening model.
     excitation
-        Deck motion and vessel loads per harmonic (harmonics above H are dropped, and the message
-        says so). The model's static load (gravity, pretension) is added at k = 0. With
-        ``harmonics = 0`` only the static part is solved: the nonlinear static solution.
+        Deck motion and vessel loads per harmonic (harmonics above ``options.harmonics`` are
+        dropped, with ``SolverWarning.HARMONICS_ABOVE_H_IGNORED`` in ``warnings``). The model's static load (gravity, pretension) is
+        added at k = 0. With ``harmonics = 0`` only the static part is solved: the nonlinear
+        static solution.
     options
         :class:`HBMOptions` (defaults: exact contact law, H chosen adaptively until the saddle-force
         peaks settle to 0.1 %, condensed, Newton). :data:`~seafast.solvers.hbm.options.SOURCE_OPTIONS`
@@ -89,7 +99,8 @@ def solve_hbm(
     Returns
     -------
     PeriodicResponse
-        ``method = "hbm"``; never raises for non-convergence (``converged=False``). Its
+        ``method = "hbm"``; ``outcome`` ``CONVERGED`` (direct solve),
+        ``CONVERGED_BY_CONTINUATION`` or ``NOT_CONVERGED`` (never raised). Its
         ``residual_norm`` is relative (see :class:`HBMOptions` ``tolerance``);
         ``truncation_error`` estimates each saddle's peak-force error from the harmonics left out;
         ``options`` records the H and N used (and, adaptive, how they were chosen).
@@ -108,7 +119,7 @@ def solve_hbm(
         if H == 0:
             return response
         error = truncation_error(model, excitation.omega_rad_s, _compression_harmonics(response, H), fixed.law)
-        return replace(response, truncation_error=error)
+        return _with_truncation(response, error, options.truncation_tolerance)
     selection = select_harmonics(model, excitation, tolerance=options.truncation_tolerance, max_harmonics=options.max_harmonics)
     H = selection.harmonics
     # the steps from the march (or from the previous H) are near the solution: a few Newton steps, no fallbacks
@@ -156,7 +167,19 @@ def solve_hbm(
         march_change=selection.march_change,
     )
     note = response.message + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
-    return replace(response, truncation_error=error, options=record, message=note)
+    return _with_truncation(replace(response, options=record, message=note), error, options.truncation_tolerance)
+
+
+def _with_truncation(response: PeriodicResponse, error: NDArray, tolerance: float) -> PeriodicResponse:
+    """The response with its truncation estimate, and the typed warning when it exceeds the tolerance."""
+    warnings = response.warnings
+    if response.converged and float(np.max(error, initial=0.0)) > tolerance:
+        logger.warning(
+            "harmonic balance: H = %s leaves an estimated %.2g of a saddle's peak force out (tolerance %.2g)",
+            response.options.get("harmonics"), float(np.max(error)), tolerance,
+        )
+        warnings = warnings + (SolverWarning.TOO_FEW_HARMONICS,)
+    return replace(response, truncation_error=error, warnings=warnings)
 
 
 def _project(samples: NDArray, harmonics: int) -> NDArray:
@@ -191,7 +214,7 @@ def _solve_fixed(
         C = real_to_complex_harmonics(sol.correction_force)  # (H+1, n_s)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
         U = sol.saddle_compression
-        converged, resid, its, nfev, note = sol.converged, sol.residual_norm, sol.iterations, sol.function_evaluations, sol.message
+        outcome, resid, its, nfev, note = sol.outcome, sol.residual_norm, sol.iterations, sol.function_evaluations, sol.message
     else:
         problem = FullProblem(model, excitation, H, N, ops)
         u0 = None if start is None else problem.from_compression(real_dft_matrices(H, N)[0] @ start)
@@ -199,12 +222,15 @@ def _solve_fixed(
         Q = problem.cargo_displacement(a.u)
         X = real_to_complex_harmonics(Q)
         U = problem.deck_z - Q[:, model.saddle_cargo_dof]
-        converged, resid, its, nfev, note = a.converged, a.residual, a.iterations, a.evaluations, a.note
+        outcome, resid, its, nfev, note = a.outcome, a.residual, a.iterations, a.evaluations, a.note
     inverse, _ = real_dft_matrices(H, N)
     delta = inverse @ U
     force = law.force(delta, ops.saddle_stiffness_N_per_m)
+    warnings: tuple[SolverWarning, ...] = ()
     if ops.ignored_harmonics:
-        note += f"; WARNING: excitation harmonics above H={H} were ignored"
+        note += f"; excitation harmonics above H={H} were ignored"
+        logger.warning("harmonic balance: the excitation has harmonics above H = %d; they were ignored (raise solver.harmonics)", H)
+        warnings = (SolverWarning.HARMONICS_ABOVE_H_IGNORED,)
     return PeriodicResponse(
         method="hbm",
         omega_rad_s=float(excitation.omega_rad_s),
@@ -212,11 +238,12 @@ def _solve_fixed(
         cargo_displacement_harmonics=X,
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
-        converged=bool(converged),
+        outcome=outcome,
         residual_norm=float(resid),
         iterations=int(its),
         message=note,
         harmonic_truncation_indicator=high_harmonic_energy_share(force, H),
         function_evaluations=int(nfev),
         options=options.to_dict(),
+        warnings=warnings,
     )

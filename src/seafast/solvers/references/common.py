@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["exact_law_response"]
@@ -21,13 +22,14 @@ def exact_law_response(
     excitation: HarmonicExcitation,
     cargo_time: NDArray,
     delta: NDArray,
-    converged: bool,
+    outcome: SolverOutcome,
     residual: float,
     iterations: int,
     evaluations: int,
     message: str,
     harmonics_for_indicator: int,
     options: dict[str, Any],
+    warnings: tuple[SolverWarning, ...] = (),
 ) -> PeriodicResponse:
     """A reference's :class:`PeriodicResponse` from its samples (exact law, no harmonics).
 
@@ -44,11 +46,12 @@ def exact_law_response(
         cargo_displacement_harmonics=None,
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
-        converged=bool(converged),
+        outcome=outcome,
         residual_norm=float(residual),
         iterations=int(iterations),
         message=message,
         harmonic_truncation_indicator=high_harmonic_energy_share(force, harmonics_for_indicator),
         function_evaluations=int(evaluations),
         options=options,
+        warnings=warnings,
     )

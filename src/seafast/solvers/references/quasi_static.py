@@ -11,6 +11,8 @@ exact to round-off.
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
@@ -20,10 +22,13 @@ from seafast.fourier import harmonics_to_time, high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
 from seafast.solvers.exact_contact import solve_exact_contact
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
 
 __all__ = ["QUASI_STATIC_RATIO_LIMIT", "solve_quasi_static"]
+
+logger = logging.getLogger(__name__)
 
 QUASI_STATIC_RATIO_LIMIT = 0.2
 """Quasi-statics is taken as justified when ``H_eff omega / omega_1 <= 0.2``."""
@@ -51,10 +56,12 @@ def solve_quasi_static(
     stiffness K); the vessel loads of the excitation (e.g. rigid-body inertia -M a_rb) and the
     model's static load are included. Every harmonic of the excitation is used.
 
-    The ``message`` states whether quasi-statics is justified: with ``H_eff`` the smallest
-    harmonic above which the contact forces carry < 0.1 % of their fluctuation energy and
-    ``omega_1`` the lowest natural frequency of the cargo over the contact states that occur
-    (saddles that detach removed), it warns when ``H_eff omega / omega_1 > 0.2``.
+    Whether quasi-statics is justified: with ``H_eff`` the smallest harmonic above which the
+    contact forces carry < 0.1 % of their fluctuation energy and ``omega_1`` the lowest natural
+    frequency of the cargo over the contact states that occur (saddles that detach removed),
+    ``warnings`` holds ``SolverWarning.QUASI_STATICS_QUESTIONABLE`` when
+    ``H_eff omega / omega_1 > 0.2``; the ``message`` says it in words. A still-water excitation
+    (no harmonic above k = 0) is exactly static: ``H_eff = 0``.
 
     Returns
     -------
@@ -81,7 +88,9 @@ def solve_quasi_static(
     cargo = x_lin + correction @ Y.T
     # Is quasi-statics justified? Lowest natural frequency over the contact states that occur.
     force = k_u * np.maximum(delta, 0.0)
-    h_eff = _effective_harmonic(force, excitation.omega_rad_s)
+    # a still-water excitation (no harmonic above k = 0) is exactly static: nothing to justify
+    static = not (np.any(excitation.deck_displacement[1:]) or np.any(excitation.cargo_load_N[1:]))
+    h_eff = 0 if static else _effective_harmonic(force, excitation.omega_rad_s)
     states = np.unique(delta <= 0.0, axis=0)
     w1 = np.inf
     for detached in states:
@@ -93,7 +102,7 @@ def solve_quasi_static(
     verdict = (
         f"quasi-statics justified: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} <= {QUASI_STATIC_RATIO_LIMIT}"
         if ratio <= QUASI_STATIC_RATIO_LIMIT
-        else f"WARNING: quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
+        else f"quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
     )
     options = {
         "time_samples": N,
@@ -103,7 +112,12 @@ def solve_quasi_static(
         "frequency_ratio": float(ratio),
         "contact_law": "exact",
     }
+    warnings = () if ratio <= QUASI_STATIC_RATIO_LIMIT else (SolverWarning.QUASI_STATICS_QUESTIONABLE,)
+    if warnings:
+        logger.warning("quasi-static reference: %s", verdict)
+    else:
+        logger.debug("quasi-static reference: %s", verdict)
     return exact_law_response(
-        "quasi_static", model, excitation, cargo, delta, True, 0.0, len(states), N,
-        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options,
+        "quasi_static", model, excitation, cargo, delta, SolverOutcome.CONVERGED, 0.0, len(states), N,
+        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options, warnings,
     )

@@ -23,6 +23,8 @@ below ``tolerance`` (the periodic steady state). Two formulations of the same eq
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 from numpy.typing import NDArray
 from scipy.sparse import csr_array
@@ -32,10 +34,13 @@ from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
 from seafast.solvers.exact_contact import BandedActiveSet, ExactContact
+from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
 
 __all__ = ["TIME_DOMAIN_FORMULATIONS", "solve_time_domain"]
+
+logger = logging.getLogger(__name__)
 
 TIME_DOMAIN_FORMULATIONS = ("full", "condensed")
 
@@ -99,8 +104,8 @@ def solve_time_domain(
     Returns
     -------
     PeriodicResponse
-        ``method = "time_domain"`` (last period); ``converged`` False if the periodic steady
-        state was not reached in ``max_periods``; ``iterations`` = periods integrated,
+        ``method = "time_domain"`` (last period); ``outcome`` ``NOT_PERIODIC`` (``converged``
+        False) if the periodic steady state was not reached in ``max_periods``; ``iterations`` = periods integrated,
         ``function_evaluations`` = time steps, ``residual_norm`` = last period-to-period change;
         ``message`` and ``options["formulation"]`` name the formulation.
     """
@@ -117,7 +122,9 @@ def solve_time_domain(
     if int(max_periods) < 2:
         raise ValueError(f"max_periods = {max_periods!r}; allowed: an integer >= 2")
     run = _time_domain_full if formulation == "full" else _time_domain_condensed
-    return run(model, excitation, N, S, int(max_periods), float(tolerance), float(hht_alpha), int(harmonics_for_indicator))
+    response = run(model, excitation, N, S, int(max_periods), float(tolerance), float(hht_alpha), int(harmonics_for_indicator))
+    logger.log(logging.DEBUG if response.converged else logging.INFO, "time-domain reference: %s", response.message)
+    return response
 
 
 class _PeriodicityCheck:
@@ -241,7 +248,8 @@ def _time_domain_full(
         + check.describe(periods)
     )
     return exact_law_response(
-        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(), converged, change, periods, steps,
+        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(),
+        SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_PERIODIC, change, periods, steps,
         msg, harmonics_for_indicator, options,
     )
 
@@ -329,6 +337,7 @@ def _time_domain_condensed(
         + check.describe(periods)
     )
     return exact_law_response(
-        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(), converged, change, periods, steps,
+        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(),
+        SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_PERIODIC, change, periods, steps,
         msg, harmonics_for_indicator, options,
     )
