@@ -616,6 +616,16 @@ class StudyGrid:
         """
         return case_from_mapping(self.base, f"(study point {index})", self.point_overrides(index))
 
+    def manifest(self) -> dict[str, Any]:
+        """What ``study.json`` records about the study (name, fingerprint, shape, axes, spec)."""
+        return {
+            "name": self.spec.name,
+            "fingerprint": self.fingerprint(),
+            "shape": list(self.shape),
+            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
+            "spec": self.spec.model_dump(mode="json"),
+        }
+
     def fingerprint(self) -> str:
         """SHA-256 (hex, 16 chars) of everything that determines the points' results."""
         payload = {
