@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -48,6 +49,46 @@ def test_serial_processes_and_dask_agree(small_grid, tmp_path: Path):
     xr.testing.assert_identical(_results(on_disk[0]), _results(on_disk[2]))
     texts = [(tmp_path / d / "study.csv").read_text() for d in ("serial", "processes", "dask")]
     assert texts[0] == texts[1] == texts[2]
+    spawned = run_study(
+        small_grid, tmp_path / "spawned", evaluator=FAKE,
+        execution=ExecutionOptions(workers=2, batch_size=5, progress=False, start_method="spawn"),
+    )
+    xr.testing.assert_identical(_results(serial.dataset), _results(spawned.dataset))
+    assert (tmp_path / "spawned" / "study.csv").read_text() == texts[0]
+
+
+def test_local_workers_fork_after_a_warm_up_point_in_this_process(small_grid, tmp_path: Path, monkeypatch):
+    log = tmp_path / "eval.log"
+    monkeypatch.setenv("SEAFAST_FAKE_EVAL_LOG", str(log))
+    options = ExecutionOptions(workers=2, batch_size=3, progress=False, start_method="fork")
+    run = run_study(small_grid, tmp_path / "out", evaluator=FAKE, execution=options)
+    assert run.computed == small_grid.size and run.workers == 2
+    pids = [int(line.split(" ", 1)[0]) for line in log.read_text().splitlines()]
+    assert len(pids) == small_grid.size  # every point evaluated once
+    assert pids[0] == os.getpid()  # the first point warms this process's caches before the fork
+    assert os.getpid() not in pids[1:] and len(set(pids[1:])) >= 1  # the rest in the forked workers
+
+
+def test_start_method_is_fork_in_a_single_threaded_process_else_spawn():
+    import subprocess
+    import sys
+    import threading
+
+    probe = "from seafast.studies.execution import ExecutionOptions; print(ExecutionOptions(workers=2).process_start_method())"
+    fresh = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120, check=True)
+    assert fresh.stdout.strip() == ("fork" if sys.platform.startswith("linux") else "spawn")
+
+    stop = threading.Event()
+    thread = threading.Thread(target=stop.wait, daemon=True)
+    thread.start()
+    try:
+        assert ExecutionOptions(workers=2).process_start_method() == "spawn"
+        assert ExecutionOptions(workers=2, start_method="forkserver").process_start_method() == "forkserver"
+    finally:
+        stop.set()
+        thread.join()
+    with pytest.raises(StudyError, match="start_method = 'thread'"):
+        ExecutionOptions(start_method="thread")
 
 
 def test_dataset_layout_and_attributes(small_grid, tmp_path: Path):

@@ -8,15 +8,23 @@ the back-end. A point whose evaluation raises is recorded with its error text.
 
 The back-ends are generic: they need an object with ``size`` and ``point_case(index)``
 (:class:`PointSource`), e.g. a :class:`~seafast.studies.spec.StudyGrid`.
+
+Local processes start by ``fork`` on Linux when this process runs no other Python thread: the
+workers then inherit the imported modules and the caches the coordinating process warmed on
+its first point (vessel excitation, hydrodynamic coefficients, cargo mesh), so a worker costs
+milliseconds to start instead of a fresh interpreter's imports (about a second of CPU each).
+Elsewhere, or when asked (``ExecutionOptions.start_method``), they are spawned.
 """
 
 from __future__ import annotations
 
 import concurrent.futures as cf
 import importlib
+import logging
 import math
 import multiprocessing
 import os
+import sys
 import threading
 import time
 from dataclasses import dataclass
@@ -39,6 +47,8 @@ __all__ = [
     "plan_batches",
     "evaluate_batches",
 ]
+
+logger = logging.getLogger(__name__)
 
 Evaluator = Callable[[Case], list[dict]]
 
@@ -137,6 +147,8 @@ def _exit_with_parent(parent_pid: int, interval_s: float = 0.25) -> None:
 
 def _init_process_worker(parent_pid: int) -> None:
     """Initializer of local worker processes: one BLAS thread; exit with the parent."""
+    global _worker_ready
+    _worker_ready = False  # a forked worker re-pins its own BLAS
     _prepare_worker()
     _exit_with_parent(parent_pid)
 
@@ -195,6 +207,9 @@ def plan_batches(pending: Sequence[int], workers: int, batch_size: int | None = 
 
 
 # --------------------------------------------------------------------------- execution options
+START_METHODS: tuple[str, ...] = ("fork", "forkserver", "spawn")
+
+
 @dataclass(frozen=True)
 class ExecutionOptions:
     """How to run a study.
@@ -209,12 +224,20 @@ class ExecutionOptions:
         Points per task; None = about four tasks per worker, at most 25 points each.
     progress : bool
         Show a progress bar on stderr (only when stderr is a terminal).
+    start_method : str or None
+        How local worker processes start: ``fork``, ``forkserver`` or ``spawn``; None = ``fork``
+        on Linux when this process runs no other Python thread, else ``spawn``.
     """
 
     workers: int | None = None
     scheduler: str | None = None
     batch_size: int | None = None
     progress: bool = True
+    start_method: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.start_method is not None and self.start_method not in START_METHODS:
+            raise StudyError(f"start_method = {self.start_method!r}; allowed: {', '.join(START_METHODS)} or None (automatic)")
 
     def worker_count(self) -> int:
         """Number of local workers."""
@@ -225,6 +248,13 @@ class ExecutionOptions:
         if self.scheduler:
             return "dask"
         return "serial" if self.worker_count() == 1 else "processes"
+
+    def process_start_method(self) -> str:
+        """The start method local worker processes will use (see ``start_method``)."""
+        if self.start_method is not None:
+            return self.start_method
+        forkable = sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
+        return "fork" if forkable and threading.active_count() == 1 else "spawn"
 
 
 # --------------------------------------------------------------------------- back-ends
@@ -237,8 +267,17 @@ def _iter_serial(grid: PointSource, batches: list[list[int]], evaluator: Evaluat
             yield evaluate_batch(grid, batch, evaluator, pin_threads=False)
 
 
-def _iter_processes(grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, workers: int) -> Iterator[list[PointRecord]]:
-    context = multiprocessing.get_context("spawn")
+def _iter_processes(
+    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, workers: int, start_method: str
+) -> Iterator[list[PointRecord]]:
+    if start_method == "fork" and batches and batches[0]:
+        # the first point here, before forking: the workers inherit its imports and warm caches
+        first, rest = batches[0][:1], batches[0][1:]
+        yield list(_iter_serial(grid, [first], evaluator))[0]
+        batches = ([rest] if rest else []) + batches[1:]
+        if not batches:
+            return
+    context = multiprocessing.get_context(start_method)
     executor = cf.ProcessPoolExecutor(
         max_workers=min(workers, len(batches)), mp_context=context, initializer=_init_process_worker, initargs=(os.getpid(),)
     )
@@ -295,5 +334,7 @@ def evaluate_batches(
         assert execution.scheduler is not None
         return _iter_dask(grid, batches, evaluator, execution.scheduler)
     if mode == "processes":
-        return _iter_processes(grid, batches, evaluator, execution.worker_count())
+        method = execution.process_start_method()
+        logger.debug("local worker processes start by %s", method)
+        return _iter_processes(grid, batches, evaluator, execution.worker_count(), method)
     return _iter_serial(grid, batches, evaluator)

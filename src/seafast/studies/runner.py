@@ -11,6 +11,10 @@ fingerprint). A study killed at any moment resumes on the same command: the stor
 ``DIR/study.csv`` are assembled from the store when every point is done. A directory holding a
 different study is refused. A point whose evaluation raises is recorded with its error text;
 the study goes on.
+
+Every point is a pure function of its case: the default evaluator starts each nonlinear solve
+from the point's own predictor, never from a neighbour's solution, so the results do not depend
+on the back-end, the batch plan, the number of workers or a resume (bit for bit on one machine).
 """
 
 from __future__ import annotations
@@ -91,6 +95,9 @@ class StudyRun:
         Wall time of this run [s].
     mode : str
         ``serial``, ``processes`` or ``dask``.
+    workers : int
+        Local processes that evaluated points: 1 serial, the worker count with local processes,
+        0 on Dask (the cluster's size is the scheduler's business).
     files : dict
         Written files by role (``netcdf``, ``csv``, ``store``).
     """
@@ -104,6 +111,7 @@ class StudyRun:
     seconds: float
     mode: str
     files: dict[str, Path] = field(default_factory=dict)
+    workers: int = 1
 
     @property
     def points_per_second(self) -> float:
@@ -114,8 +122,13 @@ class StudyRun:
 def _progress_bar(total: int, initial: int, enabled: bool, label: str) -> Any:
     from tqdm import tqdm
 
+    class _Bar(tqdm):  # type: ignore[type-arg,misc]
+        # no monitor thread: the bar is updated per batch, and local workers may be forked
+        # from this process, which is only safe while it runs a single thread
+        monitor_interval = 0
+
     show = enabled and hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
-    return tqdm(total=total, initial=initial, disable=not show, file=sys.stderr, unit="pt", desc=label, dynamic_ncols=True)
+    return _Bar(total=total, initial=initial, disable=not show, file=sys.stderr, unit="pt", desc=label, dynamic_ncols=True)
 
 
 def run_study(
@@ -159,8 +172,8 @@ def run_study(
         workers = execution.worker_count() if mode == "processes" else 1
         batches = plan_batches(pending, workers if mode != "dask" else max(2, workers), execution.batch_size)
         computed = 0
-        bar = _progress_bar(grid.size, reused, execution.progress, grid.spec.name)
         stream: Iterator[list[PointRecord]] = evaluate_batches(grid, batches, evaluator, execution)
+        bar = _progress_bar(grid.size, reused, execution.progress, grid.spec.name)
         try:
             for records in stream:
                 added = store.append(records)
@@ -176,4 +189,4 @@ def run_study(
         "store": out / PointStore.POINTS,
     }
     failed = sum(1 for r in records.values() if r.error)
-    return StudyRun(dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files)
+    return StudyRun(dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers)
