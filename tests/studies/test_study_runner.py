@@ -202,3 +202,25 @@ def test_batches_cover_every_point_once():
         assert [i for b in batches for i in b] == pending
         assert max(len(b) for b in batches) <= (size or 25)
     assert plan_batches([], 2) == []
+
+
+def test_store_appends_reach_the_file_at_once_and_fsync_is_batched(small_grid, tmp_path: Path, monkeypatch):
+    import seafast.studies.store as store_module
+
+    syncs: list[int] = []
+    real_fsync = os.fsync
+    monkeypatch.setattr(store_module.os, "fsync", lambda fd: (syncs.append(fd), real_fsync(fd))[1])
+    records = evaluate_batch(small_grid, list(range(small_grid.size)), FAKE, pin_threads=False)
+    store = PointStore(tmp_path, small_grid, fsync_interval_s=3600.0)
+    for record in records:
+        store.append([record])
+        # kill safety: what append returned is in the file for any other reader (a resumed run)
+        assert record.index in PointStore(tmp_path, small_grid).completed
+    assert syncs == []  # durability against a machine crash is batched ...
+    store.close()
+    assert len(syncs) == 1  # ... and completed when the store closes
+    every = PointStore(tmp_path / "every", small_grid, fsync_interval_s=0.0)
+    for record in records[:3]:
+        every.append([record])
+    every.close()
+    assert len(syncs) == 1 + 3
