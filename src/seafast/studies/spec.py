@@ -25,6 +25,7 @@ message names the field, the value given and what is allowed.
 from __future__ import annotations
 
 import ast
+import functools
 import hashlib
 import json
 import math
@@ -103,6 +104,7 @@ def _field_names(model: type[BaseModel]) -> list[str]:
     return list(model.model_fields)
 
 
+@functools.lru_cache(maxsize=512)
 def case_key_kind(key: str) -> Literal["int", "float"]:
     """The numeric kind of a dotted case key.
 
@@ -223,6 +225,7 @@ def _dotted_name(node: ast.AST) -> str | None:
     return None
 
 
+@functools.lru_cache(maxsize=256)  # studies evaluate the same derived expressions at every point
 def _parse_expression(text: str) -> ast.Expression:
     try:
         tree = ast.parse(str(text), mode="eval")
