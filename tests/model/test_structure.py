@@ -229,3 +229,55 @@ def test_rayleigh_damping_gives_the_ratio_at_the_first_two_frequencies() -> None
     for wi in w:
         zeta = model.rayleigh_alpha_per_s / (2 * wi) + model.rayleigh_beta_s * wi / 2
         assert zeta == pytest.approx(0.03, rel=1e-10)
+
+
+def test_mechanism_threshold_is_the_lowest_stiffness_eigenvalue() -> None:
+    # Two soft saddles: the lowest eigenvalue of K is about the springs' stiffness. The banded
+    # Cholesky test must refuse exactly when it falls below 1e-12 of the beam's stiffness scale.
+    def layout(k: float) -> SeaFastening:
+        return SeaFastening(BASE_X[[0, 2]], np.full(2, k), np.zeros(2, bool), lashing_wire_stiffness_N_per_m=0.0, lashing_pretension_N=0.0)
+
+    probe = build_structural_model(_geometry(), layout(1.0e6), target_element_length_m=2.0)
+    K = probe.cargo.stiffness + probe.spring_matrices(True)[0]
+    eig_min_per_k = float(np.linalg.eigvalsh(K)[0]) / 1.0e6  # linear in k while k << beam stiffness
+    threshold = 1e-12 * float(np.max(np.diag(probe.cargo.stiffness)))
+    k_limit = threshold / eig_min_per_k
+    build_structural_model(_geometry(), layout(3.0 * k_limit), target_element_length_m=2.0)
+    with pytest.raises(MechanismError):
+        build_structural_model(_geometry(), layout(k_limit / 3.0), target_element_length_m=2.0)
+
+
+def test_natural_frequencies_of_a_fine_mesh_by_shift_invert_equal_the_converged_dense_ones() -> None:
+    from seafast.model.structure import DENSE_EIGEN_DOFS
+
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    coarse = build_structural_model(_geometry(), sf, target_element_length_m=1.0)  # dense eigen-solve
+    fine = build_structural_model(_geometry(), sf, target_element_length_m=0.1)  # sparse shift-invert
+    assert coarse.cargo_dof_count <= DENSE_EIGEN_DOFS < fine.cargo_dof_count
+    # Hermite elements converge as h^4: the 1 m mesh's lowest modes are within 1e-7 of converged
+    np.testing.assert_allclose(fine.natural_frequencies_rad_s(True, 3), coarse.natural_frequencies_rad_s(True, 3), rtol=1e-6)
+    assert fine.rayleigh_beta_s == pytest.approx(coarse.rayleigh_beta_s, rel=1e-6)
+
+
+def test_models_along_a_stiffness_axis_share_the_mesh_and_equal_fresh_builds(monkeypatch) -> None:
+    import seafast.model.structure as structure
+
+    def fresh(sf: SeaFastening) -> StructuralModel:
+        monkeypatch.setattr(structure, "_BEAM_CACHE", structure.OrderedDict())
+        monkeypatch.setattr(structure, "_RAYLEIGH_CACHE", structure.OrderedDict())
+        return build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+
+    soft = SeaFastening(BASE_X, np.full(3, 1.1e8), np.array([True, False, True]))
+    stiff = SeaFastening(BASE_X, np.full(3, 1.1e10), np.array([True, False, True]))
+    pretensioned = SeaFastening(BASE_X, np.full(3, 1.1e10), np.array([True, False, True]), lashing_pretension_N=5e6)
+    a = build_structural_model(_geometry(), soft, target_element_length_m=2.0)
+    b = build_structural_model(_geometry(), stiff, target_element_length_m=2.0)
+    c = build_structural_model(_geometry(), pretensioned, target_element_length_m=2.0)
+    assert a.cargo is b.cargo is c.cargo  # one mesh and beam assembly for the three
+    assert a.rayleigh_beta_s != b.rayleigh_beta_s  # the springs move the natural frequencies ...
+    assert (b.rayleigh_alpha_per_s, b.rayleigh_beta_s) == (c.rayleigh_alpha_per_s, c.rayleigh_beta_s)  # ... pretension does not
+    for memoised, sf in ((a, soft), (b, stiff), (c, pretensioned)):
+        reference = fresh(sf)
+        np.testing.assert_array_equal(memoised.cargo.stiffness, reference.cargo.stiffness)
+        assert (memoised.rayleigh_alpha_per_s, memoised.rayleigh_beta_s) == (reference.rayleigh_alpha_per_s, reference.rayleigh_beta_s)
+        np.testing.assert_array_equal(memoised.static_load_N, reference.static_load_N)

@@ -19,9 +19,11 @@ the static (mean) part and is real.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 from numpy.typing import NDArray
 
 from seafast.model.beam import assemble_beam
@@ -226,16 +228,75 @@ class StructuralModel:
         return Kd_cc, Kco, Kco.T, Koo
 
     def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:
-        """Lowest undamped natural frequencies [rad/s] with the deck held fixed."""
-        from scipy.linalg import eigh
+        """Lowest undamped natural frequencies [rad/s] with the deck held fixed.
 
+        Dense generalised eigen-solve up to :data:`DENSE_EIGEN_DOFS` cargo DOFs; beyond, the
+        lowest ``count`` by shift-invert Lanczos (ARPACK) about 0 on the sparse matrices, whose
+        factorisation is banded: O(n) instead of the dense O(n^3), and more accurate for the
+        lowest modes of a fine mesh (the dense solve loses them in the stiffness's spread).
+        """
         Kcc = self.cargo.stiffness + self.spring_matrices(include_saddles)[0]
-        w2 = eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, min(count, self.cargo_dof_count) - 1])
+        count = min(count, self.cargo_dof_count)
+        if self.cargo_dof_count <= DENSE_EIGEN_DOFS or count >= self.cargo_dof_count - 1:
+            w2 = scipy.linalg.eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, count - 1])
+        else:
+            from scipy import sparse
+            from scipy.sparse.linalg import eigsh
+
+            w2 = np.sort(
+                eigsh(sparse.csc_matrix(Kcc), k=count, M=sparse.csc_matrix(self.cargo.mass), sigma=0.0, which="LM", return_eigenvectors=False)
+            )
         return np.sqrt(np.maximum(w2, 0.0))
 
 
 class MechanismError(ValueError):
     """The support layout leaves the cargo free to move as a rigid body (a mechanism)."""
+
+
+DENSE_EIGEN_DOFS = 400
+"""Largest cargo model (DOFs) whose natural frequencies are computed by a dense eigen-solve."""
+
+# Studies rebuild the model at every point; along a stiffness axis the mesh and the beam
+# matrices do not change, and along a pretension axis not even the natural frequencies. Both
+# are memoised on their content (the keys hold every input); beams above 1000 DOFs (dense
+# matrices of 8 MB and more) are not kept.
+_BEAM_CACHE: OrderedDict[tuple, CargoBeam] = OrderedDict()
+_RAYLEIGH_CACHE: OrderedDict[tuple, tuple[float, float]] = OrderedDict()
+_CACHE_ENTRIES = 4
+_CACHED_BEAM_MAX_DOFS = 1000
+
+
+def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
+    cache[key] = value
+    while len(cache) > _CACHE_ENTRIES:
+        cache.popitem(last=False)
+
+
+def _cargo_beam(geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float) -> tuple[CargoBeam, tuple]:
+    """The meshed and assembled cargo beam, memoised on its inputs; returns (beam, key)."""
+    key = (geometry, tuple(float(x) for x in fixed_points_m), float(target_element_length_m), float(gravity_m_per_s2))
+    beam = _BEAM_CACHE.get(key)
+    if beam is None:
+        beam = build_cargo_beam(geometry, fixed_points_m, target_element_length_m, gravity_m_per_s2)
+        if 2 * beam.node_count <= _CACHED_BEAM_MAX_DOFS:
+            _remember(_BEAM_CACHE, key, beam)
+    else:
+        _BEAM_CACHE.move_to_end(key)
+    return beam, key
+
+
+def _is_positive_definite_banded(A: NDArray[np.float64], bandwidth: int, shift: float) -> bool:
+    """Whether ``A - shift I`` is positive definite (banded Cholesky, O(n b^2)); A symmetric, banded."""
+    n = A.shape[0]
+    band = np.zeros((bandwidth + 1, n))
+    for d in range(bandwidth + 1):
+        band[bandwidth - d, d:] = np.diagonal(A, d)
+    band[bandwidth] -= shift
+    try:
+        scipy.linalg.cholesky_banded(band, lower=False, check_finite=False)
+    except np.linalg.LinAlgError:
+        return False
+    return True
 
 
 def build_structural_model(
@@ -258,15 +319,16 @@ def build_structural_model(
         supports and no rotational restraint).
     """
     xs = np.asarray(seafastening.saddle_x_m, dtype=float)
-    beam = build_cargo_beam(geometry, xs, target_element_length_m, gravity_m_per_s2)
+    beam, beam_key = _cargo_beam(geometry, xs, target_element_length_m, gravity_m_per_s2)
     nodes = np.array([int(np.argmin(np.abs(beam.node_x_m - x))) for x in xs], dtype=np.intp)
     model = StructuralModel(beam, seafastening, nodes, 0.0, 0.0, gravity_m_per_s2)
-    # Stability: the cargo on bilateral saddles must have no zero-energy mode. Judge the
-    # lowest eigenvalue of K against the beam's stiffness scale.
+    # Stability: the cargo on bilateral saddles must have no zero-energy mode: its lowest
+    # stiffness eigenvalue must exceed 1e-12 of the beam's stiffness scale, i.e. K - 1e-12 scale I
+    # must be positive definite. A chain of two-node beam elements with springs on the
+    # diagonal has half-bandwidth 3, so a banded Cholesky decides it in O(n).
     Kcc = beam.stiffness + model.spring_matrices(True)[0]
-    eig_min = float(np.linalg.eigvalsh(Kcc)[0])
     scale = float(np.max(np.diag(beam.stiffness)))
-    if eig_min <= 1e-12 * scale:
+    if not _is_positive_definite_banded(Kcc, 3, 1e-12 * scale):
         raise MechanismError(
             "seafastening: the support layout leaves the cargo a mechanism (free to translate or "
             f"rotate): {xs.size} saddle(s) at {np.round(xs, 3).tolist()} m with rotational lashing "
@@ -274,6 +336,13 @@ def build_structural_model(
             "allowed: at least two distinct saddle positions with positive stiffness, or one saddle "
             "with a rotational lashing"
         )
-    w = model.natural_frequencies_rad_s(True, count=2)
-    alpha, beta = rayleigh_coefficients(damping_ratio, float(w[0]), float(w[1]))
+    sf = seafastening
+    springs = (sf.lashing_vertical_stiffness_N_per_m, sf.lashing_rotational_stiffness_Nm_per_rad, sf.unilateral_stiffness_N_per_m)
+    rayleigh_key = (beam_key, tuple(nodes.tolist()), *(np.asarray(k, dtype=float).tobytes() for k in springs), float(damping_ratio))
+    coefficients = _RAYLEIGH_CACHE.get(rayleigh_key)
+    if coefficients is None:
+        w = model.natural_frequencies_rad_s(True, count=2)
+        coefficients = rayleigh_coefficients(damping_ratio, float(w[0]), float(w[1]))
+        _remember(_RAYLEIGH_CACHE, rayleigh_key, coefficients)
+    alpha, beta = coefficients
     return StructuralModel(beam, seafastening, nodes, alpha, beta, gravity_m_per_s2)
