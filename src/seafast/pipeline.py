@@ -21,6 +21,7 @@ from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.results.dataset import LOAD_CASES, MODELS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
+from seafast.solvers.periodic import harmonics_to_time
 from seafast.solvers.linear import solve_linear
 
 __all__ = [
@@ -29,6 +30,7 @@ __all__ = [
     "cargo_geometry",
     "run_case",
     "evaluate_summary",
+    "hbm_options",
     "solve_nonlinear",
     "couple_hull_and_cargo",
     "frequency_sweep",
@@ -285,9 +287,73 @@ def couple_hull_and_cargo(
     return out
 
 
+def hbm_options(case: Case) -> Any:
+    """The harmonic-balance options (:class:`~seafast.solvers.hbm.HBMOptions`) of the case's solver settings."""
+    return _hbm_options(case)
+
+
+def _summary_by_condensation(case: Case) -> bool:
+    """Whether :func:`evaluate_summary` can take its short path for this case."""
+    s = case.solver
+    return case.vessel.coupling == "one_way" and s.method == "hbm" and s.formulation == "condensed"
+
+
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
-    """Summary rows of one case (what a study records per point)."""
-    return run_case(case).summary
+    """Summary rows of one case (what a study records per point): ``run_case(case).summary``.
+
+    One-way cases solved by the condensed HBM (the default) take a short path with the same
+    numbers (to round-off; ``tests/test_pipeline_summary.py``): one linear condensation
+    (:func:`~seafast.solvers.hbm.condensed_operators`, one banded factorisation of harmonics
+    0 .. H) serves the linear model (its bilateral solution is the linear response), the
+    still-water nonlinear solve (its k = 0 block) and the dynamic nonlinear solve
+    (:func:`~seafast.solvers.hbm.solve_condensed`, started from the point's own predictor, as
+    :func:`solve_nonlinear`); the maxima come from the harmonics (:mod:`seafast.results.summary`)
+    with no time-series objects or Dataset. Every other case runs :func:`run_case`.
+    """
+    if not _summary_by_condensation(case):
+        return run_case(case).summary
+    from seafast.results.summary import RowSolution, summary_row
+    from seafast.solvers.hbm import CondensedOperators, condensed_operators, real_dft_matrices, real_to_complex_harmonics, solve_condensed
+
+    model = build_model(case)
+    excitation, _ = _excitation(case, model)
+    options = _hbm_options(case)
+    H, N = options.harmonics, options.time_samples
+    if excitation.harmonic_count > H + 1:
+        return run_case(case).summary  # the linear model would see harmonics the condensation drops
+    ops = condensed_operators(model, excitation, H)
+    n_s, n_k = model.saddle_count, excitation.harmonic_count
+    static_ops = CondensedOperators(
+        omega_rad_s=ops.omega_rad_s,
+        harmonics=0,
+        saddle_stiffness_N_per_m=ops.saddle_stiffness_N_per_m,
+        receptance=ops.receptance[:n_s, :n_s],
+        linear_compression_m=ops.linear_compression_m[:1],
+        linear_cargo_displacement=ops.linear_cargo_displacement[:1],
+        cargo_influence=ops.cargo_influence[:1],
+        ignored_harmonics=False,
+    )
+    k_u = ops.saddle_stiffness_N_per_m
+    static_excitation = excitation.static_part()
+    rows: dict[tuple[str, str], RowSolution] = {}
+    # linear (bilateral) model: the condensation's linear solution, harmonics of the excitation
+    linear_delta = real_to_complex_harmonics(ops.linear_compression_m)
+    for load_case, exc, harmonics in (("static", static_excitation, 1), ("dynamic", excitation, n_k)):
+        delta = harmonics_to_time(linear_delta[:harmonics], 1 if harmonics == 1 else N)
+        rows[(load_case, "linear")] = RowSolution(ops.linear_cargo_displacement[:harmonics], delta, delta * k_u, exc, nonlinear=False)
+    # nonlinear (unilateral) model: still water (H = 0) and the dynamic state (H harmonics)
+    for load_case, exc, row_ops, row_options in (
+        ("static", static_excitation, static_ops, _hbm_options(case, harmonics=0, time_samples=2)),
+        ("dynamic", excitation, ops, options),
+    ):
+        sol = solve_condensed(row_ops, row_options)
+        delta = real_dft_matrices(row_options.harmonics, row_options.time_samples)[0] @ sol.saddle_compression
+        C = real_to_complex_harmonics(sol.correction_force)
+        X = row_ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", row_ops.cargo_influence, C)
+        rows[(load_case, "nonlinear")] = RowSolution(
+            X, delta, row_options.law.force(delta, k_u), exc, True, sol.converged, sol.residual_norm, sol.iterations
+        )
+    return [summary_row(model, lc, mdl, rows[(lc, mdl)], N) for lc in LOAD_CASES for mdl in MODELS]
 
 
 def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
