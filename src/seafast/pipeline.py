@@ -312,7 +312,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     """
     if not _summary_by_condensation(case):
         return run_case(case).summary
-    from seafast.results.summary import RowSolution, summary_row
+    from seafast.results.summary import RowSolution, summary_rows
     from seafast.solvers.hbm import CondensedOperators, condensed_operators, real_dft_matrices, real_to_complex_harmonics, solve_condensed
 
     model = build_model(case)
@@ -353,7 +353,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
         rows[(load_case, "nonlinear")] = RowSolution(
             X, delta, row_options.law.force(delta, k_u), exc, True, sol.converged, sol.residual_norm, sol.iterations
         )
-    return [summary_row(model, lc, mdl, rows[(lc, mdl)], N) for lc in LOAD_CASES for mdl in MODELS]
+    return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 
 
 def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
