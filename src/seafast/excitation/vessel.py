@@ -20,11 +20,12 @@ memoised per process: a parametric study over saddles computes it once.
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 import xarray as xr
@@ -41,8 +42,6 @@ from seafast.excitation.hull_girder import (
     HullGirder,
     HullGirderResponse,
     WaveHullResponse,
-    deck_deflection_at,
-    deck_harmonics_at,
     deflection_from_bending_moment,
     still_water_response,
     wave_response,
@@ -110,22 +109,37 @@ class VesselExcitation:
     source: str
     girder: HullGirder | None = None
 
-    def _still_water_fn(self):
+    def __getstate__(self) -> dict[str, Any]:
+        # the cached interpolants below are closures: rebuilt after unpickling, not pickled
+        return {k: v for k, v in self.__dict__.items() if k not in ("_still_water_fn", "_wave_fn")}
+
+    # The deck interpolants are built once per vessel (a study assembles the excitation of a new
+    # cargo model at every point against the same vessel).
+    @functools.cached_property
+    def _still_water_fn(self) -> Callable[[NDArray], tuple[NDArray, NDArray]] | None:
         if self.still_water_curve is not None:
             return self.still_water_curve
         if isinstance(self.still_water, DeckDeflectionTable):
             return self.still_water.still_water_at
-        if self.still_water is not None:
-            return lambda x: deck_deflection_at(self.still_water, x)
+        if isinstance(self.still_water, HullGirderResponse):
+            # the C1 interpolant of deck_deflection_at (nodal deflections and slopes)
+            spline = CubicHermiteSpline(self.still_water.x_m, self.still_water.deflection_m, self.still_water.slope_rad)
+            return lambda x: (np.asarray(spline(x)), np.asarray(spline(x, 1)))
         return None
 
-    def _wave_fn(self):
+    @functools.cached_property
+    def _wave_fn(self) -> Callable[[NDArray], tuple[NDArray, NDArray]] | None:
         if isinstance(self.wave, DeckDeflectionTable):
             return self.wave.wave_at
-        if self.wave is not None:
+        if isinstance(self.wave, WaveHullResponse):
+            # the first harmonic of deck_harmonics_at: its real and imaginary parts' interpolants
+            w = self.wave
+            parts = [
+                CubicHermiteSpline(w.x_m, part(w.deflection_harmonics_m[1]), part(w.slope_harmonics_rad[1])) for part in (np.real, np.imag)
+            ]
+
             def first_harmonic(x: NDArray) -> tuple[NDArray, NDArray]:
-                z, s = deck_harmonics_at(self.wave, x)
-                return z[1], s[1]
+                return parts[0](x) + 1j * parts[1](x), parts[0](x, 1) + 1j * parts[1](x, 1)
 
             return first_harmonic
         return None
@@ -133,7 +147,7 @@ class VesselExcitation:
     def cargo_excitation(self, model: StructuralModel, case: Case | None = None) -> HarmonicExcitation:
         """The two-harmonic excitation of ``model`` (still water k = 0, wave k = 1)."""
         return assemble_excitation(
-            model, self.cargo_aft_end_x_m, self.omega_rad_s, self._still_water_fn(), self._wave_fn(), self.rigid_body, self.source
+            model, self.cargo_aft_end_x_m, self.omega_rad_s, self._still_water_fn, self._wave_fn, self.rigid_body, self.source
         )
 
     def to_dataset(self) -> xr.Dataset:
