@@ -363,16 +363,17 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
             gravity_m_per_s2=case.model.gravity_m_per_s2,
         )
         loading, loading_note = vessel_loading_of(case, hull)
+        # the wave response balances the still-water state too (its first row): solved once
+        wave = wave_response(girder, loading, case.wave.length_m, amplitude) if amplitude > 0 else None
         if v.still_water_bending_moment_table is not None:
             x, moment = _read_two_columns(v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm"))
             z, s = deflection_from_bending_moment(girder, x, moment)
             curve = _Curve(x, z, s)
             parts.append(f"still-water moment table '{Path(v.still_water_bending_moment_table).name}'")
         else:
-            still = still_water_response(girder, loading)
+            still = wave.still_water if wave is not None else still_water_response(girder, loading)
             parts.append(f"hull girder ({loading_note}, still water)")
-        if amplitude > 0:
-            wave = wave_response(girder, loading, case.wave.length_m, amplitude)
+        if wave is not None:
             parts.append(f"quasi-static wave lambda = {case.wave.length_m:g} m, zeta_a = {amplitude:g} m")
     motions = _motions(case, hull, loading)
     rigid = None
