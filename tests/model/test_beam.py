@@ -246,3 +246,17 @@ def test_nonuniform_mesh_cantilever_uniform_load() -> None:
     assert u[-2] == pytest.approx(-q * L**4 / (8 * EI), rel=RTOL)
     xs, m = bending_moment_line(x, u, eis, load_N_per_m=qs)
     np.testing.assert_allclose(m, -q * (L - xs) ** 2 / 2, rtol=0, atol=RTOL * q * L**2)
+
+
+@pytest.mark.parametrize("timoshenko", [False, True])
+def test_sparse_stiffness_assembly_equals_the_dense_one(timoshenko):
+    from seafast.model.beam import assemble_beam_stiffness_sparse
+
+    rng = np.random.default_rng(7)
+    x = np.sort(np.concatenate([[0.0, 171.0], rng.uniform(0.0, 171.0, 120)]))
+    EI = rng.uniform(1e12, 3e13, x.size - 1)
+    GA = rng.uniform(1e10, 5e10, x.size - 1) if timoshenko else None
+    K, _, _ = assemble_beam(x, EI, np.zeros(x.size - 1), shear_stiffness_N=GA)
+    sparse_K = assemble_beam_stiffness_sparse(x, EI, GA)
+    assert sparse_K.nnz <= 7 * 2 * x.size  # 2 DOFs per node, half-bandwidth 3: banded storage, not n^2
+    np.testing.assert_array_equal(sparse_K.toarray(), K)

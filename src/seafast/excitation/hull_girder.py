@@ -44,7 +44,7 @@ import scipy.linalg
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
-from seafast.model.beam import assemble_beam
+from seafast.model.beam import assemble_beam_stiffness_sparse
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, weight_distribution_N_per_m
 
@@ -316,14 +316,15 @@ class _Beam:
         EI = girder.bending_stiffness_Nm2
         GA = girder.shear_stiffness_N
         gas = None if np.isinf(GA) else np.full(n_el, GA)
-        K, _, _ = assemble_beam(x, np.full(n_el, EI), np.zeros(n_el), shear_stiffness_N=gas)
+        K = assemble_beam_stiffness_sparse(x, np.full(n_el, EI), shear_stiffness_N=gas)
         n_dof = 2 * x.size
         free = np.setdiff1d(np.arange(n_dof), [0, n_dof - 2])
-        # a chain of 2-node elements is banded (half-bandwidth 3): banded Cholesky, O(n)
-        Kf = K[np.ix_(free, free)]
+        # a chain of 2-node elements is banded (half-bandwidth 3): assembled sparse and
+        # factorised by a banded Cholesky, O(n) (the dense assembly was O(n^2))
+        Kf = K[free][:, free]
         band = np.zeros((_HALF_BANDWIDTH + 1, free.size))
         for d in range(_HALF_BANDWIDTH + 1):
-            band[_HALF_BANDWIDTH - d, d:] = np.diagonal(Kf, d)
+            band[_HALF_BANDWIDTH - d, d:] = Kf.diagonal(d)
         factor = (scipy.linalg.cholesky_banded(band), False)
         return cls(x, np.diff(x), EI, GA, free, factor)
 
