@@ -291,9 +291,17 @@ def _shear_moment(h: FloatArray, qa: NDArray, qb: NDArray) -> tuple[NDArray, NDA
 
 
 def _end_resultants(h: FloatArray, qa: NDArray, qb: NDArray) -> NDArray:
-    """(V(L), M(L)) stacked on the last axis, for the element loads."""
-    V, M = _shear_moment(h, qa, qb)
-    return np.stack([V[..., -1], M[..., -1]], axis=-1)
+    """(V(L), M(L)) stacked on the last axis, for the element loads.
+
+    The end values of :func:`_shear_moment` as weighted sums, without the running integrals
+    (the balance needs only these, several times per Newton step):
+    ``V(L) = sum h (qa + qb) / 2`` and ``M(L) = sum_j dV_j (L - x_{j+1}) + h^2 (2 qa + qb) / 6``.
+    """
+    beyond = np.concatenate([np.cumsum(h[::-1])[::-1][1:], [0.0]])  # L - x_{j+1}, element j's far end
+    half = 0.5 * h
+    V = qa @ half + qb @ half
+    M = qa @ (half * beyond + h * h / 3.0) + qb @ (half * beyond + h * h / 6.0)
+    return np.stack([V, M], axis=-1)
 
 
 _HALF_BANDWIDTH = 3
