@@ -49,12 +49,13 @@ def test_serial_processes_and_dask_agree(small_grid, tmp_path: Path):
     xr.testing.assert_identical(_results(on_disk[0]), _results(on_disk[2]))
     texts = [(tmp_path / d / "study.csv").read_text() for d in ("serial", "processes", "dask")]
     assert texts[0] == texts[1] == texts[2]
-    spawned = run_study(
-        small_grid, tmp_path / "spawned", evaluator=FAKE,
-        execution=ExecutionOptions(workers=2, batch_size=5, progress=False, start_method="spawn"),
-    )
-    xr.testing.assert_identical(_results(serial.dataset), _results(spawned.dataset))
-    assert (tmp_path / "spawned" / "study.csv").read_text() == texts[0]
+    for method in ("spawn", "forkserver"):
+        other = run_study(
+            small_grid, tmp_path / method, evaluator=FAKE,
+            execution=ExecutionOptions(workers=2, batch_size=5, progress=False, start_method=method),
+        )
+        xr.testing.assert_identical(_results(serial.dataset), _results(other.dataset))
+        assert (tmp_path / method / "study.csv").read_text() == texts[0]
 
 
 def test_local_workers_fork_after_a_warm_up_point_in_this_process(small_grid, tmp_path: Path, monkeypatch):
@@ -69,7 +70,7 @@ def test_local_workers_fork_after_a_warm_up_point_in_this_process(small_grid, tm
     assert os.getpid() not in pids[1:] and len(set(pids[1:])) >= 1  # the rest in the forked workers
 
 
-def test_start_method_is_fork_in_a_single_threaded_process_else_spawn():
+def test_start_method_is_fork_in_a_single_threaded_process_else_forkserver():
     import subprocess
     import sys
     import threading
@@ -82,8 +83,8 @@ def test_start_method_is_fork_in_a_single_threaded_process_else_spawn():
     thread = threading.Thread(target=stop.wait, daemon=True)
     thread.start()
     try:
-        assert ExecutionOptions(workers=2).process_start_method() == "spawn"
-        assert ExecutionOptions(workers=2, start_method="forkserver").process_start_method() == "forkserver"
+        assert ExecutionOptions(workers=2).process_start_method() == "forkserver"  # POSIX
+        assert ExecutionOptions(workers=2, start_method="spawn").process_start_method() == "spawn"
     finally:
         stop.set()
         thread.join()

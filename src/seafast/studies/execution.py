@@ -13,7 +13,9 @@ Local processes start by ``fork`` on Linux when this process runs no other Pytho
 workers then inherit the imported modules and the caches the coordinating process warmed on
 its first point (vessel excitation, hydrodynamic coefficients, cargo mesh), so a worker costs
 milliseconds to start instead of a fresh interpreter's imports (about a second of CPU each).
-Elsewhere, or when asked (``ExecutionOptions.start_method``), they are spawned.
+Otherwise (another thread runs here, e.g. after a Dask client; not Linux) they fork from a
+``forkserver`` that imported the numerics once, or are spawned where there is none; any of the
+three can be asked for (``ExecutionOptions.start_method``).
 """
 
 from __future__ import annotations
@@ -226,7 +228,8 @@ class ExecutionOptions:
         Show a progress bar on stderr (only when stderr is a terminal).
     start_method : str or None
         How local worker processes start: ``fork``, ``forkserver`` or ``spawn``; None = ``fork``
-        on Linux when this process runs no other Python thread, else ``spawn``.
+        on Linux when this process runs no other Python thread, else ``forkserver`` where
+        available, else ``spawn``.
     """
 
     workers: int | None = None
@@ -253,8 +256,10 @@ class ExecutionOptions:
         """The start method local worker processes will use (see ``start_method``)."""
         if self.start_method is not None:
             return self.start_method
-        forkable = sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
-        return "fork" if forkable and threading.active_count() == 1 else "spawn"
+        methods = multiprocessing.get_all_start_methods()
+        if sys.platform.startswith("linux") and "fork" in methods and threading.active_count() == 1:
+            return "fork"
+        return "forkserver" if "forkserver" in methods else "spawn"
 
 
 # --------------------------------------------------------------------------- back-ends
@@ -278,6 +283,12 @@ def _iter_processes(
         if not batches:
             return
     context = multiprocessing.get_context(start_method)
+    if start_method == "forkserver":
+        # the server imports the numerics once; each worker forks from it (no per-worker imports)
+        preload = ["seafast.pipeline", "seafast.studies.execution"]
+        if isinstance(evaluator, str) and ":" in evaluator:
+            preload.append(evaluator.partition(":")[0])
+        context.set_forkserver_preload(preload)
     executor = cf.ProcessPoolExecutor(
         max_workers=min(workers, len(batches)), mp_context=context, initializer=_init_process_worker, initargs=(os.getpid(),)
     )
