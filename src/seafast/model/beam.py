@@ -17,8 +17,6 @@ consistent translational mass of Friedman & Kosmatka (1993); rotary inertia is n
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 from numpy.typing import NDArray
 
@@ -27,14 +25,11 @@ __all__ = [
     "beam_element_mass",
     "uniform_load_vector",
     "assemble_beam",
-    "assemble_beam_stiffness_sparse",
+    "assemble_beam_stiffness_banded",
     "node_dof_indices",
     "element_end_moments",
     "bending_moment_line",
 ]
-
-if TYPE_CHECKING:
-    from scipy import sparse
 
 FloatArray = NDArray[np.float64]
 
@@ -175,25 +170,28 @@ def assemble_beam(
     return K, M, f
 
 
-def assemble_beam_stiffness_sparse(
+def assemble_beam_stiffness_banded(
     node_x_m: FloatArray,
     bending_stiffness_Nm2: FloatArray,
     shear_stiffness_N: FloatArray | None = None,
-) -> "sparse.csr_matrix":
-    """Stiffness [SI] of a chain of beam elements as a sparse matrix (half-bandwidth 3).
+) -> FloatArray:
+    """Stiffness [SI] of a chain of beam elements in upper banded storage, half-bandwidth 3.
 
-    The same matrix as :func:`assemble_beam`'s ``K``, in O(n) time and memory (each entry
-    receives at most two element contributions, so it is equal to the last bit).
+    ``ab[3 + i - j, j] = K[i, j]`` for ``j - 3 <= i <= j`` (the layout of
+    :func:`scipy.linalg.cholesky_banded`), the same matrix as :func:`assemble_beam`'s ``K`` in
+    O(n) time and memory (each entry receives at most two element contributions, so it is equal
+    to the last bit).
     """
-    from scipy import sparse
-
     x = np.asarray(node_x_m, dtype=float)
     n_el = x.size - 1
     Ke, _ = _element_matrices(np.diff(x), bending_stiffness_Nm2, np.zeros(n_el), shear_stiffness_N)
-    dofs = 2 * np.arange(n_el)[:, None] + np.arange(4)[None, :]
-    rows = np.broadcast_to(dofs[:, :, None], (n_el, 4, 4)).ravel()
-    cols = np.broadcast_to(dofs[:, None, :], (n_el, 4, 4)).ravel()
-    return sparse.csr_matrix((Ke.ravel(), (rows, cols)), shape=(2 * x.size, 2 * x.size))
+    i, j = np.triu_indices(4)  # the element's upper triangle
+    dofs = 2 * np.arange(n_el)[:, None]
+    ab = np.zeros((4, 2 * x.size))
+    rows = np.broadcast_to(3 + i - j, (n_el, i.size)).ravel()
+    cols = (dofs + j[None, :]).ravel()
+    np.add.at(ab, (rows, cols), Ke[:, i, j].ravel())
+    return ab
 
 
 def element_end_moments(
