@@ -281,3 +281,18 @@ def test_models_along_a_stiffness_axis_share_the_mesh_and_equal_fresh_builds(mon
         np.testing.assert_array_equal(memoised.cargo.stiffness, reference.cargo.stiffness)
         assert (memoised.rayleigh_alpha_per_s, memoised.rayleigh_beta_s) == (reference.rayleigh_alpha_per_s, reference.rayleigh_beta_s)
         np.testing.assert_array_equal(memoised.static_load_N, reference.static_load_N)
+
+
+def test_shift_invert_frequencies_equal_the_dense_ones_above_the_threshold_and_repeat_exactly() -> None:
+    from scipy.linalg import eigh
+
+    from seafast.model.structure import DENSE_EIGEN_DOFS
+
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    model = build_structural_model(_geometry(), sf, target_element_length_m=0.45)
+    assert DENSE_EIGEN_DOFS < model.cargo_dof_count < 2 * DENSE_EIGEN_DOFS
+    K = model.cargo.stiffness + model.spring_matrices(True)[0]
+    dense = np.sqrt(eigh(K, model.cargo.mass, eigvals_only=True, subset_by_index=[0, 3]))
+    lanczos = model.natural_frequencies_rad_s(True, 4)
+    np.testing.assert_allclose(lanczos, dense, rtol=1e-6)  # the dense solve's own accuracy here
+    np.testing.assert_array_equal(model.natural_frequencies_rad_s(True, 4), lanczos)  # fixed start vector
