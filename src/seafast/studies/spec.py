@@ -40,7 +40,7 @@ from typing import Annotated, Any, Literal, Mapping
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from seafast.config.loader import CaseError, apply_overrides, case_from_mapping, load_case, parse_yaml
+from seafast.config.loader import CaseError, case_from_mapping, load_case, parse_yaml
 from seafast.config.schema import Case
 
 __all__ = [
@@ -600,13 +600,17 @@ class StudyGrid:
     def point_overrides(self, index: int) -> dict[str, Any]:
         """Dotted overrides (axes then derived keys) that turn the base case into point ``index``."""
         overrides = self.point_values(index)
-        merged = apply_overrides(self.base, overrides)
+
+        def lookup(ref: str) -> Any:
+            # the point's own values (axes, earlier derived keys) first, then the base case;
+            # expressions refer to numeric leaf keys only, so no merged copy of the case is needed
+            return overrides[ref] if ref in overrides else _get_dotted(self.base, ref)
+
         for key, expr in self.spec.derived.items():
-            value = evaluate_expression(expr, lambda ref: _get_dotted(merged, ref))
+            value = evaluate_expression(expr, lookup)
             if case_key_kind(key) == "int":
                 value = int(round(value))
             overrides[key] = value
-            merged = apply_overrides(merged, {key: value})
         return overrides
 
     def point_case(self, index: int) -> Case:
