@@ -203,6 +203,8 @@ def test_batches_cover_every_point_once():
         assert [i for b in batches for i in b] == pending
         assert max(len(b) for b in batches) <= (size or 25)
     assert plan_batches([], 2) == []
+    guided = [len(b) for b in plan_batches(list(range(400)), 2)]
+    assert guided[0] == 25 and guided[-1] == 1 and guided == sorted(guided, reverse=True)  # the tail is fine-grained
 
 
 def test_store_appends_reach_the_file_at_once_and_fsync_is_batched(small_grid, tmp_path: Path, monkeypatch):

@@ -198,14 +198,22 @@ def plan_batches(pending: Sequence[int], workers: int, batch_size: int | None = 
     pending : sequence of int
         Indices still to evaluate.
     workers : int
-        Parallel workers; by default about four batches per worker, 1..25 points each.
+        Parallel workers. By default the batches shrink as the work runs out (guided
+        scheduling): each holds a quarter of the points left per worker, 1..25 of them, so
+        the workers finish together instead of one waiting for another's last large batch.
     batch_size : int, optional
         Points per batch (overrides the default).
     """
     if not pending:
         return []
-    size = batch_size or max(1, min(25, math.ceil(len(pending) / (4 * max(1, workers)))))
-    return [list(pending[i : i + size]) for i in range(0, len(pending), size)]
+    if batch_size:
+        return [list(pending[i : i + batch_size]) for i in range(0, len(pending), batch_size)]
+    batches, start = [], 0
+    while start < len(pending):
+        size = max(1, min(25, math.ceil((len(pending) - start) / (4 * max(1, workers)))))
+        batches.append(list(pending[start : start + size]))
+        start += size
+    return batches
 
 
 # --------------------------------------------------------------------------- execution options
