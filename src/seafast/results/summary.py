@@ -139,11 +139,16 @@ def summary_rows(model: StructuralModel, rows: Sequence[tuple[str, str, RowSolut
     out = []
     for (load_case, model_name, row), moment_harmonics in zip(rows, moments):
         X = np.asarray(row.cargo_harmonics)
-        n_t = 1 if X.shape[0] == 1 else int(time_samples)
+        n_k = X.shape[0]
+        n_t = 1 if n_k == 1 else int(time_samples)
         exc = row.excitation
-        deck_z = _sample(exc.deck_displacement[:, model.saddle_deck_dof], n_t)
-        deflection = _sample(X[:, 0::2], n_t) - seafastening_baseline(model, exc, deck_z)
-        moment = _sample(moment_harmonics, n_t)
+        # deck under the saddles, cargo z and moments sampled over the period in one product
+        deck = np.zeros((n_k, model.saddle_count), dtype=complex)
+        m = min(n_k, exc.harmonic_count)
+        deck[:m] = exc.deck_displacement[:m, model.saddle_deck_dof]
+        samples = _sample(np.concatenate([deck, X[:, 0::2], moment_harmonics], axis=1), n_t)
+        deck_z, z, moment = np.split(samples, [model.saddle_count, model.saddle_count + beam.node_count], axis=1)
+        deflection = z - seafastening_baseline(model, exc, deck_z)
         comp = np.asarray(row.saddle_compression_m, dtype=float)
         out.append(
             {
