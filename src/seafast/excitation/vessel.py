@@ -228,7 +228,28 @@ def _read_two_columns(path: str | Path, key: str, columns: tuple[str, str]) -> t
 
 
 def hull_form_of(case: Case) -> HullForm:
-    """The hull form: the user's breadth table, or the tapered box of L, B, T and displacement."""
+    """The hull form: the user's breadth table, or the tapered box of L, B, T and displacement.
+
+    The tapered box is memoised on its four particulars (one hull, with its integrals, for all
+    the loadings of a cargo study); a table is read at every call.
+    """
+    v = case.vessel
+    if v.hull_form_table is None:
+        key = (v.length_m, v.breadth_m, v.draft_m, v.displacement_m3)
+        hull = _HULL_CACHE.get(key)
+        if hull is None:
+            hull = _build_hull_form(case)
+            if len(_HULL_CACHE) >= 16:
+                _HULL_CACHE.pop(next(iter(_HULL_CACHE)))
+            _HULL_CACHE[key] = hull
+        return hull
+    return _build_hull_form(case)
+
+
+_HULL_CACHE: dict[tuple[float, float, float, float], HullForm] = {}
+
+
+def _build_hull_form(case: Case) -> HullForm:
     v = case.vessel
     if v.hull_form_table is not None:
         x, b = _read_two_columns(v.hull_form_table, "vessel.hull_form_table", ("x_m", "breadth_m"))
