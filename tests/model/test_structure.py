@@ -296,3 +296,26 @@ def test_shift_invert_frequencies_equal_the_dense_ones_above_the_threshold_and_r
     lanczos = model.natural_frequencies_rad_s(True, 4)
     np.testing.assert_allclose(lanczos, dense, rtol=1e-6)  # the dense solve's own accuracy here
     np.testing.assert_array_equal(model.natural_frequencies_rad_s(True, 4), lanczos)  # fixed start vector
+
+
+@pytest.mark.parametrize("include_saddles", [True, False])
+def test_banded_quadratic_parts_rebuild_the_dynamic_stiffness(include_saddles) -> None:
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    model = build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+    b, K, M, D, Kco = model.banded_quadratic(include_saddles)
+    n = model.cargo_dof_count
+
+    def dense(band):
+        A = np.zeros((n, n), dtype=band.dtype)
+        for offset in range(-b, b + 1):
+            i = np.arange(max(0, -offset), min(n, n - offset))
+            A[i, i + offset] = band[b - offset, i + offset]
+        return A
+
+    assert np.count_nonzero(np.triu(model.cargo.stiffness, b + 1)) == 0  # nothing outside the band
+    for omega in (0.0, 0.61, 44.0):
+        Kd_cc, Kd_co, _, _ = model.dynamic_stiffness(omega, include_saddles)
+        rebuilt = dense(K) - omega**2 * dense(M) + 1j * omega * dense(D)
+        np.testing.assert_allclose(rebuilt, Kd_cc, rtol=0, atol=1e-15 * np.max(np.abs(Kd_cc)))
+        np.testing.assert_array_equal(Kco, Kd_co)
+    np.testing.assert_array_equal(dense(M), model.cargo.mass)  # exactly the model's mass

@@ -68,6 +68,11 @@ class CargoBeam:
     def mass_kg(self) -> float:
         return float(np.sum(self.element_mass_per_length_kg_per_m * np.diff(self.node_x_m)))
 
+    @property
+    def half_bandwidth(self) -> int:
+        """Half-bandwidth of K and M: 3 (two-node elements, DOFs numbered node by node)."""
+        return 3
+
 
 def build_cargo_beam(
     geometry: CargoGeometry,
@@ -227,6 +232,20 @@ class StructuralModel:
             Kd_cc = Kd_cc - omega_rad_s**2 * self.cargo.mass + 1j * omega_rad_s * self.damping_cc
         return Kd_cc, Kco, Kco.T, Koo
 
+    def banded_quadratic(self, include_saddles: bool) -> tuple[int, NDArray, NDArray, NDArray, NDArray]:
+        """The parts of :meth:`dynamic_stiffness` ``K_d^cc(w) = K - w^2 M + i w D``, banded, in O(n).
+
+        Returns ``(b, K, M, D, K_co)``: the half-bandwidth b, K (beam plus springs), M and the
+        Rayleigh D = alpha M + beta K_beam of the cargo DOFs in full band storage
+        ``ab[b + i - j, j] = A[i, j]`` (the layout of :func:`scipy.linalg.solve_banded`), and the
+        cargo-deck coupling K_co (frequency-independent: the deck carries no mass or damping).
+        The same numbers as :meth:`dynamic_stiffness` without forming n x n arrays.
+        """
+        b = self.cargo.half_bandwidth
+        Kcc, Kco, _ = self.spring_matrices(include_saddles)
+        beam_K, mass = _full_band(self.cargo.stiffness, b), _full_band(self.cargo.mass, b)
+        return b, beam_K + _full_band(Kcc, b), mass, self.rayleigh_alpha_per_s * mass + self.rayleigh_beta_s * beam_K, Kco
+
     def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:
         """Lowest undamped natural frequencies [rad/s] with the deck held fixed.
 
@@ -295,6 +314,19 @@ def _cargo_beam(geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], ta
     else:
         _BEAM_CACHE.move_to_end(key)
     return beam, key
+
+
+def _full_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
+    """Full band storage ``ab[b + i - j, j] = A[i, j]`` of a banded matrix (read by diagonals, O(n b))."""
+    n = A.shape[0]
+    band = np.zeros((2 * bandwidth + 1, n), dtype=A.dtype)
+    for offset in range(-bandwidth, bandwidth + 1):
+        d = np.diagonal(A, offset)
+        if offset >= 0:
+            band[bandwidth - offset, offset:] = d
+        else:
+            band[bandwidth - offset, : n + offset] = d
+    return band
 
 
 def _upper_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
