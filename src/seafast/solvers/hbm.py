@@ -55,6 +55,7 @@ continuation was needed and names the start used.
 
 from __future__ import annotations
 
+import functools
 import weakref
 from dataclasses import asdict, dataclass
 from functools import lru_cache
@@ -222,11 +223,11 @@ def real_to_complex_harmonics(U: NDArray) -> NDArray[np.complex128]:
 # ====================================================================== linear operators
 @dataclass(frozen=True)
 class _QuadraticMatrices:
-    """K, M, D of the cargo DOFs (saddles bilateral) and of the cargo-deck coupling, banded."""
+    """K, M, D of the cargo DOFs (saddles bilateral) and of the cargo-deck coupling, banded.
 
-    stiffness: NDArray[np.float64]
-    mass: NDArray[np.float64]
-    damping: NDArray[np.float64]
+    The dense K, M, D (for the references) are formed from the bands on first use.
+    """
+
     coupling_stiffness: NDArray[np.float64]
     coupling_mass: NDArray[np.float64]
     coupling_damping: NDArray[np.float64]
@@ -235,39 +236,41 @@ class _QuadraticMatrices:
     banded_mass: NDArray[np.float64]
     banded_damping: NDArray[np.float64]
 
+    @functools.cached_property
+    def stiffness(self) -> NDArray[np.float64]:
+        return _from_banded(self.banded_stiffness, self.bandwidth)
+
+    @functools.cached_property
+    def mass(self) -> NDArray[np.float64]:
+        return _from_banded(self.banded_mass, self.bandwidth)
+
+    @functools.cached_property
+    def damping(self) -> NDArray[np.float64]:
+        return _from_banded(self.banded_damping, self.bandwidth)
+
+
+def _from_banded(ab: NDArray, bandwidth: int) -> NDArray:
+    """The dense matrix of full band storage ``ab[b + i - j, j] = A[i, j]``."""
+    n = ab.shape[1]
+    A = np.zeros((n, n), dtype=ab.dtype)
+    for offset in range(-bandwidth, bandwidth + 1):
+        i = np.arange(max(0, -offset), min(n, n - offset))
+        A[i, i + offset] = ab[bandwidth - offset, i + offset]
+    return A
+
 
 _QUADRATIC_CACHE: dict[tuple[int, bool], tuple[weakref.ref, _QuadraticMatrices]] = {}
 
 
-def _to_banded(A: NDArray, bandwidth: int) -> NDArray:
-    n = A.shape[0]
-    ab = np.zeros((2 * bandwidth + 1, n), dtype=A.dtype)
-    for offset in range(-bandwidth, bandwidth + 1):
-        d = np.diagonal(A, offset)
-        if offset >= 0:
-            ab[bandwidth - offset, offset:] = d
-        else:
-            ab[bandwidth - offset, : n + offset] = d
-    return ab
-
-
 def _quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> _QuadraticMatrices:
-    """Split ``model.dynamic_stiffness`` into K - w^2 M + i w D (two evaluations), cached per model."""
+    """``model.dynamic_stiffness`` as K - w^2 M + i w D, banded (``model.banded_quadratic``, O(n)), cached per model."""
     key = (id(model), bool(include_saddles))
     hit = _QUADRATIC_CACHE.get(key)
     if hit is not None and hit[0]() is model:
         return hit[1]
-    K, Kco, _, _ = model.dynamic_stiffness(0.0, include_saddles)
-    K1, Kco1, _, _ = model.dynamic_stiffness(1.0, include_saddles)
-    K = np.asarray(K, dtype=float)
+    bw, K, M, D, Kco = model.banded_quadratic(include_saddles)
     Kco = np.asarray(Kco, dtype=float)
-    M = K - np.real(K1)
-    D = np.imag(K1) * np.ones_like(K)
-    Mco = Kco - np.real(Kco1)
-    Dco = np.imag(Kco1) * np.ones_like(Kco)
-    rows, cols = np.nonzero((K != 0) | (M != 0) | (D != 0))
-    bw = int(np.max(np.abs(rows - cols))) if rows.size else 0
-    q = _QuadraticMatrices(K, M, D, Kco, Mco, Dco, bw, _to_banded(K, bw), _to_banded(M, bw), _to_banded(D, bw))
+    q = _QuadraticMatrices(Kco, np.zeros_like(Kco), np.zeros_like(Kco), bw, K, M, D)
     if len(_QUADRATIC_CACHE) > 64:
         for k in [k for k, (ref, _) in _QUADRATIC_CACHE.items() if ref() is None]:
             del _QUADRATIC_CACHE[k]
@@ -280,7 +283,7 @@ def _quadratic_matrices(model: StructuralModel, include_saddles: bool = True) ->
 
 def _solve_dynamic(q: _QuadraticMatrices, omega: float, rhs: NDArray) -> NDArray:
     """Solve (K - w^2 M + i w D) x = rhs (banded when the band is narrow)."""
-    n = q.stiffness.shape[0]
+    n = q.banded_stiffness.shape[1]
     if q.bandwidth < n // 4:
         if omega == 0.0:
             ab = q.banded_stiffness
