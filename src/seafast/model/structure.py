@@ -255,25 +255,27 @@ class StructuralModel:
         accurate for the lowest modes of a fine mesh (the dense solve loses them in the
         stiffness's spread). The Lanczos start vector is fixed, so the result is reproducible.
         """
-        Kcc = self.cargo.stiffness + self.spring_matrices(include_saddles)[0]
+        springs = self.spring_matrices(include_saddles)[0]
         n = self.cargo_dof_count
         count = min(count, n)
         if n <= DENSE_EIGEN_DOFS or 2 * count + 4 >= n:
+            Kcc = self.cargo.stiffness + springs
             w2 = scipy.linalg.eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, count - 1], check_finite=False)
         else:
             from scipy import sparse
             from scipy.sparse.linalg import LinearOperator, eigsh
 
-            def symmetric(A: NDArray[np.float64]) -> sparse.csr_matrix:
-                upper = sparse.dia_matrix((_upper_band(A, 3)[::-1], np.arange(4)), shape=(n, n))
+            def symmetric(band: NDArray[np.float64]) -> sparse.csr_matrix:
+                upper = sparse.dia_matrix((band[::-1], np.arange(4)), shape=(n, n))
                 return (upper + sparse.triu(upper, 1).T).tocsr()
 
-            factor = (scipy.linalg.cholesky_banded(_upper_band(Kcc, 3), check_finite=False), False)
+            K_band = _upper_band(self.cargo.stiffness, 3) + _upper_band(springs, 3)
+            factor = (scipy.linalg.cholesky_banded(K_band, check_finite=False), False)
             inverse = LinearOperator((n, n), matvec=lambda v: scipy.linalg.cho_solve_banded(factor, v, check_finite=False), dtype=float)
             w2 = np.sort(
                 eigsh(
-                    symmetric(Kcc), k=count, M=symmetric(self.cargo.mass), sigma=0.0, which="LM", OPinv=inverse,
-                    v0=np.ones(n), ncv=2 * count + 4, return_eigenvectors=False,
+                    symmetric(K_band), k=count, M=symmetric(_upper_band(self.cargo.mass, 3)), sigma=0.0, which="LM",
+                    OPinv=inverse, v0=np.ones(n), ncv=2 * count + 4, return_eigenvectors=False,
                 )
             )
         return np.sqrt(np.maximum(w2, 0.0))
@@ -289,12 +291,12 @@ DENSE_EIGEN_DOFS = 200
 
 # Studies rebuild the model at every point; along a stiffness axis the mesh and the beam
 # matrices do not change, and along a pretension axis not even the natural frequencies. Both
-# are memoised on their content (the keys hold every input); beams above 1000 DOFs (dense
-# matrices of 8 MB and more) are not kept.
+# are memoised on their content (the keys hold every input): the last four, and beams only
+# while their dense matrices total at most 128 MB (a 2000-element beam holds 64 MB).
 _BEAM_CACHE: OrderedDict[tuple, CargoBeam] = OrderedDict()
 _RAYLEIGH_CACHE: OrderedDict[tuple, tuple[float, float]] = OrderedDict()
 _CACHE_ENTRIES = 4
-_CACHED_BEAM_MAX_DOFS = 1000
+_BEAM_CACHE_BYTES = 128 * 2**20
 
 
 def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
@@ -309,8 +311,9 @@ def _cargo_beam(geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], ta
     beam = _BEAM_CACHE.get(key)
     if beam is None:
         beam = build_cargo_beam(geometry, fixed_points_m, target_element_length_m, gravity_m_per_s2)
-        if 2 * beam.node_count <= _CACHED_BEAM_MAX_DOFS:
-            _remember(_BEAM_CACHE, key, beam)
+        _remember(_BEAM_CACHE, key, beam)
+        while len(_BEAM_CACHE) > 1 and sum(b.stiffness.nbytes + b.mass.nbytes for b in _BEAM_CACHE.values()) > _BEAM_CACHE_BYTES:
+            _BEAM_CACHE.popitem(last=False)
     else:
         _BEAM_CACHE.move_to_end(key)
     return beam, key
@@ -337,9 +340,9 @@ def _upper_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
     return band
 
 
-def _is_positive_definite_banded(A: NDArray[np.float64], bandwidth: int, shift: float) -> bool:
-    """Whether ``A - shift I`` is positive definite (banded Cholesky, O(n b^2)); A symmetric, banded."""
-    band = _upper_band(A, bandwidth)
+def _is_positive_definite_banded(A: NDArray[np.float64], B: NDArray[np.float64], bandwidth: int, shift: float) -> bool:
+    """Whether ``A + B - shift I`` is positive definite (banded Cholesky, O(n b^2)); A, B symmetric, banded."""
+    band = _upper_band(A, bandwidth) + _upper_band(B, bandwidth)
     band[bandwidth] -= shift
     try:
         scipy.linalg.cholesky_banded(band, lower=False, check_finite=False)
@@ -375,9 +378,8 @@ def build_structural_model(
     # stiffness eigenvalue must exceed 1e-12 of the beam's stiffness scale, i.e. K - 1e-12 scale I
     # must be positive definite. A chain of two-node beam elements with springs on the
     # diagonal has half-bandwidth 3, so a banded Cholesky decides it in O(n).
-    Kcc = beam.stiffness + model.spring_matrices(True)[0]
     scale = float(np.max(np.diag(beam.stiffness)))
-    if not _is_positive_definite_banded(Kcc, 3, 1e-12 * scale):
+    if not _is_positive_definite_banded(beam.stiffness, model.spring_matrices(True)[0], 3, 1e-12 * scale):
         raise MechanismError(
             "seafastening: the support layout leaves the cargo a mechanism (free to translate or "
             f"rotate): {xs.size} saddle(s) at {np.round(xs, 3).tolist()} m with rotational lashing "
