@@ -10,16 +10,16 @@ The base case (its real vessel excitation, its own solver settings through
 ``model.element_length_m`` from 77 to about 1000 nodes, and with 2 to 12 saddles on the base
 mesh. Two timings per configuration, medians over repeats in this process, one BLAS thread:
 
-* ``solve``: the dynamic nonlinear solve of a model already solved once (what
-  ``bench_hbm.py`` times: the model's banded operators are cached);
-* ``fresh``: the same solve on a newly built model, so the model's operators are formed too
-  (what every study point pays; the model build itself, mesh and Rayleigh eigen-solve, is not
-  included).
+* ``fresh``: the solve on a newly built model, so the model's banded operators are formed
+  too: what every study point pays (the model build itself, mesh and Rayleigh eigen-solve, is
+  memoised and not included);
+* ``warm``: the solve of a model already solved once (what ``bench_hbm.py`` times: the model's
+  operators cached).
 
 A power law ``t = c n^p`` is fitted by least squares in log-log to each series. The last line is
-``key=value`` pairs: ``mesh_exponent`` (solve time against nodes; target <= 1.2, every
-factorisation being banded), ``mesh_exponent_fresh``, ``saddle_exponent`` and
-``saddle_exponent_fresh`` (against the saddle count), and the timings at the ends of each sweep.
+``key=value`` pairs: ``mesh_exponent`` (fresh solve against nodes; target <= 1.2, every
+factorisation being banded), ``mesh_exponent_warm``, ``saddle_exponent`` and
+``saddle_exponent_warm`` (against the saddle count), and the timings at the ends of each sweep.
 """
 
 from __future__ import annotations
@@ -41,40 +41,43 @@ SADDLE_COUNTS = (2, 3, 4, 6, 8, 10, 12)
 FIGURE = Path(__file__).resolve().parent / "bench_scaling.png"
 
 
-def _median_ms(fn, min_repeats: int, budget_s: float) -> float:
-    times: list[float] = []
-    start = time.perf_counter()
-    while len(times) < min_repeats or (time.perf_counter() - start < budget_s and len(times) < 200):
+class Configuration:
+    """The base case with ``overrides``: its model, excitation and the two solve timings [s]."""
+
+    def __init__(self, overrides: dict) -> None:
+        self.case = load_case(overrides=overrides)
+        self.model = build_model(self.case)
+        self.excitation = vessel_excitation(self.case).cargo_excitation(self.model, self.case)
+        response = solve_nonlinear(self.model, self.excitation, self.case, static=False)  # warms the model's operators
+        assert response.converged, f"{overrides}: {response.message}"
+        self.iterations = response.iterations
+        self.fresh: list[float] = []
+        self.warm: list[float] = []
+
+    def time_once(self) -> None:
         t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return 1e3 * float(np.median(times))
-
-
-def time_case(overrides: dict, min_repeats: int, budget_s: float) -> dict[str, float]:
-    """Nodes, saddles and the two median solve times [ms] of the base case with ``overrides``."""
-    case = load_case(overrides=overrides)
-    model = build_model(case)
-    excitation = vessel_excitation(case).cargo_excitation(model, case)
-    response = solve_nonlinear(model, excitation, case, static=False)  # warms the model's operators
-    assert response.converged, f"{overrides}: {response.message}"
-    solve = _median_ms(lambda: solve_nonlinear(model, excitation, case, static=False), min_repeats, budget_s)
-
-    def on_a_new_model() -> None:
-        fresh = build_model(case)  # the memoised mesh and Rayleigh coefficients: milliseconds
+        solve_nonlinear(self.model, self.excitation, self.case, static=False)
+        self.warm.append(time.perf_counter() - t0)
+        fresh = build_model(self.case)  # memoised mesh and Rayleigh coefficients: a new model object
         t0 = time.perf_counter()
-        solve_nonlinear(fresh, excitation, case, static=False)
-        fresh_times.append(time.perf_counter() - t0)
+        solve_nonlinear(fresh, self.excitation, self.case, static=False)
+        self.fresh.append(time.perf_counter() - t0)
 
-    fresh_times: list[float] = []
-    _median_ms(on_a_new_model, min_repeats, budget_s)
-    return {
-        "nodes": float(model.cargo.node_count),
-        "saddles": float(model.saddle_count),
-        "solve_ms": solve,
-        "fresh_ms": 1e3 * float(np.median(fresh_times)),
-        "iterations": float(response.iterations),
-    }
+    def row(self) -> dict[str, float]:
+        return {
+            "nodes": float(self.model.cargo.node_count),
+            "saddles": float(self.model.saddle_count),
+            "solve_ms": 1e3 * float(np.median(self.warm)),
+            "fresh_ms": 1e3 * float(np.median(self.fresh)),
+            "iterations": float(self.iterations),
+        }
+
+
+def time_all(configurations: list[Configuration], rounds: int) -> None:
+    """Round-robin timing, so that a change of the machine's load touches every configuration alike."""
+    for _ in range(rounds):
+        for c in configurations:
+            c.time_once()
 
 
 def exponent(x: list[float], y: list[float]) -> float:
@@ -84,6 +87,7 @@ def exponent(x: list[float], y: list[float]) -> float:
 
 def plot(mesh: list[dict], saddles: list[dict], fits: dict[str, float], path: Path) -> Path:
     import matplotlib
+    import matplotlib.ticker
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -91,13 +95,15 @@ def plot(mesh: list[dict], saddles: list[dict], fits: dict[str, float], path: Pa
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     for ax, rows, key, label in ((axes[0], mesh, "nodes", "cargo mesh nodes [-]"), (axes[1], saddles, "saddles", "saddles [-]")):
         x = np.array([r[key] for r in rows])
-        for series, marker, name in (("solve_ms", "o", "solve"), ("fresh_ms", "s", "fresh model")):
+        for series, marker, name in (("fresh_ms", "s", "new model"), ("solve_ms", "o", "model solved before")):
             y = np.array([r[series] for r in rows])
-            p = fits[f"{'mesh' if key == 'nodes' else 'saddle'}_exponent{'' if series == 'solve_ms' else '_fresh'}"]
+            p = fits[f"{'mesh' if key == 'nodes' else 'saddle'}_exponent{'' if series == 'fresh_ms' else '_warm'}"]
             c = np.exp(np.mean(np.log(y) - p * np.log(x)))
             ax.loglog(x, y, marker, label=f"{name}: t ~ n^{p:.2f}")
             ax.loglog(x, c * x**p, "--", color=ax.lines[-1].get_color(), linewidth=0.8)
         ax.set_xlabel(label)
+        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
         ax.set_ylabel("median condensed HBM solve [ms]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
@@ -114,31 +120,30 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
     parser.add_argument("--figure", type=Path, default=FIGURE, help="PNG to write (default: %(default)s)")
     args = parser.parse_args(argv)
-    min_repeats, budget = (3, 0.2) if args.quick else (7, 1.0)
-    mesh: list[dict] = []
-    saddles: list[dict] = []
+    rounds = 5 if args.quick else 25
     with threadpool_limits(limits=1):
-        for length in ELEMENT_LENGTHS_M:
-            row = time_case({"model.element_length_m": length}, min_repeats, budget)
-            mesh.append(row)
-            print(f"element {length:5.3f} m: {row['nodes']:5.0f} nodes  solve {row['solve_ms']:8.2f} ms  fresh model {row['fresh_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)")
-        for count in SADDLE_COUNTS:
-            row = time_case({"seafastening.saddle_count": count}, min_repeats, budget)
-            saddles.append(row)
-            print(f"{count:2d} saddles: solve {row['solve_ms']:8.2f} ms  fresh model {row['fresh_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)")
+        mesh_cases = [Configuration({"model.element_length_m": length}) for length in ELEMENT_LENGTHS_M]
+        saddle_cases = [Configuration({"seafastening.saddle_count": count}) for count in SADDLE_COUNTS]
+        time_all(mesh_cases + saddle_cases, rounds)
+    mesh = [c.row() for c in mesh_cases]
+    saddles = [c.row() for c in saddle_cases]
+    for length, row in zip(ELEMENT_LENGTHS_M, mesh):
+        print(f"element {length:5.3f} m: {row['nodes']:5.0f} nodes  new model {row['fresh_ms']:8.2f} ms  solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)")
+    for row in saddles:
+        print(f"{row['saddles']:2.0f} saddles: new model {row['fresh_ms']:8.2f} ms  solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)")
     fits = {
-        "mesh_exponent": exponent([r["nodes"] for r in mesh], [r["solve_ms"] for r in mesh]),
-        "mesh_exponent_fresh": exponent([r["nodes"] for r in mesh], [r["fresh_ms"] for r in mesh]),
-        "saddle_exponent": exponent([r["saddles"] for r in saddles], [r["solve_ms"] for r in saddles]),
-        "saddle_exponent_fresh": exponent([r["saddles"] for r in saddles], [r["fresh_ms"] for r in saddles]),
+        "mesh_exponent": exponent([r["nodes"] for r in mesh], [r["fresh_ms"] for r in mesh]),
+        "mesh_exponent_warm": exponent([r["nodes"] for r in mesh], [r["solve_ms"] for r in mesh]),
+        "saddle_exponent": exponent([r["saddles"] for r in saddles], [r["fresh_ms"] for r in saddles]),
+        "saddle_exponent_warm": exponent([r["saddles"] for r in saddles], [r["solve_ms"] for r in saddles]),
     }
     figure = plot(mesh, saddles, fits, args.figure)
-    print(f"fitted t ~ nodes^p: solve p = {fits['mesh_exponent']:.2f}, fresh model p = {fits['mesh_exponent_fresh']:.2f} (target <= 1.2)")
-    print(f"fitted t ~ saddles^p: solve p = {fits['saddle_exponent']:.2f}, fresh model p = {fits['saddle_exponent_fresh']:.2f}; figure {figure}")
+    print(f"fitted t ~ nodes^p: new model p = {fits['mesh_exponent']:.2f} (target <= 1.2), model solved before p = {fits['mesh_exponent_warm']:.2f}")
+    print(f"fitted t ~ saddles^p: new model p = {fits['saddle_exponent']:.2f}, model solved before p = {fits['saddle_exponent_warm']:.2f}; figure {figure}")
     print(
         " ".join(f"{k}={v:.3g}" for k, v in fits.items())
-        + f" nodes_max={mesh[-1]['nodes']:.0f} solve_ms_77_nodes={mesh[0]['solve_ms']:.3g} solve_ms_max_nodes={mesh[-1]['solve_ms']:.3g}"
-        f" fresh_ms_max_nodes={mesh[-1]['fresh_ms']:.3g} solve_ms_12_saddles={saddles[-1]['solve_ms']:.3g}"
+        + f" nodes_max={mesh[-1]['nodes']:.0f} fresh_ms_77_nodes={mesh[0]['fresh_ms']:.3g} fresh_ms_max_nodes={mesh[-1]['fresh_ms']:.3g}"
+        f" warm_ms_max_nodes={mesh[-1]['solve_ms']:.3g} fresh_ms_2_saddles={saddles[0]['fresh_ms']:.3g} fresh_ms_12_saddles={saddles[-1]['fresh_ms']:.3g}"
     )
     return 0
 

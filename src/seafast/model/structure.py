@@ -197,22 +197,33 @@ class StructuralModel:
         """
         key = bool(include_saddles)
         if key not in self._springs:
+            diagonal, Kco, Koo = self.spring_parts(include_saddles)
+            self._springs[key] = (np.diag(diagonal), Kco, Koo)
+        return self._springs[key]
+
+    def spring_parts(self, include_saddles: bool) -> tuple[NDArray, NDArray, NDArray]:
+        """The springs' K_cc as its diagonal (it has nothing else), with K_co and K_oo [SI].
+
+        See :meth:`spring_matrices`; O(n) where the dense K_cc is O(n^2).
+        """
+        key = ("parts", bool(include_saddles))
+        if key not in self._springs:
             nc, no = self.cargo_dof_count, self.deck_dof_count
             kz = self.seafastening.lashing_vertical_stiffness_N_per_m.astype(float)
             if include_saddles:
                 kz = kz + self.saddle_unilateral_stiffness_N_per_m
             kt = self.seafastening.lashing_rotational_stiffness_Nm_per_rad.astype(float)
-            Kcc = np.zeros((nc, nc))
+            diagonal = np.zeros(nc)
             Kco = np.zeros((nc, no))
             Koo = np.zeros((no, no))
             for k_vec, c_dofs, o_dofs in (
                 (kz, self.saddle_cargo_dof, self.saddle_deck_dof),
                 (kt, self.saddle_cargo_dof + 1, self.saddle_deck_dof + 1),
             ):
-                Kcc[c_dofs, c_dofs] += k_vec
+                diagonal[c_dofs] += k_vec
                 Kco[c_dofs, o_dofs] -= k_vec
                 Koo[o_dofs, o_dofs] += k_vec
-            self._springs[key] = (Kcc, Kco, Koo)
+            self._springs[key] = (diagonal, Kco, Koo)
         return self._springs[key]
 
     @property
@@ -242,9 +253,11 @@ class StructuralModel:
         The same numbers as :meth:`dynamic_stiffness` without forming n x n arrays.
         """
         b = self.cargo.half_bandwidth
-        Kcc, Kco, _ = self.spring_matrices(include_saddles)
+        springs, Kco, _ = self.spring_parts(include_saddles)
         beam_K, mass = _full_band(self.cargo.stiffness, b), _full_band(self.cargo.mass, b)
-        return b, beam_K + _full_band(Kcc, b), mass, self.rayleigh_alpha_per_s * mass + self.rayleigh_beta_s * beam_K, Kco
+        K = beam_K.copy()
+        K[b] += springs
+        return b, K, mass, self.rayleigh_alpha_per_s * mass + self.rayleigh_beta_s * beam_K, Kco
 
     def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:
         """Lowest undamped natural frequencies [rad/s] with the deck held fixed.
@@ -255,11 +268,11 @@ class StructuralModel:
         accurate for the lowest modes of a fine mesh (the dense solve loses them in the
         stiffness's spread). The Lanczos start vector is fixed, so the result is reproducible.
         """
-        springs = self.spring_matrices(include_saddles)[0]
+        springs = self.spring_parts(include_saddles)[0]
         n = self.cargo_dof_count
         count = min(count, n)
         if n <= DENSE_EIGEN_DOFS or 2 * count + 4 >= n:
-            Kcc = self.cargo.stiffness + springs
+            Kcc = self.cargo.stiffness + np.diag(springs)
             w2 = scipy.linalg.eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, count - 1], check_finite=False)
         else:
             from scipy import sparse
@@ -269,7 +282,8 @@ class StructuralModel:
                 upper = sparse.dia_matrix((band[::-1], np.arange(4)), shape=(n, n))
                 return (upper + sparse.triu(upper, 1).T).tocsr()
 
-            K_band = _upper_band(self.cargo.stiffness, 3) + _upper_band(springs, 3)
+            K_band = _upper_band(self.cargo.stiffness, 3)
+            K_band[3] += springs
             factor = (scipy.linalg.cholesky_banded(K_band, check_finite=False), False)
             inverse = LinearOperator((n, n), matvec=lambda v: scipy.linalg.cho_solve_banded(factor, v, check_finite=False), dtype=float)
             w2 = np.sort(
@@ -340,10 +354,10 @@ def _upper_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
     return band
 
 
-def _is_positive_definite_banded(A: NDArray[np.float64], B: NDArray[np.float64], bandwidth: int, shift: float) -> bool:
-    """Whether ``A + B - shift I`` is positive definite (banded Cholesky, O(n b^2)); A, B symmetric, banded."""
-    band = _upper_band(A, bandwidth) + _upper_band(B, bandwidth)
-    band[bandwidth] -= shift
+def _is_positive_definite_banded(A: NDArray[np.float64], diagonal: NDArray[np.float64], bandwidth: int, shift: float) -> bool:
+    """Whether ``A + diag(diagonal) - shift I`` is positive definite (banded Cholesky, O(n b^2)); A symmetric, banded."""
+    band = _upper_band(A, bandwidth)
+    band[bandwidth] += diagonal - shift
     try:
         scipy.linalg.cholesky_banded(band, lower=False, check_finite=False)
     except np.linalg.LinAlgError:
@@ -379,7 +393,7 @@ def build_structural_model(
     # must be positive definite. A chain of two-node beam elements with springs on the
     # diagonal has half-bandwidth 3, so a banded Cholesky decides it in O(n).
     scale = float(np.max(np.diag(beam.stiffness)))
-    if not _is_positive_definite_banded(beam.stiffness, model.spring_matrices(True)[0], 3, 1e-12 * scale):
+    if not _is_positive_definite_banded(beam.stiffness, model.spring_parts(True)[0], 3, 1e-12 * scale):
         raise MechanismError(
             "seafastening: the support layout leaves the cargo a mechanism (free to translate or "
             f"rotate): {xs.size} saddle(s) at {np.round(xs, 3).tolist()} m with rotational lashing "
