@@ -90,7 +90,7 @@ def _sample(X: NDArray, time_samples: int) -> NDArray[np.float64]:
     return (c @ np.ascontiguousarray(flat.real) - s @ np.ascontiguousarray(flat.imag)).reshape((time_samples,) + X.shape[1:])
 
 
-def _moment_harmonics(model: StructuralModel, rows: Sequence[RowSolution]) -> list[NDArray[np.complex128]]:
+def _moment_harmonics(model: StructuralModel, rows: Sequence[RowSolution]) -> list[NDArray[Any]]:
     """Bending-moment amplitudes [N m] at each element's ends and midpoint, (n_k, 3 n_el) per row.
 
     All rows in one call of :func:`element_end_moments` (the element matrices are formed once).

@@ -147,7 +147,7 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
         error[index] = record.error
         seconds[index] = record.seconds
         for row in record.rows:
-            li, mi = lc_index.get(row.get("load_case")), m_index.get(row.get("model"))
+            li, mi = lc_index.get(str(row.get("load_case"))), m_index.get(str(row.get("model")))
             if li is None or mi is None:
                 continue
             for k, a in floats.items():

@@ -175,8 +175,8 @@ def run_study(
         stream: Iterator[list[PointRecord]] = evaluate_batches(grid, batches, evaluator, execution)
         bar = _progress_bar(grid.size, reused, execution.progress, grid.spec.name)
         try:
-            for records in stream:
-                added = store.append(records)
+            for batch in stream:
+                added = store.append(batch)
                 computed += added
                 bar.update(added)
         finally:
