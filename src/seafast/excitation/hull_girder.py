@@ -662,7 +662,7 @@ def wave_response(
     sw = slope[1:] - slope[0]
 
     def harmonics(a: NDArray) -> NDArray[np.complex128]:
-        c = np.fft.fft(a, axis=0)[: n_harmonics + 1] / n_steps
+        c = np.fft.rfft(a, axis=0)[: n_harmonics + 1] / n_steps  # real samples: half the transform
         c[1:] *= 2.0
         c[0] = c[0].real
         return c
