@@ -254,3 +254,13 @@ def test_real_points_do_not_depend_on_the_back_end_or_the_evaluation_order(tmp_p
     assert (tmp_path / "forked" / "study.csv").read_text() == text
     assert (tmp_path / "resumed" / "study.csv").read_text() == text
     assert float(serial.dataset["F_N"].sel(load_case="dynamic", model="nonlinear").max()) > 5e6  # real forces
+
+
+def test_forkserver_workers_outlive_the_parent_watch_interval(small_grid, tmp_path: Path, monkeypatch):
+    # a forkserver's workers are children of the server, not of this process: they must watch
+    # the parent they start with, or they exit at the watch's first tick (0.25 s) mid-study
+    monkeypatch.setenv("SEAFAST_FAKE_EVAL_SLEEP_S", "0.05")
+    run = run_study(
+        small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=2, batch_size=8, progress=False, start_method="forkserver")
+    )
+    assert run.computed == small_grid.size and run.failed == 0  # 8 x 0.05 s per task, beyond the 0.25 s tick

@@ -136,7 +136,7 @@ def _prepare_worker() -> None:
 
 
 def _exit_with_parent(parent_pid: int, interval_s: float = 0.25) -> None:
-    """Exit this worker when its parent is gone (e.g. the study was killed with SIGKILL)."""
+    """Exit this worker when its parent process is gone (e.g. the study was killed with SIGKILL)."""
 
     def watch() -> None:
         while True:
@@ -147,12 +147,20 @@ def _exit_with_parent(parent_pid: int, interval_s: float = 0.25) -> None:
     threading.Thread(target=watch, name="seafast-parent-watch", daemon=True).start()
 
 
-def _init_process_worker(parent_pid: int) -> None:
-    """Initializer of local worker processes: one BLAS thread; exit with the parent."""
+def _init_process_worker(coordinator_pid: int) -> None:
+    """Initializer of local worker processes: one BLAS thread; exit with the coordinator.
+
+    A forked or spawned worker's parent is the coordinating process; a forkserver's worker's is
+    the server, which exits when the coordinator does. Either way the worker watches the parent
+    it starts with.
+    """
     global _worker_ready
     _worker_ready = False  # a forked worker re-pins its own BLAS
     _prepare_worker()
-    _exit_with_parent(parent_pid)
+    parent = os.getppid()
+    if parent == 1 and coordinator_pid != 1:
+        os._exit(1)  # orphaned before it started
+    _exit_with_parent(parent)
 
 
 def evaluate_batch(grid: PointSource, indices: Sequence[int], evaluator: Evaluator | str | None = None, pin_threads: bool = True) -> list[PointRecord]:
