@@ -102,8 +102,10 @@ def plot(mesh: list[dict], saddles: list[dict], fits: dict[str, float], path: Pa
             ax.loglog(x, y, marker, label=f"{name}: t ~ n^{p:.2f}")
             ax.loglog(x, c * x**p, "--", color=ax.lines[-1].get_color(), linewidth=0.8)
         ax.set_xlabel(label)
-        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
-        ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.set_xticks(x, [f"{v:g}" for v in x])  # the measured sizes
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.set_ylabel("median condensed HBM solve [ms]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
