@@ -30,7 +30,6 @@ __all__ = [
     "cargo_geometry",
     "run_case",
     "evaluate_summary",
-    "hbm_options",
     "solve_nonlinear",
     "couple_hull_and_cargo",
     "frequency_sweep",
@@ -285,11 +284,6 @@ def couple_hull_and_cargo(
         ),
     }
     return out
-
-
-def hbm_options(case: Case) -> Any:
-    """The harmonic-balance options (:class:`~seafast.solvers.hbm.HBMOptions`) of the case's solver settings."""
-    return _hbm_options(case)
 
 
 def _summary_by_condensation(case: Case) -> bool:
