@@ -33,6 +33,7 @@ from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
 from seafast.results.dataset import LOAD_CASES, MODELS, SUMMARY_COLUMNS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
+from seafast.solvers.periodic import harmonics_to_time
 from seafast.solvers.linear import solve_linear
 
 __all__ = [
@@ -360,9 +361,75 @@ def couple_hull_and_cargo(
     return out
 
 
+def _summary_by_condensation(case: Case) -> bool:
+    """Whether :func:`evaluate_summary` can take its short path for this case."""
+    s = case.solver
+    return (
+        case.vessel.coupling == "one_way"
+        and s.method == "hbm"
+        and s.formulation == "condensed"
+        and case.seafastening.friction_coefficient is None  # the axial analysis needs the time series of run_case
+    )
+
+
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
-    """Summary rows of one case (what a study records per point)."""
-    return run_case(case).summary
+    """Summary rows of one case (what a study records per point): ``run_case(case).summary``.
+
+    One-way cases solved by the condensed HBM (the default) take a short path with the same
+    numbers (to round-off; ``tests/test_pipeline_summary.py``): one linear condensation
+    (:func:`~seafast.solvers.hbm.condensed_operators`, one banded factorisation of harmonics
+    0 .. H) serves the linear model (its bilateral solution is the linear response), the
+    still-water nonlinear solve (its k = 0 block) and the dynamic nonlinear solve
+    (:func:`~seafast.solvers.hbm.solve_condensed`, started from the point's own predictor, as
+    :func:`solve_nonlinear`); the maxima come from the harmonics (:mod:`seafast.results.summary`)
+    with no time-series objects or Dataset. Every other case runs :func:`run_case`.
+    """
+    if not _summary_by_condensation(case):
+        return run_case(case).summary
+    from seafast.results.summary import RowSolution, summary_rows
+    from seafast.solvers.hbm import CondensedOperators, condensed_operators, real_to_complex_harmonics, solve_condensed, solve_hbm
+
+    model = build_model(case)
+    excitation, _ = _excitation(case, model)
+    n_s, n_k = model.saddle_count, excitation.harmonic_count
+    # the dynamic nonlinear state first: its (possibly adaptive) H sets the time grid N of every row
+    dynamic = solve_hbm(model, excitation, _hbm_options(case))
+    N = dynamic.time_samples
+    if dynamic.warnings and any(w.value == "harmonics_above_h_ignored" for w in dynamic.warnings):
+        return run_case(case).summary  # the linear model would see harmonics the condensation drops
+    ops = condensed_operators(model, excitation, max(n_k - 1, 0))  # the linear model lives on the excitation's harmonics
+    static_ops = CondensedOperators(
+        omega_rad_s=ops.omega_rad_s,
+        harmonics=0,
+        saddle_stiffness_N_per_m=ops.saddle_stiffness_N_per_m,
+        receptance_harmonics=ops.receptance_harmonics[:1],
+        linear_compression_m=ops.linear_compression_m[:1],
+        linear_cargo_displacement=ops.linear_cargo_displacement[:1],
+        cargo_influence=ops.cargo_influence[:1],
+        ignored_harmonics=False,
+    )
+    k_u = ops.saddle_stiffness_N_per_m
+    static_excitation = excitation.static_part()
+    rows: dict[tuple[str, str], RowSolution] = {}
+    # linear (bilateral) model: the condensation's linear solution, harmonics of the excitation
+    linear_delta = real_to_complex_harmonics(ops.linear_compression_m)
+    for load_case, exc, harmonics in (("static", static_excitation, 1), ("dynamic", excitation, n_k)):
+        delta = harmonics_to_time(linear_delta[:harmonics], 1 if harmonics == 1 else N)
+        rows[(load_case, "linear")] = RowSolution(ops.linear_cargo_displacement[:harmonics], delta, delta * k_u, exc, nonlinear=False)
+    # nonlinear (unilateral) model: still water (H = 0) and the dynamic state above
+    static_options = _hbm_options(case, harmonics=0, time_samples=2)
+    sol = solve_condensed(static_ops, static_options)
+    delta = sol.saddle_compression[:1]  # H = 0: the mean is the state
+    C = real_to_complex_harmonics(sol.correction_force)
+    X = static_ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", static_ops.cargo_influence, C)
+    rows[("static", "nonlinear")] = RowSolution(
+        X, delta, static_options.law.force(delta, k_u), static_excitation, True, sol.converged, sol.residual_norm, sol.iterations
+    )
+    rows[("dynamic", "nonlinear")] = RowSolution(
+        dynamic.cargo_displacement_harmonics, dynamic.saddle_compression_time_m, dynamic.saddle_force_time_N, excitation, True,
+        dynamic.converged, dynamic.residual_norm, dynamic.iterations,
+    )
+    return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 
 
 SWEEP_HARMONICS = 10

@@ -320,3 +320,16 @@ def test_patch_load_response_equals_hull_solutions_with_the_loads_added(base):
     np.testing.assert_allclose(r.bending_moment_Nm[1], 2.0 * r.bending_moment_Nm[0], rtol=1e-9, atol=1.0)
     with pytest.raises(ValueError, match="one per patch"):
         patch_load_response(girder, loading, start, end, loads[:, :2], x)
+
+
+def test_end_resultants_equal_the_ends_of_the_running_integrals():
+    # the balance's residual (net force and moment) by weighted sums, vs integrating V and M along the hull
+    from seafast.excitation.hull_girder import _end_resultants, _shear_moment
+
+    rng = np.random.default_rng(3)
+    h = rng.uniform(0.1, 1.0, 340)
+    qa, qb = rng.normal(size=(2, 65, 340)) * 1e5
+    V, M = _shear_moment(h, qa, qb)
+    ends = _end_resultants(h, qa, qb)
+    np.testing.assert_allclose(ends[..., 0], V[..., -1], rtol=0, atol=1e-13 * np.max(np.abs(V)))
+    np.testing.assert_allclose(ends[..., 1], M[..., -1], rtol=0, atol=1e-13 * np.max(np.abs(M)))

@@ -172,6 +172,20 @@ def test_cache_avoids_second_bem_run(hull, mass_props, cache_dir, coarse, monkey
                         water_density_kg_per_m3=1000.0, cache_dir=cache_dir)
 
 
+def test_another_loading_reuses_the_extracted_coefficients_and_equals_the_file_import(hull, mass_props, cache_dir, coarse, monkeypatch):
+    # a cargo study changes mass and CoG at every point: the coefficients are taken from the
+    # dataset once, and the motions of a second loading equal an import of the cache file
+    mp2 = dict(mass_props, mass_kg=1.1 * mass_props["mass_kg"], centre_of_gravity_m=(mass_props["centre_of_gravity_m"][0] - 3.0, 0.0, 8.0))
+    compute_motions(hull, **mass_props, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
+    monkeypatch.setattr(hd, "_capytaine_rigid_coefficients", lambda *a: (_ for _ in ()).throw(AssertionError("extracted twice")))
+    second = compute_motions(hull, **mp2, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
+    monkeypatch.undo()
+    imported = load_motions(sorted(cache_dir.glob("motions_*.nc"))[0], hull, **mp2)
+    np.testing.assert_allclose(second.heave_rao_m_per_m, imported.heave_rao_m_per_m, rtol=1e-12)
+    np.testing.assert_allclose(second.pitch_rao_rad_per_m, imported.pitch_rao_rad_per_m, rtol=1e-12)
+    assert not np.allclose(second.pitch_rao_rad_per_m, coarse.pitch_rao_rad_per_m, rtol=1e-3)  # the loading matters
+
+
 def test_cache_dir_from_environment(monkeypatch, tmp_path):
     monkeypatch.setenv("SEAFAST_CACHE_DIR", str(tmp_path))
     assert hd.default_cache_dir() == tmp_path

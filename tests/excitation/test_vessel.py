@@ -65,3 +65,37 @@ def test_wave_deck_motion_scales_with_amplitude():
     d1 = _deck(load_case(overrides={**NO_MOTIONS, "wave.amplitude_m": 1.0}))[1]
     d3 = _deck(load_case(overrides={**NO_MOTIONS, "wave.amplitude_m": 3.0}))[1]
     np.testing.assert_allclose(d3, 3.0 * d1, rtol=1e-4, atol=1e-9)
+
+
+def test_deck_excitation_from_the_cached_interpolants_equals_the_hull_response():
+    """The vessel builds its deck interpolants once; they give deck_deflection_at / deck_harmonics_at."""
+    import pickle
+
+    from seafast.excitation.hull_girder import deck_deflection_at, deck_harmonics_at
+
+    case = load_case(overrides=NO_MOTIONS)
+    vessel, model = vessel_excitation(case), build_model(case)
+    x = vessel.cargo_aft_end_x_m + model.saddle_x_m
+    deck = vessel.cargo_excitation(model, case).deck_displacement
+    z0, s0 = deck_deflection_at(vessel.still_water, x)
+    z, s = deck_harmonics_at(vessel.wave, x)
+    np.testing.assert_allclose(deck[0, 0::2].real, z0, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(deck[0, 1::2].real, s0, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(deck[1, 0::2], z[1], rtol=1e-13, atol=0)
+    np.testing.assert_allclose(deck[1, 1::2], s[1], rtol=1e-13, atol=0)
+    assert np.abs(deck[1, 0::2]).max() > 1e-3  # a wave that bends the hull by millimetres
+    again = pickle.loads(pickle.dumps(vessel))  # the interpolants are not pickled, and rebuilt
+    np.testing.assert_array_equal(again.cargo_excitation(model, case).deck_displacement, deck)
+
+
+def test_still_water_state_taken_from_the_wave_balance_equals_a_still_water_solve():
+    """The vessel balances the hull once (the wave response's first row is the still-water state)."""
+    from seafast.excitation.hull_girder import still_water_response
+
+    vessel = vessel_excitation(load_case(overrides=NO_MOTIONS))
+    fresh = still_water_response(vessel.girder, vessel.loading)
+    for name in ("deflection_m", "slope_rad", "bending_moment_Nm", "shear_force_N", "buoyancy_N_per_m"):
+        a, b = getattr(vessel.still_water, name), getattr(fresh, name)
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.max(np.abs(b)), err_msg=name)
+    assert vessel.still_water.sinkage_m == pytest.approx(fresh.sinkage_m, abs=1e-12)
+    assert np.max(np.abs(fresh.bending_moment_Nm)) > 1e8  # a hull in real hog, not a trivial zero

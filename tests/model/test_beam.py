@@ -246,3 +246,19 @@ def test_nonuniform_mesh_cantilever_uniform_load() -> None:
     assert u[-2] == pytest.approx(-q * L**4 / (8 * EI), rel=RTOL)
     xs, m = bending_moment_line(x, u, eis, load_N_per_m=qs)
     np.testing.assert_allclose(m, -q * (L - xs) ** 2 / 2, rtol=0, atol=RTOL * q * L**2)
+
+
+@pytest.mark.parametrize("timoshenko", [False, True])
+def test_banded_stiffness_assembly_equals_the_dense_one(timoshenko):
+    from seafast.model.beam import assemble_beam_stiffness_banded
+
+    rng = np.random.default_rng(7)
+    x = np.sort(np.concatenate([[0.0, 171.0], rng.uniform(0.0, 171.0, 120)]))
+    EI = rng.uniform(1e12, 3e13, x.size - 1)
+    GA = rng.uniform(1e10, 5e10, x.size - 1) if timoshenko else None
+    K, _, _ = assemble_beam(x, EI, np.zeros(x.size - 1), shear_stiffness_N=GA)
+    band = assemble_beam_stiffness_banded(x, EI, GA)
+    assert band.shape == (4, K.shape[0])  # half-bandwidth 3: O(n) storage
+    for d in range(4):
+        np.testing.assert_array_equal(band[3 - d, d:], np.diagonal(K, d))
+    assert np.count_nonzero(np.triu(K, 4)) == 0  # nothing outside the band

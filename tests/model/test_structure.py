@@ -281,3 +281,93 @@ def test_zero_damping_ratio_gives_no_damping() -> None:
     sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
     model = build_structural_model(_geometry(), sf, target_element_length_m=2.0, damping_ratio=0.0)
     assert model.rayleigh_alpha_per_s == 0.0 and model.rayleigh_beta_s == 0.0
+
+
+def test_mechanism_threshold_is_the_lowest_stiffness_eigenvalue() -> None:
+    # Two soft saddles: the lowest eigenvalue of K is about the springs' stiffness. The banded
+    # Cholesky test must refuse exactly when it falls below 1e-12 of the beam's stiffness scale.
+    def layout(k: float) -> SeaFastening:
+        return SeaFastening(BASE_X[[0, 2]], np.full(2, k), np.zeros(2, bool), lashing_wire_stiffness_N_per_m=0.0, lashing_pretension_N=0.0)
+
+    probe = build_structural_model(_geometry(), layout(1.0e6), target_element_length_m=2.0)
+    K = probe.cargo.stiffness + probe.spring_matrices(True)[0]
+    eig_min_per_k = float(np.linalg.eigvalsh(K)[0]) / 1.0e6  # linear in k while k << beam stiffness
+    threshold = 1e-12 * float(np.max(np.diag(probe.cargo.stiffness)))
+    k_limit = threshold / eig_min_per_k
+    build_structural_model(_geometry(), layout(3.0 * k_limit), target_element_length_m=2.0)
+    with pytest.raises(MechanismError):
+        build_structural_model(_geometry(), layout(k_limit / 3.0), target_element_length_m=2.0)
+
+
+def test_natural_frequencies_of_a_fine_mesh_by_shift_invert_equal_the_converged_dense_ones() -> None:
+    from seafast.model.structure import DENSE_EIGEN_DOFS
+
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    coarse = build_structural_model(_geometry(), sf, target_element_length_m=1.0)  # dense eigen-solve
+    fine = build_structural_model(_geometry(), sf, target_element_length_m=0.1)  # sparse shift-invert
+    assert coarse.cargo_dof_count <= DENSE_EIGEN_DOFS < fine.cargo_dof_count
+    # Hermite elements converge as h^4: the 1 m mesh's lowest modes are within 1e-7 of converged
+    np.testing.assert_allclose(fine.natural_frequencies_rad_s(True, 3), coarse.natural_frequencies_rad_s(True, 3), rtol=1e-6)
+    assert fine.rayleigh_beta_s == pytest.approx(coarse.rayleigh_beta_s, rel=1e-6)
+
+
+def test_models_along_a_stiffness_axis_share_the_mesh_and_equal_fresh_builds(monkeypatch) -> None:
+    import seafast.model.structure as structure
+
+    def fresh(sf: SeaFastening) -> StructuralModel:
+        monkeypatch.setattr(structure, "_BEAM_CACHE", structure.OrderedDict())
+        monkeypatch.setattr(structure, "_RAYLEIGH_CACHE", structure.OrderedDict())
+        return build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+
+    soft = SeaFastening(BASE_X, np.full(3, 1.1e8), np.array([True, False, True]))
+    stiff = SeaFastening(BASE_X, np.full(3, 1.1e10), np.array([True, False, True]))
+    pretensioned = SeaFastening(BASE_X, np.full(3, 1.1e10), np.array([True, False, True]), lashing_pretension_N=5e6)
+    a = build_structural_model(_geometry(), soft, target_element_length_m=2.0)
+    b = build_structural_model(_geometry(), stiff, target_element_length_m=2.0)
+    c = build_structural_model(_geometry(), pretensioned, target_element_length_m=2.0)
+    assert a.cargo is b.cargo is c.cargo  # one mesh and beam assembly for the three
+    assert a.rayleigh_beta_s != b.rayleigh_beta_s  # the springs move the natural frequencies ...
+    assert (b.rayleigh_alpha_per_s, b.rayleigh_beta_s) == (c.rayleigh_alpha_per_s, c.rayleigh_beta_s)  # ... pretension does not
+    for memoised, sf in ((a, soft), (b, stiff), (c, pretensioned)):
+        reference = fresh(sf)
+        np.testing.assert_array_equal(memoised.cargo.stiffness, reference.cargo.stiffness)
+        assert (memoised.rayleigh_alpha_per_s, memoised.rayleigh_beta_s) == (reference.rayleigh_alpha_per_s, reference.rayleigh_beta_s)
+        np.testing.assert_array_equal(memoised.static_load_N, reference.static_load_N)
+
+
+def test_shift_invert_frequencies_equal_the_dense_ones_above_the_threshold_and_repeat_exactly() -> None:
+    from scipy.linalg import eigh
+
+    from seafast.model.structure import DENSE_EIGEN_DOFS
+
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    model = build_structural_model(_geometry(), sf, target_element_length_m=0.45)
+    assert DENSE_EIGEN_DOFS < model.cargo_dof_count < 2 * DENSE_EIGEN_DOFS
+    K = model.cargo.stiffness + model.spring_matrices(True)[0]
+    dense = np.sqrt(eigh(K, model.cargo.mass, eigvals_only=True, subset_by_index=[0, 3]))
+    lanczos = model.natural_frequencies_rad_s(True, 4)
+    np.testing.assert_allclose(lanczos, dense, rtol=1e-6)  # the dense solve's own accuracy here
+    np.testing.assert_array_equal(model.natural_frequencies_rad_s(True, 4), lanczos)  # fixed start vector
+
+
+@pytest.mark.parametrize("include_saddles", [True, False])
+def test_banded_quadratic_parts_rebuild_the_dynamic_stiffness(include_saddles) -> None:
+    sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
+    model = build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+    b, K, M, D, Kco = model.banded_quadratic(include_saddles)
+    n = model.cargo_dof_count
+
+    def dense(band):
+        A = np.zeros((n, n), dtype=band.dtype)
+        for offset in range(-b, b + 1):
+            i = np.arange(max(0, -offset), min(n, n - offset))
+            A[i, i + offset] = band[b - offset, i + offset]
+        return A
+
+    assert np.count_nonzero(np.triu(model.cargo.stiffness, b + 1)) == 0  # nothing outside the band
+    for omega in (0.0, 0.61, 44.0):
+        Kd_cc, Kd_co, _, _ = model.dynamic_stiffness(omega, include_saddles)
+        rebuilt = dense(K) - omega**2 * dense(M) + 1j * omega * dense(D)
+        np.testing.assert_allclose(rebuilt, Kd_cc, rtol=0, atol=1e-15 * np.max(np.abs(Kd_cc)))
+        np.testing.assert_array_equal(Kco, Kd_co)
+    np.testing.assert_array_equal(dense(M), model.cargo.mass)  # exactly the model's mass

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -48,6 +49,47 @@ def test_serial_processes_and_dask_agree(small_grid, tmp_path: Path):
     xr.testing.assert_identical(_results(on_disk[0]), _results(on_disk[2]))
     texts = [(tmp_path / d / "study.csv").read_text() for d in ("serial", "processes", "dask")]
     assert texts[0] == texts[1] == texts[2]
+    for method in ("spawn", "forkserver"):
+        other = run_study(
+            small_grid, tmp_path / method, evaluator=FAKE,
+            execution=ExecutionOptions(workers=2, batch_size=5, progress=False, start_method=method),
+        )
+        xr.testing.assert_identical(_results(serial.dataset), _results(other.dataset))
+        assert (tmp_path / method / "study.csv").read_text() == texts[0]
+
+
+def test_local_workers_fork_after_a_warm_up_point_in_this_process(small_grid, tmp_path: Path, monkeypatch):
+    log = tmp_path / "eval.log"
+    monkeypatch.setenv("SEAFAST_FAKE_EVAL_LOG", str(log))
+    options = ExecutionOptions(workers=2, batch_size=3, progress=False, start_method="fork")
+    run = run_study(small_grid, tmp_path / "out", evaluator=FAKE, execution=options)
+    assert run.computed == small_grid.size and run.workers == 2
+    pids = [int(line.split(" ", 1)[0]) for line in log.read_text().splitlines()]
+    assert len(pids) == small_grid.size  # every point evaluated once
+    assert pids[0] == os.getpid()  # the first point warms this process's caches before the fork
+    assert os.getpid() not in pids[1:] and len(set(pids[1:])) >= 1  # the rest in the forked workers
+
+
+def test_start_method_is_fork_in_a_single_threaded_process_else_forkserver():
+    import subprocess
+    import sys
+    import threading
+
+    probe = "from seafast.studies.execution import ExecutionOptions; print(ExecutionOptions(workers=2).process_start_method())"
+    fresh = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120, check=True)
+    assert fresh.stdout.strip() == ("fork" if sys.platform.startswith("linux") else "spawn")
+
+    stop = threading.Event()
+    thread = threading.Thread(target=stop.wait, daemon=True)
+    thread.start()
+    try:
+        assert ExecutionOptions(workers=2).process_start_method() == "forkserver"  # POSIX
+        assert ExecutionOptions(workers=2, start_method="spawn").process_start_method() == "spawn"
+    finally:
+        stop.set()
+        thread.join()
+    with pytest.raises(StudyError, match="start_method = 'thread'"):
+        ExecutionOptions(start_method="thread")
 
 
 def test_dataset_layout_and_attributes(small_grid, tmp_path: Path):
@@ -161,3 +203,64 @@ def test_batches_cover_every_point_once():
         assert [i for b in batches for i in b] == pending
         assert max(len(b) for b in batches) <= (size or 25)
     assert plan_batches([], 2) == []
+    guided = [len(b) for b in plan_batches(list(range(400)), 2)]
+    assert guided[0] == 25 and guided[-1] == 1 and guided == sorted(guided, reverse=True)  # the tail is fine-grained
+
+
+def test_store_appends_reach_the_file_at_once_and_fsync_is_batched(small_grid, tmp_path: Path, monkeypatch):
+    import seafast.studies.store as store_module
+
+    syncs: list[int] = []
+    real_fsync = os.fsync
+    monkeypatch.setattr(store_module.os, "fsync", lambda fd: (syncs.append(fd), real_fsync(fd))[1])
+    records = evaluate_batch(small_grid, list(range(small_grid.size)), FAKE, pin_threads=False)
+    store = PointStore(tmp_path, small_grid, fsync_interval_s=3600.0)
+    for record in records:
+        store.append([record])
+        # kill safety: what append returned is in the file for any other reader (a resumed run)
+        assert record.index in PointStore(tmp_path, small_grid).completed
+    assert syncs == []  # durability against a machine crash is batched ...
+    store.close()
+    assert len(syncs) == 1  # ... and completed when the store closes
+    every = PointStore(tmp_path / "every", small_grid, fsync_interval_s=0.0)
+    for record in records[:3]:
+        every.append([record])
+    every.close()
+    assert len(syncs) == 1 + 3
+
+
+def test_real_points_do_not_depend_on_the_back_end_or_the_evaluation_order(tmp_path: Path):
+    # each point is a pure function of its case (no warm start from a neighbour; caches hold
+    # inputs, not solutions): serial, forked workers in another order, and a resume after a
+    # partial run give the same bytes in study.csv
+    from seafast.studies.spec import study_spec_from_mapping
+
+    spec = study_spec_from_mapping({
+        "name": "order",
+        "axes": [
+            {"key": "seafastening.saddle_count", "values": [2, 3]},
+            {"key": "seafastening.saddle_stiffness_N_per_m", "values": [1.1e7, 1.786154413e9, 1.1e10]},
+        ],
+    })
+    grid = build_grid(spec)
+    serial = run_study(grid, tmp_path / "serial", execution=ExecutionOptions(workers=1, progress=False))
+    assert serial.failed == 0
+    run_study(grid, tmp_path / "forked", execution=ExecutionOptions(workers=2, batch_size=1, progress=False))
+    with PointStore(tmp_path / "resumed", grid) as store:  # a partial run, points in reverse order
+        store.append(evaluate_batch(grid, [5, 3, 1], pin_threads=False))
+    resumed = run_study(grid, tmp_path / "resumed", execution=ExecutionOptions(workers=1, progress=False))
+    assert resumed.reused == 3 and resumed.computed == 3
+    text = (tmp_path / "serial" / "study.csv").read_text()
+    assert (tmp_path / "forked" / "study.csv").read_text() == text
+    assert (tmp_path / "resumed" / "study.csv").read_text() == text
+    assert float(serial.dataset["F_N"].sel(load_case="dynamic", model="nonlinear").max()) > 5e6  # real forces
+
+
+def test_forkserver_workers_outlive_the_parent_watch_interval(small_grid, tmp_path: Path, monkeypatch):
+    # a forkserver's workers are children of the server, not of this process: they must watch
+    # the parent they start with, or they exit at the watch's first tick (0.25 s) mid-study
+    monkeypatch.setenv("SEAFAST_FAKE_EVAL_SLEEP_S", "0.05")
+    run = run_study(
+        small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=2, batch_size=8, progress=False, start_method="forkserver")
+    )
+    assert run.computed == small_grid.size and run.failed == 0  # 8 x 0.05 s per task, beyond the 0.25 s tick

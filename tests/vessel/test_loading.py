@@ -138,3 +138,25 @@ def test_even_keel_moment_box_barge_closed_form():
     # uniform weight alone: no moment
     ld0 = VesselLoading(None, (WeightItem("hull", 0, Lb, disp),))
     assert abs(still_water_moment_even_keel_Nm(hull, ld0, 37.0)) < 1e-6 * disp * g * Lb
+
+
+def test_hull_integrals_are_kept_and_equal_a_fresh_hull():
+    from seafast.vessel.hull_form import HullForm
+
+    cb = 32000.0 / (171.0 * 42.0 * 6.5)
+    hull = HullForm.tapered_box(171.0, 42.0, 6.5, cb)
+    first = (hull.displaced_volume_m3(20001), hull.centre_of_buoyancy_x_m(20001), hull.displaced_volume_m3())
+    fresh = HullForm.tapered_box(171.0, 42.0, 6.5, cb)
+    assert first == (fresh.displaced_volume_m3(20001), fresh.centre_of_buoyancy_x_m(20001), fresh.displaced_volume_m3())
+    assert first[0] == pytest.approx(32000.0, rel=1e-6) and first[2] != first[0]  # kept per quadrature size
+
+
+def test_kept_unit_tank_moments_give_the_same_ballast_for_every_cargo(monkeypatch):
+    import seafast.vessel.loading as loading_module
+    from seafast.vessel.loading import base_vessel_loading
+
+    loadings = [base_vessel_loading(cargo_mass_kg=m) for m in (3.0e6, 4.6e6, 3.0e6)]
+    monkeypatch.setattr(loading_module, "_UNIT_TANK_MOMENTS", {})  # nothing kept: every integral afresh
+    fresh = base_vessel_loading(cargo_mass_kg=3.0e6)
+    assert [it.mass_kg for it in loadings[2].items] == [it.mass_kg for it in fresh.items]
+    assert loadings[0].items[-1].mass_kg != loadings[1].items[-1].mass_kg  # the cargo changes the ballast

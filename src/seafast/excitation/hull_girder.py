@@ -49,7 +49,7 @@ import scipy.linalg
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
-from seafast.model.beam import assemble_beam
+from seafast.model.beam import assemble_beam_stiffness_banded
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, weight_distribution_N_per_m
 
@@ -299,17 +299,21 @@ def _shear_moment(h: FloatArray, qa: NDArray, qb: NDArray) -> tuple[NDArray, NDA
     return V, M
 
 
-def _end_resultants(h: FloatArray, qa: NDArray, qb: NDArray) -> NDArray:
-    """(V(L), M(L)) stacked on the last axis, for the element loads.
+def _resultant_weights(h: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Weights (n_el, 2) of the element-start and element-end loads in (V(L), M(L)).
 
-    The end values of :func:`_shear_moment` without its running sums (the balance needs only
-    these): ``V(L) = sum dV_j`` and ``M(L) = sum_j [dV_j (L - x_{j+1}) + h_j^2 (2 qa_j + qb_j) / 6]``.
+    ``V(L) = sum h (qa + qb) / 2`` and ``M(L) = sum_j dV_j (L - x_{j+1}) + h^2 (2 qa + qb) / 6``:
+    the end values of :func:`_shear_moment` without the running integrals.
     """
-    dV = 0.5 * h * (qa + qb)
-    arm = np.cumsum(h[::-1])[::-1] - h  # L - x_{j+1}
-    V_end = dV.sum(axis=-1)
-    M_end = dV @ arm + (h * h / 6.0 * (2.0 * qa + qb)).sum(axis=-1)
-    return np.stack([V_end, M_end], axis=-1)
+    beyond = np.concatenate([np.cumsum(h[::-1])[::-1][1:], [0.0]])  # L - x_{j+1}, element j's far end
+    half = 0.5 * h
+    return np.stack([half, half * beyond + h * h / 3.0], axis=-1), np.stack([half, half * beyond + h * h / 6.0], axis=-1)
+
+
+def _end_resultants(h: FloatArray, qa: NDArray, qb: NDArray) -> NDArray:
+    """(V(L), M(L)) stacked on the last axis, for the element loads (see :func:`_resultant_weights`)."""
+    start, end = _resultant_weights(h)
+    return qa @ start + qb @ end
 
 
 _HALF_BANDWIDTH = 3
@@ -323,7 +327,7 @@ class _Beam:
     h: FloatArray
     EI: float
     GA: float
-    free: NDArray[np.intp]
+    fixed: tuple[int, int]
     factor: tuple
 
     @classmethod
@@ -332,16 +336,22 @@ class _Beam:
         EI = girder.bending_stiffness_Nm2
         GA = girder.shear_stiffness_N
         gas = None if np.isinf(GA) else np.full(n_el, GA)
-        K, _, _ = assemble_beam(x, np.full(n_el, EI), np.zeros(n_el), shear_stiffness_N=gas)
+        # a chain of 2-node elements is banded (half-bandwidth 3): assembled in band storage and
+        # factorised by a banded Cholesky, O(n). The two end deflections are held at zero by
+        # decoupling their rows and columns (unit diagonal, zero load): with exact zeros the
+        # other DOFs see the same elimination as in the reduced system.
+        band = assemble_beam_stiffness_banded(x, np.full(n_el, EI), shear_stiffness_N=gas)
         n_dof = 2 * x.size
-        free = np.setdiff1d(np.arange(n_dof), [0, n_dof - 2])
-        # a chain of 2-node elements is banded (half-bandwidth 3): banded Cholesky, O(n)
-        Kf = K[np.ix_(free, free)]
-        band = np.zeros((_HALF_BANDWIDTH + 1, free.size))
-        for d in range(_HALF_BANDWIDTH + 1):
-            band[_HALF_BANDWIDTH - d, d:] = np.diagonal(Kf, d)
-        factor = (scipy.linalg.cholesky_banded(band), False)
-        return cls(x, np.diff(x), EI, GA, free, factor)
+        fixed = (0, n_dof - 2)
+        for dof in fixed:
+            for d in range(1, _HALF_BANDWIDTH + 1):
+                if dof + d < n_dof:
+                    band[_HALF_BANDWIDTH - d, dof + d] = 0.0  # row dof, columns to its right
+                if dof - d >= 0:
+                    band[_HALF_BANDWIDTH - d, dof] = 0.0  # column dof, rows above
+            band[_HALF_BANDWIDTH, dof] = 1.0
+        factor = (scipy.linalg.cholesky_banded(band, check_finite=False), False)
+        return cls(x, np.diff(x), EI, GA, fixed, factor)
 
     def solve(self, qa: NDArray, qb: NDArray, V: NDArray) -> tuple[NDArray, NDArray]:
         """Nodal deflection [m] and slope dz/dx [rad], shape (..., n_x), for element loads."""
@@ -349,19 +359,12 @@ class _Beam:
         lead = qa.shape[:-1]
         n = self.x.size
         f = np.zeros(lead + (2 * n,))
-        fz1 = h * (7.0 * qa + 3.0 * qb) / 20.0
-        fr1 = h * h * (3.0 * qa + 2.0 * qb) / 60.0
-        fz2 = h * (3.0 * qa + 7.0 * qb) / 20.0
-        fr2 = -h * h * (2.0 * qa + 3.0 * qb) / 60.0
-        f[..., 0:-2:2] += fz1
-        f[..., 1:-1:2] += fr1
-        f[..., 2::2] += fz2
-        f[..., 3::2] += fr2
-        ff = f[..., self.free].reshape(-1, self.free.size).T
-        uf = scipy.linalg.cho_solve_banded(self.factor, ff)
-        u = np.zeros((2 * n, uf.shape[1]))
-        u[self.free] = uf
-        u = u.T.reshape(lead + (2 * n,))
+        f[..., 0:-2:2] += h * (7.0 * qa + 3.0 * qb) / 20.0
+        f[..., 1:-1:2] += h * h * (3.0 * qa + 2.0 * qb) / 60.0
+        f[..., 2::2] += h * (3.0 * qa + 7.0 * qb) / 20.0
+        f[..., 3::2] += -h * h * (2.0 * qa + 3.0 * qb) / 60.0
+        f[..., list(self.fixed)] = 0.0
+        u = scipy.linalg.cho_solve_banded(self.factor, f.reshape(-1, 2 * n).T, check_finite=False).T.reshape(lead + (2 * n,))
         z = u[..., 0::2]
         psi = u[..., 1::2]
         slope = psi if np.isinf(self.GA) else psi - V / self.GA
@@ -390,18 +393,21 @@ def _balance(
     s = np.zeros(lead)
     tr = np.zeros(lead)
     L = girder.length_m
+    # (V(L), M(L)) are linear in the nodal buoyancy b: b @ W minus the weight's resultants; the
+    # derivatives in sinkage and trim follow with the weights of db/ds and db/dtrim = -(x - xm) db/ds
+    start, end = _resultant_weights(h)
+    W = np.zeros((x.size, 2))
+    W[:-1] += start
+    W[1:] += end
+    W_jac = np.concatenate([W, -(x - xm)[:, None] * W], axis=1)  # columns: d/ds (V, M), d/dtrim (V, M)
+    weight_resultants = wa @ start + wb @ end
+    rb = rgc * breadth
+    level = T + zeta
     for _ in range(max_iter):
-        d = T + s[..., None] - tr[..., None] * (x - xm) + zeta
+        d = level + s[..., None] - tr[..., None] * (x - xm)
         wet = d > 0
-        b = rgc * breadth * np.where(wet, d, 0.0)
-        qa = b[..., :-1] - wa
-        qb = b[..., 1:] - wb
-        R = _end_resultants(h, qa, qb)
-        db_ds = rgc * breadth * wet
-        db_dt = -(x - xm) * db_ds
-        Js = _end_resultants(h, db_ds[..., :-1], db_ds[..., 1:])
-        Jt = _end_resultants(h, db_dt[..., :-1], db_dt[..., 1:])
-        J = np.stack([Js, Jt], axis=-1)  # (..., 2 equations, 2 unknowns)
+        R = (rb * np.where(wet, d, 0.0)) @ W - weight_resultants
+        J = ((rb * wet) @ W_jac).reshape(lead + (2, 2)).swapaxes(-1, -2)  # (..., 2 equations, 2 unknowns)
         delta = np.linalg.solve(J, -R[..., None])[..., 0]
         s = s + delta[..., 0]
         tr = tr + delta[..., 1]
@@ -768,7 +774,7 @@ def wave_response(
     sw = slope[1:] - slope[0]
 
     def harmonics(a: NDArray) -> NDArray[np.complex128]:
-        c = np.fft.fft(a, axis=0)[: n_harmonics + 1] / n_steps
+        c = np.fft.rfft(a, axis=0)[: n_harmonics + 1] / n_steps  # real samples: half the transform
         c[1:] *= 2.0
         c[0] = c[0].real
         return c

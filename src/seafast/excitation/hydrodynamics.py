@@ -632,11 +632,27 @@ def compute_motions(
             finally:
                 if os.path.exists(tmp):
                     os.remove(tmp)
-    return _motions_from_capytaine(
-        ds, hull, mass_kg=mass_kg, centre_of_gravity_m=cog, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        origin_x_m=x_mid, water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+    # the coefficients depend on the hull alone: extracted from the dataset once per process (a
+    # cargo study changes the loading, hence mass and CoG, at every point, not the hull)
+    held = _CAPYTAINE_COEFFICIENTS.get(key)
+    if held is None or held[0] is not ds:  # extracted from this very dataset (a re-read or re-run dataset is new)
+        held = (ds, _capytaine_rigid_coefficients(ds, x_mid, gravity_m_per_s2))
+        if len(_CAPYTAINE_COEFFICIENTS) >= 8:
+            _CAPYTAINE_COEFFICIENTS.pop(next(iter(_CAPYTAINE_COEFFICIENTS)))
+        _CAPYTAINE_COEFFICIENTS[key] = held
+    omega_c, k_c, a_c, b_c, f_c, x_rot = held[1]
+    return _motions_from_rigid_coefficients(
+        omega_c, k_c, a_c, b_c, f_c, hull,
+        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=x_mid,
+        mass_kg=mass_kg, centre_of_gravity_m=cog, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
         source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
     )
+
+
+# (dataset, its rigid-body coefficients) of BEM runs, by cache key (the key covers the hull,
+# frequencies, panel size, density, gravity, depth and the capytaine version)
+_CAPYTAINE_COEFFICIENTS: dict[str, tuple[xr.Dataset, tuple]] = {}
 
 
 def _read_capytaine_netcdf(path: str | os.PathLike) -> xr.Dataset:
@@ -682,6 +698,25 @@ def _motions_from_capytaine(
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     if origin_x_m is None:
         origin_x_m = float(ds.attrs.get("seafast_origin_x_m", x_mid))
+    omega, k, a_c, b_c, f_conj, x_rot, z_rot_wl = _capytaine_rigid_coefficients(ds, origin_x_m, gravity_m_per_s2)
+    return _motions_from_rigid_coefficients(
+        omega, k, a_c, b_c, f_conj, hull,
+        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m, coeff_reference_z_wl_m=z_rot_wl,
+        mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+    )
+
+
+def _capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_per_s2: float) -> tuple:
+    """Added mass, damping and excitation of a capytaine dataset, by frequency.
+
+    Returns ``(omega, k, a, b, conj(f), x_rot, z_rot_wl)``: frequencies [rad/s] ascending,
+    wavenumbers [rad/m], added mass and damping (n_w, d, d) and the conjugated head-sea excitation
+    (n_w, d) in capytaine's (heave, pitch) DOFs, or (surge, heave, pitch) when the dataset holds
+    surge, about ``x_rot`` (ship x of the dataset's rotation centre) and ``z_rot_wl`` [m] above the
+    waterline.
+    """
     if "omega" not in ds.dims:
         if "omega" in ds.coords:
             ds = ds.swap_dims({next(d for d in ds["omega"].dims): "omega"})
@@ -736,13 +771,7 @@ def _motions_from_capytaine(
         z_rot_wl = float(rc[2])
     else:
         x_rot = origin_x_m
-    return _motions_from_rigid_coefficients(
-        omega, k, a_c, b_c, np.conj(f_c), hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m, coeff_reference_z_wl_m=z_rot_wl,
-        mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
-    )
+    return omega, k, a_c, b_c, np.conj(f_c), x_rot, z_rot_wl
 
 
 def _motions_from_rigid_coefficients(

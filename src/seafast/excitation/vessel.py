@@ -21,12 +21,13 @@ memoised per process: a parametric study over saddles computes it once.
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import logging
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 import xarray as xr
@@ -44,8 +45,6 @@ from seafast.excitation.hull_girder import (
     HullGirder,
     HullGirderResponse,
     WaveHullResponse,
-    deck_deflection_at,
-    deck_harmonics_at,
     deflection_from_bending_moment,
     still_water_response,
     wave_response,
@@ -126,22 +125,37 @@ class VesselExcitation:
     source: str
     girder: HullGirder | None = None
 
-    def _still_water_fn(self):
+    def __getstate__(self) -> dict[str, Any]:
+        # the cached interpolants below are closures: rebuilt after unpickling, not pickled
+        return {k: v for k, v in self.__dict__.items() if k not in ("_still_water_fn", "_wave_fn")}
+
+    # The deck interpolants are built once per vessel (a study assembles the excitation of a new
+    # cargo model at every point against the same vessel).
+    @functools.cached_property
+    def _still_water_fn(self) -> Callable[[NDArray], tuple[NDArray, NDArray]] | None:
         if self.still_water_curve is not None:
             return self.still_water_curve
         if isinstance(self.still_water, DeckDeflectionTable):
             return self.still_water.still_water_at
-        if self.still_water is not None:
-            return lambda x: deck_deflection_at(self.still_water, x)
+        if isinstance(self.still_water, HullGirderResponse):
+            # the C1 interpolant of deck_deflection_at (nodal deflections and slopes)
+            spline = CubicHermiteSpline(self.still_water.x_m, self.still_water.deflection_m, self.still_water.slope_rad)
+            return lambda x: (np.asarray(spline(x)), np.asarray(spline(x, 1)))
         return None
 
-    def _wave_fn(self):
+    @functools.cached_property
+    def _wave_fn(self) -> Callable[[NDArray], tuple[NDArray, NDArray]] | None:
         if isinstance(self.wave, DeckDeflectionTable):
             return self.wave.wave_at
-        if self.wave is not None:
+        if isinstance(self.wave, WaveHullResponse):
+            # the first harmonic of deck_harmonics_at: its real and imaginary parts' interpolants
+            w = self.wave
+            parts = [
+                CubicHermiteSpline(w.x_m, part(w.deflection_harmonics_m[1]), part(w.slope_harmonics_rad[1])) for part in (np.real, np.imag)
+            ]
+
             def first_harmonic(x: NDArray) -> tuple[NDArray, NDArray]:
-                z, s = deck_harmonics_at(self.wave, x)
-                return z[1], s[1]
+                return parts[0](x) + 1j * parts[1](x), parts[0](x, 1) + 1j * parts[1](x, 1)
 
             return first_harmonic
         return None
@@ -149,7 +163,7 @@ class VesselExcitation:
     def cargo_excitation(self, model: StructuralModel, case: Case | None = None) -> HarmonicExcitation:
         """The two-harmonic excitation of ``model`` (still water k = 0, wave k = 1)."""
         return assemble_excitation(
-            model, self.cargo_aft_end_x_m, self.omega_rad_s, self._still_water_fn(), self._wave_fn(), self.rigid_body, self.source
+            model, self.cargo_aft_end_x_m, self.omega_rad_s, self._still_water_fn, self._wave_fn, self.rigid_body, self.source
         )
 
     def to_dataset(self) -> xr.Dataset:
@@ -241,7 +255,28 @@ def _read_two_columns(path: str | Path, key: str, columns: tuple[str, str]) -> t
 
 
 def hull_form_of(case: Case) -> HullForm:
-    """The hull form: the user's breadth table, or the tapered box of L, B, T and displacement."""
+    """The hull form: the user's breadth table, or the tapered box of L, B, T and displacement.
+
+    The tapered box is memoised on its four particulars (one hull, with its integrals, for all
+    the loadings of a cargo study); a table is read at every call.
+    """
+    v = case.vessel
+    if v.hull_form_table is None:
+        key = (v.length_m, v.breadth_m, v.draft_m, v.displacement_m3)
+        hull = _HULL_CACHE.get(key)
+        if hull is None:
+            hull = _build_hull_form(case)
+            if len(_HULL_CACHE) >= 16:
+                _HULL_CACHE.pop(next(iter(_HULL_CACHE)))
+            _HULL_CACHE[key] = hull
+        return hull
+    return _build_hull_form(case)
+
+
+_HULL_CACHE: dict[tuple[float, float, float, float], HullForm] = {}
+
+
+def _build_hull_form(case: Case) -> HullForm:
     v = case.vessel
     if v.hull_form_table is not None:
         x, b = _read_two_columns(v.hull_form_table, "vessel.hull_form_table", ("x_m", "breadth_m"))
@@ -378,16 +413,17 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
             gravity_m_per_s2=case.model.gravity_m_per_s2,
         )
         loading, loading_note = vessel_loading_of(case, hull)
+        # the wave response balances the still-water state too (its first row): solved once
+        wave = wave_response(girder, loading, case.wave.length_m, amplitude) if amplitude > 0 else None
         if v.still_water_bending_moment_table is not None:
             x, moment = _read_two_columns(v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm"))
             z, s = deflection_from_bending_moment(girder, x, moment)
             curve = _Curve(x, z, s)
             parts.append(f"still-water moment table '{Path(v.still_water_bending_moment_table).name}'")
         else:
-            still = still_water_response(girder, loading)
+            still = wave.still_water if wave is not None else still_water_response(girder, loading)
             parts.append(f"hull girder ({loading_note}, still water)")
-        if amplitude > 0:
-            wave = wave_response(girder, loading, case.wave.length_m, amplitude)
+        if wave is not None:
             parts.append(f"quasi-static wave lambda = {case.wave.length_m:g} m, zeta_a = {amplitude:g} m")
     motions = _motions(case, hull, loading)
     rigid = None

@@ -25,6 +25,7 @@ __all__ = [
     "beam_element_mass",
     "uniform_load_vector",
     "assemble_beam",
+    "assemble_beam_stiffness_banded",
     "node_dof_indices",
     "element_end_moments",
     "bending_moment_line",
@@ -167,6 +168,30 @@ def assemble_beam(
         fe = np.stack([q * lengths / 2, q * lengths**2 / 12, q * lengths / 2, -q * lengths**2 / 12], axis=-1)
         np.add.at(f, dofs, fe)
     return K, M, f
+
+
+def assemble_beam_stiffness_banded(
+    node_x_m: FloatArray,
+    bending_stiffness_Nm2: FloatArray,
+    shear_stiffness_N: FloatArray | None = None,
+) -> FloatArray:
+    """Stiffness [SI] of a chain of beam elements in upper banded storage, half-bandwidth 3.
+
+    ``ab[3 + i - j, j] = K[i, j]`` for ``j - 3 <= i <= j`` (the layout of
+    :func:`scipy.linalg.cholesky_banded`), the same matrix as :func:`assemble_beam`'s ``K`` in
+    O(n) time and memory (each entry receives at most two element contributions, so it is equal
+    to the last bit).
+    """
+    x = np.asarray(node_x_m, dtype=float)
+    n_el = x.size - 1
+    Ke, _ = _element_matrices(np.diff(x), bending_stiffness_Nm2, np.zeros(n_el), shear_stiffness_N)
+    i, j = np.triu_indices(4)  # the element's upper triangle
+    dofs = 2 * np.arange(n_el)[:, None]
+    ab = np.zeros((4, 2 * x.size))
+    rows = np.broadcast_to(3 + i - j, (n_el, i.size)).ravel()
+    cols = (dofs + j[None, :]).ravel()
+    np.add.at(ab, (rows, cols), Ke[:, i, j].ravel())
+    return ab
 
 
 def element_end_moments(

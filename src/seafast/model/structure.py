@@ -20,9 +20,11 @@ the static (mean) part and is real.
 from __future__ import annotations
 
 import logging
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 from numpy.typing import NDArray
 
 from seafast.model.beam import assemble_beam
@@ -77,6 +79,11 @@ class CargoBeam:
     @property
     def mass_kg(self) -> float:
         return float(np.sum(self.element_mass_per_length_kg_per_m * np.diff(self.node_x_m)))
+
+    @property
+    def half_bandwidth(self) -> int:
+        """Half-bandwidth of K and M: 3 (two-node elements, DOFs numbered node by node)."""
+        return 3
 
 
 def build_cargo_beam(
@@ -200,22 +207,33 @@ class StructuralModel:
         """
         key = bool(include_saddles)
         if key not in self._springs:
+            diagonal, Kco, Koo = self.spring_parts(include_saddles)
+            self._springs[key] = (np.diag(diagonal), Kco, Koo)
+        return self._springs[key]
+
+    def spring_parts(self, include_saddles: bool) -> tuple[NDArray, NDArray, NDArray]:
+        """The springs' K_cc as its diagonal (it has nothing else), with K_co and K_oo [SI].
+
+        See :meth:`spring_matrices`; O(n) where the dense K_cc is O(n^2).
+        """
+        key = ("parts", bool(include_saddles))
+        if key not in self._springs:
             nc, no = self.cargo_dof_count, self.deck_dof_count
             kz = self.seafastening.lashing_vertical_stiffness_N_per_m.astype(float)
             if include_saddles:
                 kz = kz + self.saddle_unilateral_stiffness_N_per_m
             kt = self.seafastening.lashing_rotational_stiffness_Nm_per_rad.astype(float)
-            Kcc = np.zeros((nc, nc))
+            diagonal = np.zeros(nc)
             Kco = np.zeros((nc, no))
             Koo = np.zeros((no, no))
             for k_vec, c_dofs, o_dofs in (
                 (kz, self.saddle_cargo_dof, self.saddle_deck_dof),
                 (kt, self.saddle_cargo_dof + 1, self.saddle_deck_dof + 1),
             ):
-                Kcc[c_dofs, c_dofs] += k_vec
+                diagonal[c_dofs] += k_vec
                 Kco[c_dofs, o_dofs] -= k_vec
                 Koo[o_dofs, o_dofs] += k_vec
-            self._springs[key] = (Kcc, Kco, Koo)
+            self._springs[key] = (diagonal, Kco, Koo)
         return self._springs[key]
 
     @property
@@ -235,13 +253,74 @@ class StructuralModel:
             Kd_cc = Kd_cc - omega_rad_s**2 * self.cargo.mass + 1j * omega_rad_s * self.damping_cc
         return Kd_cc, Kco, Kco.T, Koo
 
-    def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:
-        """Lowest undamped natural frequencies [rad/s] with the deck held fixed."""
-        from scipy.linalg import eigh
+    def banded_quadratic(self, include_saddles: bool) -> tuple[int, NDArray, NDArray, NDArray, NDArray]:
+        """The parts of :meth:`dynamic_stiffness` ``K_d^cc(w) = K - w^2 M + i w D``, banded, in O(n).
 
-        Kcc = self.cargo.stiffness + self.spring_matrices(include_saddles)[0]
-        w2 = eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, min(count, self.cargo_dof_count) - 1])
-        return np.sqrt(np.maximum(w2, 0.0))
+        Returns ``(b, K, M, D, K_co)``: the half-bandwidth b, K (beam plus springs), M and the
+        Rayleigh D = alpha M + beta K_beam of the cargo DOFs in full band storage
+        ``ab[b + i - j, j] = A[i, j]`` (the layout of :func:`scipy.linalg.solve_banded`), and the
+        cargo-deck coupling K_co (frequency-independent: the deck carries no mass or damping).
+        The same numbers as :meth:`dynamic_stiffness` without forming n x n arrays.
+        """
+        b = self.cargo.half_bandwidth
+        springs, Kco, _ = self.spring_parts(include_saddles)
+        beam_K, mass = _full_band(self.cargo.stiffness, b), _full_band(self.cargo.mass, b)
+        K = beam_K.copy()
+        K[b] += springs
+        return b, K, mass, self.rayleigh_alpha_per_s * mass + self.rayleigh_beta_s * beam_K, Kco
+
+    def lowest_modes(
+        self, include_saddles: bool = True, count: int = 6, vectors: bool = False
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+        """Lowest undamped natural frequencies [rad/s] with the deck held fixed, and (``vectors``) the
+        M-normalised mode shapes (n_c, count).
+
+        Dense generalised eigen-solve up to :data:`DENSE_EIGEN_DOFS` cargo DOFs; beyond, the
+        lowest ``count`` by shift-invert Lanczos (ARPACK) about 0, the inverse applied by a
+        banded Cholesky of K (half-bandwidth 3): O(n) instead of the dense O(n^3), and more
+        accurate for the lowest modes of a fine mesh (the dense solve loses them in the
+        stiffness's spread). The Lanczos start vector is fixed, so the result is reproducible.
+        """
+        springs = self.spring_parts(include_saddles)[0]
+        n = self.cargo_dof_count
+        count = min(count, n)
+        phi: NDArray[np.float64] | None
+        if n <= DENSE_EIGEN_DOFS or 2 * count + 4 >= n:
+            Kcc = self.cargo.stiffness + np.diag(springs)
+            if vectors:
+                w2, phi = scipy.linalg.eigh(Kcc, self.cargo.mass, subset_by_index=[0, count - 1], check_finite=False)
+            else:
+                w2 = scipy.linalg.eigh(Kcc, self.cargo.mass, eigvals_only=True, subset_by_index=[0, count - 1], check_finite=False)
+                phi = None
+        else:
+            from scipy import sparse
+            from scipy.sparse.linalg import LinearOperator, eigsh
+
+            def symmetric(band: NDArray[np.float64]) -> sparse.csr_matrix:
+                upper = sparse.dia_matrix((band[::-1], np.arange(4)), shape=(n, n))
+                return (upper + sparse.triu(upper, 1).T).tocsr()
+
+            K_band = _upper_band(self.cargo.stiffness, 3)
+            K_band[3] += springs
+            factor = (scipy.linalg.cholesky_banded(K_band, check_finite=False), False)
+            inverse = LinearOperator((n, n), matvec=lambda v: scipy.linalg.cho_solve_banded(factor, v, check_finite=False), dtype=float)
+            M_sparse = symmetric(_upper_band(self.cargo.mass, 3))
+            result = eigsh(
+                symmetric(K_band), k=count, M=M_sparse, sigma=0.0, which="LM",
+                OPinv=inverse, v0=np.ones(n), ncv=2 * count + 4, return_eigenvectors=vectors,
+            )
+            if vectors:
+                w2, phi = result
+                order = np.argsort(w2)
+                w2, phi = w2[order], phi[:, order]
+                phi = phi / np.sqrt(np.einsum("ij,ij->j", phi, M_sparse @ phi))
+            else:
+                w2, phi = np.sort(result), None
+        return np.sqrt(np.maximum(w2, 0.0)), phi
+
+    def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:
+        """Lowest undamped natural frequencies [rad/s] with the deck held fixed (:meth:`lowest_modes`)."""
+        return self.lowest_modes(include_saddles, count)[0]
 
     def first_modes_beam_share(self, count: int = 2) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Lowest natural frequencies [rad/s] on bilateral saddles and ``kappa_i = phi^T K_beam phi / phi^T M phi``.
@@ -249,29 +328,88 @@ class StructuralModel:
         ``kappa_i / omega_i^2`` is the share of the mode's strain energy in the cargo beam (the rest is in the
         saddle and lashing springs).
         """
-        from scipy.linalg import eigh
-
-        Kcc = self.cargo.stiffness + self.spring_matrices(True)[0]
-        n = min(count, self.cargo_dof_count)
-        w2, phi = eigh(Kcc, self.cargo.mass, subset_by_index=[0, n - 1])
-        kappa = np.einsum("ij,ik,kj->j", phi, self.cargo.stiffness, phi) / np.einsum("ij,ik,kj->j", phi, self.cargo.mass, phi)
-        return np.sqrt(np.maximum(w2, 0.0)), kappa
+        w, phi = self.lowest_modes(True, count, vectors=True)
+        assert phi is not None
+        kappa = np.einsum("ij,ij->j", phi, self.cargo.stiffness @ phi) / np.einsum("ij,ij->j", phi, self.cargo.mass @ phi)
+        return w, kappa
 
     def modal_damping_ratios(self, count: int = 2) -> NDArray[np.float64]:
         """Realised damping ``phi^T D phi / (2 omega phi^T M phi)`` of the lowest modes on bilateral saddles [-]."""
-        from scipy.linalg import eigh
-
-        Kcc = self.cargo.stiffness + self.spring_matrices(True)[0]
-        n = min(count, self.cargo_dof_count)
-        w2, phi = eigh(Kcc, self.cargo.mass, subset_by_index=[0, n - 1])
-        w = np.sqrt(np.maximum(w2, 0.0))
-        num = np.einsum("ij,ik,kj->j", phi, self.damping_cc, phi)
-        den = 2.0 * w * np.einsum("ij,ik,kj->j", phi, self.cargo.mass, phi)
+        w, phi = self.lowest_modes(True, count, vectors=True)
+        assert phi is not None
+        num = np.einsum("ij,ij->j", phi, self.damping_cc @ phi)
+        den = 2.0 * w * np.einsum("ij,ij->j", phi, self.cargo.mass @ phi)
         return np.asarray(num / den, dtype=float)
 
 
 class MechanismError(ValueError):
     """The support layout leaves the cargo free to move as a rigid body (a mechanism)."""
+
+
+DENSE_EIGEN_DOFS = 200
+"""Largest cargo model (DOFs) whose natural frequencies are computed by a dense eigen-solve
+(O(n^3); the banded shift-invert Lanczos costs about the same at 180 DOFs and less beyond)."""
+
+# Studies rebuild the model at every point; along a stiffness axis the mesh and the beam
+# matrices do not change, and along a pretension axis not even the natural frequencies. Both
+# are memoised on their content (the keys hold every input): the last four, and beams only
+# while their dense matrices total at most 128 MB (a 2000-element beam holds 64 MB).
+_BEAM_CACHE: OrderedDict[tuple, CargoBeam] = OrderedDict()
+_RAYLEIGH_CACHE: OrderedDict[tuple, RayleighFit] = OrderedDict()
+_CACHE_ENTRIES = 4
+_BEAM_CACHE_BYTES = 128 * 2**20
+
+
+def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
+    cache[key] = value
+    while len(cache) > _CACHE_ENTRIES:
+        cache.popitem(last=False)
+
+
+def _cargo_beam(geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float) -> tuple[CargoBeam, tuple]:
+    """The meshed and assembled cargo beam, memoised on its inputs; returns (beam, key)."""
+    key = (geometry, tuple(float(x) for x in fixed_points_m), float(target_element_length_m), float(gravity_m_per_s2))
+    beam = _BEAM_CACHE.get(key)
+    if beam is None:
+        beam = build_cargo_beam(geometry, fixed_points_m, target_element_length_m, gravity_m_per_s2)
+        _remember(_BEAM_CACHE, key, beam)
+        while len(_BEAM_CACHE) > 1 and sum(b.stiffness.nbytes + b.mass.nbytes for b in _BEAM_CACHE.values()) > _BEAM_CACHE_BYTES:
+            _BEAM_CACHE.popitem(last=False)
+    else:
+        _BEAM_CACHE.move_to_end(key)
+    return beam, key
+
+
+def _full_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
+    """Full band storage ``ab[b + i - j, j] = A[i, j]`` of a banded matrix (read by diagonals, O(n b))."""
+    n = A.shape[0]
+    band = np.zeros((2 * bandwidth + 1, n), dtype=A.dtype)
+    for offset in range(-bandwidth, bandwidth + 1):
+        d = np.diagonal(A, offset)
+        if offset >= 0:
+            band[bandwidth - offset, offset:] = d
+        else:
+            band[bandwidth - offset, : n + offset] = d
+    return band
+
+
+def _upper_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
+    """Upper band storage ``ab[b + i - j, j] = A[i, j]`` of a symmetric banded matrix (scipy's layout)."""
+    band = np.zeros((bandwidth + 1, A.shape[0]))
+    for d in range(bandwidth + 1):
+        band[bandwidth - d, d:] = np.diagonal(A, d)
+    return band
+
+
+def _is_positive_definite_banded(A: NDArray[np.float64], diagonal: NDArray[np.float64], bandwidth: int, shift: float) -> bool:
+    """Whether ``A + diag(diagonal) - shift I`` is positive definite (banded Cholesky, O(n b^2)); A symmetric, banded."""
+    band = _upper_band(A, bandwidth)
+    band[bandwidth] += diagonal - shift
+    try:
+        scipy.linalg.cholesky_banded(band, lower=False, check_finite=False)
+    except np.linalg.LinAlgError:
+        return False
+    return True
 
 
 def build_structural_model(
@@ -295,15 +433,15 @@ def build_structural_model(
         supports and no rotational restraint).
     """
     xs = np.asarray(seafastening.saddle_x_m, dtype=float)
-    beam = build_cargo_beam(geometry, xs, target_element_length_m, gravity_m_per_s2)
+    beam, beam_key = _cargo_beam(geometry, xs, target_element_length_m, gravity_m_per_s2)
     nodes = np.array([int(np.argmin(np.abs(beam.node_x_m - x))) for x in xs], dtype=np.intp)
     model = StructuralModel(beam, seafastening, nodes, 0.0, 0.0, gravity_m_per_s2)
-    # Stability: the cargo on bilateral saddles must have no zero-energy mode. Judge the
-    # lowest eigenvalue of K against the beam's stiffness scale.
-    Kcc = beam.stiffness + model.spring_matrices(True)[0]
-    eig_min = float(np.linalg.eigvalsh(Kcc)[0])
+    # Stability: the cargo on bilateral saddles must have no zero-energy mode: its lowest
+    # stiffness eigenvalue must exceed 1e-12 of the beam's stiffness scale, i.e. K - 1e-12 scale I
+    # must be positive definite. A chain of two-node beam elements with springs on the
+    # diagonal has half-bandwidth 3, so a banded Cholesky decides it in O(n).
     scale = float(np.max(np.diag(beam.stiffness)))
-    if eig_min <= 1e-12 * scale:
+    if not _is_positive_definite_banded(beam.stiffness, model.spring_parts(True)[0], 3, 1e-12 * scale):
         raise MechanismError(
             "seafastening: the support layout leaves the cargo a mechanism (free to translate or "
             f"rotate): {xs.size} saddle(s) at {np.round(xs, 3).tolist()} m with rotational lashing "
@@ -311,11 +449,17 @@ def build_structural_model(
             "allowed: at least two distinct saddle positions with positive stiffness, or one saddle "
             "with a rotational lashing"
         )
-    fit = fit_rayleigh_to_modes(damping_ratio, *model.first_modes_beam_share())
-    if not fit.exact:
-        logger.warning(
-            "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
-            "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
-            damping_ratio, fit.omega_rad_s[0], fit.omega_rad_s[1], *fit.realised_damping_ratio,
-        )
+    sf = seafastening
+    springs = (sf.lashing_vertical_stiffness_N_per_m, sf.lashing_rotational_stiffness_Nm_per_rad, sf.unilateral_stiffness_N_per_m)
+    rayleigh_key = (beam_key, tuple(nodes.tolist()), *(np.asarray(k, dtype=float).tobytes() for k in springs), float(damping_ratio))
+    fit = _RAYLEIGH_CACHE.get(rayleigh_key)
+    if fit is None:
+        fit = fit_rayleigh_to_modes(damping_ratio, *model.first_modes_beam_share())
+        _remember(_RAYLEIGH_CACHE, rayleigh_key, fit)
+        if not fit.exact:
+            logger.warning(
+                "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
+                "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
+                damping_ratio, fit.omega_rad_s[0], fit.omega_rad_s[1], *fit.realised_damping_ratio,
+            )
     return StructuralModel(beam, seafastening, nodes, fit.alpha_per_s, fit.beta_s, gravity_m_per_s2, rayleigh_fit=fit)

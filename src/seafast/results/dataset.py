@@ -33,6 +33,7 @@ __all__ = [
     "case_arrays",
     "build_case_dataset",
     "summary_rows_from_arrays",
+    "seafastening_baseline",
 ]
 
 SOLVER_OUTCOMES = tuple(o.value for o in SolverOutcome)
@@ -57,7 +58,7 @@ def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Var
     return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units})
 
 
-def _seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitation, deck_z: np.ndarray) -> np.ndarray:
+def seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitation, deck_z: np.ndarray) -> np.ndarray:
     """Straight line through the deck points under the outermost saddles, at every cargo node [m].
 
     ``deck_z`` (N, n_s) are the deck deflections of one row, ``excitation`` that row's
@@ -150,7 +151,7 @@ def case_arrays(
             exc = (excitations or {}).get((lc, mdl), excitation)
             exc = exc.static_part() if lc == "static" else exc
             deck_all[i, j] = harmonics_to_time(exc.deck_displacement[:, model.saddle_deck_dof], time_samples)
-            baseline[i, j] = _seafastening_baseline(model, exc, deck_all[i, j])
+            baseline[i, j] = seafastening_baseline(model, exc, deck_all[i, j])
             ts = series[(lc, mdl)]
             disp[i, j] = ts.cargo_displacement_m[:, 0::2]
             comp[i, j] = ts.saddle_compression_m

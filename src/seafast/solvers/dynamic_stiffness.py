@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,6 +30,7 @@ __all__ = [
     "QuadraticMatrices",
     "quadratic_matrices",
     "to_banded",
+    "from_band",
     "solve_dynamic",
     "solve_dynamic_stack",
     "saddle_selection",
@@ -42,19 +44,17 @@ class QuadraticMatrices:
 
     Attributes
     ----------
-    stiffness, mass, damping
-        Dense K [N/m], M [kg], D [N s/m] of the cargo DOFs, (n_c, n_c).
     coupling_stiffness, coupling_mass, coupling_damping
-        The cargo-deck blocks, (n_c, n_o).
+        The cargo-deck blocks, (n_c, n_o) (the deck carries no mass or damping: the last two are zero).
     bandwidth
         Half bandwidth of K, M, D together.
     banded_stiffness, banded_mass, banded_damping
-        The same in LAPACK general band storage, (2 bandwidth + 1, n_c).
+        K [N/m], M [kg], D [N s/m] of the cargo DOFs in LAPACK general band storage, (2 bandwidth + 1, n_c).
+    stiffness, mass, damping
+        The same dense, (n_c, n_c), formed from the bands on first use (the references need them; the
+        harmonic balance never does, so a fine mesh pays O(n) here, not O(n^2)).
     """
 
-    stiffness: NDArray[np.float64]
-    mass: NDArray[np.float64]
-    damping: NDArray[np.float64]
     coupling_stiffness: NDArray[np.float64]
     coupling_mass: NDArray[np.float64]
     coupling_damping: NDArray[np.float64]
@@ -63,27 +63,42 @@ class QuadraticMatrices:
     banded_mass: NDArray[np.float64]
     banded_damping: NDArray[np.float64]
 
+    @cached_property
+    def stiffness(self) -> NDArray[np.float64]:
+        return from_band(self.banded_stiffness, self.bandwidth)
+
+    @cached_property
+    def mass(self) -> NDArray[np.float64]:
+        return from_band(self.banded_mass, self.bandwidth)
+
+    @cached_property
+    def damping(self) -> NDArray[np.float64]:
+        return from_band(self.banded_damping, self.bandwidth)
+
+
+def from_band(ab: NDArray, bandwidth: int) -> NDArray:
+    """The dense matrix of band storage ``ab[bw + i - j, j] = A[i, j]``."""
+    n = ab.shape[1]
+    A = np.zeros((n, n), dtype=ab.dtype)
+    for offset in range(-bandwidth, bandwidth + 1):
+        i = np.arange(max(0, -offset), min(n, n - offset))
+        A[i, i + offset] = ab[bandwidth - offset, i + offset]
+    return A
+
 
 _QUADRATIC_CACHE: dict[tuple[int, bool], tuple[weakref.ref, QuadraticMatrices]] = {}
 
 
 def quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> QuadraticMatrices:
-    """Split ``model.dynamic_stiffness`` into K - w^2 M + i w D (two evaluations), cached per model."""
+    """``model.dynamic_stiffness`` as K - w^2 M + i w D, banded (``model.banded_quadratic``, O(n)), cached per model."""
     key = (id(model), bool(include_saddles))
     hit = _QUADRATIC_CACHE.get(key)
     if hit is not None and hit[0]() is model:
         return hit[1]
-    K, Kco, _, _ = model.dynamic_stiffness(0.0, include_saddles)
-    K1, Kco1, _, _ = model.dynamic_stiffness(1.0, include_saddles)
-    K = np.asarray(K, dtype=float)
+    bw, K, M, D, Kco = model.banded_quadratic(include_saddles)
     Kco = np.asarray(Kco, dtype=float)
-    M = K - np.real(K1)
-    D = np.imag(K1) * np.ones_like(K)
-    Mco = Kco - np.real(Kco1)
-    Dco = np.imag(Kco1) * np.ones_like(Kco)
-    rows, cols = np.nonzero((K != 0) | (M != 0) | (D != 0))
-    bw = int(np.max(np.abs(rows - cols))) if rows.size else 0
-    q = QuadraticMatrices(K, M, D, Kco, Mco, Dco, bw, to_banded(K, bw), to_banded(M, bw), to_banded(D, bw))
+    zeros = np.zeros_like(Kco)
+    q = QuadraticMatrices(Kco, zeros, zeros, int(bw), K, M, D)
     if len(_QUADRATIC_CACHE) > 64:
         for k in [k for k, (ref, _) in _QUADRATIC_CACHE.items() if ref() is None]:
             del _QUADRATIC_CACHE[k]
@@ -96,7 +111,7 @@ def quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> 
 
 def solve_dynamic(q: QuadraticMatrices, omega: float, rhs: NDArray) -> NDArray:
     """Solve (K - w^2 M + i w D) x = rhs (banded when the band is narrow); omega [rad/s]."""
-    n = q.stiffness.shape[0]
+    n = q.banded_stiffness.shape[1]
     if q.bandwidth < n // 4:
         if omega == 0.0:
             ab = q.banded_stiffness

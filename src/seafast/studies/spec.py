@@ -25,6 +25,7 @@ message names the field, the value given and what is allowed.
 from __future__ import annotations
 
 import ast
+import functools
 import hashlib
 import json
 import math
@@ -39,7 +40,7 @@ from typing import Annotated, Any, Literal, Mapping
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from seafast.config.loader import CaseError, apply_overrides, case_from_mapping, load_case, parse_yaml
+from seafast.config.loader import CaseError, case_from_mapping, load_case, parse_yaml
 from seafast.config.schema import Case
 
 __all__ = [
@@ -103,6 +104,7 @@ def _field_names(model: type[BaseModel]) -> list[str]:
     return list(model.model_fields)
 
 
+@functools.lru_cache(maxsize=512)
 def case_key_kind(key: str) -> Literal["int", "float"]:
     """The numeric kind of a dotted case key.
 
@@ -224,6 +226,7 @@ def _dotted_name(node: ast.AST) -> str | None:
     return None
 
 
+@functools.lru_cache(maxsize=256)  # studies evaluate the same derived expressions at every point
 def _parse_expression(text: str) -> ast.Expression:
     try:
         tree = ast.parse(str(text), mode="eval")
@@ -598,13 +601,17 @@ class StudyGrid:
     def point_overrides(self, index: int) -> dict[str, Any]:
         """Dotted overrides (axes then derived keys) that turn the base case into point ``index``."""
         overrides = self.point_values(index)
-        merged = apply_overrides(self.base, overrides)
+
+        def lookup(ref: str) -> Any:
+            # the point's own values (axes, earlier derived keys) first, then the base case;
+            # expressions refer to numeric leaf keys only, so no merged copy of the case is needed
+            return overrides[ref] if ref in overrides else _get_dotted(self.base, ref)
+
         for key, expr in self.spec.derived.items():
-            value = evaluate_expression(expr, lambda ref: _get_dotted(merged, ref))
+            value = evaluate_expression(expr, lookup)
             if case_key_kind(key) == "int":
                 value = int(round(value))
             overrides[key] = value
-            merged = apply_overrides(merged, {key: value})
         return overrides
 
     def point_case(self, index: int) -> Case:
@@ -616,6 +623,16 @@ class StudyGrid:
             If the point's combination of values is not a valid case.
         """
         return case_from_mapping(self.base, f"(study point {index})", self.point_overrides(index))
+
+    def manifest(self) -> dict[str, Any]:
+        """What ``study.json`` records about the study (name, fingerprint, shape, axes, spec)."""
+        return {
+            "name": self.spec.name,
+            "fingerprint": self.fingerprint(),
+            "shape": list(self.shape),
+            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
+            "spec": self.spec.model_dump(mode="json"),
+        }
 
     def fingerprint(self) -> str:
         """SHA-256 (hex, 16 chars) of everything that determines the points' results."""

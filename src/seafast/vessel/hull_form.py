@@ -11,7 +11,7 @@ Coordinates: x along the ship from the aft perpendicular (AP), forward positive,
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -39,6 +39,9 @@ class HullForm:
     waterline_breadth_m: NDArray[np.float64]
     draft_m: float
     section_area_coefficient: float = 1.0
+    # design-draught integrals by quadrature size: the hull is immutable, and the loading and
+    # motions ask for them at every loading (each point of a cargo study)
+    _integrals: dict[tuple[str, int], float] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         x = np.asarray(self.station_x_m, dtype=float)
@@ -122,8 +125,11 @@ class HullForm:
 
     def displaced_volume_m3(self, n: int = 2001) -> float:
         """Displaced volume at design even-keel draught [m^3]."""
-        x = np.linspace(self.station_x_m[0], self.station_x_m[-1], n)
-        return float(np.trapezoid(self.sectional_area_at(x), x))
+        key = ("volume", int(n))
+        if key not in self._integrals:
+            x = np.linspace(self.station_x_m[0], self.station_x_m[-1], n)
+            self._integrals[key] = float(np.trapezoid(self.sectional_area_at(x), x))
+        return self._integrals[key]
 
     def block_coefficient(self) -> float:
         """Block coefficient C_b = V / (L B T) [-]."""
@@ -131,6 +137,9 @@ class HullForm:
 
     def centre_of_buoyancy_x_m(self, n: int = 2001) -> float:
         """Longitudinal centre of buoyancy at design draught, from the AP [m]."""
-        x = np.linspace(self.station_x_m[0], self.station_x_m[-1], n)
-        a = self.sectional_area_at(x)
-        return float(np.trapezoid(a * x, x) / np.trapezoid(a, x))
+        key = ("lcb", int(n))
+        if key not in self._integrals:
+            x = np.linspace(self.station_x_m[0], self.station_x_m[-1], n)
+            a = self.sectional_area_at(x)
+            self._integrals[key] = float(np.trapezoid(a * x, x) / np.trapezoid(a, x))
+        return self._integrals[key]

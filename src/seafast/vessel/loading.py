@@ -381,6 +381,30 @@ def still_water_moment_even_keel_Nm(
     return _integrate(lambda x: (x_m - x) * q(x), x0, float(x_m), bp)
 
 
+def _unit_tank_moments(hull: HullForm, tanks: tuple[tuple[float, float], ...], x_m: float, rho: float, g: float) -> NDArray[np.float64]:
+    """Still-water moment at ``x_m`` of 1 kg in each tank (weight only; the even-keel buoyancy is fixed) [N m/kg].
+
+    Depends on the hull and the tanks alone: kept for the next loading of the same ship (a
+    cargo study balances the ballast at every point).
+    """
+    key = (hull.station_x_m.tobytes(), hull.waterline_breadth_m.tobytes(), hull.draft_m, hull.section_area_coefficient, tanks, x_m, rho, g)
+    held = _UNIT_TANK_MOMENTS.get(key)
+    if held is None:
+        kw = dict(water_density_kg_per_m3=rho, gravity_m_per_s2=g)
+        buoy_only = still_water_moment_even_keel_Nm(hull, VesselLoading(None, ()), x_m, **kw)
+        held = np.array([
+            still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
+            for a, b in tanks
+        ])
+        if len(_UNIT_TANK_MOMENTS) >= 16:
+            _UNIT_TANK_MOMENTS.pop(next(iter(_UNIT_TANK_MOMENTS)))
+        _UNIT_TANK_MOMENTS[key] = held
+    return held
+
+
+_UNIT_TANK_MOMENTS: dict[tuple, NDArray[np.float64]] = {}
+
+
 def balance_ballast(
     hull: HullForm,
     loading: VesselLoading,
@@ -431,11 +455,7 @@ def balance_ballast(
         x_t, m_t = moment_target
         kw = dict(water_density_kg_per_m3=rho, gravity_m_per_s2=gravity_m_per_s2)
         base = still_water_moment_even_keel_Nm(hull, loading, x_t, **kw)
-        empty = VesselLoading(None, ())
-        buoy_only = still_water_moment_even_keel_Nm(hull, empty, x_t, **kw)
-        for j, u in enumerate(unit_items):
-            # moment of a unit tank (weight only; buoyancy is fixed at even keel)
-            A[2, j] = still_water_moment_even_keel_Nm(hull, VesselLoading(None, (u,)), x_t, **kw) - buoy_only
+        A[2, :] = _unit_tank_moments(hull, tuple((u.x_start_m, u.x_end_m) for u in unit_items), float(x_t), rho, gravity_m_per_s2)
         rhs[2] = m_t - base
     try:
         masses = np.linalg.solve(A, rhs)

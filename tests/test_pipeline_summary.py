@@ -1,0 +1,87 @@
+"""The study evaluator's short path gives the rows of the full pipeline (``run_case(case).summary``).
+
+``evaluate_summary`` takes one-way condensed-HBM cases through one linear condensation and
+computes the maxima from harmonics (``seafast.results.summary``); ``run_case`` solves the linear
+model on its own (dense partitioned solves), runs ``solve_hbm`` twice and takes the maxima of
+period time series and moment lines. Two routes to the same numbers: a wrong sign, factor,
+harmonic or frame in either would show here far beyond the tolerances (round-off, and the
+nonlinear solver's 1e-10 relative tolerance).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from seafast.config import load_case
+from seafast.pipeline import evaluate_summary, run_case
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+CASES = {
+    "base": {},
+    "two soft saddles (large lift-off)": {"seafastening.saddle_count": 2, "seafastening.saddle_stiffness_N_per_m": 1.1e7},
+    "seven stiff saddles": {"seafastening.saddle_count": 7, "seafastening.saddle_stiffness_N_per_m": 1.1e10},
+    "three saddles where the H=5 system has a second solution": {
+        "seafastening.saddle_count": 3, "seafastening.saddle_stiffness_N_per_m": 1786154413.1075907,
+    },
+    "stiff, pretensioned lashing": {"seafastening.lashing.stiffness_N_per_m": 1e7, "seafastening.lashing.pretension_N": 1e8},
+    "one saddle, stiff lashing (baseline from the deck slope)": {"seafastening.saddle_count": 1, "seafastening.lashing.stiffness_N_per_m": 1e6},
+    "115 m x 12 m cargo, three abreast": {
+        "cargo.length_m": 115.0, "cargo.diameter_m": 12.0, "cargo.wall_thickness_m": 12.0 / 110, "cargo.units_abreast": 3,
+    },
+    "exact law, H = 16": {"solver.contact_law": "exact", "solver.harmonics": 16},
+    "no rigid-body motion, steep wave": {"vessel.motions": "none", "wave.amplitude_m": 5.0},
+    "calm water": {"wave.amplitude_m": 0.0},
+    "user deck table": {"vessel.deck_deflection_table": str(EXAMPLES / "deck_deflection.csv")},
+    "two-way coupling (full pipeline)": {"vessel.coupling": "two_way"},
+}
+
+
+# Round-off of the two routes' factorisations (dense Cholesky/LU there, one banded LU here) grows
+# with K's condition number: ~1e4 on saddles, but ~1e12 for a cargo on one saddle held in
+# rotation by its lashing alone, where the two agree to ~1e-6.
+ILL_CONDITIONED = {"one saddle, stiff lashing (baseline from the deck slope)"}
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_short_path_rows_equal_the_full_pipeline(name):
+    overrides = CASES[name]
+    rel = 1e-5 if name in ILL_CONDITIONED else 1e-8
+    case = load_case(overrides=overrides)
+    fast = evaluate_summary(case)
+    full = run_case(case).summary
+    assert [(r["load_case"], r["model"]) for r in fast] == [(r["load_case"], r["model"]) for r in full]
+    assert [list(r) for r in fast] == [list(r) for r in full]  # same columns, same order
+    for f, r in zip(fast, full):
+        label = f"{f['load_case']}/{f['model']}"
+        for key, scale in (("u_c_m", 1e-3), ("u_s_m", 1e-3), ("u_d_m", 1e-3), ("F_N", 1e6), ("M_b_Nm", 1e7), ("sigma_b_Pa", 1e6)):
+            assert f[key] == pytest.approx(r[key], rel=rel, abs=1e-10 * scale), f"{label} {key}"
+        assert (f["converged"], f["contact_preserved"], f["iterations"]) == (r["converged"], r["contact_preserved"], r["iterations"]), label
+        assert f["residual_norm"] == pytest.approx(r["residual_norm"], rel=1e-3, abs=case.solver.tolerance), label
+
+
+def test_the_short_path_is_taken_where_it_applies(monkeypatch):
+    import seafast.pipeline as pipeline
+
+    calls: list[str] = []
+    real = pipeline.run_case
+    monkeypatch.setattr(pipeline, "run_case", lambda case: calls.append(case.vessel.coupling) or real(case))
+    rows = evaluate_summary(load_case())
+    assert calls == [] and len(rows) == 4
+    evaluate_summary(load_case(overrides={"vessel.coupling": "two_way"}))
+    evaluate_summary(load_case(overrides={"solver.method": "quasi_static"}))
+    assert calls == ["two_way", "one_way"]  # two-way coupling and the references run the full pipeline
+
+
+def test_short_path_sees_lift_off_where_the_linear_model_pulls():
+    # the base case: the linear model carries tension at the fore saddle, the nonlinear one lifts off
+    rows = {(r["load_case"], r["model"]): r for r in evaluate_summary(load_case())}
+    dyn_lin, dyn_nl = rows[("dynamic", "linear")], rows[("dynamic", "nonlinear")]
+    assert not dyn_lin["contact_preserved"] and not dyn_nl["contact_preserved"]
+    assert dyn_lin["u_d_m"] == 0.0 and 5e-3 < dyn_nl["u_d_m"] < 12e-3  # README: up to 8 mm
+    assert dyn_nl["F_N"] < dyn_lin["F_N"] and dyn_nl["M_b_Nm"] < dyn_lin["M_b_Nm"]
+    assert rows[("static", "nonlinear")]["contact_preserved"] and rows[("static", "linear")]["F_N"] == pytest.approx(6.305e6, rel=2e-3)
+    assert np.isclose(rows[("static", "nonlinear")]["F_N"], rows[("static", "linear")]["F_N"], rtol=5e-3)
