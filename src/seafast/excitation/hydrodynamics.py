@@ -640,10 +640,10 @@ def compute_motions(
         if len(_CAPYTAINE_COEFFICIENTS) >= 8:
             _CAPYTAINE_COEFFICIENTS.pop(next(iter(_CAPYTAINE_COEFFICIENTS)))
         _CAPYTAINE_COEFFICIENTS[key] = held
-    omega_c, k_c, a_c, b_c, f_c, x_rot = held[1]
+    omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = held[1]
     return _motions_from_rigid_coefficients(
         omega_c, k_c, a_c, b_c, f_c, hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=x_mid,
+        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=x_mid, coeff_reference_z_wl_m=z_rot_wl,
         mass_kg=mass_kg, centre_of_gravity_m=cog, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
         water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
         source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
