@@ -317,12 +317,9 @@ def couple_hull_and_cargo(
         compliance = _compliance(case, model, vessel)
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
-    if case.solver.method == "hbm" and case.solver.harmonics is None:
-        # the coupling iterates on a fixed set of harmonics: choose H once, on the one-way excitation
-        chosen = solve_nonlinear(model, excitation, case, static=False).options
-        solver = case.solver.model_copy(update={"harmonics": int(chosen["harmonics"]), "time_samples": int(chosen["time_samples"])})
-        case = case.model_copy(update={"solver": solver})
-    k_nonlinear = max((case.solver.harmonics or 0) + 1, k_linear)
+    # the deck forces exchanged with the hull: harmonics 0 .. H of a fixed H, else 0 .. COUPLING_HARMONICS (the
+    # adaptive H of each cargo solve can be hundreds; the quasi-static hull girder is no model for loads that fast)
+    k_nonlinear = max((case.solver.harmonics if case.solver.harmonics is not None else COUPLING_HARMONICS) + 1, k_linear)
     omega = excitation.omega_rad_s
     jac = linear_coupling_jacobians(model, omega, compliance, (1, k_linear, k_nonlinear))
 
@@ -431,6 +428,9 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     )
     return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 
+
+COUPLING_HARMONICS = 32
+"""Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""
 
 SWEEP_HARMONICS = 10
 """H of a frequency sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
