@@ -2,6 +2,8 @@
 
 This is the only place that knows the order of the stages; each stage is a pure function of
 the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
+
+Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a study point's short path, the two-way coupling and a sweep; each is a short function of the stages below.
 """
 
 from __future__ import annotations
@@ -432,10 +434,6 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 COUPLING_HARMONICS = 32
 """Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""
 
-SWEEP_HARMONICS = 10
-"""H of a frequency sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
-
-
 def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
     """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
 
@@ -462,9 +460,6 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
     # continuation runs on the condensed system with Newton correctors; its corrector's
     # round-off floor near resonance is ~1e-9, hence the tolerance floor
     opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    if opts.harmonics is None:
-        # continuation follows one branch at a fixed H: the case's, else SWEEP_HARMONICS
-        opts = opts.with_harmonics(SWEEP_HARMONICS)
     branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
     return branch, model
 

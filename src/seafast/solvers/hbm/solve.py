@@ -141,11 +141,20 @@ def solve_hbm(
     while response.converged and H < options.max_harmonics and selection.march_periods > 0:
         if np.max(settle) <= options.truncation_tolerance:
             break
-        H_next = min(max(int(math.ceil(1.5 * H)), H + 8), int(options.max_harmonics))
         previous = response
-        ops = condensed_operators(model, excitation, H_next, reuse=ops)
-        start = pad_harmonics(_compression_harmonics(previous, H), H_next)
-        response = _solve_fixed(model, excitation, quick.with_harmonics(H_next), start, ops)
+        # 1.5 H from the previous solution, else from the march; a truncation that falls among the cargo's
+        # contact-state modes can be ill-posed, so then 2 H and 3 H (from the march) before giving up
+        attempts = [(1.5, "previous"), (1.5, "march"), (2.0, "march"), (3.0, "march")]
+        for factor, origin in attempts:
+            H_next = min(max(int(math.ceil(factor * H)), H + 8), int(options.max_harmonics))
+            ops = condensed_operators(model, excitation, H_next, reuse=ops)
+            if origin == "previous":
+                start = pad_harmonics(_compression_harmonics(previous, H), H_next)
+            else:
+                start = _project(selection.march_compression_m, H_next)
+            response = _solve_fixed(model, excitation, quick.with_harmonics(H_next), start, ops)
+            if response.converged or H_next >= options.max_harmonics:
+                break
         if not response.converged:
             response = previous  # keep the last converged solution; the estimate below says how far from settled
             break
