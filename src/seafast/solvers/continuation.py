@@ -181,9 +181,9 @@ def frequency_response(
         raises for non-convergence.
     """
     options = HBMOptions() if options is None else options
-    if options.harmonics is None:
+    if options.harmonics is None or options.time_samples is None:
         # a branch is followed at one H: the adaptive choice belongs to single solves
-        options = options.with_harmonics(DEFAULT_HARMONICS)
+        options = options.with_harmonics(DEFAULT_HARMONICS if options.harmonics is None else options.harmonics)
     if not (omega_start_rad_s > 0 and omega_end_rad_s > 0) or omega_start_rad_s == omega_end_rad_s:
         raise ValueError(
             f"omega_start_rad_s = {omega_start_rad_s!r}, omega_end_rad_s = {omega_end_rad_s!r}; allowed: two different positive frequencies"

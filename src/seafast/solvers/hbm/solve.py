@@ -127,11 +127,11 @@ def solve_hbm(
     ops = condensed_operators(model, excitation, H)
     response = _solve_fixed(model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops)
     if not response.converged:
-        # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (or the
-        # given start), then the refinement below from there
+        # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (a given
+        # start has just failed), then the refinement below from there
         H = min(H, _SAFE_HARMONICS)
         ops = condensed_operators(model, excitation, H)
-        response = _solve_fixed(model, excitation, options.with_harmonics(H), None if given is None else _project(given, H), ops)
+        response = _solve_fixed(model, excitation, options.with_harmonics(H), None, ops)
     path = [H]
     settle = np.full(model.saddle_count, np.inf)
     # "settled": the peaks moved by less than the tolerance from the previous H. The first H comes from the
