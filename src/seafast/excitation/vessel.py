@@ -1,6 +1,6 @@
 """The vessel side of a case: hull-girder deflection and rigid-body motions -> deck excitation.
 
-Sources, in order of precedence (MODEL.md section 3, INTERFACE.md):
+Sources, in order of precedence (docs/theory.md#35-user-supplied-hull-data, docs/interface.md#3-input-tables):
 
 * ``vessel.deck_deflection_table``: the user's own hull deflection (still water and wave);
   replaces the hull-girder model entirely.
