@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, real_dft_matrices
+from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.condensed import condensed_operators
@@ -205,8 +205,7 @@ def truncation_error(
     H = (U.shape[0] - 1) // 2
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     N_f = 2 ** int(math.ceil(math.log2(max(8 * max(H, 1), 256))))
-    inverse, _ = real_dft_matrices(H, N_f)
-    delta = inverse @ U
+    delta = harmonics_to_time(real_to_complex_harmonics(U), N_f)  # an inverse real FFT
     force, _ = law.force_and_derivative(delta, k_u)
     correction = force - k_u * delta
     C = np.fft.rfft(correction, axis=0) * (2.0 / N_f)  # complex amplitudes X_k (k >= 1)
