@@ -119,9 +119,12 @@ def solve_nonlinear(
 
         return solve_quasi_static(model, excitation, time_samples=s.reference_time_samples)
     if s.method == "time_domain":
+        from seafast.solvers.outcome import TimeDomainStart
         from seafast.solvers.references import solve_time_domain
 
-        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples)
+        # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
+        start = solve_hbm(model, excitation, _hbm_options(case)) if s.time_domain_start == "hbm" else TimeDomainStart.LINEAR
+        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples, start=start)
     opts = _hbm_options(case)
     start = None
     if warm_start is not None and s.formulation == "condensed":
@@ -254,6 +257,7 @@ def run_case(
         "excitation_source": excitation.source,
         "wave_frequency_rad_s": excitation.omega_rad_s,
         "solver_method": case.solver.method,
+        **_time_domain_attrs(nl_dynamic),
         "solver_formulation": case.solver.formulation,
         "contact_law": case.solver.contact_law,
         "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == "hbm" else -1,
@@ -289,6 +293,20 @@ def run_case(
         say("axial sliding (friction, lashings, stoppers)")
         axial = run_axial_analysis(case, model, vessel, series)
     return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, couplings, compliance, axial=axial)
+
+
+def _time_domain_attrs(response: Any) -> dict[str, Any]:
+    """The time-domain reference's start and orbit record as results.nc attributes (none for the other methods)."""
+    orbit = getattr(response, "orbit", None)
+    if orbit is None:
+        return {}
+    distance = orbit.distance_from_start
+    return {
+        "time_domain_start": orbit.start_method,
+        "time_domain_periods": orbit.periods,
+        "time_domain_orbit_distance_from_start": float("nan") if distance is None else distance,
+        "time_domain_orbit_tolerance": orbit.orbit_tolerance,
+    }
 
 
 def _compliance(case: Case, model: StructuralModel, vessel: Any) -> HullCompliance:
