@@ -135,6 +135,29 @@ def test_a_start_on_another_orbit_is_reported_as_another_orbit(case, from_linear
     assert orbit_distance(r.saddle_compression_time_m, from_linear["full"].saddle_compression_time_m, k_u) < 1e-4
 
 
+def test_a_coarse_solution_of_the_same_orbit_is_the_same_orbit():
+    """The source's preset (tanh law, H = 5) is a coarse picture of the base-like test wave's one orbit:
+    started there, the reference stays on that orbit and says so. The orbits are compared through the
+    start's 5 harmonics (the ringing after each re-contact, which 5 harmonics cannot carry, is not
+    another orbit): 1.0e-2, within the tolerance, where the whole histories differ by 1.5e-2."""
+    from seafast.solvers.hbm import SOURCE_OPTIONS
+    from solver_cases import base_model, wave_excitation
+
+    model = base_model()
+    ex = wave_excitation(model)
+    with threadpool_limits(1):
+        source = solve_hbm(model, ex, SOURCE_OPTIONS)
+        r = solve_time_domain(model, ex, 128, start=source)
+    assert r.outcome is SolverOutcome.CONVERGED and r.orbit.same_as_start, r.message
+    assert 2e-3 < r.orbit.distance_from_start < 0.5 * ORBIT_TOLERANCE
+    k_u = model.saddle_unilateral_stiffness_N_per_m
+    whole = orbit_distance(r.saddle_compression_time_m, source.saddle_compression_time_m, k_u)
+    assert whole > r.orbit.distance_from_start
+    assert orbit_distance(r.saddle_compression_time_m, source.saddle_compression_time_m, k_u, 5) == pytest.approx(
+        r.orbit.distance_from_start, rel=1e-12
+    )
+
+
 @pytest.mark.parametrize("formulation", ["full", "condensed"])
 def test_the_quasi_static_start_escapes_to_the_bouncing_motion(case, formulation):
     """What the issue saw: from the exact-contact quasi-static state at t = 0 the cargo is thrown off its

@@ -126,8 +126,9 @@ class OrbitRecord:
         Last period-to-period change of the saddle forces, over the largest force seen [-].
     distance_from_start
         ``GIVEN`` only (else None): RMS over the last period and the saddles of the saddle-force
-        difference between the orbit reached and the start's orbit, over the RMS of the start's
-        saddle forces [-] (both with the exact law, on the reference's time grid).
+        difference between the orbit reached and the start's orbit, through the start's harmonics,
+        over the RMS of the start's saddle forces [-] (both with the exact law, on the reference's
+        time grid; :func:`seafast.solvers.references.orbit.orbit_distance`).
     same_as_start
         ``GIVEN`` and periodic only (else None): ``distance_from_start <= orbit_tolerance``.
     orbit_tolerance
