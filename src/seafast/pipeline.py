@@ -251,13 +251,15 @@ def run_case(
         ("static", "nonlinear"): from_periodic_response(nl_static, N),
         ("dynamic", "nonlinear"): from_periodic_response(nl_dynamic, N),
     }
+    from seafast.solvers.references.orbit import orbit_attributes
+
     attrs = {
         "title": f"seafast results: {case.name}",
         "seafast_version": seafast.__version__,
         "excitation_source": excitation.source,
         "wave_frequency_rad_s": excitation.omega_rad_s,
         "solver_method": case.solver.method,
-        **_time_domain_attrs(nl_dynamic),
+        **orbit_attributes(nl_dynamic.orbit),  # the time-domain reference's start and orbit (docs/orbits.md)
         "solver_formulation": case.solver.formulation,
         "contact_law": case.solver.contact_law,
         "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == "hbm" else -1,
@@ -293,20 +295,6 @@ def run_case(
         say("axial sliding (friction, lashings, stoppers)")
         axial = run_axial_analysis(case, model, vessel, series)
     return CaseResult(case, model, excitation, vessel, arrays, responses, attrs, statuses, couplings, compliance, axial=axial)
-
-
-def _time_domain_attrs(response: Any) -> dict[str, Any]:
-    """The time-domain reference's start and orbit record as results.nc attributes (none for the other methods)."""
-    orbit = getattr(response, "orbit", None)
-    if orbit is None:
-        return {}
-    distance = orbit.distance_from_start
-    return {
-        "time_domain_start": orbit.start_method,
-        "time_domain_periods": orbit.periods,
-        "time_domain_orbit_distance_from_start": float("nan") if distance is None else distance,
-        "time_domain_orbit_tolerance": orbit.orbit_tolerance,
-    }
 
 
 def _compliance(case: Case, model: StructuralModel, vessel: Any) -> HullCompliance:
