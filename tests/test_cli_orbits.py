@@ -4,7 +4,8 @@ On the bistable case of ``tests/solvers/test_time_domain_orbits.py`` (1 % saddle
 wave at 3.8 rad/s, 4 m mesh, 32 reference samples per period): ``solver.method=time_domain`` starts from the
 linear periodic solution, or with ``solver.time_domain_start=hbm`` from the harmonic balance's orbit; a run
 whose reference leaves its starting orbit (an HBM that landed on the unstable orbit C) is reported as
-``other_orbit`` by the typed outcome in results.nc, a warning on stderr and a WARNING in the report.
+``other_orbit`` by the typed outcome in results.nc, a warning on stderr and a WARNING in the report; one
+that never repeats (at 3.85 rad/s) as ``not_periodic``, exit code 3.
 """
 
 from __future__ import annotations
@@ -74,3 +75,19 @@ def test_a_reference_that_leaves_the_hbm_orbit_is_reported(tmp_path, monkeypatch
         assert ds.attrs["time_domain_orbit_distance_from_start"] > 0.1
         findings = [f for f in run_findings(ds) if f.level == "WARNING" and "left the orbit it started on" in f.title]
         assert len(findings) == 1 and "dynamic nonlinear" in findings[0].title
+
+
+def test_a_reference_that_never_repeats_exits_3_and_says_not_periodic(tmp_path, capsys):
+    """At 3.85 rad/s the linear start itself leads to the bouncing motion: no periodic state in the 201
+    periods the damping allows, flagged not converged (exit 3) with the typed outcome, no traceback."""
+    out = tmp_path / "np"
+    argv = ["run", "-o", str(out), *CASE, "--set", "wave.frequency_rad_s=3.85"]
+    assert main(argv) == 3
+    err = capsys.readouterr().err
+    assert "dynamic nonlinear solution did NOT converge (not periodic, residual" in err and "Traceback" not in err
+    with xr.open_dataset(out / "results.nc") as ds:
+        row = _dynamic_nonlinear(ds)
+        assert str(row["solver_outcome"].values) == "not_periodic" and not bool(row["converged"])
+        assert ds.attrs["time_domain_start"] == "linear" and ds.attrs["time_domain_periods"] == pytest.approx(201, abs=2)
+        assert float(row["F_N"]) > 1.5 * 8.152e6  # the bouncing motion's impacts
+        assert any(f.level == "WARNING" and "did NOT converge" in f.title for f in run_findings(ds))

@@ -123,8 +123,8 @@ def solve_nonlinear(
         from seafast.solvers.references import solve_time_domain
 
         # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
-        start = solve_hbm(model, excitation, _hbm_options(case)) if s.time_domain_start == "hbm" else TimeDomainStart.LINEAR
-        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples, start=start)
+        td_start = solve_hbm(model, excitation, _hbm_options(case)) if s.time_domain_start == "hbm" else TimeDomainStart.LINEAR
+        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples, start=td_start)
     opts = _hbm_options(case)
     start = None
     if warm_start is not None and s.formulation == "condensed":

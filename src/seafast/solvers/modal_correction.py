@@ -118,7 +118,8 @@ class ModalCorrectionSystem:
         poles, V = np.linalg.eig(S)
         V_inv = np.linalg.inv(V)
         Ps = self.saddle_mode_shape
-        return Ps @ V[:m], poles, V_inv[:, m:] @ Ps.T
+        as_complex = lambda a: np.asarray(a, dtype=np.complex128)  # noqa: E731 - eig's output type is not declared
+        return as_complex(Ps @ V[:m]), as_complex(poles), as_complex(V_inv[:, m:] @ Ps.T)
 
 
 @dataclass(frozen=True)
