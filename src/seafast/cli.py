@@ -192,6 +192,14 @@ def _cmd_run(args: argparse.Namespace) -> int:
         for status in result.coupling.values():
             print(status.message)
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    orbit = getattr(result.responses.get("nonlinear_dynamic"), "orbit", None)
+    if orbit is not None and orbit.same_as_start is False:
+        print(
+            f"seafast: warning: dynamic nonlinear: the time-domain reference started on the {orbit.start_method} solution's "
+            f"orbit and settled on ANOTHER periodic state (RMS saddle-force distance {orbit.distance_from_start:.2e} > "
+            f"{orbit.orbit_tolerance:g}): that orbit is unstable or not unique; the numbers are the orbit reached",
+            file=sys.stderr,
+        )
     bad = [r for r in rows if not r["converged"]]
     for r in bad:
         coupling = result.coupling.get((r["load_case"], r["model"]))

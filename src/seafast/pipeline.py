@@ -122,9 +122,12 @@ def solve_nonlinear(
 
         return solve_quasi_static(model, excitation, time_samples=s.reference_time_samples)
     if s.method == "time_domain":
+        from seafast.solvers.outcome import TimeDomainStart
         from seafast.solvers.references import solve_time_domain
 
-        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples)
+        # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
+        td_start = solve_hbm(model, excitation, _hbm_options(case)) if s.time_domain_start == "hbm" else TimeDomainStart.LINEAR
+        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples, start=td_start)
     opts = _hbm_options(case)
     start = None
     if warm_start is not None and s.formulation == "condensed":
@@ -251,12 +254,15 @@ def run_case(
         ("static", "nonlinear"): from_periodic_response(nl_static, N),
         ("dynamic", "nonlinear"): from_periodic_response(nl_dynamic, N),
     }
+    from seafast.solvers.references.orbit import orbit_attributes
+
     attrs = {
         "title": f"seafast results: {case.name}",
         "seafast_version": seafast.__version__,
         "excitation_source": excitation.source,
         "wave_frequency_rad_s": excitation.omega_rad_s,
         "solver_method": case.solver.method,
+        **orbit_attributes(nl_dynamic.orbit),  # the time-domain reference's start and orbit (docs/orbits.md)
         "solver_formulation": case.solver.formulation,
         "contact_law": case.solver.contact_law,
         "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == "hbm" else -1,

@@ -62,8 +62,8 @@ def solve_condensed(
     u0 = None if initial_compression is None else np.asarray(initial_compression, dtype=float).ravel()
     a = solve_with_fallback(problem, options.law, options, u0)
     U = a.u.reshape(problem.n_h, problem.n_s)
-    delta = problem.inverse @ U
-    corr = problem.forward @ (options.law.force(delta, problem.k_u) - problem.k_u * delta)
+    delta = problem.to_samples(U)
+    corr = problem.to_harmonics(options.law.force(delta, problem.k_u) - problem.k_u * delta)
     return CondensedSolution(U, corr, a.outcome, a.residual, a.iterations, a.evaluations, a.note)
 
 
@@ -232,8 +232,7 @@ def _solve_fixed(
         X = real_to_complex_harmonics(Q)
         U = problem.deck_z - Q[:, model.saddle_cargo_dof]
         outcome, resid, its, nfev, note = a.outcome, a.residual, a.iterations, a.evaluations, a.note
-    inverse, _ = real_dft_matrices(H, N)
-    delta = inverse @ U
+    delta = harmonics_to_time(real_to_complex_harmonics(U), N)  # N >= 2H + 2: an inverse real FFT
     force = law.force(delta, ops.saddle_stiffness_N_per_m)
     warnings: tuple[SolverWarning, ...] = ()
     if ops.ignored_harmonics:
