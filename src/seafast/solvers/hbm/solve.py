@@ -26,6 +26,7 @@ logger = logging.getLogger(__name__)
 
 _QUICK_ITERATIONS = 40  # Newton steps from a start near the solution (the march, or the previous H)
 _SAFE_HARMONICS = 16  # where the full fallback chain goes when the march's start does not converge
+_SELECTION_SHARE = 0.25  # of the truncation tolerance, for the march's choice of the first H
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,11 @@ def solve_hbm(
             return response
         error = truncation_error(model, excitation.omega_rad_s, _compression_harmonics(response, H), fixed.law)
         return _with_truncation(response, error, options.truncation_tolerance)
-    selection = select_harmonics(model, excitation, tolerance=options.truncation_tolerance, max_harmonics=options.max_harmonics)
+    # the march asks for a quarter of the tolerance: its estimate is of the march's own truncation, and a first H
+    # with margin usually settles at the next step (base case: 144, 216 instead of 120, 180, 270)
+    selection = select_harmonics(
+        model, excitation, tolerance=_SELECTION_SHARE * options.truncation_tolerance, max_harmonics=options.max_harmonics
+    )
     H = selection.harmonics
     # the steps from the march (or from the previous H) are near the solution: a few Newton steps, no fallbacks
     quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), _QUICK_ITERATIONS))
