@@ -2,13 +2,23 @@
 
 The condensed HBM system (see :mod:`seafast.solvers.hbm`) ``R(u, omega) = 0`` -- u the harmonic
 coefficients of the saddle compressions -- is followed in omega with a predictor-corrector
-pseudo-arclength method: tangent predictor, Newton corrector on ``R = 0`` plus the arclength
-condition ``t . (y - y_pred) = 0`` (scaled variables: u over the largest linear compression,
-omega over the sweep span), step-size control on the corrector's iteration count, and the
-tangent's orientation kept from step to step so the branch can turn (folds). ``dR/domega`` is a
-central difference of the residual (the receptances depend on omega through the dynamic
-stiffness). Used to show that the wave frequencies (0.2-2 rad/s) are quasi-static, and to pass
-through the cargo's first resonance for soft saddles.
+pseudo-arclength method (Keller 1977): tangent predictor, Newton corrector on ``R = 0`` plus the
+arclength condition ``t . (y - y_pred) = 0`` (scaled variables: u over the largest linear
+compression fluctuation at the start, omega over the sweep span), step-size control on the
+corrector's iteration count and on how far the tangent turns, and the tangent's orientation kept
+from step to step so the branch turns at folds. ``dR/domega`` is a central difference of the
+residual (the receptances depend on omega through the dynamic stiffness): central for the
+tangent, one-sided in the corrector's iterations (the residual there is already known).
+
+Round-off. Moving omega re-solves the dynamic stiffness; with soft saddles on a stiff beam its
+condition number reaches 1e8-1e9 and the residual is noisy at up to ~1e-7 of the compression
+scale, which no corrector can go below. A corrector that stalls is therefore asked whether its
+residual is at the round-off floor *of that point* (the residual's change when omega moves by a
+few units of round-off) and accepted if it is within ten times that floor: the branch is followed
+through grazing folds and resonances of soft saddles instead of stopping there.
+
+Each point records the compression harmonics (for stability, moments and post-processing) and
+the omega component of the unit tangent, whose sign changes at the folds.
 """
 
 from __future__ import annotations
@@ -26,7 +36,14 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, CondensedProblem, HBMOptions, condensed_operators, solve_condensed
 
-__all__ = ["BranchEnd", "FrequencyResponseBranch", "frequency_response"]
+__all__ = ["DEFAULT_HARMONICS", "BranchEnd", "FrequencyResponseBranch", "frequency_response"]
+
+DEFAULT_HARMONICS = 10
+"""H of a continuation whose options leave ``harmonics`` unset (one branch is followed at a fixed H)."""
+
+_NOISE_FACTOR = 10.0  # a stalled corrector is accepted within this multiple of the point's round-off floor
+_NOISE_CAP = 1e-5  # ... and never above this relative residual
+_ROUND_OFF_SHIFTS = (1e-13, -1e-13, 3e-13)  # relative omega shifts that sample the round-off of the residual
 
 
 class BranchEnd(Enum):
@@ -40,6 +57,8 @@ class BranchEnd(Enum):
     """The corrector kept failing until the step fell below ``min_step`` (e.g. a sharp grazing fold)."""
     MAX_POINTS = "max_points"
     """``max_points`` points were recorded."""
+    STOPPED = "stopped"
+    """The caller's ``stop_when`` said stop (e.g. the branch left the physically meaningful range)."""
 
 
 @dataclass(frozen=True)
@@ -57,13 +76,24 @@ class FrequencyResponseBranch:
     max_cargo_deflection_m
         Largest |z| over the period and the cargo nodes [m] (static part included).
     converged
-        Whether each point met the tolerance.
+        Whether each point met the tolerance (or its round-off floor, see the module docstring).
     contact_preserved
         Whether every saddle stayed in contact over the whole period at each point.
     message
         How the sweep ended, for people.
+    steps
+        Predictor-corrector steps taken (accepted and rejected).
+    options
+        The HBM settings (``HBMOptions.to_dict``).
     end
         How the sweep ended (:class:`BranchEnd`).
+    compression_harmonics_m
+        Saddle compressions of each point, real harmonic layout (n_points, 2H+1, n_s) [m].
+    tangent_omega
+        Omega component of the unit tangent at each point, in the scaled variables [-]: positive
+        where omega grows along the branch; its sign changes at a fold.
+    residual_norm
+        Relative residual of each point (max |R| over the compression scale) [-].
     """
 
     omega_rad_s: NDArray[np.float64]
@@ -76,11 +106,33 @@ class FrequencyResponseBranch:
     steps: int = 0
     options: dict[str, Any] = field(default_factory=dict)
     end: BranchEnd = BranchEnd.REACHED_END
+    compression_harmonics_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 1, 1)))
+    tangent_omega: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    residual_norm: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
 
     @property
     def peak_omega_rad_s(self) -> float:
         """Frequency of the largest cargo deflection on the branch [rad/s]."""
         return float(self.omega_rad_s[int(np.argmax(self.max_cargo_deflection_m))])
+
+    @property
+    def turning_indices(self) -> NDArray[np.intp]:
+        """Indices i where the branch turns between points i-1 and i (the tangent's omega component changes sign).
+
+        Every such turn is a fold of the discrete branch; a fold of the response is where the
+        turn is (:attr:`turning_omegas_rad_s`).
+        """
+        s = np.sign(self.tangent_omega)
+        return np.nonzero(s[1:] * s[:-1] < 0)[0] + 1
+
+    @property
+    def turning_omegas_rad_s(self) -> NDArray[np.float64]:
+        """Frequency of each turn [rad/s]: the extreme omega of the two points it lies between."""
+        i = self.turning_indices
+        w = self.omega_rad_s
+        # a turn from increasing to decreasing omega is a maximum of omega, and the reverse a minimum
+        upper = self.tangent_omega[i - 1] > 0
+        return np.where(upper, np.maximum(w[i - 1], w[i]), np.minimum(w[i - 1], w[i]))
 
 
 class _Branch:
@@ -99,35 +151,42 @@ class _Branch:
             ex = self.excitation_at(float(omega))
             if not np.isclose(ex.omega_rad_s, omega, rtol=1e-12, atol=0.0):
                 raise ValueError(f"excitation_at({omega!r}) returned an excitation at omega = {ex.omega_rad_s!r}")
-            ops = condensed_operators(self.model, ex, self.options.harmonics)
+            ops = condensed_operators(self.model, ex, self.options.harmonics)  # type: ignore[arg-type]
             if len(self._ops_cache) > 8:
                 self._ops_cache.clear()
             self._ops_cache[omega] = ops
         return ops
 
     def problem(self, omega: float) -> CondensedProblem:
-        return CondensedProblem(self.ops(omega), self.options.time_samples)
+        return CondensedProblem(self.ops(omega), self.options.time_samples)  # type: ignore[arg-type]
 
     def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, CondensedProblem]:
         p = self.problem(omega)
         R, state = p.evaluate(u, self.law, 1.0)
         return R, state, p
 
-    def d_residual_d_omega(self, u: NDArray, omega: float) -> NDArray:
+    def d_residual_d_omega(self, u: NDArray, omega: float, R: NDArray | None = None) -> NDArray:
+        """dR/domega [m s/rad]: central difference, or one-sided from ``R = R(u, omega)`` when given."""
         h = 1e-6 * max(abs(omega), 1e-3)
+        if R is not None:
+            return (self.residual(u, omega + h)[0] - R) / h
         return (self.residual(u, omega + h)[0] - self.residual(u, omega - h)[0]) / (2.0 * h)
+
+    def round_off(self, u: NDArray, omega: float, R: NDArray) -> float:
+        """Largest change of R [m] when omega moves by a few units of round-off (the residual's noise floor)."""
+        return max(float(np.max(np.abs(self.residual(u, omega * (1.0 + e))[0] - R))) for e in _ROUND_OFF_SHIFTS)
 
     def metrics(self, u: NDArray, omega: float) -> tuple[float, float, float, bool]:
         ops = self.ops(omega)
         n_h, n_s = 2 * ops.harmonics + 1, ops.saddle_count
-        inverse, forward = real_dft_matrices(ops.harmonics, self.options.time_samples)
+        inverse, forward = real_dft_matrices(ops.harmonics, self.options.time_samples)  # type: ignore[arg-type]
         U = u.reshape(n_h, n_s)
         delta = inverse @ U
         force = self.law.force(delta, ops.saddle_stiffness_N_per_m)
         corr = forward @ (force - ops.saddle_stiffness_N_per_m * delta)
         C = real_to_complex_harmonics(corr)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
-        z = harmonics_to_time(X[:, 0::2], self.options.time_samples)
+        z = harmonics_to_time(X[:, 0::2], self.options.time_samples)  # type: ignore[arg-type]
         return float(np.max(force)), float(max(-np.min(delta), 0.0)), float(np.max(np.abs(z))), bool(np.all(delta > 0.0))
 
 
@@ -144,6 +203,7 @@ def frequency_response(
     max_omega_step: float = 0.01,
     max_points: int = 2000,
     corrector_iterations: int = 12,
+    stop_when: Callable[[float, NDArray[np.float64]], bool] | None = None,
 ) -> FrequencyResponseBranch:
     """Follow the periodic response from ``omega_start`` to ``omega_end`` by pseudo-arclength continuation.
 
@@ -157,7 +217,8 @@ def frequency_response(
     omega_start_rad_s, omega_end_rad_s
         Sweep limits [rad/s], either order.
     options
-        HBM settings (condensed formulation; ``solver`` applies to the first point only).
+        HBM settings with a fixed ``harmonics`` (condensed formulation; ``solver`` applies to the
+        first point only).
     initial_step, min_step, max_step
         Arclength steps in scaled variables (omega scaled by the sweep span, compressions by
         their largest linear fluctuation at the start). The step grows when the corrector
@@ -169,6 +230,9 @@ def frequency_response(
         Safety limit on the number of branch points.
     corrector_iterations
         Newton iterations per corrector before the step is halved.
+    stop_when
+        Optional ``(omega [rad/s], compression harmonics (2H+1, n_s) [m]) -> bool``, asked after each
+        recorded point; True ends the branch there (:attr:`BranchEnd.STOPPED`).
 
     Returns
     -------
@@ -186,6 +250,8 @@ def frequency_response(
             f"steps: need 0 < min_step <= initial_step <= max_step and 0 < max_omega_step <= 1, got "
             f"{min_step}, {initial_step}, {max_step}, {max_omega_step}"
         )
+    H = DEFAULT_HARMONICS if options.harmonics is None else int(options.harmonics)  # one branch, at a fixed H
+    options = options.with_harmonics(H)
     branch = _Branch(model, excitation_at, options)
     w0, w1 = float(omega_start_rad_s), float(omega_end_rad_s)
     direction = 1.0 if w1 > w0 else -1.0
@@ -196,26 +262,26 @@ def frequency_response(
     lin = branch.ops(w0).linear_compression_m
     u_scale = float(max(np.max(np.abs(lin[1:])) if lin.shape[0] > 1 else 0.0, 1e-3 * np.max(np.abs(lin)), 1e-9))
     w_scale = abs(w1 - w0)
-    # Corrector tolerance: moving omega re-solves the dynamic stiffness, whose round-off near a
-    # resonance (condition ~ 1e7..1e9) makes the residual noisy at ~1e-9 of the compression
-    # scale; 1e-7 of it (tens of nanometres) is the floor asked of the corrector.
     tol_corrector = max(tol, 1e-7)
     r_scale = branch.ops(w0).compression_scale_m
-    # scaled variables y = (u / u_scale, omega / w_scale)
+    shape = (2 * H + 1, model.saddle_count)
     pts: list[tuple[float, float, float, float, bool, bool]] = []
+    extra: list[tuple[NDArray, float, float]] = []  # harmonics, tangent omega component, residual
 
-    def record(u: NDArray, omega: float, ok: bool) -> None:
+    def record(u: NDArray, omega: float, ok: bool, t_omega: float, residual: float) -> None:
         f, g, z, keep = branch.metrics(u, omega)
         pts.append((omega, f, g, z, ok, keep))
+        extra.append((u.reshape(shape).copy(), t_omega, residual))
 
-    record(first.saddle_compression.ravel(), w0, first.converged)
-    if not first.converged:
-        return _finish(pts, "the first point did not converge", 0, options, BranchEnd.FIRST_POINT_FAILED)
     u = first.saddle_compression.ravel().copy()
     omega = w0
+    if not first.converged:
+        record(u, omega, False, 0.0, first.residual_norm)
+        return _finish(pts, extra, "the first point did not converge", 0, options, BranchEnd.FIRST_POINT_FAILED)
 
     def tangent(u: NDArray, omega: float, previous: NDArray | None) -> NDArray:
-        R, state, p = branch.residual(u, omega)
+        """Unit tangent in scaled variables."""
+        _, state, p = branch.residual(u, omega)
         J = p.jacobian(state) * u_scale  # dR / d(u/u_scale)
         Rw = branch.d_residual_d_omega(u, omega) * w_scale
         n = u.size
@@ -232,6 +298,7 @@ def frequency_response(
         return t / np.linalg.norm(t)
 
     t = tangent(u, omega, None)
+    record(u, omega, True, float(t[-1]), first.residual_norm)
     ds = float(initial_step)
     steps = 0
     message = "reached omega_end"
@@ -257,17 +324,19 @@ def frequency_response(
         yk = y_pred.copy()
         ok = False
         its = 0
+        residual = np.inf
         try:
             F, (state, p, uk, wk) = augmented(yk, y_pred, t)
             for its in range(1, corrector_iterations + 1):
-                if np.max(np.abs(F[:-1])) <= tol_corrector and abs(F[-1]) <= 1e-8:
+                residual = float(np.max(np.abs(F[:-1])))
+                if residual <= tol_corrector and abs(F[-1]) <= 1e-8:
                     ok = True
                     break
                 J = p.jacobian(state) * (u_scale / r_scale)
-                Rw = branch.d_residual_d_omega(uk, wk) * (w_scale / r_scale)
+                column = branch.d_residual_d_omega(uk, wk, F[:-1] * r_scale) * (w_scale / r_scale)
                 n = uk.size
                 A = np.zeros((n + 1, n + 1))
-                A[:n, :n], A[:n, n], A[n] = J, Rw, t
+                A[:n, :n], A[:n, n], A[n] = J, column, t
                 dy = np.linalg.solve(A, -F)
                 norm0 = float(np.linalg.norm(F))
                 lam = 1.0
@@ -281,6 +350,12 @@ def frequency_response(
                 else:
                     break
                 yk, F, (state, p, uk, wk) = y_try, F_try, aux
+            else:
+                residual = float(np.max(np.abs(F[:-1])))
+            if not ok and residual <= _NOISE_CAP and abs(F[-1]) <= 1e-6:
+                # stalled: accept if the residual is at this point's round-off floor
+                floor = branch.round_off(uk, wk, F[:-1] * r_scale) / r_scale
+                ok = residual <= _NOISE_FACTOR * floor
         except (np.linalg.LinAlgError, FloatingPointError):
             ok = False
         steps += 1
@@ -295,7 +370,11 @@ def frequency_response(
         t_new = tangent(u_new, w_new, t)
         cos_angle = float(t_new @ t)
         u, omega, t = u_new, w_new, t_new
-        record(u, omega, True)
+        record(u, omega, True, float(t[-1]), residual)
+        if stop_when is not None and stop_when(omega, u.reshape(shape)):
+            message = f"stopped at omega = {omega:.6g} rad/s by the caller's range check"
+            ending = BranchEnd.STOPPED
+            break
         if its <= 3 and cos_angle > np.cos(np.radians(5.0)):
             grow = 1.6
         elif its <= 6 and cos_angle > np.cos(np.radians(12.0)):
@@ -312,11 +391,14 @@ def frequency_response(
         if end.converged:
             if direction * (omega - w1) > 0:
                 pts.pop()
-            record(end.saddle_compression.ravel(), w1, True)
-    return _finish(pts, message, steps, options, ending)
+                extra.pop()
+            record(end.saddle_compression.ravel(), w1, True, float(t[-1]), end.residual_norm)
+    return _finish(pts, extra, message, steps, options, ending)
 
 
-def _finish(pts: list, message: str, steps: int, options: HBMOptions, end: BranchEnd) -> FrequencyResponseBranch:
+def _finish(
+    pts: list, extra: list[tuple[NDArray, float, float]], message: str, steps: int, options: HBMOptions, end: BranchEnd
+) -> FrequencyResponseBranch:
     a: list[Any] = list(zip(*pts)) if pts else [[]] * 6
     return FrequencyResponseBranch(
         omega_rad_s=np.asarray(a[0], dtype=float),
@@ -329,4 +411,7 @@ def _finish(pts: list, message: str, steps: int, options: HBMOptions, end: Branc
         steps=steps,
         options=options.to_dict(),
         end=end,
+        compression_harmonics_m=np.stack([e[0] for e in extra]) if extra else np.zeros((0, 1, 1)),
+        tangent_omega=np.array([e[1] for e in extra], dtype=float),
+        residual_norm=np.array([e[2] for e in extra], dtype=float),
     )
