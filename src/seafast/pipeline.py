@@ -43,7 +43,7 @@ __all__ = [
     "evaluate_summary",
     "solve_nonlinear",
     "couple_hull_and_cargo",
-    "frequency_sweep",
+    "hbm_options",
 ]
 
 
@@ -74,8 +74,8 @@ def build_model(case: Case) -> StructuralModel:
     )
 
 
-def _hbm_options(case: Case, **changes: Any) -> Any:
-    """Harmonic-balance options from the case's solver settings, with ``changes`` applied."""
+def hbm_options(case: Case, **changes: Any) -> Any:
+    """Harmonic-balance options (:class:`~seafast.solvers.hbm.HBMOptions`) from the case's solver settings, with ``changes`` applied."""
     from seafast.solvers.hbm import HBMOptions
 
     s = case.solver
@@ -112,7 +112,7 @@ def solve_nonlinear(
 
         return solve_quasi_static(model, excitation.static_part(), time_samples=2)
     if static:
-        opts = _hbm_options(case, harmonics=0, time_samples=2)
+        opts = hbm_options(case, harmonics=0, time_samples=2)
         return solve_hbm(model, excitation.static_part(), opts)
     if s.method == "quasi_static":
         from seafast.solvers.references import solve_quasi_static
@@ -122,7 +122,7 @@ def solve_nonlinear(
         from seafast.solvers.references import solve_time_domain
 
         return solve_time_domain(model, excitation, time_samples=s.reference_time_samples)
-    opts = _hbm_options(case)
+    opts = hbm_options(case)
     start = None
     if warm_start is not None and s.formulation == "condensed":
         start = np.asarray(warm_start.saddle_compression_time_m)
@@ -363,41 +363,3 @@ def couple_hull_and_cargo(
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     """Summary rows of one case (what a study records per point)."""
     return run_case(case).summary
-
-
-SWEEP_HARMONICS = 10
-"""H of a frequency sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
-
-
-def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
-    """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
-
-    The deck-motion amplitudes and the rigid-body displacement amplitudes of the case's wave are
-    kept while the frequency is swept (:meth:`HarmonicExcitation.at_frequency`), so the sweep
-    shows where the quasi-static picture holds and what the cargo does near its resonances.
-
-    Returns
-    -------
-    branch, model
-        The :class:`~seafast.solvers.continuation.FrequencyResponseBranch` and the model.
-    """
-    from seafast.solvers.continuation import frequency_response
-
-    if case.vessel.coupling == "two_way":
-        # the coupled deck depends on the cargo's response at each frequency: continuation
-        # would have to re-couple at every point, which it does not
-        raise ValueError(
-            "vessel.coupling = 'two_way': the frequency sweep supports 'one_way' only (the coupled deck changes "
-            "with frequency); run the sweep with --set vessel.coupling=one_way, or single frequencies with seafast run"
-        )
-    model = build_model(case)
-    excitation, _ = _excitation(case, model)
-    # continuation runs on the condensed system with Newton correctors; its corrector's
-    # round-off floor near resonance is ~1e-9, hence the tolerance floor
-    opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    if opts.harmonics is None:
-        # continuation follows one branch at a fixed H: the case's, else SWEEP_HARMONICS
-        opts = opts.with_harmonics(SWEEP_HARMONICS)
-    branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
-    return branch, model
-
