@@ -187,7 +187,7 @@ def format_sweep_summary(result: Any) -> list[str]:
     if t.fold_omegas_rad_s.size:
         lines.append("folds at " + ", ".join(f"{w:.4g}" for w in t.fold_omegas_rad_s) + " rad/s (unstable between a pair)")
     lim = result.acceleration_limit_rad_s
-    if lim is not None and np.isfinite(lim):
+    if lim is not None and lim < max(result.omega_start_rad_s, result.omega_end_rad_s):
         beyond = "the sweep stopped there" if result.stopped_beyond_range else "points beyond it are flagged valid=false"
         lines.append(f"the held deck motion accelerates the deck faster than g = {t.limits.gravity_m_per_s2:g} m/s^2 above "
                      f"omega_g = {lim:.4g} rad/s: {beyond} (seafast sweep --wave: the waves of these frequencies)")
