@@ -100,7 +100,8 @@ def _structural_figure(table: SweepTable, model: Any, path: Path, acceleration_l
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     axes[1].axhline(table.limits.max_gap_m * 1e3, color="0.5", ls="--", lw=1, label=f"gap limit {table.limits.max_gap_m * 1e3:g} mm")
-    if acceleration_limit_rad_s is not None and acceleration_limit_rad_s < float(omega.max()):
+    shaded = acceleration_limit_rad_s is not None and acceleration_limit_rad_s < float(omega.max())
+    if shaded:
         for ax in axes:
             ax.axvspan(acceleration_limit_rad_s, float(omega.max()), color="0.88", zorder=0)
         axes[2].text(acceleration_limit_rad_s, axes[2].get_ylim()[1], " deck acceleration > g", va="top", fontsize=8, color="0.3")
@@ -108,11 +109,11 @@ def _structural_figure(table: SweepTable, model: Any, path: Path, acceleration_l
         if omega.min() <= w <= omega.max():
             for ax in axes:
                 ax.axvline(w, color="tab:blue", ls="-.", lw=0.8, alpha=0.6)
-    axes[0].legend(fontsize=8, loc="upper left")
-    axes[1].legend(fontsize=8, loc="upper left")
+    axes[0].legend(fontsize=8, loc="best")
+    axes[1].legend(fontsize=8, loc="best")
     axes[0].set_title(
         "Structural frequency response: the case's deck and rigid-body amplitudes held\n"
-        "dash-dot: natural frequencies on bilateral saddles; grey: deck accelerating faster than g",
+        "dash-dot: natural frequencies on bilateral saddles" + ("; grey: deck accelerating faster than g" if shaded else ""),
         fontsize=10,
     )
     axes[-1].set_xlabel("excitation frequency omega [rad/s]")
