@@ -244,6 +244,10 @@ def test_seafast_sweep_says_when_the_branch_leaves_the_meaningful_range(tmp_path
     header, rows = _rows(out / "frequency_response.csv")
     assert tuple(header) == STRUCTURAL_COLUMNS and rows[-1]["valid"] == "false"
     assert not (out / "frequency_response.png").exists()
+    # quiet: the warning only
+    assert main(["-q", "sweep", "-o", str(tmp_path / "quiet"), "--omega-min", "1.5", "--omega-max", "3", "--no-plots"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "" and "deck_acceleration_above_g" in captured.err
 
 
 def test_seafast_sweep_refuses_bad_input(tmp_path, capsys):

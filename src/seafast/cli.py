@@ -245,10 +245,11 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     except (CaseError, ValueError) as exc:
         return _error(str(exc))
     paths = write_sweep_outputs(result, args.output, plots=not args.no_plots)
-    w1 = float(result.model.natural_frequencies_rad_s(True, 1)[0])
-    for line in format_sweep_summary(result):
-        print(line)
-    print(f"first natural frequency on bilateral saddles {w1:.3g} rad/s; wrote {', '.join(str(p) for p in paths)}")
+    if not args.global_quiet:
+        w1 = float(result.model.natural_frequencies_rad_s(True, 1)[0])
+        for line in format_sweep_summary(result):
+            print(line)
+        print(f"first natural frequency on bilateral saddles {w1:.3g} rad/s; wrote {', '.join(str(p) for p in paths)}")
     warning = range_warning(result)
     if warning is not None:
         print(f"seafast: warning: {warning}", file=sys.stderr)
