@@ -3,7 +3,7 @@
 This is the only place that knows the order of the stages; each stage is a pure function of
 the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
 
-Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a study point's short path, the two-way coupling and a sweep; each is a short function of the stages below.
+Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a study point's short path and the two-way coupling; each is a short function of the stages below (frequency sweeps: :mod:`seafast.sweeps`).
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ __all__ = [
     "evaluate_summary",
     "solve_nonlinear",
     "couple_hull_and_cargo",
-    "frequency_sweep",
+    "hbm_options",
 ]
 
 
@@ -77,8 +77,13 @@ def build_model(case: Case) -> StructuralModel:
     )
 
 
+def hbm_options(case: Case, **changes: Any) -> Any:
+    """Harmonic-balance options (:class:`~seafast.solvers.hbm.HBMOptions`) from the case's solver settings, with ``changes`` applied."""
+    return _hbm_options(case, **changes)
+
+
 def _hbm_options(case: Case, **changes: Any) -> Any:
-    """Harmonic-balance options from the case's solver settings, with ``changes`` applied."""
+    """:func:`hbm_options` (the solves here call this name, which tests may patch)."""
     from seafast.solvers.hbm import HBMOptions
 
     s = case.solver
@@ -439,33 +444,3 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 
 COUPLING_HARMONICS = 32
 """Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""
-
-def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
-    """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
-
-    The deck-motion amplitudes and the rigid-body displacement amplitudes of the case's wave are
-    kept while the frequency is swept (:meth:`HarmonicExcitation.at_frequency`), so the sweep
-    shows where the quasi-static picture holds and what the cargo does near its resonances.
-
-    Returns
-    -------
-    branch, model
-        The :class:`~seafast.solvers.continuation.FrequencyResponseBranch` and the model.
-    """
-    from seafast.solvers.continuation import frequency_response
-
-    if case.vessel.coupling == "two_way":
-        # the coupled deck depends on the cargo's response at each frequency: continuation
-        # would have to re-couple at every point, which it does not
-        raise ValueError(
-            "vessel.coupling = 'two_way': the frequency sweep supports 'one_way' only (the coupled deck changes "
-            "with frequency); run the sweep with --set vessel.coupling=one_way, or single frequencies with seafast run"
-        )
-    model = build_model(case)
-    excitation, _ = _excitation(case, model)
-    # continuation runs on the condensed system with Newton correctors; its corrector's
-    # round-off floor near resonance is ~1e-9, hence the tolerance floor
-    opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
-    return branch, model
-
