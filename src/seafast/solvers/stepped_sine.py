@@ -38,7 +38,8 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm import condensed_operators
-from seafast.solvers.modal_correction import ModalCorrectionSystem, modal_correction_system
+from seafast.solvers.modal_correction import modal_correction_system
+from seafast.solvers.transient import MarchState, march_period, modal_correction
 
 __all__ = ["SweepJump", "SteppedSineSweep", "stepped_sine_sweep"]
 
@@ -96,7 +97,7 @@ class SteppedSineSweep:
 
 @dataclass(frozen=True)
 class _Held:
-    state: NDArray[np.float64]
+    state: MarchState
     force: float
     gap: float
     span: float
@@ -105,28 +106,27 @@ class _Held:
 
 
 def _hold(
-    system: ModalCorrectionSystem, model: StructuralModel, excitation: HarmonicExcitation, state: NDArray, steps: int,
+    model: StructuralModel, excitation: HarmonicExcitation, cutoff_rad_s: float, start: MarchState, steps: int,
     tolerance: float, min_periods: int, max_periods: int,
 ) -> _Held:
-    """March whole periods at one frequency until the compressions repeat (or ``max_periods``)."""
+    """March whole periods at one frequency from a copy of ``start`` until the compressions repeat (or ``max_periods``)."""
     ops = condensed_operators(model, excitation, max(excitation.harmonic_count - 1, 1))
-    lin = harmonics_to_time(real_to_complex_harmonics(ops.linear_compression_m), steps)
-    closed = np.ascontiguousarray(np.concatenate([lin, lin[:1]]))
-    dt = 2.0 * math.pi / excitation.omega_rad_s / steps
+    lin = np.ascontiguousarray(harmonics_to_time(real_to_complex_harmonics(ops.linear_compression_m), steps))
+    system = modal_correction(model, 2.0 * math.pi / excitation.omega_rad_s / steps, cutoff_rad_s, minimum_modes=0)
+    state = MarchState(start.eta.copy(), start.eta_dot.copy(), start.eta_ddot.copy(), start.force_N.copy(), start.detached.copy())
     scale = max(float(np.max(np.abs(lin))), 1e-12)
     previous: NDArray | None = None
     settled = False
     periods = 0
     delta = lin
     for periods in range(1, max_periods + 1):
-        result = system.march(closed, dt, state)
-        state, delta = result.state, result.compression_m[:-1]
+        delta = march_period(system, lin, state)
         if previous is not None and periods >= min_periods:
             if float(np.max(np.abs(delta - previous))) <= tolerance * scale:
                 settled = True
                 break
         previous = delta
-    k = system.unilateral_stiffness_N_per_m
+    k = system.stiffness_N_per_m
     span = float(np.max(np.ptp(delta, axis=0)))
     return _Held(state, float(np.max(k * np.maximum(delta, 0.0))), float(max(-np.min(delta), 0.0)), span, settled, periods)
 
@@ -179,15 +179,17 @@ def stepped_sine_sweep(
         raise ValueError(f"step fractions {min_step_fraction!r}, {step_fraction!r}; allowed: 0 < min_step_fraction <= step_fraction < 1")
     if cutoff_rad_s is None:
         cutoff_rad_s = 4.0 * float(model.natural_frequencies_rad_s(True, count=max(model.saddle_count, 1))[-1])
-    system = modal_correction_system(model, float(cutoff_rad_s))
-    top = float(system.natural_frequency_rad_s[-1]) if system.mode_count else 0.0
+    kept = modal_correction_system(model, float(cutoff_rad_s))
+    top = float(kept.natural_frequency_rad_s[-1]) if kept.mode_count else 0.0
     direction = 1.0 if w1 > w0 else -1.0
 
-    def hold(omega: float, state: NDArray) -> _Held:
+    def hold(omega: float, state: MarchState) -> _Held:
         steps = max(int(steps_per_period), 2 * math.ceil(6.0 * top / omega))
-        return _hold(system, model, excitation_at(omega), state, steps, tolerance, min_periods, max_periods)
+        return _hold(model, excitation_at(omega), float(cutoff_rad_s), state, steps, tolerance, min_periods, max_periods)
 
-    current = hold(w0, np.zeros(3 * system.mode_count + system.saddle_count))
+    at_rest = MarchState(np.zeros(kept.mode_count), np.zeros(kept.mode_count), np.zeros(kept.mode_count),
+                         np.zeros(kept.saddle_count), np.zeros(kept.saddle_count, dtype=bool))
+    current = hold(w0, at_rest)
     omega = w0
     rows = [(omega, current)]
     jumps: list[SweepJump] = []

@@ -88,6 +88,7 @@ __all__ = [
     "TransientRecord",
     "integrate_record",
     "PeriodicMarch",
+    "march_period",
     "march_periodic",
 ]
 
@@ -672,24 +673,45 @@ def march_periodic(
     if n_s != system.saddle_count:
         raise ValueError(f"linear_compression_m has {n_s} columns; the model has {system.saddle_count} saddles")
     scale = max(float(np.max(np.abs(d_lin))), 1e-12)
-    coef = np.ascontiguousarray(spline_filter1d(d_lin, order=3, axis=0, mode="grid-wrap"))  # periodic: step N is step 0
     state = MarchState.at_rest(system)
-    captured = np.empty((N + 1, n_s))
-    lifted = np.zeros((N + 1, n_s), dtype=bool)
-    trigger = np.ones(N, dtype=bool)
     previous: NDArray[np.float64] | None = None
     change = np.inf
     periods = 0
     delta = d_lin
     for periods in range(1, int(max_periods) + 1):
-        march_window(
-            system, coef, 1, np.zeros(n_s), trigger, 0, N, state, tolerance_m=0.0,
-            capture_every=1, capture_compression=captured, capture_lifted=lifted,
-        )
-        delta = np.roll(captured[1:], 1, axis=0)  # t_1 .. t_N, and t_N is t_0 of the next period
+        delta = march_period(system, d_lin, state)
         if previous is not None:
             change = float(np.max(np.abs(delta - previous))) / scale
             if change <= tolerance:
                 break
         previous = delta
     return PeriodicMarch(delta, periods, change)
+
+
+def march_period(system: ModalCorrection, linear_compression_m: NDArray[np.float64], state: MarchState) -> NDArray[np.float64]:
+    """March one period of periodic linear compressions from ``state`` (updated in place to the period's end).
+
+    Parameters
+    ----------
+    system
+        The reduced correction system for the step ``T / N``.
+    linear_compression_m
+        ``delta_lin`` over one period at ``t_n = n T / N``, (N, n_s) [m] (step N is step 0 again).
+    state
+        The state at ``t_0``.
+
+    Returns
+    -------
+    The compressions at ``t_0 .. t_{N-1}`` of this period (N, n_s) [m], ``t_0`` being the state's own.
+    """
+    d_lin = np.ascontiguousarray(linear_compression_m, dtype=float)
+    N, n_s = d_lin.shape
+    coef = np.ascontiguousarray(spline_filter1d(d_lin, order=3, axis=0, mode="grid-wrap"))  # periodic: step N is step 0
+    captured = np.empty((N + 1, n_s))
+    lifted = np.zeros((N + 1, n_s), dtype=bool)
+    captured[0] = d_lin[0] - system.saddle_displacement_m(state.eta, state.force_N)
+    march_window(
+        system, coef, 1, np.zeros(n_s), np.ones(N, dtype=bool), 0, N, state, tolerance_m=0.0,
+        capture_every=1, capture_compression=captured, capture_lifted=lifted,
+    )
+    return np.roll(captured[1:], 1, axis=0)  # t_1 .. t_N, and t_N is t_0 of the next period
