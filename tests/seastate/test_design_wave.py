@@ -12,6 +12,7 @@ from seafast.results.summary import RowSolution, summary_rows
 from seafast.seastate.conditioned_wave import conditioned_wave, solve_conditioned_wave
 from seafast.seastate.design_wave import (
     DesignWaveSettings,
+    design_wave_extremes,
     sea_state_design_waves,
     select_design_waves,
     still_water_excitation,
@@ -155,6 +156,23 @@ def test_fixed_harmonics_against_the_adaptive_default(base):
         adaptive = solve_hbm(an.model, _scaled(unit, wv.amplitude_m))
         assert adaptive.converged
         assert fixed.maxima["F_N"] == pytest.approx(float(adaptive.saddle_force_time_N.max()), rel=3e-3), wv.role
+
+
+def test_a_wave_the_truncated_balance_cannot_solve_falls_back_to_fewer_harmonics():
+    # heavy lift-off (Hs 4.9 m, Tp 8.5 s): with the exact law the H = 16 balance of the upper band
+    # wave has no solution near its start (Newton stalls near 1e-3), H = 12 converges; the H used is kept
+    an = analysis_of(**{"sea_state.significant_height_m": 4.9, "sea_state.peak_period_s": 8.5})
+    static = still_water_excitation(an)
+    assert not design_wave_extremes(an, static, DesignWaveSettings(fallback_harmonics=())).converged
+    dw = design_wave_extremes(an, static)
+    assert dw.converged
+    used = {(w.role, s.harmonics) for w, s in zip(dw.waves, dw.solutions)}
+    assert ("band_high", 12) in used and ("peak", 16) in used
+    # the fallback's answer is the periodic solution's: within 2 % of the adaptive H there
+    wv = next(w for w in dw.waves if w.quantity == "F_N" and w.role == "band_high")
+    sol = next(s for w, s in zip(dw.waves, dw.solutions) if w is wv)
+    ref = solve_hbm(an.model, _scaled(unit_wave_excitation(static, an.transfer, wv.frequency_index), wv.amplitude_m))
+    assert ref.converged and sol.maxima["F_N"] == pytest.approx(float(ref.saddle_force_time_N.max()), rel=0.02)
 
 
 def test_the_conditioned_wave_reaches_its_target_at_t0_and_equals_the_linear_mpm_without_lift_off():

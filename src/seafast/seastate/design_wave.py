@@ -79,6 +79,11 @@ class DesignWaveSettings:
         H of the harmonic balance (fixed: the amplitude searches reuse the operators), or None:
         each wave by the package's adaptive harmonic balance (the converged periodic answer, at
         tens to hundreds of times the cost; docs/operability.md).
+    fallback_harmonics
+        Fewer harmonics tried in turn when the solve at ``harmonics`` does not converge: with the
+        exact contact law a truncated harmonic balance of heavy lift-off can have no solution near
+        its start (the residual stalls near 1e-3), while fewer harmonics converge in a few Newton
+        steps (docs/operability.md); the H used is recorded per wave.
     time_samples
         N, or None for the default of H.
     tolerance
@@ -88,6 +93,7 @@ class DesignWaveSettings:
     band_fraction: float = 0.5
     band_points: int = 3
     harmonics: int | None = DEFAULT_HARMONICS
+    fallback_harmonics: tuple[int, ...] = (12, 8)
     time_samples: int | None = None
     tolerance: float = 1e-10
 
@@ -97,10 +103,10 @@ class DesignWaveSettings:
         if int(self.band_points) < 1:
             raise ValueError(f"DesignWaveSettings.band_points = {self.band_points!r}; allowed: an integer >= 1")
 
-    def hbm_options(self) -> HBMOptions:
-        """The harmonic-balance options (exact contact law, condensed, Newton; fixed H, or adaptive)."""
-        H = None if self.harmonics is None else int(self.harmonics)
-        return HBMOptions(harmonics=H, time_samples=self.time_samples, tolerance=float(self.tolerance))
+    def hbm_options(self, harmonics: int | None = -1) -> HBMOptions:
+        """The harmonic-balance options (exact contact law, condensed, Newton) at ``harmonics`` (default: this H)."""
+        H = self.harmonics if harmonics == -1 else harmonics
+        return HBMOptions(harmonics=None if H is None else int(H), time_samples=self.time_samples, tolerance=float(self.tolerance))
 
 
 @dataclass(frozen=True)
@@ -265,7 +271,7 @@ def design_wave_extremes(
     settings: DesignWaveSettings = DesignWaveSettings(),
     *,
     quantities: Sequence[str] = RESPONSE_QUANTITIES,
-    operators: dict[int, WaveOperators] | None = None,
+    operators: dict[tuple[int, int], WaveOperators] | None = None,
     moments: MomentMap | None = None,
     warm: dict[int, WaveSolution] | None = None,
 ) -> DesignWaveExtremes:
@@ -282,8 +288,8 @@ def design_wave_extremes(
     quantities
         The quantities to estimate (default all five); the others keep their still-water value.
     operators
-        A cache of wave operators by grid index (filled here; pass the same dict to reuse them
-        for another sea state on the same grid, e.g. another Hs).
+        A cache of wave operators by (grid index, H) (filled here; pass the same dict to reuse
+        them for another sea state on the same grid, e.g. another Hs).
     moments
         The model's moment map (computed when omitted).
     warm
@@ -300,7 +306,7 @@ def design_wave_extremes(
         raise ValueError(f"design_wave_extremes: quantities {unknown}; allowed: {', '.join(RESPONSE_QUANTITIES)}")
     waves = select_design_waves(analysis, settings, quantities)
     options = settings.hbm_options()
-    cache = {} if operators is None else operators
+    cache: dict[tuple[int, int], WaveOperators] = {} if operators is None else operators
     mm = moment_map(analysis.model) if moments is None else moments
     solved: dict[tuple[int, float], WaveSolution] = {}
     solutions = []
@@ -310,14 +316,19 @@ def design_wave_extremes(
             unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
             solved[key] = solve_wave_adaptive(analysis.model, unit, wave.amplitude_m, mm, options)
         if key not in solved:
-            if wave.frequency_index not in cache:
-                unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
-                cache[wave.frequency_index] = wave_operators(analysis.model, unit, options, mm)
             previous = None if warm is None else warm.get(wave.frequency_index)
-            start = previous.compression_harmonics_m if previous is not None and previous.converged else None
-            solved[key] = solve_wave(cache[wave.frequency_index], wave.amplitude_m, options, start)
+            for H in (int(settings.harmonics), *settings.fallback_harmonics):  # type: ignore[arg-type]
+                opts = settings.hbm_options(H)
+                if (wave.frequency_index, H) not in cache:
+                    unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
+                    cache[(wave.frequency_index, H)] = wave_operators(analysis.model, unit, opts, mm)
+                usable = previous is not None and previous.converged and previous.harmonics == H
+                sol = solve_wave(cache[(wave.frequency_index, H)], wave.amplitude_m, opts, previous.compression_harmonics_m if usable else None)  # type: ignore[union-attr]
+                if sol.converged:
+                    break
+            solved[key] = sol
             if warm is not None:
-                warm[wave.frequency_index] = solved[key]
+                warm[wave.frequency_index] = sol
         solutions.append(solved[key])
     totals = static_totals(analysis)
     governing = {q: -1 for q in RESPONSE_QUANTITIES}

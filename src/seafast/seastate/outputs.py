@@ -133,6 +133,7 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
         "design_wave_omega_rad_s": _var(d, [w.omega_rad_s for w in waves], "design wave frequency", "rad/s"),
         "design_wave_amplitude_m": _var(d, [w.amplitude_m for w in waves], "design wave amplitude (linear response = linear spectral MPM)", "m"),
         "design_wave_converged": _var(d, np.array([s.converged for s in sols], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"),
+        "design_wave_harmonics": _var(d, [s.harmonics for s in sols], "harmonics H of the harmonic balance that solved the wave", "1"),
     }
     for q, what in _DESIGN_WAVE_MAXIMA.items():
         v[f"design_wave_{q}"] = _var(d, [s.maxima[q] for s in sols], f"{what} over the design wave's period (nonlinear, still water included)", QUANTITIES[q][1])

@@ -21,6 +21,8 @@ positive when compressed; sagging moment positive.
 
 from __future__ import annotations
 
+import functools
+import weakref
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -78,8 +80,22 @@ class MomentMap:
     section_modulus_m3: NDArray[np.float64]
 
 
+_MOMENT_MAPS: dict[int, tuple[Any, MomentMap]] = {}  # id(model) -> (weak reference to it, its map)
+
+
 def moment_map(model: StructuralModel) -> MomentMap:
-    """The moment map of a model (built column by column from :func:`bending_moment_line`)."""
+    """The moment map of a model (built column by column from :func:`bending_moment_line`; kept per model object)."""
+    held = _MOMENT_MAPS.get(id(model))
+    if held is not None and held[0]() is model:
+        return held[1]
+    mm = _build_moment_map(model)
+    if len(_MOMENT_MAPS) >= 8:
+        _MOMENT_MAPS.pop(next(iter(_MOMENT_MAPS)))
+    _MOMENT_MAPS[id(model)] = (weakref.ref(model), mm)
+    return mm
+
+
+def _build_moment_map(model: StructuralModel) -> MomentMap:
     beam = model.cargo
     n_c, n_el = model.cargo_dof_count, beam.element_count
     x_m, disp = bending_moment_line(
@@ -166,10 +182,11 @@ def wave_operators(
     H, N = int(fixed.harmonics), int(fixed.time_samples)  # type: ignore[arg-type]
     ops = condensed_operators(model, excitation, H)
     mm = moment_map(model) if moments is None else moments
+    # the linear solution and the line loads live on the excitation's harmonics only
     n_k = min(excitation.harmonic_count, H + 1)
-    line = np.zeros((H + 1, model.cargo.element_count), dtype=complex)
-    line[:n_k] = excitation.cargo_line_load_N_per_m[:n_k]
-    moment = _real_map(mm.displacement_map, ops.linear_cargo_displacement.T).T + _real_map(mm.load_map, line.T).T
+    moment = np.zeros((H + 1, mm.x_m.size), dtype=complex)
+    moment[:n_k] = (_real_map(mm.displacement_map, ops.linear_cargo_displacement[:n_k].T)
+                    + _real_map(mm.load_map, excitation.cargo_line_load_N_per_m[:n_k].T)).T
     moment[0] = moment[0].real + mm.gravity_moment_Nm
     Y = ops.cargo_influence  # (H+1, n_c, n_s)
     influence = _real_map(mm.displacement_map, Y.transpose(1, 0, 2).reshape(Y.shape[1], -1))
@@ -205,6 +222,8 @@ class WaveSolution:
         Real-layout saddle-compression harmonics (2H+1, n_s) [m]: a warm start for a neighbouring amplitude.
     lifted_off
         Whether some saddle detaches in this wave.
+    harmonics
+        H of the harmonic balance that gave it.
     """
 
     amplitude: float
@@ -215,21 +234,28 @@ class WaveSolution:
     iterations: int
     compression_harmonics_m: NDArray[np.float64]
     lifted_off: bool
+    harmonics: int = -1
 
 
 _REFINE_POINTS = 33  # evaluations between the neighbours of the largest sample, then a parabola: the peak to ~1e-12
 
 
-def _refined(coefficients: NDArray[np.float64], sample: int, time_samples: int, sign: float) -> float:
-    """Largest ``sign * x(t)`` of one real-layout series (2H+1,) over the two sample intervals around ``sample``."""
-    H = (coefficients.size - 1) // 2
+@functools.lru_cache(maxsize=512)
+def _refine_basis(sample: int, time_samples: int, harmonics: int) -> NDArray[np.float64]:
+    """Rows [1, cos k theta, sin k theta] at 33 times over the two sample intervals around ``sample``."""
     theta = 2.0 * np.pi * (sample + np.linspace(-1.0, 1.0, _REFINE_POINTS)) / time_samples
-    k = np.arange(1, H + 1)
-    basis = np.empty((_REFINE_POINTS, 2 * H + 1))
+    k = np.arange(1, harmonics + 1)
+    basis = np.empty((_REFINE_POINTS, 2 * harmonics + 1))
     basis[:, 0] = 1.0
     basis[:, 1::2] = np.cos(np.outer(theta, k))
     basis[:, 2::2] = np.sin(np.outer(theta, k))
-    y = sign * (basis @ coefficients)
+    basis.setflags(write=False)
+    return basis
+
+
+def _refined(coefficients: NDArray[np.float64], sample: int, time_samples: int, sign: float) -> float:
+    """Largest ``sign * x(t)`` of one real-layout series (2H+1,) over the two sample intervals around ``sample``."""
+    y = sign * (_refine_basis(int(sample), int(time_samples), (coefficients.size - 1) // 2) @ coefficients)
     i = int(np.argmax(y))
     if 0 < i < y.size - 1:  # the parabola through the best point and its neighbours (its error ~ step^4)
         curvature = y[i - 1] - 2.0 * y[i] + y[i + 1]
@@ -318,6 +344,7 @@ def solve_wave(
         iterations=int(sol.iterations),
         compression_harmonics_m=sol.saddle_compression,
         lifted_off=bool(np.any(inverse @ sol.saddle_compression < 0.0)),
+        harmonics=H,
     )
 
 
@@ -360,4 +387,5 @@ def solve_wave_adaptive(
         iterations=int(r.iterations),
         compression_harmonics_m=complex_to_real_harmonics(C),
         lifted_off=bool(np.any(r.saddle_compression_time_m < 0.0)),
+        harmonics=H,
     )
