@@ -93,7 +93,10 @@ class OperabilityPoint:
     hs_max_steepness_m
         The steepest sea state at this Tp [m] (the cap of the search).
     hs_force_linear_m, hs_stress_linear_m, hs_force_nonlinear_m, hs_stress_nonlinear_m
-        Hs at which each limit alone is reached [m] (inf: not below the steepness limit; NaN: not converged).
+        Hs at which each limit alone is reached [m] (inf: not below the steepness limit). The
+        nonlinear search looks for the limit the linear model reaches first, then for the other
+        only below that Hs: NaN when the other limit is not reached there (not searched), or the
+        search did not converge (``converged``).
     converged
         Every harmonic-balance solve of the search converged.
     evaluations
@@ -177,7 +180,7 @@ def _nonlinear_limit_hs(
 
     hs = min(max(start_hs, 1e-3), cap)
     f = g(hs)
-    if abs(f) <= 1e-12:  # no lift-off in the design waves: the nonlinear answer is the linear one
+    if abs(f) <= 1e-7:  # no lift-off in the design waves: the nonlinear answer is the linear one (to the peak reading)
         return hs, ok[0], len(seen)
     if f < 0.0:
         lo, hi, f_hi = hs, hs, f
@@ -215,28 +218,43 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
         with np.errstate(divide="ignore"):
             onset = float(np.min(np.where(comp_mpm > 0, comp0 / np.where(comp_mpm > 0, comp_mpm, 1.0), np.inf)))
     onset = onset if onset <= cap else math.nan
-    operators: dict[int, WaveOperators] = {}
+    operators: dict[tuple[int, int], WaveOperators] = {}
     warm: dict[int, WaveSolution] = {}
     evaluations = 0
     converged = True
-    nonlinear: dict[str, float] = {}
-    for name, quantity in _LIMIT_QUANTITY.items():
+    nonlinear = {name: math.nan for name in _LIMIT_QUANTITY}
 
-        def value(hs: float, quantity: str = quantity) -> tuple[float, bool]:
+    def value_of(quantity: str) -> Callable[[float], tuple[float, bool]]:
+        def value(hs: float) -> tuple[float, bool]:
             dw = design_wave_extremes(rescaled(ref, hs), family.static, settings.design_wave, quantities=(quantity,),
                                       operators=operators, moments=family.moments, warm=warm)
             return float(dw.totals[quantity]), dw.converged
 
-        start = linear[name] if math.isfinite(linear[name]) else cap
+        return value
+
+    # the limit the linear model reaches first is searched first; the other only below its Hs, and
+    # not at all when it is still within its limit there (the MPMs grow with Hs)
+    first, second = sorted(_LIMIT_QUANTITY, key=lambda n: linear[n])
+    bound = cap
+    for name in (first, second):
         if linear[name] == 0.0:
             nonlinear[name] = 0.0  # the still water alone exceeds the limit: no waves allowed, either model
-            continue
-        hs_nl, ok, count = _nonlinear_limit_hs(value, limits[name], start, cap, settings)
+            break
+        value = value_of(_LIMIT_QUANTITY[name])
+        if name == second and bound < cap:
+            v, ok = value(bound)
+            evaluations += 1
+            converged &= ok
+            if v < limits[name]:
+                break  # within its limit where the first is reached: not searched (NaN)
+        hs, ok, count = _nonlinear_limit_hs(value, limits[name], min(linear[name], bound), bound, settings)
         evaluations += count
         converged &= ok
-        nonlinear[name] = hs_nl if ok else math.nan
+        nonlinear[name] = hs if ok else math.nan
+        if ok and math.isfinite(hs):
+            bound = min(bound, hs)
     if converged:
-        hs_nl, gov_nl = _governing(nonlinear, cap)
+        hs_nl, gov_nl = _governing({k: (math.inf if math.isnan(v) else v) for k, v in nonlinear.items()}, cap)
     else:
         hs_nl, gov_nl = math.nan, "not_converged"
         logger.warning("operability: Tp = %g s: a harmonic-balance solve of the nonlinear search did not converge", tp)

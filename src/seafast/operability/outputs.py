@@ -88,8 +88,8 @@ def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | 
         "hs_max_steepness_m": _var(d, [p.hs_max_steepness_m for p in P], "steepest sea state at this Tp (DNV-RP-C205 limiting steepness): the cap of the search", "m"),
         "hs_force_linear_m": _var(d, [p.hs_force_linear_m for p in P], "Hs at which the linear MPM saddle force reaches its limit (inf: never)", "m"),
         "hs_stress_linear_m": _var(d, [p.hs_stress_linear_m for p in P], "Hs at which the linear MPM bending stress reaches its limit (inf: never)", "m"),
-        "hs_force_nonlinear_m": _var(d, [p.hs_force_nonlinear_m for p in P], "Hs at which the nonlinear design-wave saddle force reaches its limit (inf: not below the steepness cap; NaN: not converged)", "m"),
-        "hs_stress_nonlinear_m": _var(d, [p.hs_stress_nonlinear_m for p in P], "Hs at which the nonlinear design-wave bending stress reaches its limit (inf: not below the steepness cap; NaN: not converged)", "m"),
+        "hs_force_nonlinear_m": _var(d, [p.hs_force_nonlinear_m for p in P], "Hs at which the nonlinear design-wave saddle force reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)", "m"),
+        "hs_stress_nonlinear_m": _var(d, [p.hs_stress_nonlinear_m for p in P], "Hs at which the nonlinear design-wave bending stress reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)", "m"),
         "converged": _var(d, np.array([p.converged for p in P], dtype=np.int8), "every harmonic-balance solve of the nonlinear search converged (1) or not (0)", "1"),
         "evaluations": _var(d, [p.evaluations for p in P], "design-wave evaluations of the nonlinear search", "1"),
     }
