@@ -310,13 +310,18 @@ def design_wave_extremes(
     mm = moment_map(analysis.model) if moments is None else moments
     solved: dict[tuple[int, float], WaveSolution] = {}
     solutions = []
+    last: WaveSolution | None = None
     for wave in waves:
         key = (wave.frequency_index, round(wave.amplitude_m, 12))
         if key not in solved and settings.harmonics is None:
             unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
             solved[key] = solve_wave_adaptive(analysis.model, unit, wave.amplitude_m, mm, options)
         if key not in solved:
+            # start from this frequency's previous solution (an amplitude search), else from the last wave solved:
+            # the quantities' design waves lie close together (neighbouring frequencies, amplitudes within a few
+            # per cent), and a start that fails falls back on the solver's own (solve_wave)
             previous = None if warm is None else warm.get(wave.frequency_index)
+            previous = previous if previous is not None else last
             for H in (int(settings.harmonics), *settings.fallback_harmonics):  # type: ignore[arg-type]
                 opts = settings.hbm_options(H)
                 if (wave.frequency_index, H) not in cache:
@@ -327,6 +332,7 @@ def design_wave_extremes(
                 if sol.converged:
                     break
             solved[key] = sol
+            last = sol if sol.converged else last
             if warm is not None:
                 warm[wave.frequency_index] = sol
         solutions.append(solved[key])
