@@ -3,7 +3,7 @@
 The time-domain reference is timed in both formulations; the full-DOF one (independent of the
 HBM's condensation) is the reference of ``speedup_vs_time_domain``.
 
-Run ``python benchmarks/bench_hbm.py``. The last line is ``key=value`` pairs (INTERFACE.md).
+Run ``python benchmarks/bench_hbm.py``. The last line is ``key=value`` pairs (docs/interface.md).
 Swap the case by editing :func:`base_case_model_and_excitation` only.
 """
 

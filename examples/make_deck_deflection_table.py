@@ -29,7 +29,7 @@ def main() -> Path:
     w1 = wave.deflection_harmonics_m[1]  # complex first harmonic: w = Re(W1 exp(i omega t))
     w1_x = np.interp(x, wave.x_m, w1.real) + 1j * np.interp(x, wave.x_m, w1.imag)
     lines = [
-        "# seafast example deck-deflection table (INTERFACE.md format). GENERATED, not measured:",
+        "# seafast example deck-deflection table (docs/interface.md#31-deck-deflection-table format). GENERATED, not measured:",
         "# the base case's own computed hull-girder deflection (default loading, tapered-box hull, Timoshenko beam),",
         "# still water + first harmonic of the quasi-static wave deflection for lambda = 171 m, zeta_a = 3 m,",
         "# written by examples/make_deck_deflection_table.py. x from the aft perpendicular; deflection up positive [m];",

@@ -43,7 +43,7 @@ def test_run_base_case_writes_interface_outputs(tmp_path):
 
 
 def test_calibration_static_linear_base_case(tmp_path):
-    """MODEL.md section 6: static, still-water, linear base case."""
+    """docs/theory.md (calibration): static, still-water, linear base case."""
     out = tmp_path / "cal"
     assert main(["run", "-o", str(out), *FAST]) == 0
     row = _summary(out / "summary.csv")[0]

@@ -167,6 +167,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from seafast.output.files import write_run_outputs
     from seafast.output.tables import format_summary_table
     from seafast.pipeline import run_case
+    from seafast.results.dataset import LOAD_CASES, MODELS
 
     try:
         overrides = parse_overrides(args.overrides)

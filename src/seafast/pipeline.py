@@ -2,6 +2,8 @@
 
 This is the only place that knows the order of the stages; each stage is a pure function of
 the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
+
+Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a study point's short path, the two-way coupling and a sweep; each is a short function of the stages below.
 """
 
 from __future__ import annotations
@@ -317,12 +319,9 @@ def couple_hull_and_cargo(
         compliance = _compliance(case, model, vessel)
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
-    if case.solver.method == "hbm" and case.solver.harmonics is None:
-        # the coupling iterates on a fixed set of harmonics: choose H once, on the one-way excitation
-        chosen = solve_nonlinear(model, excitation, case, static=False).options
-        solver = case.solver.model_copy(update={"harmonics": int(chosen["harmonics"]), "time_samples": int(chosen["time_samples"])})
-        case = case.model_copy(update={"solver": solver})
-    k_nonlinear = max((case.solver.harmonics or 0) + 1, k_linear)
+    # the deck forces exchanged with the hull: harmonics 0 .. H of a fixed H, else 0 .. COUPLING_HARMONICS (the
+    # adaptive H of each cargo solve can be hundreds; the quasi-static hull girder is no model for loads that fast)
+    k_nonlinear = max((case.solver.harmonics if case.solver.harmonics is not None else COUPLING_HARMONICS) + 1, k_linear)
     omega = excitation.omega_rad_s
     jac = linear_coupling_jacobians(model, omega, compliance, (1, k_linear, k_nonlinear))
 
@@ -432,9 +431,8 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 
 
-SWEEP_HARMONICS = 10
-"""H of a frequency sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
-
+COUPLING_HARMONICS = 32
+"""Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""
 
 def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
     """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
@@ -462,9 +460,6 @@ def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float
     # continuation runs on the condensed system with Newton correctors; its corrector's
     # round-off floor near resonance is ~1e-9, hence the tolerance floor
     opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    if opts.harmonics is None:
-        # continuation follows one branch at a fixed H: the case's, else SWEEP_HARMONICS
-        opts = opts.with_harmonics(SWEEP_HARMONICS)
     branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
     return branch, model
 

@@ -204,7 +204,7 @@ def test_pinned_pinned_frequency_of_base_monopile() -> None:
     Lm, D, t, E, rho = 74.0, 8.0, 0.08, 210e9, 7850.0
     A = float(tube_area_m2(D, t))
     I = float(tube_second_moment_m4(D, t))
-    assert I == pytest.approx(15.6, rel=0.01)  # MODEL.md 2.1
+    assert I == pytest.approx(15.6, rel=0.01)  # docs/theory.md#21-cargo-beam
     n_el = 74
     x = np.linspace(0.0, Lm, n_el + 1)
     K, M, _ = assemble_beam(x, np.full(n_el, E * I), np.full(n_el, rho * A))

@@ -308,7 +308,8 @@ def test_natural_frequencies_of_a_fine_mesh_by_shift_invert_equal_the_converged_
     assert coarse.cargo_dof_count <= DENSE_EIGEN_DOFS < fine.cargo_dof_count
     # Hermite elements converge as h^4: the 1 m mesh's lowest modes are within 1e-7 of converged
     np.testing.assert_allclose(fine.natural_frequencies_rad_s(True, 3), coarse.natural_frequencies_rad_s(True, 3), rtol=1e-6)
-    assert fine.rayleigh_beta_s == pytest.approx(coarse.rayleigh_beta_s, rel=1e-6)
+    # the fit uses the beam's share of the modes' strain energy, which converges with the mesh a little slower
+    assert fine.rayleigh_beta_s == pytest.approx(coarse.rayleigh_beta_s, rel=2e-5)
 
 
 def test_models_along_a_stiffness_axis_share_the_mesh_and_equal_fresh_builds(monkeypatch) -> None:

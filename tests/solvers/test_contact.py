@@ -35,7 +35,7 @@ def test_tanh_is_the_source_law_and_pulls_slightly():
     # largest tension: -0.139 k / kappa at kappa delta ~ -0.64 (about 153 kN for the base saddle)
     assert f.min() == pytest.approx(-0.1392 * K / 1000.0, rel=2e-3)
     assert d[np.argmin(f)] * 1000 == pytest.approx(-0.639, abs=2e-3)
-    # accurate to ~0.1 % at 5 mm (MODEL.md): relative error k d (1 - tanh) / 2 vs k d
+    # accurate to ~0.1 % at 5 mm (docs/theory.md#6-contact-laws): relative error k d (1 - tanh) / 2 vs k d
     assert abs(law.force(5e-3, K) / (K * 5e-3) - 1) < 1e-4
 
 

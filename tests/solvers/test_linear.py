@@ -1,4 +1,4 @@
-"""Verification of the linear (bilateral saddle) solver in its partitioned form (MODEL.md 4).
+"""Verification of the linear (bilateral saddle) solver in its partitioned form (docs/theory.md#4-linear-model).
 
     K_d^cc x^c = f^c - K_d^co x^o,      f^o = K_d^oc x^c + K_d^oo x^o
 
@@ -108,7 +108,7 @@ def test_partitioned_equations_hold() -> None:
 
 
 def test_static_calibration_raised_middle_saddle() -> None:
-    """MODEL.md 6: still water, middle deck point 5.75 mm up -> F ~ 6.3 MN, M_b ~ 49.3 MNm."""
+    """docs/theory.md calibration: still water, middle deck point 5.75 mm up -> F ~ 6.3 MN, M_b ~ 49.3 MNm."""
     model = _model()
     resp = solve_linear(model, _excitation(model, 0.6, [_raised_middle(model, 5.75e-3)]))
     F = resp.saddle_force_N[0].real

@@ -1,4 +1,4 @@
-"""Study execution: back-ends agree, failures are recorded, the store resumes, outputs follow INTERFACE.md."""
+"""Study execution: back-ends agree, failures are recorded, the store resumes, outputs follow docs/interface.md."""
 
 from __future__ import annotations
 

@@ -2,8 +2,10 @@
 
 Every key carries its SI unit in its name. Objects are immutable (frozen) and reject unknown
 keys, so a misspelt key is an error rather than silently ignored. The dotted keys of
-INTERFACE.md (``cargo.length_m``, ``solver.harmonics``, ...) are the attribute paths of
+docs/interface.md#2-case-keys (``cargo.length_m``, ``solver.harmonics``, ...) are the attribute paths of
 :class:`Case`.
+
+Size: over 400 lines because every case key is declared here, with its unit, default, limits and description (one place for users to read the case format and for `seafast schema` to export it); the sections are small classes.
 """
 
 from __future__ import annotations
@@ -305,8 +307,8 @@ class SolverConfig(_Strict):
         "newton", description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
     )
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
-    axial_harmonics: Annotated[Count, Field(ge=1, le=100)] = Field(
-        25, description="Number of harmonics of the axial (friction) harmonic balance (axial analysis only)"
+    axial_harmonics: Annotated[Count, Field(ge=1, le=400)] = Field(
+        100, description="Number of harmonics of the axial (friction) harmonic balance (axial analysis only)"
     )
     truncation_tolerance: Annotated[float, NotBool, Field(gt=0, lt=1)] = Field(
         1e-3, description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "

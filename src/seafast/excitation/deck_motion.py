@@ -6,7 +6,7 @@ the vessel's rigid-body heave/pitch amplitudes; output is the
 
 Frame: cargo displacements are reported relative to the vessel's rigid-body frame, so the deck
 points carry only the hull's elastic deflection and the rigid-body motion acts on the cargo
-as the inertial load ``-M a_rb`` (MODEL.md section 3.3), with
+as the inertial load ``-M a_rb`` (docs/theory.md#37-excitation-of-the-cargo-model), with
 ``a_rb(x) = -omega^2 (heave + pitch (x - x_ref))`` and pitch = dz/dx positive bow up.
 """
 

@@ -1,6 +1,6 @@
 """User-supplied deck deflection table (CSV): hull deflection from the user's own analysis.
 
-Format (INTERFACE.md): columns ``x_m`` (along the ship from the aft perpendicular),
+Format (docs/interface.md#31-deck-deflection-table): columns ``x_m`` (along the ship from the aft perpendicular),
 ``still_water_m``, ``wave_amplitude_m``, ``wave_phase_rad``; deflection positive upward [m].
 The wave-induced deflection is ``wave_amplitude_m * cos(omega t + wave_phase_rad)``, i.e. the
 complex harmonic amplitude ``wave_amplitude_m * exp(i wave_phase_rad)``. Deck slopes come from a

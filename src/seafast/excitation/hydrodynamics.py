@@ -1,4 +1,4 @@
-"""Rigid-body heave and pitch of the vessel in head seas (MODEL.md section 3, item 3).
+"""Rigid-body heave and pitch of the vessel in head seas (docs/theory.md#36-rigid-body-motions).
 
 Linear potential flow (radiation + diffraction) with capytaine, hydrostatic stiffness from the
 hull form, and the 2-DOF equation of motion in heave and pitch, giving response amplitude

@@ -1,6 +1,6 @@
 """The vessel side of a case: hull-girder deflection and rigid-body motions -> deck excitation.
 
-Sources, in order of precedence (MODEL.md section 3, INTERFACE.md):
+Sources, in order of precedence (docs/theory.md#35-user-supplied-hull-data, docs/interface.md#3-input-tables):
 
 * ``vessel.deck_deflection_table``: the user's own hull deflection (still water and wave);
   replaces the hull-girder model entirely.
@@ -16,6 +16,8 @@ path to capytaine NetCDF / WAMIT output.
 
 Everything here depends only on the vessel, cargo-mass and wave parts of the case, so it is
 memoised per process: a parametric study over saddles computes it once.
+
+Size: over 400 lines because it is the one place that turns the case's vessel keys into the deck excitation (hull form, loading, girder, tables, motions, their labelled dataset); each source is a short function.
 """
 
 from __future__ import annotations

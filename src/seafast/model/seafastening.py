@@ -12,7 +12,7 @@ __all__ = ["SeaFastening", "evenly_spaced_saddles", "BASE_LASHING"]
 
 @dataclass(frozen=True)
 class LashingReference:
-    """Base-case lashing values (MODEL.md 2.2): wire stiffness and the springs it gives."""
+    """Base-case lashing values (docs/theory.md#22-sea-fastening): wire stiffness and the springs it gives."""
 
     wire_stiffness_N_per_m: float = 37.5e3
     vertical_stiffness_N_per_m: float = 6.5e3
@@ -85,7 +85,7 @@ class SeaFastening:
 
     @property
     def unilateral_stiffness_N_per_m(self) -> NDArray[np.float64]:
-        """Compression-only part of each saddle [N/m]: k_sad - k_z at lashed saddles (MODEL.md 2.2).
+        """Compression-only part of each saddle [N/m]: k_sad - k_z at lashed saddles (docs/theory.md#22-sea-fastening).
 
         Never negative: where k_z exceeds the saddle stiffness the lashing carries it all.
         """

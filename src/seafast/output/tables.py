@@ -1,4 +1,4 @@
-"""Summary tables: the CSV contract of INTERFACE.md and a terminal rendering."""
+"""Summary tables: the CSV contract of docs/interface.md#51-summarycsv and a terminal rendering."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ def summary_csv_text(rows: Iterable[dict[str, Any]], columns: Sequence[str] = SU
 
 
 def write_summary_csv(rows: Iterable[dict[str, Any]], path: str | Path, columns: Sequence[str] | None = None) -> Path:
-    """Write ``summary.csv`` (INTERFACE.md columns, or ``columns``, e.g. with the axial ones) and return its path."""
+    """Write ``summary.csv`` (docs/interface.md#51-summarycsv columns, or ``columns``, e.g. with the axial ones) and return its path."""
     p = Path(path)
     p.write_text(summary_csv_text(rows, columns or SUMMARY_COLUMNS), encoding="utf-8")
     return p

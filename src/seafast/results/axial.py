@@ -290,4 +290,5 @@ def run_axial_analysis(case: Case, model: StructuralModel, vessel: Any, series: 
     restraint = axial_restraint(case, mass)
     load = axial_load_of(case, vessel, mass)
     method = "time_domain" if case.solver.method == "time_domain" else "hbm"
-    return axial_case_arrays(restraint, load, series, model, axial_options(case, case.solver.time_samples), method)
+    vertical_samples = next(iter(series.values())).saddle_force_N.shape[0]  # the rows' time grid (N follows the vertical H)
+    return axial_case_arrays(restraint, load, series, model, axial_options(case, vertical_samples), method)

@@ -104,7 +104,7 @@ class CaseArrays:
     solver_warning: np.ndarray  # (load_case, model, solver_warning): bool, one per SolverWarning
 
     def maxima(self) -> dict[str, np.ndarray]:
-        """Summary quantities (MODEL.md section 6), each of shape (load_case, model)."""
+        """Summary quantities (docs/conventions.md#8-summary-quantities), each of shape (load_case, model)."""
         return {
             "u_c_m": np.abs(self.cargo_deflection_m).max(axis=(2, 3)),
             "u_s_m": np.maximum(self.saddle_compression_m.max(axis=(2, 3)), 0.0),

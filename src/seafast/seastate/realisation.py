@@ -31,6 +31,8 @@ Per realisation
 Why a coarse and a fine grid: a 3-hour record at the integrator's step is ~10^6 samples per
 channel; the linear parts vary at wave frequencies (< 4 rad/s) and are exact on the coarse grid.
 (Slightly over the house's ~400 lines: the plan and the realisation that reads it stay together.)
+
+Size: over 400 lines because one realisation's synthesis, linear maxima, windowed nonlinear march and statistics share one plan and one time grid; they are pure functions of it.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Contact laws of the compression-only saddle springs (MODEL.md section 5).
+"""Contact laws of the compression-only saddle springs (docs/theory.md#6-contact-laws).
 
 A saddle's compression is ``delta = z_deck - z_cargo`` [m], positive when compressed. The
 contact law gives the (upward, on the cargo) force ``f(delta)`` [N] of the saddle's

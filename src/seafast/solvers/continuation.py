@@ -28,6 +28,9 @@ from seafast.solvers.hbm import CondensedOperators, CondensedProblem, HBMOptions
 
 __all__ = ["BranchEnd", "FrequencyResponseBranch", "frequency_response"]
 
+DEFAULT_HARMONICS = 10
+"""H of a branch whose options leave it adaptive (continuation follows one branch at a fixed H)."""
+
 
 class BranchEnd(Enum):
     """Why a frequency-response branch ended."""
@@ -157,7 +160,8 @@ def frequency_response(
     omega_start_rad_s, omega_end_rad_s
         Sweep limits [rad/s], either order.
     options
-        HBM settings (condensed formulation; ``solver`` applies to the first point only).
+        HBM settings (condensed formulation; ``solver`` applies to the first point only); an adaptive H
+        (``harmonics=None``) becomes :data:`DEFAULT_HARMONICS`.
     initial_step, min_step, max_step
         Arclength steps in scaled variables (omega scaled by the sweep span, compressions by
         their largest linear fluctuation at the start). The step grows when the corrector
@@ -177,6 +181,9 @@ def frequency_response(
         raises for non-convergence.
     """
     options = HBMOptions() if options is None else options
+    if options.harmonics is None or options.time_samples is None:
+        # a branch is followed at one H: the adaptive choice belongs to single solves
+        options = options.with_harmonics(DEFAULT_HARMONICS if options.harmonics is None else options.harmonics)
     if not (omega_start_rad_s > 0 and omega_end_rad_s > 0) or omega_start_rad_s == omega_end_rad_s:
         raise ValueError(
             f"omega_start_rad_s = {omega_start_rad_s!r}, omega_end_rad_s = {omega_end_rad_s!r}; allowed: two different positive frequencies"

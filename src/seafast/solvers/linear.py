@@ -1,6 +1,6 @@
 """Linear (bilateral-saddle) response: static plus frequency domain, partitioned form.
 
-For each harmonic k (MODEL.md section 4)::
+For each harmonic k (docs/theory.md#4-linear-model)::
 
     K_d^cc(k omega) X^c_k = F^c_k - K_d^co(k omega) X^o_k      (cargo response)
     F^o_k = K_d^oc X^c_k + K_d^oo X^o_k                        (forces needed at the deck)

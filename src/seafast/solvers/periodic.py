@@ -5,7 +5,7 @@ Harmonic balance (``solve_hbm``) and the exact references (``solve_quasi_static`
 ``t_n = n T / N`` (period fraction ``n / N``, n = 0 .. N-1), so they can be compared sample by
 sample.
 
-Sign conventions (MODEL.md)
+Sign conventions (docs/conventions.md#3-signs)
 ---------------------------
 * Cargo DOFs (z [m], theta [rad]) per cargo node, z positive upward and relative to the
   vessel's rigid-body frame, in the structural model's cargo-DOF order.

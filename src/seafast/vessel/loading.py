@@ -104,7 +104,7 @@ BASE_STILL_WATER_MOMENT_NM = -4.725e8
 """Still-water bending moment at the cargo midpoint the base ballast plan is set to [N m]
 (hogging negative).
 
-Chosen as the calibration of the source's static result (MODEL.md section 6: middle saddle
+Chosen as the calibration of the source's static result (docs/theory.md#32-hull-form-and-weight-distribution: middle saddle
 most loaded, F = 6.3 MN, M_b = 49.3 MNm need the deck under the middle saddle ~5.75 mm above
 the mean of the deck under the outer saddles, 22.2 m either side). With the default hull
 girder (I = 103.8 m^4, A_s = 0.8 m^2, steel) this moment gives that deck rise; it is a

@@ -287,14 +287,14 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
     """
     if "friction_force_N" not in ds:
         return None
-    go = _go()
+    go = plotly_go()
     lc = "dynamic" if "dynamic" in [str(v) for v in ds["load_case"].values] else str(ds["load_case"].values[-1])
     models = [str(v) for v in ds["model"].values]
     s = ds["period_fraction"].values
-    fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    fig = subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for m in models:
         sel = ds.sel(load_case=lc, model=m)
-        c = _COLORS.get(m, "black")
+        c = MODEL_COLORS.get(m, "black")
         fig.add_trace(go.Scatter(x=s, y=sel["axial_displacement_m"].values * 1e3, name=f"{m}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period",
                                  line=dict(color=c), hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>u %{{y:.2f}} mm<extra></extra>"), row=1, col=1)
         fig.add_trace(go.Scatter(x=s, y=-sel["friction_force_N"].values / 1e6, name=f"{m}: friction (resisting u)", line=dict(color=c),
@@ -309,7 +309,7 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
     fig.update_yaxes(title_text="axial displacement u [mm] (forward +)", row=1, col=1)
     fig.update_yaxes(title_text="axial force [MN] (forward +)", row=2, col=1)
     fig.update_xaxes(title_text="period fraction t/T [-]", row=2, col=1)
-    return _style(fig, f"Axial stick-slip over one wave period ({lc})", 620)
+    return style_figure(fig, f"Axial stick-slip over one wave period ({lc})", 620)
 
 
 def run_figures(ds: xr.Dataset) -> list[ReportFigure]:

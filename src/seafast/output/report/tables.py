@@ -123,7 +123,7 @@ def summary_table_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     header : list of str
         ``quantity``, ``unit``, then one column per (load case, model).
     rows : list of list of str
-        One row per quantity of MODEL.md section 6, then ``contact preserved`` and ``converged``.
+        One row per quantity of docs/conventions.md#8-summary-quantities, then ``contact preserved`` and ``converged``.
     """
     cols = [(lc, m) for lc in coord_labels(ds["load_case"]) for m in coord_labels(ds["model"])]
     header = ["quantity", "unit"] + [f"{lc} {m}" for lc, m in cols]

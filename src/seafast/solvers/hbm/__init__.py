@@ -1,6 +1,6 @@
 """Harmonic balance with Alternating Frequency-Time (HBM/AFT) for the unilateral saddles.
 
-Equation of motion (MODEL.md section 5), cargo DOFs q, deck DOFs x_o prescribed::
+Equation of motion (docs/theory.md#5-harmonic-balance), cargo DOFs q, deck DOFs x_o prescribed::
 
     M q'' + D q' + K q = f_static + f_vessel(t) - K_co x_o(t) + B f(delta(t)),
     delta = z_deck - z_cargo  (saddle compression, positive compressed),

@@ -261,9 +261,11 @@ class CondensedProblem:
         w = fp - self.k_u  # (N, n_s)
         PW = self.forward[None, :, :] * w.T[:, None, :]  # (n_s, n_h, N)
         T = PW @ self.inverse  # (n_s, n_h, n_h): d C[i, s] / d U[j, s]
-        G_by_saddle = self.ops.receptance.reshape(self.size, self.n_h, self.n_s).transpose(2, 0, 1)
-        GT = G_by_saddle @ T  # (n_s, n_u, n_h): column (j, s) of G . dC/dU
-        J = GT.transpose(1, 2, 0).reshape(self.size, self.size)
+        # G . dC/dU harmonic by harmonic (G is block diagonal per harmonic): column (j, s) of the product is
+        # G applied to the force harmonics T[s, :, j] at saddle s, i.e. G_k[:, s] times their complex amplitudes
+        Tc = real_to_complex_harmonics(T.transpose(1, 0, 2))  # (H+1, n_s source, n_h column j)
+        GT = np.einsum("kts,ksj->ktsj", self.ops.receptance_harmonics, Tc)  # (H+1, n_s target, n_s source, n_h)
+        J = complex_to_real_harmonics(GT).transpose(0, 1, 3, 2).reshape(self.size, self.size)
         J[np.diag_indices_from(J)] += 1.0
         return J
 

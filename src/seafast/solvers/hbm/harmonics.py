@@ -85,6 +85,8 @@ class HarmonicSelection:
         H and N.
     start_compression_m
         The march's compressions projected on harmonics 0 .. H, real layout (2H+1, n_s) [m]: the Newton start.
+    march_compression_m
+        The march's compressions over one period, (march_samples, n_s) [m] (a start at any other H).
     march_samples, march_periods, march_change
         Samples per period of the march, periods marched, last relative change between periods.
     estimated_error
@@ -96,6 +98,7 @@ class HarmonicSelection:
     harmonics: int
     time_samples: int
     start_compression_m: NDArray[np.float64]
+    march_compression_m: NDArray[np.float64]
     march_samples: int
     march_periods: int
     march_change: float
@@ -168,6 +171,7 @@ def select_harmonics(
         harmonics=int(H),
         time_samples=samples_for(H),
         start_compression_m=complex_to_real_harmonics(C),
+        march_compression_m=np.asarray(march, dtype=float),
         march_samples=int(N0),
         march_periods=int(periods),
         march_change=float(change),

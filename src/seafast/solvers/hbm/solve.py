@@ -127,11 +127,11 @@ def solve_hbm(
     ops = condensed_operators(model, excitation, H)
     response = _solve_fixed(model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops)
     if not response.converged:
-        # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (or the
-        # given start), then the refinement below from there
+        # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (a given
+        # start has just failed), then the refinement below from there
         H = min(H, _SAFE_HARMONICS)
         ops = condensed_operators(model, excitation, H)
-        response = _solve_fixed(model, excitation, options.with_harmonics(H), None if given is None else _project(given, H), ops)
+        response = _solve_fixed(model, excitation, options.with_harmonics(H), None, ops)
     path = [H]
     settle = np.full(model.saddle_count, np.inf)
     # "settled": the peaks moved by less than the tolerance from the previous H. The first H comes from the
@@ -141,11 +141,20 @@ def solve_hbm(
     while response.converged and H < options.max_harmonics and selection.march_periods > 0:
         if np.max(settle) <= options.truncation_tolerance:
             break
-        H_next = min(max(int(math.ceil(1.5 * H)), H + 8), int(options.max_harmonics))
         previous = response
-        ops = condensed_operators(model, excitation, H_next, reuse=ops)
-        start = pad_harmonics(_compression_harmonics(previous, H), H_next)
-        response = _solve_fixed(model, excitation, quick.with_harmonics(H_next), start, ops)
+        # 1.5 H from the previous solution, else from the march; a truncation that falls among the cargo's
+        # contact-state modes can be ill-posed, so then 2 H and 3 H (from the march) before giving up
+        attempts = [(1.5, "previous"), (1.5, "march"), (2.0, "march"), (3.0, "march")]
+        for factor, origin in attempts:
+            H_next = min(max(int(math.ceil(factor * H)), H + 8), int(options.max_harmonics))
+            ops = condensed_operators(model, excitation, H_next, reuse=ops)
+            if origin == "previous":
+                start = pad_harmonics(_compression_harmonics(previous, H), H_next)
+            else:
+                start = _project(selection.march_compression_m, H_next)
+            response = _solve_fixed(model, excitation, quick.with_harmonics(H_next), start, ops)
+            if response.converged or H_next >= options.max_harmonics:
+                break
         if not response.converged:
             response = previous  # keep the last converged solution; the estimate below says how far from settled
             break
