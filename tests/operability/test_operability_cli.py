@@ -115,6 +115,13 @@ def test_bad_input_exits_2_with_one_clear_message(tmp_path, capsys, args, needle
     assert needle in err and "Traceback" not in err and err.startswith("seafast: error:")
 
 
+def test_the_scatter_input_is_never_overwritten_by_the_output(tmp_path, capsys):
+    f = tmp_path / "scatter.csv"
+    f.write_text("significant_height_m,peak_period_s,occurrence\n1,8,1\n", encoding="utf-8")
+    assert main(["operability", "--tp", "8:9:1", "-o", str(tmp_path), "--scatter", str(f), "-q"]) == 2
+    assert "--scatter" in capsys.readouterr().err and f.read_text().endswith("1,8,1\n")
+
+
 def test_bad_scatter_files_are_refused_naming_the_line(tmp_path, capsys):
     for text, needle in (("hs,tp,occ\n1,8,1\n", "expected columns"), ("significant_height_m,peak_period_s,occurrence\n1,8,-1\n", "line 2"),
                          ("significant_height_m,peak_period_s,occurrence\n1,8,0\n", "no sea state")):

@@ -13,6 +13,7 @@ import argparse
 import math
 import sys
 import time
+from pathlib import Path
 from typing import Any
 
 __all__ = ["add_operability_subcommand", "parse_peak_periods", "OPERABILITY_EXAMPLES", "MAX_PEAK_PERIODS"]
@@ -22,7 +23,7 @@ MAX_PEAK_PERIODS = 1000
 OPERABILITY_EXAMPLES = """examples:
   seafast operability --tp 5:16:0.5                          # the base case, 23 peak periods, limits 7 MN / 20 MPa
   seafast operability case.yaml --tp 6:14:1 -o out/op --set limits.max_saddle_force_N=11.5e6
-  seafast operability --tp 4:18:1 --scatter north_sea.csv   # also the share of a scatter diagram within the limits
+  seafast operability --tp 4:18:1 --scatter hindcast.csv    # also the share of a scatter diagram within the limits
 
 Outputs in DIR: operability.csv (peak_period_s,hs_allowable_linear_m,hs_allowable_nonlinear_m,hs_uplift_onset_m,
 governing_linear,governing_nonlinear; empty cell = not found), operability.nc, operability.png (Hs against Tp),
@@ -72,6 +73,9 @@ def _cmd_operability(args: argparse.Namespace) -> int:
         tps = parse_peak_periods(args.tp)
     except ValueError as exc:
         return _error(str(exc))
+    if args.scatter and Path(args.scatter).resolve() == (Path(args.output) / "scatter.csv").resolve():
+        return _error(f"--scatter {args.scatter}: it is the output scatter.csv of -o {args.output}; allowed: a file outside it, "
+                      "or another output directory")
     try:
         case = load_case(args.case, parse_overrides(args.overrides))
         scatter = read_scatter_diagram(args.scatter) if args.scatter else None
