@@ -159,6 +159,9 @@ def build_parser() -> argparse.ArgumentParser:
         add_seastate_subcommand = None
     if add_seastate_subcommand is not None:
         add_seastate_subcommand(sub)
+    from seafast.operability.cli import add_operability_subcommand
+
+    add_operability_subcommand(sub)
     try:
         from seafast.output.report import add_report_subcommand
     except ImportError:  # pragma: no cover
