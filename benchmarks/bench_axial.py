@@ -22,9 +22,12 @@ def _series(result):
 
     n = result.case.solver.time_samples
     r = result.responses
-    return {("static", "linear"): linear_time_series(r["linear_static"], n), ("dynamic", "linear"): linear_time_series(r["linear_dynamic"], n),
-            ("static", "nonlinear"): from_periodic_response(r["nonlinear_static"], n),
-            ("dynamic", "nonlinear"): from_periodic_response(r["nonlinear_dynamic"], n)}
+    return {
+        ("static", "linear"): linear_time_series(r["linear_static"], n),
+        ("dynamic", "linear"): linear_time_series(r["linear_dynamic"], n),
+        ("static", "nonlinear"): from_periodic_response(r["nonlinear_static"], n),
+        ("dynamic", "nonlinear"): from_periodic_response(r["nonlinear_dynamic"], n),
+    }
 
 
 def main() -> None:
@@ -64,13 +67,17 @@ def main() -> None:
     print(f"base case run_case, no axial analysis (the source's model)            median {med(t_base):8.2f} ms")
     for mu, label, t in ((0.3, "sticks", med(t_stick)), (0.02, "slides", med(t_slide)), (0.05, "near mu_crit, long stick phases", t_near)):
         r = next(x for x in results[mu].summary if x["load_case"] == "dynamic" and x["model"] == "nonlinear")
-        print(f"  axial analysis, friction_coefficient = {mu:<4} ({label:31s}) median {t:8.2f} ms ({t / med(t_base):.2f}x the base run): "
-              f"slip {r['slip_m'] * 1e3:8.1f} mm, utilisation {r['friction_utilisation']:.3f}, "
-              f"lashing force {r['axial_force_N'] / 1e3:6.1f} kN, mu_crit {r['critical_friction_coefficient']:.4f}")
+        print(
+            f"  axial analysis, friction_coefficient = {mu:<4} ({label:31s}) median {t:8.2f} ms ({t / med(t_base):.2f}x the base run): "
+            f"slip {r['slip_m'] * 1e3:8.1f} mm, utilisation {r['friction_utilisation']:.3f}, "
+            f"lashing force {r['axial_force_N'] / 1e3:6.1f} kN, mu_crit {r['critical_friction_coefficient']:.4f}"
+        )
     print(f"  of which the two dynamic rows' axial HBM, mu = 0.3                  median {med(t_hbm):8.2f} ms")
-    print(f"  axial solvers alone, mu = 0.02: HBM {t_h02:7.2f} ms ({hbm.iterations} Newton iterations), time-domain reference "
-          f"{t_td02:8.1f} ms ({td.iterations} periods): slip HBM {hbm.slip_m:.5f} m, reference {td.slip_m:.5f} m "
-          f"({hbm.slip_m / td.slip_m - 1:+.2%})")
+    print(
+        f"  axial solvers alone, mu = 0.02: HBM {t_h02:7.2f} ms ({hbm.iterations} Newton iterations), time-domain reference "
+        f"{t_td02:8.1f} ms ({td.iterations} periods): slip HBM {hbm.slip_m:.5f} m, reference {td.slip_m:.5f} m "
+        f"({hbm.slip_m / td.slip_m - 1:+.2%})"
+    )
     print(
         f"axial_ms={med(t_stick):.2f} axial_hbm_ms={med(t_hbm):.2f} run_base_ms={med(t_base):.2f} "
         f"axial_vs_base={med(t_stick) / med(t_base):.3f} axial_slide_ms={med(t_slide):.2f} axial_near_critical_ms={t_near:.0f} "

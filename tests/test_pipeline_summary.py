@@ -25,12 +25,19 @@ CASES = {
     "two soft saddles (large lift-off)": {"seafastening.saddle_count": 2, "seafastening.saddle_stiffness_N_per_m": 1.1e7},
     "seven stiff saddles": {"seafastening.saddle_count": 7, "seafastening.saddle_stiffness_N_per_m": 1.1e10},
     "three saddles where the H=5 system has a second solution": {
-        "seafastening.saddle_count": 3, "seafastening.saddle_stiffness_N_per_m": 1786154413.1075907,
+        "seafastening.saddle_count": 3,
+        "seafastening.saddle_stiffness_N_per_m": 1786154413.1075907,
     },
     "stiff, pretensioned lashing": {"seafastening.lashing.stiffness_N_per_m": 1e7, "seafastening.lashing.pretension_N": 1e8},
-    "one saddle, stiff lashing (baseline from the deck slope)": {"seafastening.saddle_count": 1, "seafastening.lashing.stiffness_N_per_m": 1e6},
+    "one saddle, stiff lashing (baseline from the deck slope)": {
+        "seafastening.saddle_count": 1,
+        "seafastening.lashing.stiffness_N_per_m": 1e6,
+    },
     "115 m x 12 m cargo, three abreast": {
-        "cargo.length_m": 115.0, "cargo.diameter_m": 12.0, "cargo.wall_thickness_m": 12.0 / 110, "cargo.units_abreast": 3,
+        "cargo.length_m": 115.0,
+        "cargo.diameter_m": 12.0,
+        "cargo.wall_thickness_m": 12.0 / 110,
+        "cargo.units_abreast": 3,
     },
     "exact law, H = 16": {"solver.contact_law": "exact", "solver.harmonics": 16},
     "no rigid-body motion, steep wave": {"vessel.motions": "none", "wave.amplitude_m": 5.0},

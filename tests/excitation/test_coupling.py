@@ -156,8 +156,7 @@ def test_two_way_coupling_unloads_the_middle_saddle_of_the_base_case():
 @pytest.mark.parametrize("method", ["quasi_static", "time_domain"])
 def test_the_reference_methods_couple_to_the_same_still_water_state(method):
     hbm = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.contact_law": "exact"}))
-    ref = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.method": method,
-                                        "wave.amplitude_m": 0.5}))
+    ref = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.method": method, "wave.amplitude_m": 0.5}))
     assert _static(ref)["F_N"] == pytest.approx(_static(hbm)["F_N"], rel=1e-6)
     assert all(status.converged for status in ref.coupling.values())
 
@@ -180,8 +179,12 @@ def test_two_way_coupling_needs_the_computed_hull(tmp_path):
 
 def test_wave_coupled_hbm_agrees_with_the_coupled_exact_reference():
     """Two independent cargo solvers, each iterated with the hull to its own coupled state."""
-    common = {"vessel.coupling": "two_way", "solver.contact_law": "exact", "solver.time_samples": 64,
-              "wave.amplitude_m": 5.0}  # a larger wave, so that the cargo lifts off even when coupled
+    common = {
+        "vessel.coupling": "two_way",
+        "solver.contact_law": "exact",
+        "solver.time_samples": 64,
+        "wave.amplitude_m": 5.0,
+    }  # a larger wave, so that the cargo lifts off even when coupled
     hbm = run_case(load_case(overrides={**common, "solver.harmonics": 16}))
     ref = run_case(load_case(overrides={**common, "solver.method": "quasi_static"}))
     dyn = [next(r for r in res.summary if r["load_case"] == "dynamic" and r["model"] == "nonlinear") for res in (hbm, ref)]
@@ -288,8 +291,12 @@ def test_the_coupled_still_water_hull_is_a_fresh_hull_solve_under_the_saddle_loa
     n, g = case.cargo.units_abreast, case.model.gravity_m_per_s2
     row = rows[("static", "nonlinear")]
     P = row.deck_force_N[0].real
-    np.testing.assert_allclose(ds["deck_deflection_m"].sel(load_case="static").values[0],
-                               row.excitation.deck_displacement[0, result.model.saddle_deck_dof].real, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(
+        ds["deck_deflection_m"].sel(load_case="static").values[0],
+        row.excitation.deck_displacement[0, result.model.saddle_deck_dof].real,
+        rtol=1e-13,
+        atol=0,
+    )
     xs, half = _saddle_patches(result)
     patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, P)))
     items = tuple(it for it in vessel.loading.items if it.name != "cargo") + patches
@@ -333,8 +340,9 @@ def test_the_coupled_midship_moment_is_the_statics_of_the_saddle_reactions(two_w
     aft, length = vessel.cargo_aft_end_x_m, float(model.cargo.node_x_m[-1] - model.cargo.node_x_m[0])
     W = model.cargo.mass_kg * g
     u = np.clip(x, aft, aft + length)
-    statics = m1 + n * (W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u))
-                        - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs)))
+    statics = m1 + n * (
+        W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u)) - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs))
+    )
     away = np.all(np.abs(x[:, None] - xs[None, :]) > half[None, :] + 1e-9, axis=1)
     change = np.abs(m2 - m1).max()
     assert change > 1e8
@@ -366,8 +374,12 @@ def test_the_coupled_wave_hull_carries_the_deck_the_cargo_stood_on(two_way_run):
     row = rows[("dynamic", "nonlinear")]
     x = ds["hull_x_m"].values
     xs, _ = _saddle_patches(result)
-    change_lines = (ds["hull_still_water_deflection_coupled_m"].values - ds["hull_still_water_deflection_m"].values
-                    + ds["hull_wave_deflection_coupled_m"].values - ds["hull_wave_deflection_m"].values)  # (n_t, n_x)
+    change_lines = (
+        ds["hull_still_water_deflection_coupled_m"].values
+        - ds["hull_still_water_deflection_m"].values
+        + ds["hull_wave_deflection_coupled_m"].values
+        - ds["hull_wave_deflection_m"].values
+    )  # (n_t, n_x)
     at_saddles = CubicSpline(x, change_lines, axis=1)(xs)  # between the 0.5 m hull nodes
     n_t = at_saddles.shape[0]
     deck_change = row.deck_change[:, 0::2]  # z under each saddle, harmonics 0 .. K-1
@@ -416,8 +428,16 @@ def test_a_fine_cargo_mesh_converges_every_row_to_the_coarse_mesh_results(two_wa
     jac = linear_coupling_jacobian(model, static.omega_rad_s, compliance, 1)
 
     def couple(rtol):
-        return couple_deck(model, static, compliance, lambda e: solve_nonlinear(model, e, case, static=True),
-                           lambda e, r: deck_forces_N(model, e, r, True, 1), 1, jacobian0=jac, relative_tolerance=rtol)
+        return couple_deck(
+            model,
+            static,
+            compliance,
+            lambda e: solve_nonlinear(model, e, case, static=True),
+            lambda e, r: deck_forces_N(model, e, r, True, 1),
+            1,
+            jacobian0=jac,
+            relative_tolerance=rtol,
+        )
 
     ours, floor = couple(1e-6), couple(1e-14)
     assert ours.converged and not floor.converged and floor.status.outcome is not CouplingOutcome.NOT_FINITE

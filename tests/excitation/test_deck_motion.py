@@ -62,7 +62,7 @@ def test_pure_heave_gives_total_load_omega2_H_m(model: StructuralModel) -> None:
     m0, m1, _ = _mass_moments(model, 85.5)
     assert m0 == pytest.approx(mass, rel=1e-12)
     F, Mom = _nodal_resultants(model, exc.cargo_load_N[1], 85.5)
-    assert F.real == pytest.approx(+OMEGA**2 * H * mass, rel=1e-12)  # upward
+    assert F.real == pytest.approx(+(OMEGA**2) * H * mass, rel=1e-12)  # upward
     assert F.imag == 0.0
     assert Mom.real == pytest.approx(OMEGA**2 * H * m1, rel=1e-10)
     # the line load (for moment lines) carries the same resultants

@@ -216,8 +216,7 @@ def test_wave_response_linear_in_amplitude(base):
     girder, loading, _ = base
     w1 = wave_response(girder, loading, 171.0, 0.5)
     w2 = wave_response(girder, loading, 171.0, 1.0)
-    np.testing.assert_allclose(w2.bending_moment_Nm, 2 * w1.bending_moment_Nm, rtol=0,
-                               atol=1e-9 * np.abs(w2.bending_moment_Nm).max())
+    np.testing.assert_allclose(w2.bending_moment_Nm, 2 * w1.bending_moment_Nm, rtol=0, atol=1e-9 * np.abs(w2.bending_moment_Nm).max())
     np.testing.assert_allclose(w2.deflection_m, 2 * w1.deflection_m, rtol=0, atol=1e-9 * np.abs(w2.deflection_m).max())
     # linear -> purely first harmonic
     assert np.abs(w2.deflection_harmonics_m[[0, 2, 3]]).max() < 1e-9 * np.abs(w2.deflection_harmonics_m[1]).max()
@@ -243,8 +242,11 @@ def test_harmonics_reconstruct_time_series(base):
     s = w.period_fraction
     k = np.arange(w.deflection_harmonics_m.shape[0])
     e = np.exp(1j * 2 * np.pi * np.outer(s, k))
-    for series, harm in ((w.deflection_m, w.deflection_harmonics_m), (w.bending_moment_Nm, w.bending_moment_harmonics_Nm),
-                         (w.slope_rad, w.slope_harmonics_rad)):
+    for series, harm in (
+        (w.deflection_m, w.deflection_harmonics_m),
+        (w.bending_moment_Nm, w.bending_moment_harmonics_Nm),
+        (w.slope_rad, w.slope_harmonics_rad),
+    ):
         rec = np.real(e @ harm)
         # the Nyquist term (k = 32) is not in the set; it is negligible here
         assert np.abs(rec - series).max() < 1e-6 * np.abs(series).max()
@@ -260,7 +262,6 @@ def test_harmonics_reconstruct_time_series(base):
     np.testing.assert_allclose(np.real(e @ sk), st, rtol=0, atol=1e-6 * np.abs(st).max())
 
 
-
 def test_iacs_formula():
     assert iacs_wave_coefficient(171.0) == pytest.approx(10.75 - 1.29**1.5)
     hog, sag = iacs_wave_bending_moments_Nm(171.0, 42.0, 0.686)
@@ -268,7 +269,6 @@ def test_iacs_formula():
     assert hog == pytest.approx(190 * cw * 171**2 * 42 * 0.686, rel=1e-12)
     assert sag == pytest.approx(-110 * cw * 171**2 * 42 * (0.686 + 0.7), rel=1e-12)
     assert hog > 0 > sag
-
 
 
 def test_deck_load_influence_equals_hull_solutions_with_the_loads_added(base):

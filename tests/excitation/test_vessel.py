@@ -40,7 +40,9 @@ def test_hull_form_table_equals_the_parametric_hull(tmp_path):
     base = load_case(overrides=NO_MOTIONS)
     hull = hull_form_of(base)
     table = tmp_path / "hull.csv"
-    table.write_text("x_m,breadth_m\n" + "\n".join(f"{float(x)!r},{float(b)!r}" for x, b in zip(hull.station_x_m, hull.waterline_breadth_m)))
+    table.write_text(
+        "x_m,breadth_m\n" + "\n".join(f"{float(x)!r},{float(b)!r}" for x, b in zip(hull.station_x_m, hull.waterline_breadth_m))
+    )
     case = load_case(overrides={**NO_MOTIONS, "vessel.hull_form_table": str(table)})
     np.testing.assert_allclose(_deck(case), _deck(base), rtol=1e-9, atol=1e-12)
 
@@ -56,7 +58,13 @@ def test_zero_wave_amplitude_leaves_only_the_static_part():
 
 def test_heavy_cargo_falls_back_to_even_keel_ballast_and_says_so():
     case = load_case(
-        overrides={**NO_MOTIONS, "cargo.length_m": 115, "cargo.diameter_m": 12, "cargo.wall_thickness_m": 12 / 110, "cargo.units_abreast": 3}
+        overrides={
+            **NO_MOTIONS,
+            "cargo.length_m": 115,
+            "cargo.diameter_m": 12,
+            "cargo.wall_thickness_m": 12 / 110,
+            "cargo.units_abreast": 3,
+        }
     )
     assert "even keel only" in vessel_excitation(case).source
 

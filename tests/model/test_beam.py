@@ -181,21 +181,35 @@ def test_consistent_mass_rigid_body_integrals(gas: float | None) -> None:
 
 def test_element_mass_classical_hermite_entries() -> None:
     Le, m = 2.0, 300.0
-    ref = m * Le / 420 * np.array(
-        [
-            [156, 22 * Le, 54, -13 * Le],
-            [22 * Le, 4 * Le**2, 13 * Le, -3 * Le**2],
-            [54, 13 * Le, 156, -22 * Le],
-            [-13 * Le, -3 * Le**2, -22 * Le, 4 * Le**2],
-        ]
+    ref = (
+        m
+        * Le
+        / 420
+        * np.array(
+            [
+                [156, 22 * Le, 54, -13 * Le],
+                [22 * Le, 4 * Le**2, 13 * Le, -3 * Le**2],
+                [54, 13 * Le, 156, -22 * Le],
+                [-13 * Le, -3 * Le**2, -22 * Le, 4 * Le**2],
+            ]
+        )
     )
     np.testing.assert_allclose(beam_element_mass(Le, m), ref, rtol=1e-12)
 
 
 def test_element_stiffness_classical_entries() -> None:
     Le = 2.0
-    ref = EI / Le**3 * np.array(
-        [[12, 6 * Le, -12, 6 * Le], [6 * Le, 4 * Le**2, -6 * Le, 2 * Le**2], [-12, -6 * Le, 12, -6 * Le], [6 * Le, 2 * Le**2, -6 * Le, 4 * Le**2]]
+    ref = (
+        EI
+        / Le**3
+        * np.array(
+            [
+                [12, 6 * Le, -12, 6 * Le],
+                [6 * Le, 4 * Le**2, -6 * Le, 2 * Le**2],
+                [-12, -6 * Le, 12, -6 * Le],
+                [6 * Le, 2 * Le**2, -6 * Le, 4 * Le**2],
+            ]
+        )
     )
     np.testing.assert_allclose(beam_element_stiffness(Le, EI), ref, rtol=1e-12)
 

@@ -60,6 +60,7 @@ class HarmonicExcitation:
 
     def padded(self, harmonic_count: int) -> "HarmonicExcitation":
         """The same excitation with zero rows appended (or truncated) to ``harmonic_count`` rows."""
+
         def fit(a: NDArray) -> NDArray:
             out = np.zeros((harmonic_count,) + a.shape[1:], dtype=complex)
             n = min(harmonic_count, a.shape[0])
@@ -86,4 +87,3 @@ class HarmonicExcitation:
             np.concatenate([self.cargo_line_load_N_per_m[:1], scale * self.cargo_line_load_N_per_m[1:]]),
             self.source + f" (shape swept to {omega_rad_s:.4g} rad/s)",
         )
-

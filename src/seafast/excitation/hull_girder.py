@@ -118,8 +118,14 @@ class HullGirder:
     def __post_init__(self) -> None:
         if self.shear_modulus_Pa is None:
             object.__setattr__(self, "shear_modulus_Pa", self.youngs_modulus_Pa / 2.6)
-        for name in ("second_moment_m4", "shear_area_m2", "youngs_modulus_Pa", "shear_modulus_Pa",
-                     "water_density_kg_per_m3", "gravity_m_per_s2"):
+        for name in (
+            "second_moment_m4",
+            "shear_area_m2",
+            "youngs_modulus_Pa",
+            "shear_modulus_Pa",
+            "water_density_kg_per_m3",
+            "gravity_m_per_s2",
+        ):
             v = getattr(self, name)
             if not (v > 0):  # inf shear area is allowed (Euler-Bernoulli)
                 raise ValueError(f"hull girder: {name} = {v!r}; must be > 0")
@@ -253,11 +259,10 @@ def _grid(girder: HullGirder, breakpoints: tuple[float, ...], n_points: int) -> 
     return x
 
 
-def _weight_element_ends(
-    girder: HullGirder, loading: WeightSource, x: FloatArray
-) -> tuple[FloatArray, FloatArray]:
+def _weight_element_ends(girder: HullGirder, loading: WeightSource, x: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Weight per metre at the start and end of each element (one-sided limits) [N/m]."""
     if isinstance(loading, VesselLoading):
+
         def fun(xx: FloatArray) -> FloatArray:
             return weight_distribution_N_per_m(xx, loading, girder.gravity_m_per_s2)
     elif callable(loading):
@@ -432,9 +437,7 @@ def _nodal_weight(wa: FloatArray, wb: FloatArray) -> FloatArray:
 
 
 # ============================================================================ public API
-def still_water_response(
-    girder: HullGirder, loading: WeightSource, n_points: int = 343
-) -> HullGirderResponse:
+def still_water_response(girder: HullGirder, loading: WeightSource, n_points: int = 343) -> HullGirderResponse:
     """Still-water equilibrium, shear force, bending moment and deflection of the hull girder.
 
     Parameters
@@ -899,9 +902,7 @@ def iacs_wave_coefficient(length_m: float) -> float:
     return 10.75 - ((L - 350.0) / 150.0) ** 1.5
 
 
-def iacs_wave_bending_moments_Nm(
-    length_m: float, breadth_m: float, block_coefficient: float
-) -> tuple[float, float]:
+def iacs_wave_bending_moments_Nm(length_m: float, breadth_m: float, block_coefficient: float) -> tuple[float, float]:
     """IACS UR S11 rule vertical wave bending moments amidships [N m].
 
     ``M_wh = +190 C_w L^2 B C_b 1e-3`` kN m (hogging) and
@@ -923,9 +924,7 @@ def iacs_wave_bending_moments_Nm(
     return hog_kNm * 1e3, sag_kNm * 1e3
 
 
-def deck_deflection_at(
-    response: HullGirderResponse | WaveHullResponse, x_m: FloatArray | float
-) -> tuple[NDArray, NDArray]:
+def deck_deflection_at(response: HullGirderResponse | WaveHullResponse, x_m: FloatArray | float) -> tuple[NDArray, NDArray]:
     """Deck deflection [m] and slope dz/dx [rad] at ``x_m`` by cubic Hermite interpolation.
 
     The interpolant uses the nodal deflections and the nodal slopes of the Timoshenko
@@ -944,9 +943,7 @@ def deck_deflection_at(
     return np.asarray(spl(xq)), np.asarray(spl(xq, 1))
 
 
-def deck_harmonics_at(
-    response: WaveHullResponse, x_m: FloatArray | float
-) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+def deck_harmonics_at(response: WaveHullResponse, x_m: FloatArray | float) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
     """Complex harmonics of the wave-induced deck deflection [m] and slope [rad] at ``x_m``.
 
     Returns arrays of shape (n_harmonics + 1,) + shape(x_m) in the convention

@@ -211,18 +211,18 @@ class RigidBodyMotions:
         """
         if self.coupled_heave_rao_m_per_m is None or self.coupled_pitch_rao_rad_per_m is None:
             raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
-        return (self.surge_at(omega), self._interp(omega, self.coupled_heave_rao_m_per_m),
-                self._interp(omega, self.coupled_pitch_rao_rad_per_m))
+        return (
+            self.surge_at(omega),
+            self._interp(omega, self.coupled_heave_rao_m_per_m),
+            self._interp(omega, self.coupled_pitch_rao_rad_per_m),
+        )
 
     # ---------------------------------------------------------------- interpolation
     def _check_range(self, omega: NDArray[np.float64]) -> None:
         lo, hi = self.omega_rad_s[0], self.omega_rad_s[-1]
         bad = omega[(omega < lo * (1 - 1e-12)) | (omega > hi * (1 + 1e-12)) | ~np.isfinite(omega)]
         if bad.size:
-            raise ValueError(
-                f"RigidBodyMotions: omega = {float(bad[0])!r} rad/s is outside the computed range "
-                f"[{lo:.6g}, {hi:.6g}] rad/s"
-            )
+            raise ValueError(f"RigidBodyMotions: omega = {float(bad[0])!r} rad/s is outside the computed range [{lo:.6g}, {hi:.6g}] rad/s")
 
     def _interp(self, omega: ArrayLike, values: NDArray[np.complex128]):
         w = np.asarray(omega, dtype=float)
@@ -297,20 +297,30 @@ class RigidBodyMotions:
             add_complex("surge_rao", self.surge_rao_m_per_m, ("omega",), "m/m", "surge RAO (forward +) at the reference point")
         if self.coupled_heave_rao_m_per_m is not None and self.coupled_pitch_rao_rad_per_m is not None:
             add_complex("coupled_heave_rao", self.coupled_heave_rao_m_per_m, ("omega",), "m/m", "heave RAO, coupled with surge")
-            add_complex("coupled_pitch_rao", self.coupled_pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO (bow up), coupled with surge")
-        add_complex("excitation_force", self.excitation_force, ("omega", "dof"), "N/m (heave), N m/m (pitch)",
-                    "wave excitation per metre of wave amplitude")
-        ds["added_mass"] = xr.Variable(("omega", "dof", "radiating_dof"), self.added_mass,
-                                       {"units": "kg, kg m, kg m^2", "long_name": "added mass (heave, pitch)"})
-        ds["radiation_damping"] = xr.Variable(("omega", "dof", "radiating_dof"), self.radiation_damping,
-                                              {"units": "kg/s, kg m/s, kg m^2/s", "long_name": "radiation damping"})
-        ds["mass_matrix"] = xr.Variable(("dof", "radiating_dof"), self.mass_matrix,
-                                        {"units": "kg, kg m^2", "long_name": "rigid-body mass matrix"})
-        ds["hydrostatic_stiffness"] = xr.Variable(("dof", "radiating_dof"), self.hydrostatic_stiffness,
-                                                  {"units": "N/m, N/rad, N m/rad", "long_name": "hydrostatic stiffness"})
+            add_complex(
+                "coupled_pitch_rao", self.coupled_pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO (bow up), coupled with surge"
+            )
+        add_complex(
+            "excitation_force",
+            self.excitation_force,
+            ("omega", "dof"),
+            "N/m (heave), N m/m (pitch)",
+            "wave excitation per metre of wave amplitude",
+        )
+        ds["added_mass"] = xr.Variable(
+            ("omega", "dof", "radiating_dof"), self.added_mass, {"units": "kg, kg m, kg m^2", "long_name": "added mass (heave, pitch)"}
+        )
+        ds["radiation_damping"] = xr.Variable(
+            ("omega", "dof", "radiating_dof"), self.radiation_damping, {"units": "kg/s, kg m/s, kg m^2/s", "long_name": "radiation damping"}
+        )
+        ds["mass_matrix"] = xr.Variable(
+            ("dof", "radiating_dof"), self.mass_matrix, {"units": "kg, kg m^2", "long_name": "rigid-body mass matrix"}
+        )
+        ds["hydrostatic_stiffness"] = xr.Variable(
+            ("dof", "radiating_dof"), self.hydrostatic_stiffness, {"units": "N/m, N/rad, N m/rad", "long_name": "hydrostatic stiffness"}
+        )
         if self.wavenumber_rad_per_m is not None:
-            ds["wavenumber"] = xr.Variable(("omega",), self.wavenumber_rad_per_m,
-                                           {"units": "rad/m", "long_name": "wave number"})
+            ds["wavenumber"] = xr.Variable(("omega",), self.wavenumber_rad_per_m, {"units": "rad/m", "long_name": "wave number"})
         ds.attrs.update(
             reference_x_m=float(self.reference_x_m),
             wave_phase_reference_x_m=float(self.wave_phase_reference_x_m),
@@ -437,8 +447,11 @@ def solve_rigid_body(
         Complex amplitudes per metre of wave amplitude, in the DOF order of the inputs.
     """
     w = np.asarray(omega_rad_s, dtype=float)
-    z = (-(w[:, None, None] ** 2) * (np.asarray(mass_matrix_, dtype=float)[None] + np.asarray(added_mass, dtype=float))
-         + 1j * w[:, None, None] * np.asarray(radiation_damping, dtype=float) + np.asarray(hydrostatic_stiffness, dtype=float)[None])
+    z = (
+        -(w[:, None, None] ** 2) * (np.asarray(mass_matrix_, dtype=float)[None] + np.asarray(added_mass, dtype=float))
+        + 1j * w[:, None, None] * np.asarray(radiation_damping, dtype=float)
+        + np.asarray(hydrostatic_stiffness, dtype=float)[None]
+    )
     return np.linalg.solve(z, np.asarray(excitation_force, dtype=complex)[..., None])[..., 0]
 
 
@@ -619,8 +632,7 @@ def compute_motions(
             ds = None
     if ds is None:
         logger.info("computing the vessel's hydrodynamics with capytaine (BEM, tens of seconds); cache: %s", path if use_cache else "off")
-        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3),
-                      float(gravity_m_per_s2), depth)
+        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), depth)
         if use_cache:
             cdir.mkdir(parents=True, exist_ok=True)
             ds.attrs["seafast_cache_key"] = key
@@ -642,10 +654,20 @@ def compute_motions(
         _CAPYTAINE_COEFFICIENTS[key] = held
     omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = held[1]
     return _motions_from_rigid_coefficients(
-        omega_c, k_c, a_c, b_c, f_c, hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=x_mid, coeff_reference_z_wl_m=z_rot_wl,
-        mass_kg=mass_kg, centre_of_gravity_m=cog, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+        omega_c,
+        k_c,
+        a_c,
+        b_c,
+        f_c,
+        hull,
+        coeff_reference_x_m=x_rot,
+        wave_phase_origin_x_m=x_mid,
+        coeff_reference_z_wl_m=z_rot_wl,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=cog,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
         source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
     )
 
@@ -700,11 +722,21 @@ def _motions_from_capytaine(
         origin_x_m = float(ds.attrs.get("seafast_origin_x_m", x_mid))
     omega, k, a_c, b_c, f_conj, x_rot, z_rot_wl = _capytaine_rigid_coefficients(ds, origin_x_m, gravity_m_per_s2)
     return _motions_from_rigid_coefficients(
-        omega, k, a_c, b_c, f_conj, hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m, coeff_reference_z_wl_m=z_rot_wl,
-        mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+        omega,
+        k,
+        a_c,
+        b_c,
+        f_conj,
+        hull,
+        coeff_reference_x_m=x_rot,
+        wave_phase_origin_x_m=origin_x_m,
+        coeff_reference_z_wl_m=z_rot_wl,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
         pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+        source=source,
     )
 
 
@@ -775,8 +807,21 @@ def _capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_p
 
 
 def _motions_from_rigid_coefficients(
-    omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, wave_phase_origin_x_m,
-    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2, source,
+    omega,
+    k,
+    a_eta,
+    b_eta,
+    f_eta_plus,
+    hull,
+    *,
+    coeff_reference_x_m,
+    wave_phase_origin_x_m,
+    mass_kg,
+    centre_of_gravity_m,
+    pitch_radius_of_gyration_m,
+    water_density_kg_per_m3,
+    gravity_m_per_s2,
+    source,
     coeff_reference_z_wl_m=0.0,
 ) -> RigidBodyMotions:
     """Common back end of the importers.
@@ -790,16 +835,36 @@ def _motions_from_rigid_coefficients(
     if np.shape(a_eta)[-1] == 3:
         # heave and pitch by the 2-DOF solve of their block (unchanged), plus the coupled solution
         two = _motions_from_rigid_coefficients(
-            omega, k, np.asarray(a_eta)[:, 1:, 1:], np.asarray(b_eta)[:, 1:, 1:], np.asarray(f_eta_plus)[:, 1:], hull,
-            coeff_reference_x_m=coeff_reference_x_m, wave_phase_origin_x_m=wave_phase_origin_x_m, mass_kg=mass_kg,
-            centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+            omega,
+            k,
+            np.asarray(a_eta)[:, 1:, 1:],
+            np.asarray(b_eta)[:, 1:, 1:],
+            np.asarray(f_eta_plus)[:, 1:],
+            hull,
+            coeff_reference_x_m=coeff_reference_x_m,
+            wave_phase_origin_x_m=wave_phase_origin_x_m,
+            mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m,
+            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
+            source=source,
         )
         x3 = _coupled_surge_motions(
-            omega, k, a_eta, b_eta, f_eta_plus, hull, coeff_reference_x_m=coeff_reference_x_m,
-            coeff_reference_z_wl_m=coeff_reference_z_wl_m, wave_phase_origin_x_m=wave_phase_origin_x_m,
-            mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+            omega,
+            k,
+            a_eta,
+            b_eta,
+            f_eta_plus,
+            hull,
+            coeff_reference_x_m=coeff_reference_x_m,
+            coeff_reference_z_wl_m=coeff_reference_z_wl_m,
+            wave_phase_origin_x_m=wave_phase_origin_x_m,
+            mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m,
+            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
         )
         return replace(two, surge_rao_m_per_m=x3[:, 0], coupled_heave_rao_m_per_m=x3[:, 1], coupled_pitch_rao_rad_per_m=x3[:, 2])
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
@@ -816,14 +881,27 @@ def _motions_from_rigid_coefficients(
     b = p.T @ b @ p
     f = f @ p
     m = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                     water_density_kg_per_m3=water_density_kg_per_m3,
-                                     gravity_m_per_s2=gravity_m_per_s2)
+    c = hydrostatic_stiffness_matrix(
+        hull,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+    )
     heave, pitch = solve_heave_pitch(omega, a, b, f, m, c)
     return RigidBodyMotions(
-        omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a,
-        radiation_damping=b, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
-        wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source=source,
+        omega_rad_s=omega,
+        heave_rao_m_per_m=heave,
+        pitch_rao_rad_per_m=pitch,
+        added_mass=a,
+        radiation_damping=b,
+        excitation_force=f,
+        reference_x_m=x_g,
+        mass_matrix=m,
+        hydrostatic_stiffness=c,
+        wave_phase_reference_x_m=x_mid,
+        wavenumber_rad_per_m=k,
+        source=source,
         reference_z_m=float(centre_of_gravity_m[2]),
     )
 
@@ -839,8 +917,21 @@ def _shift_reference_3(dx_new_minus_old: float, dz_new_minus_old: float) -> NDAr
 
 
 def _coupled_surge_motions(
-    omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, coeff_reference_z_wl_m, wave_phase_origin_x_m,
-    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2,
+    omega,
+    k,
+    a_eta,
+    b_eta,
+    f_eta_plus,
+    hull,
+    *,
+    coeff_reference_x_m,
+    coeff_reference_z_wl_m,
+    wave_phase_origin_x_m,
+    mass_kg,
+    centre_of_gravity_m,
+    pitch_radius_of_gyration_m,
+    water_density_kg_per_m3,
+    gravity_m_per_s2,
 ) -> NDArray[np.complex128]:
     """Surge, heave and pitch solved together about the CoG (x_G, z_G), from (surge, heave, eta5) data.
 
@@ -866,14 +957,25 @@ def _coupled_surge_motions(
     c3 = np.zeros((3, 3))
     m3[0, 0] = float(mass_kg)
     m3[1:, 1:] = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c3[1:, 1:] = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                              water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
+    c3[1:, 1:] = hydrostatic_stiffness_matrix(
+        hull,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+    )
     return solve_rigid_body(omega, a, b, f, m3, c3)
 
 
 # ---------------------------------------------------------------------------------- WAMIT
-def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
-                 frequency_column: Literal["period", "omega"] = "period", modes: tuple[int, ...] = (3, 5)):
+def read_wamit_1(
+    path: str | os.PathLike,
+    *,
+    ulen_m: float,
+    water_density_kg_per_m3: float,
+    frequency_column: Literal["period", "omega"] = "period",
+    modes: tuple[int, ...] = (3, 5),
+):
     """Read heave/pitch (``modes``: also surge, mode 1) added mass and damping from a WAMIT ``.1`` file.
 
     Lines ``PER I J Abar Bbar``; ``Abar = A / (rho L^k)``, ``Bbar = B / (rho L^k omega)`` with
@@ -913,9 +1015,16 @@ def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
     return omega, a, b
 
 
-def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
-                 gravity_m_per_s2: float, heading_deg: float = 180.0,
-                 frequency_column: Literal["period", "omega"] = "period", modes: tuple[int, ...] = (3, 5)):
+def read_wamit_3(
+    path: str | os.PathLike,
+    *,
+    ulen_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    heading_deg: float = 180.0,
+    frequency_column: Literal["period", "omega"] = "period",
+    modes: tuple[int, ...] = (3, 5),
+):
     """Read heave/pitch (``modes``: also surge, mode 1) wave excitation from a WAMIT ``.3`` file, one heading.
 
     Lines ``PER BETA I |X| phase Re Im``; ``Xbar = X / (rho g A L^m)``, ``m = 2`` for forces,
@@ -943,8 +1052,7 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
         )
     if not rows:
         raise ValueError(
-            f"WAMIT .3 file {path}: no excitation of modes {modes} for heading {heading_deg} deg "
-            f"(headings found: {sorted(headings)})"
+            f"WAMIT .3 file {path}: no excitation of modes {modes} for heading {heading_deg} deg (headings found: {sorted(headings)})"
         )
     omega = np.array(sorted(rows))
     x = np.zeros((omega.size, len(modes)), dtype=complex)
@@ -957,6 +1065,7 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
 
 def _wamit_has_surge(f1: Path, f3: Path) -> bool:
     """Whether both WAMIT files hold mode 1 (surge): the .1 file its diagonal term, the .3 file its force."""
+
     def has(path: Path, test) -> bool:
         for line in path.read_text().splitlines():
             parts = line.split()
@@ -1031,9 +1140,13 @@ def load_motions(
     if fmt == "auto":
         fmt = "capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit"
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
-    common = dict(mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                  pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-                  water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
+    common = dict(
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+    )
     if fmt == "capytaine":
         ds = _read_capytaine_netcdf(p)
         return _motions_from_capytaine(ds, hull, origin_x_m=origin_x_m, source=f"capytaine file {p}", **common)
@@ -1045,10 +1158,17 @@ def load_motions(
         if not f.is_file():
             raise FileNotFoundError(f"load_motions: WAMIT file {f} not found")
     modes = (1, 3, 5) if _wamit_has_surge(f1, f3) else (3, 5)
-    w1, a, b = read_wamit_1(f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
-                            frequency_column=frequency_column, modes=modes)
-    w3, x = read_wamit_3(f3, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
-                         gravity_m_per_s2=gravity_m_per_s2, frequency_column=frequency_column, modes=modes)
+    w1, a, b = read_wamit_1(
+        f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3, frequency_column=frequency_column, modes=modes
+    )
+    w3, x = read_wamit_3(
+        f3,
+        ulen_m=ulen_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+        frequency_column=frequency_column,
+        modes=modes,
+    )
     if w1.shape != w3.shape or not np.allclose(w1, w3, rtol=1e-6):
         common_w = np.intersect1d(np.round(w1, 9), np.round(w3, 9))
         if common_w.size == 0:
@@ -1059,8 +1179,16 @@ def load_motions(
     origin = x_mid if origin_x_m is None else float(origin_x_m)
     k = wavenumber_rad_per_m(w1, water_depth_m, gravity_m_per_s2)
     return _motions_from_rigid_coefficients(
-        w1, k, a, b, x, hull, coeff_reference_x_m=origin, wave_phase_origin_x_m=origin,
-        source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)", **common,
+        w1,
+        k,
+        a,
+        b,
+        x,
+        hull,
+        coeff_reference_x_m=origin,
+        wave_phase_origin_x_m=origin,
+        source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)",
+        **common,
     )
 
 
@@ -1095,8 +1223,7 @@ def strip_theory_estimate(
     rho, g = float(water_density_kg_per_m3), float(gravity_m_per_s2)
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     x_g = float(centre_of_gravity_m[0])
-    x = np.unique(np.concatenate([np.linspace(hull.station_x_m[0], hull.station_x_m[-1], n_sections + 1),
-                                  hull.station_x_m]))
+    x = np.unique(np.concatenate([np.linspace(hull.station_x_m[0], hull.station_x_m[-1], n_sections + 1), hull.station_x_m]))
     b = hull.breadth_at(x)
     t_mean = hull.section_area_coefficient * hull.draft_m
     k = wavenumber_rad_per_m(omega, math.inf, g)
@@ -1115,11 +1242,21 @@ def strip_theory_estimate(
         zeta_star = np.exp(-kk * t_mean) * np.exp(1j * kk * (x - x_mid))
         f[n] = np.trapezoid((c_sec - w**2 * a_sec + 1j * w * d_sec) * zeta_star * wts, x, axis=-1)
     m = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                     water_density_kg_per_m3=rho, gravity_m_per_s2=g)
+    c = hydrostatic_stiffness_matrix(
+        hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m, water_density_kg_per_m3=rho, gravity_m_per_s2=g
+    )
     heave, pitch = solve_heave_pitch(omega, a_mat, b_mat, f, m, c)
     return RigidBodyMotions(
-        omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a_mat,
-        radiation_damping=b_mat, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
-        wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source="strip theory estimate",
+        omega_rad_s=omega,
+        heave_rao_m_per_m=heave,
+        pitch_rao_rad_per_m=pitch,
+        added_mass=a_mat,
+        radiation_damping=b_mat,
+        excitation_force=f,
+        reference_x_m=x_g,
+        mass_matrix=m,
+        hydrostatic_stiffness=c,
+        wave_phase_reference_x_m=x_mid,
+        wavenumber_rad_per_m=k,
+        source="strip theory estimate",
     )

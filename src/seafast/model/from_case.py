@@ -21,9 +21,7 @@ def cargo_geometry(case: Case) -> CargoGeometry:
     if c.sections is None:
         segments = (TubeSegment(0.0, c.length_m, c.diameter_m, c.diameter_m, c.wall_thickness_m),)
     else:
-        segments = tuple(
-            TubeSegment(s.x_start_m, s.x_end_m, s.diameter_start_m, s.diameter_end_m, s.wall_thickness_m) for s in c.sections
-        )
+        segments = tuple(TubeSegment(s.x_start_m, s.x_end_m, s.diameter_start_m, s.diameter_end_m, s.wall_thickness_m) for s in c.sections)
     return CargoGeometry(segments, c.youngs_modulus_Pa, c.density_kg_per_m3, c.poisson_ratio)
 
 

@@ -12,9 +12,7 @@ MAX_CARGO_ELEMENTS = 2000
 elements already mean 4000-DOF eigen-solves; a 150 m pile at 0.1 m elements needs 1500."""
 
 
-def mesh_cargo(
-    length_m: float, fixed_points_m: NDArray[np.float64], target_element_length_m: float
-) -> NDArray[np.float64]:
+def mesh_cargo(length_m: float, fixed_points_m: NDArray[np.float64], target_element_length_m: float) -> NDArray[np.float64]:
     """Node positions [m] along a beam of ``length_m``.
 
     Every fixed point (sea-fastening points, section changes) and both ends become nodes; each

@@ -308,8 +308,15 @@ class StructuralModel:
             inverse = LinearOperator((n, n), matvec=lambda v: scipy.linalg.cho_solve_banded(factor, v, check_finite=False), dtype=float)
             M_sparse = symmetric(_upper_band(self.cargo.mass, 3))
             result = eigsh(
-                symmetric(K_band), k=count, M=M_sparse, sigma=0.0, which="LM",
-                OPinv=inverse, v0=np.ones(n), ncv=2 * count + 4, return_eigenvectors=vectors,
+                symmetric(K_band),
+                k=count,
+                M=M_sparse,
+                sigma=0.0,
+                which="LM",
+                OPinv=inverse,
+                v0=np.ones(n),
+                ncv=2 * count + 4,
+                return_eigenvectors=vectors,
             )
             if vectors:
                 w2, phi = result
@@ -368,7 +375,9 @@ def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
         cache.popitem(last=False)
 
 
-def _cargo_beam(geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float) -> tuple[CargoBeam, tuple]:
+def _cargo_beam(
+    geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float
+) -> tuple[CargoBeam, tuple]:
     """The meshed and assembled cargo beam, memoised on its inputs; returns (beam, key)."""
     key = (geometry, tuple(float(x) for x in fixed_points_m), float(target_element_length_m), float(gravity_m_per_s2))
     beam = _BEAM_CACHE.get(key)
@@ -462,6 +471,9 @@ def build_structural_model(
             logger.warning(
                 "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
                 "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
-                damping_ratio, fit.omega_rad_s[0], fit.omega_rad_s[1], *fit.realised_damping_ratio,
+                damping_ratio,
+                fit.omega_rad_s[0],
+                fit.omega_rad_s[1],
+                *fit.realised_damping_ratio,
             )
     return StructuralModel(beam, seafastening, nodes, fit.alpha_per_s, fit.beta_s, gravity_m_per_s2, rayleigh_fit=fit)

@@ -49,15 +49,21 @@ def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
     head = ("load case", "model", "slip [mm]", "friction utilisation", "axial force [kN]", "mu_crit [-]", "converged")
     lines = [
         (
-            r["load_case"], r["model"], f"{r['slip_m'] * 1e3:.2f}", f"{r['friction_utilisation']:.3f}",
-            f"{r['axial_force_N'] / 1e3:.1f}", f"{r['critical_friction_coefficient']:.4f}",
+            r["load_case"],
+            r["model"],
+            f"{r['slip_m'] * 1e3:.2f}",
+            f"{r['friction_utilisation']:.3f}",
+            f"{r['axial_force_N'] / 1e3:.1f}",
+            f"{r['critical_friction_coefficient']:.4f}",
             "yes" if r.get("axial_converged", True) else "NO",
         )
         for r in rows
     ]
     widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
     fmt = lambda cells: "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))  # noqa: E731
-    return "\n".join(["axial sliding (per period; slides where utilisation = 1)", fmt(head), fmt(["-" * w for w in widths])] + [fmt(l) for l in lines])
+    return "\n".join(
+        ["axial sliding (per period; slides where utilisation = 1)", fmt(head), fmt(["-" * w for w in widths])] + [fmt(l) for l in lines]
+    )
 
 
 def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:

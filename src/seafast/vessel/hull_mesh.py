@@ -62,9 +62,7 @@ def section_profile(section_area_coefficient: float, draft_m: float) -> NDArray[
     """
     cs, t = float(section_area_coefficient), float(draft_m)
     if not 0.5 <= cs <= 1.0:
-        raise ValueError(
-            f"hull mesh: section_area_coefficient = {cs!r} not supported; must be in [0.5, 1]"
-        )
+        raise ValueError(f"hull mesh: section_area_coefficient = {cs!r} not supported; must be in [0.5, 1]")
     if cs == 1.0:
         return np.array([[1.0, 0.0], [1.0, -t], [0.0, -t]])
     if cs >= 0.75:
@@ -171,9 +169,7 @@ def _x_breaks(hull: HullForm, h: float) -> NDArray[np.float64]:
     return np.concatenate(xs)
 
 
-def hull_mesh_arrays(
-    hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0
-) -> HullMesh:
+def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0) -> HullMesh:
     """Generate the half mesh (``Y >= 0``) of the wetted hull (sides, bottom, transom) and lid.
 
     Parameters
@@ -231,10 +227,12 @@ def hull_mesh_arrays(
         if hb[i_end] <= 0:
             continue
         zl = np.unique(np.concatenate([girth[:, 1]]))[::-1]  # 0 .. -T
+
         # half-width at depth z from the profile (eta as function of z; at -T use bottom eta)
         def width(z: float) -> float:
             eta = np.interp(-z, -prof[:-1, 1], prof[:-1, 0]) if z > -t else prof[-2, 0]
             return float(eta * hb[i_end])
+
         ny = max(1, math.ceil(hb[i_end] / h - 1e-9))
         xi = np.linspace(0.0, 1.0, ny + 1)
         x0 = xb[i_end] - x_mid
@@ -301,9 +299,7 @@ def _orient_outward(v: NDArray[np.float64], f: NDArray[np.int64], interior_point
     return v, f
 
 
-def mesh_hull(
-    hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0
-):
+def mesh_hull(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0):
     """Capytaine meshes ``(hull_mesh, lid_mesh)`` of the wetted hull and its interior lid.
 
     See :func:`hull_mesh_arrays` for the parameters and the frame (origin at midship on the

@@ -145,9 +145,7 @@ class WeightItem:
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.x_start_m) and np.isfinite(self.x_end_m) and self.x_end_m > self.x_start_m):
-            raise ValueError(
-                f"weight item {self.name!r}: x_end_m = {self.x_end_m!r} must be > x_start_m = {self.x_start_m!r}"
-            )
+            raise ValueError(f"weight item {self.name!r}: x_end_m = {self.x_end_m!r} must be > x_start_m = {self.x_start_m!r}")
         if not (np.isfinite(self.mass_kg) and self.mass_kg >= 0):
             raise ValueError(f"weight item {self.name!r}: mass_kg = {self.mass_kg!r}; must be finite and >= 0")
 
@@ -300,9 +298,7 @@ class BallastTank:
 
 
 # ---------------------------------------------------------------------------- distributions
-def monopile_mass_kg(
-    length_m: float, diameter_m: float, wall_thickness_m: float, density_kg_per_m3: float = 7850.0
-) -> float:
+def monopile_mass_kg(length_m: float, diameter_m: float, wall_thickness_m: float, density_kg_per_m3: float = 7850.0) -> float:
     """Mass [kg] of a uniform thin-walled steel tube (monopile).
 
     ``m = rho * pi / 4 * (D^2 - (D - 2 t)^2) * L``; 74 m x 8 m x 0.080 m gives 1.156e6 kg.
@@ -326,9 +322,7 @@ def mass_distribution_kg_per_m(x_m: FloatArray | float, loading: VesselLoading) 
     return out
 
 
-def weight_distribution_N_per_m(
-    x_m: FloatArray | float, loading: VesselLoading, gravity_m_per_s2: float = 9.81
-) -> FloatArray:
+def weight_distribution_N_per_m(x_m: FloatArray | float, loading: VesselLoading, gravity_m_per_s2: float = 9.81) -> FloatArray:
     """Weight per metre [N/m] of ``loading`` at ``x_m`` (a positive number acting downward)."""
     return gravity_m_per_s2 * mass_distribution_kg_per_m(x_m, loading)
 
@@ -392,10 +386,12 @@ def _unit_tank_moments(hull: HullForm, tanks: tuple[tuple[float, float], ...], x
     if held is None:
         kw = dict(water_density_kg_per_m3=rho, gravity_m_per_s2=g)
         buoy_only = still_water_moment_even_keel_Nm(hull, VesselLoading(None, ()), x_m, **kw)
-        held = np.array([
-            still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
-            for a, b in tanks
-        ])
+        held = np.array(
+            [
+                still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
+                for a, b in tanks
+            ]
+        )
         if len(_UNIT_TANK_MOMENTS) >= 16:
             _UNIT_TANK_MOMENTS.pop(next(iter(_UNIT_TANK_MOMENTS)))
         _UNIT_TANK_MOMENTS[key] = held
@@ -532,8 +528,11 @@ def base_vessel_loading(
     tanks = [BallastTank(n, f0 * L, f1 * L) for n, f0, f1 in BASE_BALLAST_TANKS_FRACTION]
     if still_water_moment_Nm is None:
         return balance_ballast(
-            hull, loading, [tanks[0], tanks[2]],
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+            hull,
+            loading,
+            [tanks[0], tanks[2]],
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
         )
     return balance_ballast(
         hull,

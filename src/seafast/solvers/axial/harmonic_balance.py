@@ -142,8 +142,9 @@ class _Problem:
         return X if np.all(np.isfinite(X)) else None
 
 
-def _newton(p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int,
-            first: tuple[NDArray, Any, NDArray] | None = None) -> tuple[NDArray, float, int, bool, tuple[NDArray, Any, NDArray]]:
+def _newton(
+    p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int, first: tuple[NDArray, Any, NDArray] | None = None
+) -> tuple[NDArray, float, int, bool, tuple[NDArray, Any, NDArray]]:
     """Damped Newton; returns the iterate, its relative residual, iterations, success and its evaluation."""
     ev = first if first is not None else p.evaluate(X, capacity)
     R, jen, u = ev
@@ -240,8 +241,27 @@ def solve_axial_hbm(
     if p.gauge:
         msg += "; no lashing or stopper restrains the cargo axially: its mean position is pinned"
     return AxialResponse(
-        "hbm", load.omega_rad_s, u, p.E @ V, -lam, capacity, -lashing, -stop, p.load_t, jen.slipped,
-        jen.slip_path_m, bool(ok), norm, int(iters), msg, real_to_complex_harmonics(X),
-        {"harmonics": H, "time_samples": N, "tolerance": options.tolerance, "max_iterations": options.max_iterations,
-         "tangential_stiffness_N_per_m": p.kt},
+        "hbm",
+        load.omega_rad_s,
+        u,
+        p.E @ V,
+        -lam,
+        capacity,
+        -lashing,
+        -stop,
+        p.load_t,
+        jen.slipped,
+        jen.slip_path_m,
+        bool(ok),
+        norm,
+        int(iters),
+        msg,
+        real_to_complex_harmonics(X),
+        {
+            "harmonics": H,
+            "time_samples": N,
+            "tolerance": options.tolerance,
+            "max_iterations": options.max_iterations,
+            "tangential_stiffness_N_per_m": p.kt,
+        },
     )

@@ -220,13 +220,31 @@ def solve_axial_time_domain(
     cap = np.array([s.capacity(t) for t in t_out])
     lashing, stop = restraint.restoring_force_N(u)
     friction = np.where(sign == 0, lashing + stop - load_t, -sign * cap)
-    msg = (f"axial time domain (rigid Coulomb, event-driven RK4, {steps} steps per period): "
-           f"{'periodic' if converged else 'NOT periodic'} after {periods} periods, last change {change:.2e} "
-           f"of the displacement scale {u_scale:.3g} m")
+    msg = (
+        f"axial time domain (rigid Coulomb, event-driven RK4, {steps} steps per period): "
+        f"{'periodic' if converged else 'NOT periodic'} after {periods} periods, last change {change:.2e} "
+        f"of the displacement scale {u_scale:.3g} m"
+    )
     if not converged:
-        msg += f"; the cargo moves {state[1] - start[1]:+.4g} m per period (walks)" if abs(state[2] - start[2]) <= tolerance * v_scale else ""
+        msg += (
+            f"; the cargo moves {state[1] - start[1]:+.4g} m per period (walks)" if abs(state[2] - start[2]) <= tolerance * v_scale else ""
+        )
     return AxialResponse(
-        "time_domain", s.w, u, v, friction, cap, -lashing, -stop, load_t, sign != 0, slip, converged, float(change),
-        periods, msg, None,
+        "time_domain",
+        s.w,
+        u,
+        v,
+        friction,
+        cap,
+        -lashing,
+        -stop,
+        load_t,
+        sign != 0,
+        slip,
+        converged,
+        float(change),
+        periods,
+        msg,
+        None,
         {"time_samples": time_samples, "steps_per_period": steps, "max_periods": max_periods, "tolerance": tolerance},
     )

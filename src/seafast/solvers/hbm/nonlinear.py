@@ -326,7 +326,14 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
         total_ev += second.evaluations
         if second.converged:
             logger.info("direct solve from the linear solution converged: %s", second.note)
-            return SolveAttempt(second.u, True, second.residual, total_it, total_ev, f"direct: {second.note} (start: linear solution, after a failed start from the {origin})")
+            return SolveAttempt(
+                second.u,
+                True,
+                second.residual,
+                total_it,
+                total_ev,
+                f"direct: {second.note} (start: linear solution, after a failed start from the {origin})",
+            )
         notes.append(f"direct solve from the linear solution failed ({second.note}, residual {second.residual:.2e})")
         best = second if second.residual < best.residual else best
 

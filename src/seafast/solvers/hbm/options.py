@@ -23,6 +23,8 @@ def samples_for(harmonics: int) -> int:
     """The default AFT samples N for H harmonics: 2.5 H rounded up to an even number, at least 128 and 2H + 2."""
     H = int(harmonics)
     return int(max(MINIMUM_TIME_SAMPLES, 2 * H + 2, 2 * math.ceil(1.25 * H)))
+
+
 SOLVERS: tuple[str, ...] = ("newton", "hybr")
 
 
