@@ -13,8 +13,9 @@ is what the axial analysis adds to the base case (mu = 0.3), ``axial_hbm_ms`` it
 from __future__ import annotations
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
+
+from benchutil import timed
 
 
 def _series(result):

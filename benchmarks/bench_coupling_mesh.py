@@ -11,8 +11,9 @@ section 2); the last line is ``key=value`` pairs.
 from __future__ import annotations
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
+
+from benchutil import timed
 
 ELEMENT_LENGTHS_M = (1.0, 0.5, 0.2, 0.1)
 

@@ -15,8 +15,9 @@ import tempfile
 import time
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
+
+from benchutil import timed
 
 
 def main() -> None:

@@ -186,7 +186,7 @@ def test_every_results_variable_is_documented():
 def test_every_command_is_documented():
     from seafast.cli import build_parser
 
-    commands = build_parser()._subparsers._group_actions[0].choices  # noqa: SLF001 - argparse has no public accessor
+    commands = build_parser()._subparsers._group_actions[0].choices  # argparse has no public accessor
     assert {"run", "init", "schema", "study", "sweep", "report"} <= set(commands)
     for name in commands:
         assert f"seafast {name}" in INTERFACE, f"`seafast {name}` is not in docs/interface.md#4-commands"

@@ -44,6 +44,6 @@ def test_quick_start_is_two_commands_and_they_are_the_ci_command():
 
 
 def test_every_command_the_readme_names_exists():
-    sub = build_parser()._subparsers._group_actions[0].choices  # noqa: SLF001 - argparse has no public accessor
+    sub = build_parser()._subparsers._group_actions[0].choices  # argparse has no public accessor
     for name in set(re.findall(r"`seafast (\w+)", README)):
         assert name in sub, name

@@ -18,8 +18,8 @@ import math
 import os
 import sys
 import time
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 # Small dense solves are fastest on one BLAS thread on few cores; OpenBLAS reads this when it is
 # loaded, so set it before numpy/scipy load (study worker processes inherit it). An explicit
@@ -29,7 +29,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import numpy as np  # noqa: E402
 
-import seafast
+import seafast  # noqa: E402 - after the thread settings above, like numpy
 
 __all__ = ["main", "build_parser"]
 

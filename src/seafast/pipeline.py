@@ -9,9 +9,9 @@ Size: over 400 lines because it is the only module that knows the order of the s
 from __future__ import annotations
 
 import functools
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -33,10 +33,18 @@ from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
-from seafast.results.dataset import LOAD_CASES, MODELS, SUMMARY_COLUMNS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
+from seafast.results.dataset import (
+    LOAD_CASES,
+    MODELS,
+    SUMMARY_COLUMNS,
+    CaseArrays,
+    build_case_dataset,
+    case_arrays,
+    summary_rows_from_arrays,
+)
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
-from seafast.solvers.periodic import harmonics_to_time
 from seafast.solvers.linear import solve_linear
+from seafast.solvers.periodic import harmonics_to_time
 
 __all__ = [
     "CaseResult",

@@ -16,8 +16,8 @@ import pytest
 
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import read_deck_deflection_table
-from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.solvers.linear import solve_linear
 

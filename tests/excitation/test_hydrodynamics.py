@@ -271,8 +271,8 @@ def test_wamit_parser_round_trip(tmp_path):
 
 def test_wamit_import_matches_capytaine(hull, mass_props, tmp_path):
     """capytaine's own WAMIT export of a BEM run about the origin reads back to the same RAOs."""
-    from capytaine.io.wamit import export_to_wamit
     import capytaine as cpt
+    from capytaine.io.wamit import export_to_wamit
 
     omega = np.array([0.3, 0.5, 0.6, 0.8])
     ds = hd._run_bem(hull, omega, np.array([0.0, 0.0, 0.0]), COARSE_M, RHO, G, math.inf)

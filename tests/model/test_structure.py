@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.seafastening import BASE_LASHING, SeaFastening, evenly_spaced_saddles
+from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.structure import MechanismError, StructuralModel, build_structural_model
 from seafast.solvers.linear import solve_linear
 

@@ -8,8 +8,6 @@ import re
 from dataclasses import replace
 
 import numpy as np
-
-from seafast.solvers.axial.harmonic_balance import axial_time_samples
 import pytest
 import xarray as xr
 
@@ -21,6 +19,7 @@ from seafast.pipeline import run_case, solve_nonlinear
 from seafast.results.axial import AXIAL_SUMMARY_COLUMNS
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.solvers.axial import solve_axial_time_domain
+from seafast.solvers.axial.harmonic_balance import axial_time_samples
 
 FAST = {"solver.time_samples": 64, "model.element_length_m": 2.0}
 

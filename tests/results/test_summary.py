@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2, tube_second_moment_m4
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2, tube_second_moment_m4
 from seafast.model.structure import build_structural_model
 from seafast.results.summary import RowSolution, summary_row
 from seafast.solvers.linear import solve_linear

@@ -14,8 +14,8 @@ import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.beam import bending_moment_line
-from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.solvers.linear import solve_harmonic, solve_linear
 

@@ -7,9 +7,10 @@ dotted key, the value given and what is allowed.
 from __future__ import annotations
 
 import copy
+from collections.abc import Iterable, Mapping
 from importlib import resources
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 import yaml
 from pydantic import ValidationError

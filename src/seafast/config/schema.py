@@ -69,7 +69,7 @@ class CargoSectionConfig(_Strict):
     wall_thickness_m: Positive
 
     @model_validator(mode="after")
-    def _check(self) -> "CargoSectionConfig":
+    def _check(self) -> CargoSectionConfig:
         if self.x_end_m <= self.x_start_m:
             raise ValueError(f"x_end_m = {self.x_end_m} must be greater than x_start_m = {self.x_start_m}")
         d_min = min(self.diameter_start_m, self.diameter_end_m)
@@ -100,7 +100,7 @@ class CargoConfig(_Strict):
     )
 
     @model_validator(mode="after")
-    def _check(self) -> "CargoConfig":
+    def _check(self) -> CargoConfig:
         if self.sections is None:
             if self.wall_thickness_m >= self.diameter_m / 2:
                 raise ValueError(
@@ -146,7 +146,7 @@ class StopperConfig(_Strict):
     stiffness_N_per_m: Positive | None = Field(None, description="Axial stiffness of each stopper [N/m] (needed with gap_m)")
 
     @model_validator(mode="after")
-    def _check(self) -> "StopperConfig":
+    def _check(self) -> StopperConfig:
         if (self.gap_m is None) != (self.stiffness_N_per_m is None):
             given, missing = ("gap_m", "stiffness_N_per_m") if self.stiffness_N_per_m is None else ("stiffness_N_per_m", "gap_m")
             raise ValueError(f"{given} is set but {missing} is not; give both (stoppers) or neither (no stoppers)")
@@ -252,7 +252,7 @@ class VesselConfig(_Strict):
     )
 
     @model_validator(mode="after")
-    def _check_coupling(self) -> "VesselConfig":
+    def _check_coupling(self) -> VesselConfig:
         if self.coupling == "two_way":
             for key in ("deck_deflection_table", "still_water_bending_moment_table"):
                 if getattr(self, key) is not None:
@@ -324,7 +324,7 @@ class SolverConfig(_Strict):
         return data
 
     @model_validator(mode="after")
-    def _check(self) -> "SolverConfig":
+    def _check(self) -> SolverConfig:
         if self.harmonics is not None and self.time_samples is not None and self.time_samples < 2 * self.harmonics + 2:
             raise ValueError(
                 f"time_samples = {self.time_samples} must be at least 2 * harmonics + 2 = {2 * self.harmonics + 2} (aliasing)"
@@ -390,7 +390,7 @@ class SeaStateConfig(_Strict):
     seed: Annotated[Count, Field(ge=0)] = Field(0, description="Seed of the random phases (reproducible realisations)")
 
     @model_validator(mode="after")
-    def _check(self) -> "SeaStateConfig":
+    def _check(self) -> SeaStateConfig:
         parametric = self.spectrum in ("jonswap", "pierson_moskowitz")
         if not parametric:
             if not self.spectrum.strip() or "\0" in self.spectrum:
@@ -432,7 +432,7 @@ class Case(_Strict):
     limits: LimitsConfig = LimitsConfig()
 
     @model_validator(mode="after")
-    def _check(self) -> "Case":
+    def _check(self) -> Case:
         L = self.cargo.length_m
         sf = self.seafastening
         positions = self.saddle_positions_m()

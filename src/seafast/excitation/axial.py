@@ -54,7 +54,7 @@ class AxialLoad:
     lever_m: float = float("nan")
     source: str = ""
 
-    def static_part(self) -> "AxialLoad":
+    def static_part(self) -> AxialLoad:
         """Only the still-water (k = 0) part."""
         return AxialLoad(self.omega_rad_s, self.force_N[:1], lever_m=self.lever_m, source=self.source + " (still water)")
 

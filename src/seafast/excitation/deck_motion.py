@@ -12,8 +12,8 @@ as the inertial load ``-M a_rb`` (docs/theory.md#37-excitation-of-the-cargo-mode
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray

@@ -336,7 +336,7 @@ class _Beam:
     factor: tuple
 
     @classmethod
-    def build(cls, x: FloatArray, girder: HullGirder) -> "_Beam":
+    def build(cls, x: FloatArray, girder: HullGirder) -> _Beam:
         n_el = x.size - 1
         EI = girder.bending_stiffness_Nm2
         GA = girder.shear_stiffness_N

@@ -27,9 +27,10 @@ import functools
 import json
 import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -37,11 +38,9 @@ from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
 from seafast.config.schema import Case
-from seafast.model.from_case import cargo_geometry
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.hull_girder import (
     DEFAULT_SHEAR_AREA_M2,
     HullGirder,
@@ -51,6 +50,8 @@ from seafast.excitation.hull_girder import (
     still_water_response,
     wave_response,
 )
+from seafast.excitation.rao_extension import extended_rao
+from seafast.model.from_case import cargo_geometry
 from seafast.model.structure import StructuralModel
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_distribution_kg_per_m

@@ -32,8 +32,8 @@ from numpy.typing import NDArray
 from seafast.model.beam import assemble_beam
 from seafast.model.damping import RayleighFit, fit_rayleigh_to_modes, rayleigh_coefficients
 from seafast.model.mesh import mesh_cargo
-from seafast.model.sections import CargoGeometry, tube_area_m2, tube_second_moment_m4
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, tube_area_m2, tube_second_moment_m4
 
 logger = logging.getLogger(__name__)
 

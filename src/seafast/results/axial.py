@@ -14,8 +14,9 @@ per row (``friction_moment_saddle_force_change_N``).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr

@@ -69,7 +69,7 @@ class HullForm:
         stern_breadth_fraction: float = 0.7,
         aft_run_fraction: float = 0.2,
         bow_breadth_fraction: float = 0.0,
-    ) -> "HullForm":
+    ) -> HullForm:
         """Box hull with a parallel mid-body and linear tapers in breadth to stern and bow.
 
         The aft run (length ``aft_run_fraction * L``) tapers from full breadth to

@@ -276,7 +276,7 @@ class VesselLoading:
             pts.extend((it.x_start_m, it.x_end_m))
         return tuple(sorted(set(float(p) for p in pts)))
 
-    def with_items(self, *items: WeightItem) -> "VesselLoading":
+    def with_items(self, *items: WeightItem) -> VesselLoading:
         """A copy with ``items`` appended."""
         return replace(self, items=self.items + tuple(items))
 

@@ -115,7 +115,7 @@ class AxialResponse:
         """Largest axial force of the lashings and stoppers together on the cargo [N] (magnitude)."""
         return float(np.max(np.abs(self.lashing_force_N + self.stopper_force_N))) if self.displacement_m.size else 0.0
 
-    def on_grid(self, time_samples: int) -> "AxialResponse":
+    def on_grid(self, time_samples: int) -> AxialResponse:
         """The response at ``time_samples`` points of the period (a divisor of N: every (N / n)-th sample)."""
         n = self.time_samples
         if time_samples == n:

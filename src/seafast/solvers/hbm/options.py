@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
 import math
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -126,7 +126,7 @@ class HBMOptions:
         """Whether H is chosen by the solver."""
         return self.harmonics is None
 
-    def with_harmonics(self, harmonics: int, time_samples: int | None = None) -> "HBMOptions":
+    def with_harmonics(self, harmonics: int, time_samples: int | None = None) -> HBMOptions:
         """The same settings at a given H (and N: the given one, else this one's if it fits, else the default)."""
         N = time_samples if time_samples is not None else self.time_samples
         if N is None or N < 2 * int(harmonics) + 2:
