@@ -47,14 +47,14 @@ def main() -> None:
         series = {mu: _series(r) for mu, r in results.items()}
         # interleaved, so that the machine's load hits the base case and the axial analysis alike
         t_base, t_stick, t_slide, t_hbm = [], [], [], []
+        r3, r2 = results[0.3], results[0.02]
+        rest, load = axial_restraint(r3.case), axial_load_of(r3.case, r3.vessel)
+        opts = axial_options(r3.case, r3.case.solver.time_samples)
+        normals = [np.maximum(r3.arrays.saddle_force_N[1, j], 0.0) for j in (0, 1)]
         for _ in range(31):
             t_base.append(timed(lambda: run_case(base), 1)[1])
-            r3, r2 = results[0.3], results[0.02]
             t_stick.append(timed(lambda: run_axial_analysis(r3.case, r3.model, r3.vessel, series[0.3]), 1)[1])
             t_slide.append(timed(lambda: run_axial_analysis(r2.case, r2.model, r2.vessel, series[0.02]), 1)[1])
-            rest, load = axial_restraint(r3.case), axial_load_of(r3.case, r3.vessel)
-            opts = axial_options(r3.case, r3.case.solver.time_samples)
-            normals = [np.maximum(r3.arrays.saddle_force_N[1, j], 0.0) for j in (0, 1)]
             t_hbm.append(timed(lambda: [solve_axial_hbm(rest, load, n, opts) for n in normals], 1)[1])
         t_near = timed(lambda: run_axial_analysis(results[0.05].case, results[0.05].model, results[0.05].vessel, series[0.05]), 3)[1]
         # the axial solvers alone on the sliding case, against the reference
@@ -64,7 +64,7 @@ def main() -> None:
         opts = axial_options(res.case, res.case.solver.time_samples)
         hbm, t_h02 = timed(lambda: solve_axial_hbm(restraint, load, normal, opts), 21)
         td, t_td02 = timed(lambda: solve_axial_time_domain(restraint, load, normal, time_samples=opts.time_samples), 3)
-    med = lambda v: float(np.median(v))  # noqa: E731
+    med = np.median
     print(f"base case run_case, no axial analysis (the source's model)            median {med(t_base):8.2f} ms")
     for mu, label, t in ((0.3, "sticks", med(t_stick)), (0.02, "slides", med(t_slide)), (0.05, "near mu_crit, long stick phases", t_near)):
         r = next(x for x in results[mu].summary if x["load_case"] == "dynamic" and x["model"] == "nonlinear")

@@ -18,10 +18,36 @@ from benchutil import timed
 ELEMENT_LENGTHS_M = (1.0, 0.5, 0.2, 0.1)
 
 
-def main() -> None:
+def _one_length(length: float):
+    """The base case at one element length: one-way and two-way timed, and the two-way
+    still-water nonlinear row iterated to its round-off floor. Returns (result, floor, t_one, t_two)."""
     from seafast.config import load_case
     from seafast.excitation.coupling import couple_deck, deck_forces_N, linear_coupling_jacobian
     from seafast.pipeline import run_case, solve_nonlinear
+
+    one_way = load_case(overrides={"model.element_length_m": length})
+    case = load_case(overrides={"model.element_length_m": length, "vessel.coupling": "two_way"})
+    with threadpool_limits(1):
+        _, t_one = timed(lambda: run_case(one_way), 1)
+        result, t_two = timed(lambda: run_case(case), 1)
+        model, static = result.model, result.excitation.static_part()
+        jac = linear_coupling_jacobian(model, static.omega_rad_s, result.compliance, 1)
+        floor = couple_deck(
+            model,
+            static,
+            result.compliance,
+            lambda e: solve_nonlinear(model, e, case, static=True),
+            lambda e, r: deck_forces_N(model, e, r, True, 1),
+            1,
+            jacobian0=jac,
+            relative_tolerance=1e-14,
+        )
+    return result, floor, t_one, t_two
+
+
+def main() -> None:
+    from seafast.config import load_case
+    from seafast.pipeline import run_case
 
     run_case(load_case())  # the vessel (BEM from the disk cache) into memory
     print(
@@ -30,23 +56,8 @@ def main() -> None:
     )
     figures: dict[str, float] = {}
     for length in ELEMENT_LENGTHS_M:
-        one_way = load_case(overrides={"model.element_length_m": length})
-        case = load_case(overrides={"model.element_length_m": length, "vessel.coupling": "two_way"})
-        with threadpool_limits(1):
-            _, t_one = timed(lambda: run_case(one_way), 1)
-            result, t_two = timed(lambda: run_case(case), 1)
-            model, static = result.model, result.excitation.static_part()
-            jac = linear_coupling_jacobian(model, static.omega_rad_s, result.compliance, 1)
-            floor = couple_deck(
-                model,
-                static,
-                result.compliance,
-                lambda e: solve_nonlinear(model, e, case, static=True),
-                lambda e, r: deck_forces_N(model, e, r, True, 1),
-                1,
-                jacobian0=jac,
-                relative_tolerance=1e-14,
-            )
+        result, floor, t_one, t_two = _one_length(length)
+        model = result.model
         rows = {(r["load_case"], r["model"]): r for r in result.summary}
         st, dy = result.coupling[("static", "nonlinear")], result.coupling[("dynamic", "nonlinear")]
         moved = float(np.abs(floor.deck_force_N[0].real - result.deck_couplings[("static", "nonlinear")].deck_force_N[0].real).max())

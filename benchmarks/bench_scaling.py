@@ -129,7 +129,7 @@ def main(argv: list[str] | None = None) -> int:
         time_all(mesh_cases + saddle_cases, rounds)
     mesh = [c.row() for c in mesh_cases]
     saddles = [c.row() for c in saddle_cases]
-    for length, row in zip(ELEMENT_LENGTHS_M, mesh):
+    for length, row in zip(ELEMENT_LENGTHS_M, mesh, strict=True):
         print(
             f"element {length:5.3f} m: {row['nodes']:5.0f} nodes  new model {row['fresh_ms']:8.2f} ms  solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)"
         )
