@@ -398,7 +398,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 
     model = build_model(case)
     excitation, _ = _excitation(case, model)
-    n_s, n_k = model.saddle_count, excitation.harmonic_count
+    n_k = excitation.harmonic_count
     # the dynamic nonlinear state first: its (possibly adaptive) H sets the time grid N of every row
     dynamic = solve_hbm(model, excitation, _hbm_options(case))
     N = dynamic.time_samples

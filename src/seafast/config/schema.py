@@ -11,6 +11,7 @@ Size: over 400 lines because every case key is declared here, with its unit, def
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 from pathlib import Path
 from typing import Annotated, Literal
 
@@ -205,7 +206,7 @@ class SeaFasteningConfig(_Strict):
             return v
         if len(v) == 0:
             raise ValueError("must list at least one position, or be null to use saddle_count")
-        if any(b <= a for a, b in zip(v, v[1:])):
+        if any(b <= a for a, b in pairwise(v)):
             raise ValueError(f"{list(v)}: positions must be strictly increasing (no coincident saddles)")
         return v
 

@@ -247,7 +247,7 @@ def _grid(girder: HullGirder, breakpoints: tuple[float, ...], n_points: int) -> 
     base = np.linspace(x0, x1, n_points)
     h = (x1 - x0) / (n_points - 1)
     tol = 1e-9 * (x1 - x0)
-    bp = np.array(sorted(set([x0, x1, *girder.hull.station_x_m, *breakpoints])))
+    bp = np.array(sorted({x0, x1, *girder.hull.station_x_m, *breakpoints}))
     bp = bp[(bp >= x0 - tol) & (bp <= x1 + tol)]
     bp = np.clip(bp, x0, x1)
     keep = np.ones(base.size, bool)

@@ -628,7 +628,7 @@ def compute_motions(
         try:
             ds = _read_capytaine_netcdf(path)
             logger.debug("BEM cache hit: %s", path)
-        except Exception:  # corrupt or foreign file: recompute
+        except Exception:  # noqa: BLE001 - a corrupt or foreign cache file, whatever the error: recompute it
             logger.warning("BEM cache file %s is unreadable; recomputing it", path)
             ds = None
     if ds is None:
@@ -1089,7 +1089,7 @@ def load_motions(
     mass_kg: float,
     centre_of_gravity_m: Sequence[float],
     pitch_radius_of_gyration_m: float,
-    format: Literal["auto", "capytaine", "wamit"] = "auto",
+    format: Literal["auto", "capytaine", "wamit"] = "auto",  # noqa: A002 - the public keyword users' scripts pass
     origin_x_m: float | None = None,
     ulen_m: float = 1.0,
     water_density_kg_per_m3: float = 1025.0,
@@ -1235,7 +1235,7 @@ def strip_theory_estimate(
     a_mat = np.zeros((omega.size, 2, 2))
     b_mat = np.zeros((omega.size, 2, 2))
     f = np.zeros((omega.size, 2), dtype=complex)
-    for n, (w, kk) in enumerate(zip(omega, k)):
+    for n, (w, kk) in enumerate(zip(omega, k, strict=True)):
         abar = 2.0 * np.sin(kk * b / 2.0) * np.exp(-kk * hull.draft_m)
         d_sec = rho * g**2 * abar**2 / w**3
         a_mat[n] = np.trapezoid(a_sec * wts[:, None, :] * wts[None, :, :], x, axis=-1)

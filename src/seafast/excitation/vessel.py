@@ -293,7 +293,7 @@ class VesselExcitation:
 def _read_two_columns(path: str | Path, key: str, columns: tuple[str, str]) -> tuple[NDArray, NDArray]:
     p = Path(path)
     try:
-        rows = [r for r in csv.reader(l for l in p.read_text(encoding="utf-8").splitlines() if l.strip() and not l.startswith("#"))]
+        rows = list(csv.reader(line for line in p.read_text(encoding="utf-8").splitlines() if line.strip() and not line.startswith("#")))
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{key} = '{p}': cannot read it ({getattr(exc, 'strerror', exc)})") from None
     header = [h.strip() for h in rows[0]] if rows else []

@@ -98,9 +98,9 @@ def build_cargo_beam(
     x = mesh_cargo(geometry.length_m, np.concatenate([fixed_points_m, geometry.segment_boundaries_m]), target_element_length_m)
     xm = 0.5 * (x[1:] + x[:-1])
     D, t = geometry.section_at(xm)
-    I = tube_second_moment_m4(D, t)
+    I_m4 = tube_second_moment_m4(D, t)
     A = tube_area_m2(D, t)
-    EI = geometry.youngs_modulus_Pa * I
+    EI = geometry.youngs_modulus_Pa * I_m4
     m = geometry.density_kg_per_m3 * A
     q = -m * gravity_m_per_s2
     K, M, f = assemble_beam(x, EI, m, load_N_per_m=q)
@@ -108,7 +108,7 @@ def build_cargo_beam(
         node_x_m=x,
         element_outer_diameter_m=D,
         element_wall_thickness_m=t,
-        element_second_moment_m4=I,
+        element_second_moment_m4=I_m4,
         element_bending_stiffness_Nm2=EI,
         element_mass_per_length_kg_per_m=m,
         stiffness=K,

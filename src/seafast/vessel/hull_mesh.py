@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 from numpy.typing import NDArray
@@ -164,7 +165,7 @@ class _Builder:
 
 def _x_breaks(hull: HullForm, h: float) -> NDArray[np.float64]:
     xs = [np.array([hull.station_x_m[0]])]
-    for a, b in zip(hull.station_x_m[:-1], hull.station_x_m[1:]):
+    for a, b in pairwise(hull.station_x_m):
         xs.append(_subdivide(a, b, h)[1:])
     return np.concatenate(xs)
 
@@ -202,7 +203,7 @@ def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_siz
 
     # profile parametrisation: list of (eta, z) points along the half girth
     pts = [prof[0]]
-    for p, q in zip(prof[:-1], prof[1:]):
+    for p, q in pairwise(prof):
         seg_len = math.hypot(0.5 * b_max * (q[0] - p[0]), q[1] - p[1])
         n = max(1, math.ceil(seg_len / h - 1e-9))
         for s in np.linspace(0.0, 1.0, n + 1)[1:]:
@@ -222,22 +223,23 @@ def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_siz
     for i in range(len(xb) - 1):
         for j in range(len(girth) - 1):
             hb_mesh.quad(point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j))
+
+    # half-width at depth z of a section of half-breadth half_breadth_m, from the profile (eta as
+    # function of z; at -T use bottom eta)
+    def width(z: float, half_breadth_m: float) -> float:
+        eta = np.interp(-z, -prof[:-1, 1], prof[:-1, 0]) if z > -t else prof[-2, 0]
+        return float(eta * half_breadth_m)
+
     # transom (x = x_0, normal -x) and a blunt bow (x = x_end, normal +x) if breadth > 0
     for i_end, sign in ((0, -1.0), (len(xb) - 1, 1.0)):
         if hb[i_end] <= 0:
             continue
         zl = np.unique(np.concatenate([girth[:, 1]]))[::-1]  # 0 .. -T
-
-        # half-width at depth z from the profile (eta as function of z; at -T use bottom eta)
-        def width(z: float) -> float:
-            eta = np.interp(-z, -prof[:-1, 1], prof[:-1, 0]) if z > -t else prof[-2, 0]
-            return float(eta * hb[i_end])
-
         ny = max(1, math.ceil(hb[i_end] / h - 1e-9))
         xi = np.linspace(0.0, 1.0, ny + 1)
         x0 = xb[i_end] - x_mid
         for k in range(len(zl) - 1):
-            wa, wb = width(zl[k]), width(zl[k + 1])
+            wa, wb = width(zl[k], hb[i_end]), width(zl[k + 1], hb[i_end])
             for m in range(ny):
                 a = (x0, xi[m] * wa, zl[k])
                 b = (x0, xi[m + 1] * wa, zl[k])

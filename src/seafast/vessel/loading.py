@@ -45,6 +45,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from itertools import pairwise
 
 import numpy as np
 from numpy.typing import NDArray
@@ -274,7 +275,7 @@ class VesselLoading:
             pts.extend(self.lightship.breakpoints_m)
         for it in self.items:
             pts.extend((it.x_start_m, it.x_end_m))
-        return tuple(sorted(set(float(p) for p in pts)))
+        return tuple(sorted({float(p) for p in pts}))
 
     def with_items(self, *items: WeightItem) -> VesselLoading:
         """A copy with ``items`` appended."""
@@ -340,7 +341,7 @@ def _integrate(fun, a: float, b: float, breakpoints: Sequence[float], max_segmen
         return 0.0
     pts = np.array(sorted({a, b, *[p for p in breakpoints if a < p < b]}))
     edges = [pts[0]]
-    for p0, p1 in zip(pts[:-1], pts[1:]):
+    for p0, p1 in pairwise(pts):
         n = max(1, int(np.ceil((p1 - p0) / max_segment_m)))
         edges.extend(np.linspace(p0, p1, n + 1)[1:])
     e = np.asarray(edges)
@@ -458,9 +459,9 @@ def balance_ballast(
     except np.linalg.LinAlgError as exc:  # pragma: no cover - degenerate tank layout
         raise ValueError(f"balance_ballast: tank arrangement gives a singular system ({exc})") from exc
     if np.any(masses < 0):
-        detail = ", ".join(f"{t.name}: {m:.4g} kg" for t, m in zip(tanks, masses))
+        detail = ", ".join(f"{t.name}: {m:.4g} kg" for t, m in zip(tanks, masses, strict=True))
         raise ValueError(f"balance_ballast: negative ballast needed ({detail}); move or resize the tanks")
-    new = tuple(WeightItem(t.name, t.x_start_m, t.x_end_m, float(m)) for t, m in zip(tanks, masses))
+    new = tuple(WeightItem(t.name, t.x_start_m, t.x_end_m, float(m)) for t, m in zip(tanks, masses, strict=True))
     return loading.with_items(*new)
 
 

@@ -229,7 +229,7 @@ def solve_axial_hbm(
             break
     assert best is not None
     _, start_name, X0, ev0 = best
-    X, norm, iters, ok, (R, jen, u) = _newton(p, X0, capacity, options.tolerance, options.max_iterations, ev0)
+    X, norm, iters, ok, (_, jen, u) = _newton(p, X0, capacity, options.tolerance, options.max_iterations, ev0)
     path = f"from the {start_name} solution" if ok else f"did not converge (Newton from the {start_name} solution)"
     lam = jen.force_N
     lashing, stop = restraint.restoring_force_N(u)
