@@ -64,9 +64,11 @@ def main() -> None:
         hull = result.coupled_hull
         mid = int(np.argmin(np.abs(hull.x_m - result.vessel.girder.midship_x_m)))
         print(
-            f"{length:6.2f} {model.cargo.node_count:5d} {st.residual_m:12.1e} / {st.iterations:<5d} {dy.residual_m:13.1e} / {dy.iterations:<5d} "
+            f"{length:6.2f} {model.cargo.node_count:5d} {st.residual_m:12.1e} / {st.iterations:<5d} "
+            f"{dy.residual_m:13.1e} / {dy.iterations:<5d} "
             f"{st.tolerance_m:8.1e} {floor.residual_m:9.1e} {moved:7.1f} {rows[('static', 'nonlinear')]['F_N'] / 1e6:12.4f} "
-            f"{rows[('dynamic', 'nonlinear')]['F_N'] / 1e6:13.4f} {hull.still_water_bending_moment_Nm[mid] / 1e6:12.2f} {t_two / t_one:11.2f}"
+            f"{rows[('dynamic', 'nonlinear')]['F_N'] / 1e6:13.4f} {hull.still_water_bending_moment_Nm[mid] / 1e6:12.2f} "
+            f"{t_two / t_one:11.2f}"
         )
         if not all(s.converged for s in result.coupling.values()):
             print("  a row did NOT converge: " + "; ".join(s.message for s in result.coupling.values() if not s.converged))

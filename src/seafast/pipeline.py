@@ -3,7 +3,9 @@
 This is the only place that knows the order of the stages; each stage is a pure function of
 the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
 
-Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a study point's short path, the two-way coupling and a sweep; each is a short function of the stages below.
+Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a
+study point's short path, the two-way coupling and a sweep; each is a short function of the stages
+below.
 """
 
 from __future__ import annotations

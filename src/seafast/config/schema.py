@@ -5,7 +5,9 @@ keys, so a misspelt key is an error rather than silently ignored. The dotted key
 docs/interface.md#2-case-keys (``cargo.length_m``, ``solver.harmonics``, ...) are the attribute paths of
 :class:`Case`.
 
-Size: over 400 lines because every case key is declared here, with its unit, default, limits and description (one place for users to read the case format and for `seafast schema` to export it); the sections are small classes.
+Size: over 400 lines because every case key is declared here, with its unit, default, limits and
+description (one place for users to read the case format and for `seafast schema` to export it); the
+sections are small classes.
 """
 
 from __future__ import annotations

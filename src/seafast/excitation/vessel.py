@@ -17,7 +17,9 @@ path to capytaine NetCDF / WAMIT output.
 Everything here depends only on the vessel, cargo-mass and wave parts of the case, so it is
 memoised per process: a parametric study over saddles computes it once.
 
-Size: over 400 lines because it is the one place that turns the case's vessel keys into the deck excitation (hull form, loading, girder, tables, motions, their labelled dataset); each source is a short function.
+Size: over 400 lines because it is the one place that turns the case's vessel keys into the deck
+excitation (hull form, loading, girder, tables, motions, their labelled dataset); each source is a
+short function.
 """
 
 from __future__ import annotations

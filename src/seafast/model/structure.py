@@ -16,7 +16,9 @@ a bilateral spring with its full stiffness; in the *nonlinear* model the compres
 Harmonic convention: a periodic quantity is ``x(t) = Re(sum_k X_k exp(i k omega t))``; k = 0 is
 the static (mean) part and is real.
 
-Size: over 400 lines because the model's matrices, their banded forms, the mesh and eigen-solve caches a study reuses, and the mechanism test share the model's layout; splitting them would make private layout helpers public.
+Size: over 400 lines because the model's matrices, their banded forms, the mesh and eigen-solve
+caches a study reuses, and the mechanism test share the model's layout; splitting them would make
+private layout helpers public.
 """
 
 from __future__ import annotations

@@ -68,7 +68,10 @@ _ROW_VARS: dict[str, tuple[str, str]] = {
     "axial_force_N": ("largest axial force of the lashings and stoppers on the cargo", "N"),
     "critical_friction_coefficient": ("uniform friction coefficient below which the cargo starts to slide", "1"),
     "friction_moment_saddle_force_change_N": (
-        "estimated change of the saddle forces by the friction's moment (friction at the contact line, D/2 below the axis; quasi-static, bilateral saddles)",
+        (
+            "estimated change of the saddle forces by the friction's moment "
+            "(friction at the contact line, D/2 below the axis; quasi-static, bilateral saddles)"
+        ),
         "N",
     ),
     "axial_residual_norm": ("axial solver residual (HBM: relative; time domain: last period change)", "1"),
