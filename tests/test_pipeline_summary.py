@@ -62,7 +62,7 @@ def test_short_path_rows_equal_the_full_pipeline(name):
     full = run_case(case).summary
     assert [(r["load_case"], r["model"]) for r in fast] == [(r["load_case"], r["model"]) for r in full]
     assert [list(r) for r in fast] == [list(r) for r in full]  # same columns, same order
-    for f, r in zip(fast, full):
+    for f, r in zip(fast, full, strict=True):
         label = f"{f['load_case']}/{f['model']}"
         for key, scale in (("u_c_m", 1e-3), ("u_s_m", 1e-3), ("u_d_m", 1e-3), ("F_N", 1e6), ("M_b_Nm", 1e7), ("sigma_b_Pa", 1e6)):
             assert f[key] == pytest.approx(r[key], rel=rel, abs=1e-10 * scale), f"{label} {key}"

@@ -370,7 +370,7 @@ def test_directory_and_non_utf8_file(tmp_path: Path) -> None:
         load_case(tmp_path)
     p = tmp_path / "latin1.yaml"
     p.write_bytes("name: caf\xe9\n".encode("latin-1"))
-    with pytest.raises(CaseError, match="latin1.yaml"):
+    with pytest.raises(CaseError, match=r"latin1\.yaml"):
         load_case(p)
 
 
@@ -468,7 +468,11 @@ def test_random_mappings_give_case_or_case_error(data: Any) -> None:
     try:
         case = case_from_mapping(data)
     except CaseError as exc:
-        assert str(exc).startswith("invalid case")
+        error = str(exc)
+    else:
+        error = None
+    if error is not None:
+        assert error.startswith("invalid case")
         return
     assert isinstance(case, Case)
     # a valid case has consistent derived values
@@ -482,7 +486,7 @@ def test_random_mappings_give_case_or_case_error(data: Any) -> None:
 
 override_keys = st.sampled_from(
     [f"{g}.{k}" for g, sub in SCHEMA.items() if sub for k in sub]
-    + [g for g in SCHEMA]
+    + list(SCHEMA)
     + ["cargo.length_m.x", "a..b", "seafastening.lashing.stiffness_N_per_m"]
 )
 

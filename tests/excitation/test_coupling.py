@@ -70,7 +70,7 @@ def test_coupled_deck_is_the_hull_girder_under_the_cargo_point_loads(coupled):
     # the coupling's saddle patch: the node's tributary length centred on the saddle
     xn = vessel.cargo_aft_end_x_m + model.cargo.node_x_m
     half = [0.5 * (xn[i + 1] - xn[i - 1]) / 2.0 for i in model.saddle_node]
-    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, forces)))
+    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, forces, strict=True)))
     items = tuple(it for it in vessel.loading.items if it.name != "cargo") + patches
     hull = still_water_response(vessel.girder, replace(vessel.loading, items=items))
     z, slope = deck_deflection_at(hull, xs)
@@ -96,7 +96,7 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
     would leave 100-200 % of the inertia resultant."""
     from seafast.excitation.coupling import spread_load_N
 
-    case, model, excitation, rows = coupled_in_waves
+    _, model, excitation, rows = coupled_in_waves
     xn = model.cargo.node_x_m
     xs = model.saddle_x_m
     w = excitation.omega_rad_s
@@ -124,7 +124,7 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
 def test_wave_coupling_reduces_the_wave_induced_deck_motion(coupled_in_waves):
     """The cargo resists the hull's wave bending: the coupled deck's first harmonic differs
     less between the saddles than the one-way one, and the linear model needs one step."""
-    case, model, excitation, rows = coupled_in_waves
+    _, model, excitation, rows = coupled_in_waves
     z = model.saddle_deck_dof
 
     def differential(exc):
@@ -171,7 +171,7 @@ def test_a_stiff_hull_makes_the_coupling_vanish():
 def test_two_way_coupling_needs_the_computed_hull(tmp_path):
     table = tmp_path / "deck.csv"
     table.write_text("x_m,still_water_m,wave_amplitude_m,wave_phase_rad\n0,0,0,0\n171,0,0,0\n")
-    with pytest.raises(CaseError, match="vessel.coupling"):
+    with pytest.raises(CaseError, match=r"vessel\.coupling"):
         load_case(overrides={"vessel.coupling": "two_way", "vessel.deck_deflection_table": str(table)})
     with pytest.raises(CaseError, match="one_way"):
         load_case(overrides={"vessel.coupling": "both"})
@@ -298,7 +298,7 @@ def test_the_coupled_still_water_hull_is_a_fresh_hull_solve_under_the_saddle_loa
         atol=0,
     )
     xs, half = _saddle_patches(result)
-    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, P)))
+    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, P, strict=True)))
     items = tuple(it for it in vessel.loading.items if it.name != "cargo") + patches
     fresh = still_water_response(vessel.girder, replace(vessel.loading, items=items))
     x = ds["hull_x_m"].values
@@ -341,7 +341,7 @@ def test_the_coupled_midship_moment_is_the_statics_of_the_saddle_reactions(two_w
     W = model.cargo.mass_kg * g
     u = np.clip(x, aft, aft + length)
     statics = m1 + n * (
-        W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u)) - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs))
+        W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u)) - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs, strict=True))
     )
     away = np.all(np.abs(x[:, None] - xs[None, :]) > half[None, :] + 1e-9, axis=1)
     change = np.abs(m2 - m1).max()

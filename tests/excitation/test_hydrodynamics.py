@@ -96,7 +96,7 @@ def test_long_wave_limit_conventions(coarse, hull):
     v_mid = coarse.vertical_displacement_rao(x_mid, w)
     assert abs(v_mid) == pytest.approx(1.0, abs=0.02)
     assert abs(np.degrees(np.angle(v_mid))) < 2.0
-    heave, pitch = coarse.rao_at(w)
+    _, pitch = coarse.rao_at(w)
     assert abs(pitch) == pytest.approx(k, rel=0.05)  # wave slope
     assert np.degrees(np.angle(pitch)) == pytest.approx(90.0, abs=5.0)  # theta = i k zeta (bow up first)
     assert coarse.reference_x_m == pytest.approx(hull.centre_of_buoyancy_x_m())
@@ -301,7 +301,7 @@ def test_rao_at_and_dataset(coarse, tmp_path):
     h, p = coarse.rao_at(0.6)
     i = int(np.flatnonzero(OMEGA == 0.6)[0])
     assert h == coarse.heave_rao_m_per_m[i] and p == coarse.pitch_rao_rad_per_m[i]
-    hh, pp = coarse.rao_at([0.45, 0.55])
+    hh, _ = coarse.rao_at([0.45, 0.55])
     assert hh.shape == (2,)
     assert hh[0] == pytest.approx(0.5 * (coarse.heave_rao_m_per_m[3] + coarse.heave_rao_m_per_m[4]))
     with pytest.raises(ValueError, match=r"omega = 2\.5.*\[0\.15, 1\.3\]"):
@@ -312,7 +312,7 @@ def test_rao_at_and_dataset(coarse, tmp_path):
     ds.to_netcdf(path)
     with xr.open_dataset(path) as back:
         np.testing.assert_allclose(back["pitch_rao_real"] + 1j * back["pitch_rao_imag"], coarse.pitch_rao_rad_per_m)
-    with pytest.raises(Exception):
+    with pytest.raises(ValueError, match="read-only"):
         coarse.heave_rao_m_per_m[0] = 0.0  # read-only arrays in a frozen dataclass
 
 

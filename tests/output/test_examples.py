@@ -49,7 +49,7 @@ def test_deck_table_covers_the_ship() -> None:
     assert table.x_m[0] == 0.0 and table.x_m[-1] == pytest.approx(171.0)
     lines = (EXAMPLES / "deck_deflection.csv").read_text(encoding="utf-8").splitlines()
     assert lines[0].startswith("#")  # says it is generated
-    header = next(csv.reader([next(l for l in lines if not l.startswith("#"))]))
+    header = next(csv.reader([next(line for line in lines if not line.startswith("#"))]))
     assert tuple(header) == DECK_TABLE_COLUMNS
 
 

@@ -43,7 +43,7 @@ def test_without_friction_the_source_results_bit_for_bit(plain, cases):
     assert not any(k in plain.dataset for k in ("slip_m", "friction_force_N"))
     with_axial = cases[0.3]
     assert with_axial.summary_columns == SUMMARY_COLUMNS + ("slip_m", "friction_utilisation", "axial_force_N")
-    for a, b in zip(plain.summary, with_axial.summary):
+    for a, b in zip(plain.summary, with_axial.summary, strict=True):
         for key in SUMMARY_COLUMNS:
             assert a[key] == b[key], key  # the axial analysis is one way: the vertical numbers are identical
     np.testing.assert_array_equal(plain.dataset["saddle_force_N"].values, with_axial.dataset["saddle_force_N"].values)
@@ -211,7 +211,7 @@ def test_imported_motions_without_surge(tmp_path, capsys, plain):
     assert main(["run", "-o", str(tmp_path / "v"), *common]) == 0
     # the surge problems of the BEM changed nothing of the vertical analysis: same numbers bit for bit
     rows = list(csv.DictReader((tmp_path / "v" / "summary.csv").open(encoding="utf-8")))
-    for row, ref in zip(rows, plain.summary):
+    for row, ref in zip(rows, plain.summary, strict=True):
         assert [float(row[k]) for k in SUMMARY_COLUMNS[2:-1]] == [ref[k] for k in SUMMARY_COLUMNS[2:-1]]
     capsys.readouterr()
     assert main(["run", "-o", str(tmp_path / "a"), *common, "--set", "seafastening.friction_coefficient=0.3"]) == 2
@@ -274,7 +274,7 @@ def test_vertical_motion_coupling_switch(plain):
     rb, rb0 = coupled.vessel.rigid_body, plain.vessel.rigid_body
     assert rb.pitch_rad == rb.coupled_pitch_rad and rb0.pitch_rad != rb0.coupled_pitch_rad
     assert abs(abs(rb.pitch_rad) / abs(rb0.pitch_rad) - 1) < 0.05
-    for a, b in zip(plain.summary, coupled.summary):
+    for a, b in zip(plain.summary, coupled.summary, strict=True):
         if a["load_case"] == "static":
             assert a["F_N"] == b["F_N"]
         else:

@@ -45,7 +45,7 @@ def _march_loop(u, cap, k, w0=0.0):
     w = w0
     for _ in range(2):
         out = []
-        for un, cn in zip(u, cap):
+        for un, cn in zip(u, cap, strict=True):
             w = min(max(w, un - cn / k), un + cn / k)
             out.append(w)
     return np.array(out)

@@ -63,9 +63,9 @@ def test_prohaska_rejects_unreachable_lcg():
 
 
 def test_weight_item_validation_and_distribution():
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"x_end_m = 5\.0 must be > x_start_m = 10\.0"):
         WeightItem("bad", 10.0, 5.0, 1.0)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"mass_kg = -1\.0; must be finite and >= 0"):
         WeightItem("bad", 0.0, 5.0, -1.0)
     it = WeightItem("cargo", 48.5, 122.5, 4.0e6)
     loading = VesselLoading(None, (it,))
