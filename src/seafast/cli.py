@@ -133,24 +133,14 @@ def build_parser() -> argparse.ArgumentParser:
     _add_set(sweep)
     sweep.set_defaults(handler=_cmd_sweep)
 
-    try:
-        from seafast.studies.cli import add_study_subcommand
-    except ImportError:  # pragma: no cover - studies are part of the package
-        add_study_subcommand = None
-    if add_study_subcommand is not None:
-        add_study_subcommand(sub)
-    try:
-        from seafast.seastate.cli import add_seastate_subcommand
-    except ImportError:  # pragma: no cover - part of the package
-        add_seastate_subcommand = None
-    if add_seastate_subcommand is not None:
-        add_seastate_subcommand(sub)
-    try:
-        from seafast.output.report import add_report_subcommand
-    except ImportError:  # pragma: no cover
-        add_report_subcommand = None
-    if add_report_subcommand is not None:
-        add_report_subcommand(sub)
+    # the study, sea-state and report commands are defined in their own packages
+    from seafast.output.report import add_report_subcommand
+    from seafast.seastate.cli import add_seastate_subcommand
+    from seafast.studies.cli import add_study_subcommand
+
+    add_study_subcommand(sub)
+    add_seastate_subcommand(sub)
+    add_report_subcommand(sub)
     return parser
 
 

@@ -92,7 +92,7 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
     from seafast.solvers.hbm import HBMOptions
 
     s = case.solver
-    settings = dict(
+    settings: dict[str, Any] = dict(
         harmonics=s.harmonics,
         time_samples=s.time_samples,
         contact_law=s.contact_law,
@@ -434,6 +434,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     rows[("static", "nonlinear")] = RowSolution(
         X, delta, static_options.law.force(delta, k_u), static_excitation, True, sol.converged, sol.residual_norm, sol.iterations
     )
+    assert dynamic.cargo_displacement_harmonics is not None  # the harmonic balance's solution has harmonics
     rows[("dynamic", "nonlinear")] = RowSolution(
         dynamic.cargo_displacement_harmonics, dynamic.saddle_compression_time_m, dynamic.saddle_force_time_N, excitation, True,
         dynamic.converged, dynamic.residual_norm, dynamic.iterations,

@@ -196,10 +196,12 @@ class SeaFasteningConfig(_Strict):
         values = list(v) if isinstance(v, (list, tuple)) else [v]
         if not values:
             raise ValueError("must list at least one value, or be null (no axial analysis)")
+        numbers: list[float] = []
         for x in values:
             if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or x < 0:
                 raise ValueError(f"{x!r} is not allowed; a friction coefficient is a finite number >= 0 (one value, or one per saddle)")
-        return tuple(float(x) for x in values) if isinstance(v, (list, tuple)) else float(values[0])
+            numbers.append(float(x))
+        return tuple(numbers) if isinstance(v, (list, tuple)) else numbers[0]
 
     @field_validator("saddle_positions_m")
     @classmethod

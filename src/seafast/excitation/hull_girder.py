@@ -148,7 +148,9 @@ class HullGirder:
     @property
     def shear_stiffness_N(self) -> float:
         """G A_s [N] (``inf`` for an Euler-Bernoulli hull)."""
-        return float(self.shear_modulus_Pa * self.shear_area_m2)
+        shear_modulus_Pa = self.shear_modulus_Pa
+        assert shear_modulus_Pa is not None  # __post_init__ sets the default E / 2.6
+        return float(shear_modulus_Pa * self.shear_area_m2)
 
     @property
     def buoyancy_per_draught_N_per_m2(self) -> float:

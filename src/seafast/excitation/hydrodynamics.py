@@ -52,10 +52,10 @@ import logging
 import math
 import os
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal, TypeAlias
 
 import numpy as np
 import xarray as xr
@@ -86,6 +86,9 @@ logger = logging.getLogger(__name__)
 
 #: Bump when the mesher or the post-processing changes, to invalidate cached BEM results.
 MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
+
+# an RAO at one frequency (a scalar omega) or at several (an array)
+ComplexValue: TypeAlias = complex | NDArray[np.complexfloating[Any, Any]]
 
 _T = np.diag([1.0, -1.0])  # capytaine/WAMIT (heave, eta5) -> seafast (heave, theta)
 _T3 = np.diag([1.0, 1.0, -1.0])  # capytaine/WAMIT (surge, heave, eta5) -> seafast (surge, heave, theta)
@@ -166,7 +169,7 @@ class RigidBodyMotions:
         }
         object.__setattr__(self, "omega_rad_s", w)
         for name, (dtype, shape) in arrays.items():
-            a = np.asarray(getattr(self, name), dtype=dtype)
+            a: NDArray[np.generic] = np.asarray(getattr(self, name), dtype=dtype)
             if a.shape != shape:
                 raise ValueError(f"RigidBodyMotions: {name} has shape {a.shape}, expected {shape}")
             a.setflags(write=False)
@@ -190,7 +193,7 @@ class RigidBodyMotions:
         """Whether the hydrodynamic data held surge (``surge_rao_m_per_m`` is not ``None``)."""
         return self.surge_rao_m_per_m is not None
 
-    def surge_at(self, omega: ArrayLike):
+    def surge_at(self, omega: ArrayLike) -> ComplexValue:
         """Surge RAO at ``omega`` [rad/s] (forward +, of the reference point) [m/m], interpolated.
 
         Raises
@@ -202,7 +205,7 @@ class RigidBodyMotions:
             raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
         return self._interp(omega, self.surge_rao_m_per_m)
 
-    def coupled_at(self, omega: ArrayLike):
+    def coupled_at(self, omega: ArrayLike) -> tuple[ComplexValue, ComplexValue, ComplexValue]:
         """Surge [m/m], heave [m/m] and pitch [rad/m] of the coupled 3-DOF solution at ``omega``, interpolated.
 
         Raises
@@ -225,14 +228,14 @@ class RigidBodyMotions:
         if bad.size:
             raise ValueError(f"RigidBodyMotions: omega = {float(bad[0])!r} rad/s is outside the computed range [{lo:.6g}, {hi:.6g}] rad/s")
 
-    def _interp(self, omega: ArrayLike, values: NDArray[np.complex128]):
+    def _interp(self, omega: ArrayLike, values: NDArray[np.complex128]) -> ComplexValue:
         w = np.asarray(omega, dtype=float)
         self._check_range(np.atleast_1d(w))
         wc = np.clip(w, self.omega_rad_s[0], self.omega_rad_s[-1])
         out = np.interp(wc, self.omega_rad_s, values.real) + 1j * np.interp(wc, self.omega_rad_s, values.imag)
         return complex(out) if np.ndim(w) == 0 else out
 
-    def rao_at(self, omega: ArrayLike):
+    def rao_at(self, omega: ArrayLike) -> tuple[ComplexValue, ComplexValue]:
         """Heave and pitch RAOs at ``omega`` [rad/s], linearly interpolated (real and imaginary parts).
 
         Returns
@@ -247,7 +250,7 @@ class RigidBodyMotions:
         """
         return self._interp(omega, self.heave_rao_m_per_m), self._interp(omega, self.pitch_rao_rad_per_m)
 
-    def vertical_displacement_rao(self, x_m: ArrayLike, omega: ArrayLike | None = None):
+    def vertical_displacement_rao(self, x_m: ArrayLike, omega: ArrayLike | None = None) -> ComplexValue:
         """Rigid-body vertical displacement ``w + theta (x - reference_x_m)`` per metre of wave [m/m].
 
         Parameters
@@ -262,10 +265,11 @@ class RigidBodyMotions:
         if omega is None:
             h, p = self.heave_rao_m_per_m, self.pitch_rao_rad_per_m
             return h.reshape((-1,) + (1,) * x.ndim) + p.reshape((-1,) + (1,) * x.ndim) * (x - self.reference_x_m)
-        h, p = self.rao_at(omega)
+        h_w, p_w = self.rao_at(omega)
         if np.ndim(omega) == 0:
-            return h + p * (x - self.reference_x_m)
-        return np.asarray(h)[(...,) + (None,) * x.ndim] + np.asarray(p)[(...,) + (None,) * x.ndim] * (x - self.reference_x_m)
+            return h_w + p_w * (x - self.reference_x_m)
+        h_a, p_a = np.asarray(h_w, dtype=np.complex128), np.asarray(p_w, dtype=np.complex128)
+        return h_a[(...,) + (None,) * x.ndim] + p_a[(...,) + (None,) * x.ndim] * (x - self.reference_x_m)
 
     # ---------------------------------------------------------------- export
     def to_dataset(self) -> xr.Dataset:
@@ -283,7 +287,7 @@ class RigidBodyMotions:
         }
         ds = xr.Dataset(coords={k: xr.Variable(*v) for k, v in coords.items()})
 
-        def add_complex(name, data, dims, units, long_name):
+        def add_complex(name: str, data: NDArray[np.complex128], dims: tuple[str, ...], units: str, long_name: str) -> None:
             for part, fn, u in (
                 ("real", np.real, units),
                 ("imag", np.imag, units),
@@ -336,7 +340,7 @@ class RigidBodyMotions:
 
 
 # ---------------------------------------------------------------------------------- physics helpers
-def wavenumber_rad_per_m(omega_rad_s: ArrayLike, water_depth_m: float = math.inf, gravity_m_per_s2: float = 9.81):
+def wavenumber_rad_per_m(omega_rad_s: ArrayLike, water_depth_m: float = math.inf, gravity_m_per_s2: float = 9.81) -> NDArray[np.float64]:
     """Wave number from the linear dispersion relation ``omega^2 = g k tanh(k h)`` [rad/m]."""
     w = np.asarray(omega_rad_s, dtype=float)
     k = w**2 / gravity_m_per_s2
@@ -694,14 +698,15 @@ def _read_capytaine_netcdf_cached(path: str, mtime_ns: int, size: int) -> xr.Dat
     return ds
 
 
-def _has_dof(values, name: str) -> bool:
+def _has_dof(values: Iterable[object], name: str) -> bool:
     return name.lower() in [str(v).lower() for v in values]
 
 
-def _dof_index(values, name: str) -> int:
-    names = [str(v).lower() for v in values]
+def _dof_index(values: Iterable[object], name: str) -> int:
+    found = list(values)
+    names = [str(v).lower() for v in found]
     if name.lower() not in names:
-        raise ValueError(f"capytaine dataset: dof {name!r} missing (found {list(values)})")
+        raise ValueError(f"capytaine dataset: dof {name!r} missing (found {found})")
     return names.index(name.lower())
 
 
@@ -785,8 +790,8 @@ def _capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_p
         da = ds[v]
         for d in [d for d in da.dims if d not in ("omega", "influenced_dof", "radiating_dof")]:
             da = da.isel({d: 0})
-        da = da.transpose("omega", "influenced_dof", "radiating_dof").values
-        return np.real(da[:, rows][:, :, cols])
+        values = da.transpose("omega", "influenced_dof", "radiating_dof").values
+        return np.real(values[:, rows][:, :, cols])
 
     a_c, b_c = mat("added_mass"), mat("radiation_damping")
     f_c = exc.transpose("omega", "influenced_dof").values[:, rows]
@@ -808,22 +813,22 @@ def _capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_p
 
 
 def _motions_from_rigid_coefficients(
-    omega,
-    k,
-    a_eta,
-    b_eta,
-    f_eta_plus,
-    hull,
+    omega: NDArray[np.float64],
+    k: NDArray[np.float64],
+    a_eta: NDArray[np.float64],
+    b_eta: NDArray[np.float64],
+    f_eta_plus: NDArray[np.complex128],
+    hull: HullForm,
     *,
-    coeff_reference_x_m,
-    wave_phase_origin_x_m,
-    mass_kg,
-    centre_of_gravity_m,
-    pitch_radius_of_gyration_m,
-    water_density_kg_per_m3,
-    gravity_m_per_s2,
-    source,
-    coeff_reference_z_wl_m=0.0,
+    coeff_reference_x_m: float,
+    wave_phase_origin_x_m: float,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    source: str,
+    coeff_reference_z_wl_m: float = 0.0,
 ) -> RigidBodyMotions:
     """Common back end of the importers.
 
@@ -918,21 +923,21 @@ def _shift_reference_3(dx_new_minus_old: float, dz_new_minus_old: float) -> NDAr
 
 
 def _coupled_surge_motions(
-    omega,
-    k,
-    a_eta,
-    b_eta,
-    f_eta_plus,
-    hull,
+    omega: NDArray[np.float64],
+    k: NDArray[np.float64],
+    a_eta: NDArray[np.float64],
+    b_eta: NDArray[np.float64],
+    f_eta_plus: NDArray[np.complex128],
+    hull: HullForm,
     *,
-    coeff_reference_x_m,
-    coeff_reference_z_wl_m,
-    wave_phase_origin_x_m,
-    mass_kg,
-    centre_of_gravity_m,
-    pitch_radius_of_gyration_m,
-    water_density_kg_per_m3,
-    gravity_m_per_s2,
+    coeff_reference_x_m: float,
+    coeff_reference_z_wl_m: float,
+    wave_phase_origin_x_m: float,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
 ) -> NDArray[np.complex128]:
     """Surge, heave and pitch solved together about the CoG (x_G, z_G), from (surge, heave, eta5) data.
 
@@ -976,7 +981,7 @@ def read_wamit_1(
     water_density_kg_per_m3: float,
     frequency_column: Literal["period", "omega"] = "period",
     modes: tuple[int, ...] = (3, 5),
-):
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Read heave/pitch (``modes``: also surge, mode 1) added mass and damping from a WAMIT ``.1`` file.
 
     Lines ``PER I J Abar Bbar``; ``Abar = A / (rho L^k)``, ``Bbar = B / (rho L^k omega)`` with
@@ -1025,7 +1030,7 @@ def read_wamit_3(
     heading_deg: float = 180.0,
     frequency_column: Literal["period", "omega"] = "period",
     modes: tuple[int, ...] = (3, 5),
-):
+) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
     """Read heave/pitch (``modes``: also surge, mode 1) wave excitation from a WAMIT ``.3`` file, one heading.
 
     Lines ``PER BETA I |X| phase Re Im``; ``Xbar = X / (rho g A L^m)``, ``m = 2`` for forces,
@@ -1067,7 +1072,7 @@ def read_wamit_3(
 def _wamit_has_surge(f1: Path, f3: Path) -> bool:
     """Whether both WAMIT files hold mode 1 (surge): the .1 file its diagonal term, the .3 file its force."""
 
-    def has(path: Path, test) -> bool:
+    def has(path: Path, test: Callable[[list[str]], bool]) -> bool:
         for line in path.read_text().splitlines():
             parts = line.split()
             try:
@@ -1141,16 +1146,19 @@ def load_motions(
     if fmt == "auto":
         fmt = "capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit"
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
-    common = dict(
-        mass_kg=mass_kg,
-        centre_of_gravity_m=centre_of_gravity_m,
-        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3,
-        gravity_m_per_s2=gravity_m_per_s2,
-    )
     if fmt == "capytaine":
         ds = _read_capytaine_netcdf(p)
-        return _motions_from_capytaine(ds, hull, origin_x_m=origin_x_m, source=f"capytaine file {p}", **common)
+        return _motions_from_capytaine(
+            ds,
+            hull,
+            origin_x_m=origin_x_m,
+            source=f"capytaine file {p}",
+            mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m,
+            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
+        )
     if fmt != "wamit":
         raise ValueError(f"load_motions: unknown format {format!r}")
     stem = p.with_suffix("") if p.suffix in (".1", ".3") else p
@@ -1189,7 +1197,11 @@ def load_motions(
         coeff_reference_x_m=origin,
         wave_phase_origin_x_m=origin,
         source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)",
-        **common,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
     )
 
 

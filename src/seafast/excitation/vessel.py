@@ -374,27 +374,29 @@ def vessel_loading_of(case: Case, hull: HullForm) -> tuple[VesselLoading, str]:
     -------
     loading, description
     """
-    common = dict(
+    cargo_mass_kg = case.cargo.units_abreast * _cargo_mass_kg(case)
+    default_loading = functools.partial(
+        base_vessel_loading,
         hull=hull,
         cargo_position_m=case.cargo_position_m(),
         cargo_length_m=case.cargo.length_m,
-        cargo_mass_kg=case.cargo.units_abreast * _cargo_mass_kg(case),
+        cargo_mass_kg=cargo_mass_kg,
         lightship_mass_kg=case.vessel.lightship_mass_kg,
         water_density_kg_per_m3=case.vessel.water_density_kg_per_m3,
         gravity_m_per_s2=case.model.gravity_m_per_s2,
     )
     try:
-        return base_vessel_loading(**common), "default loading"
+        return default_loading(), "default loading"
     except ValueError:
         pass
     try:
-        loading = base_vessel_loading(still_water_moment_Nm=None, **common)
+        loading = default_loading(still_water_moment_Nm=None)
         logger.debug("vessel loading: the cargo is too heavy for the default hogging ballast plan; ballast for even keel only")
         return loading, "default loading, ballast for even keel only (cargo too heavy for the default hogging plan)"
     except ValueError as exc:
         raise ValueError(
             f"vessel loading: {exc}; the cargo ({case.cargo.units_abreast} units abreast, "
-            f"{common['cargo_mass_kg'] / 1e3:.0f} t) cannot be ballasted to the design draught - reduce cargo.units_abreast "
+            f"{cargo_mass_kg / 1e3:.0f} t) cannot be ballasted to the design draught - reduce cargo.units_abreast "
             "or give vessel.deck_deflection_table / vessel.still_water_bending_moment_table"
         ) from None
 
@@ -496,7 +498,8 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
     rigid = None
     if motions is not None and amplitude > 0:
         # BEM inside its grid, blended into the long-wave limits below it and decayed above it
-        heave, pitch = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
+        heave_rao, pitch_rao = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
+        heave, pitch = complex(heave_rao), complex(pitch_rao)  # per metre of wave, at the one frequency
         surge = coupled_pitch = None
         inside = bool(motions.omega_rad_s[0] <= omega <= motions.omega_rad_s[-1])
         if motions.has_surge and inside:
@@ -507,8 +510,8 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
             heave, pitch = heave_c / amplitude, pitch_c / amplitude
             vertical = "heave/pitch coupled with surge"
         rigid = RigidBodyAmplitudes(
-            complex(heave) * amplitude,
-            complex(pitch) * amplitude,
+            heave * amplitude,
+            pitch * amplitude,
             float(motions.reference_x_m),
             surge_m=surge,
             reference_z_m=float(motions.reference_z_m),

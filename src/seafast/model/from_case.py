@@ -18,6 +18,7 @@ DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M = 1e12
 def cargo_geometry(case: Case) -> CargoGeometry:
     """The cargo's tube segments and material from the case (one unit)."""
     c = case.cargo
+    segments: tuple[TubeSegment, ...]
     if c.sections is None:
         segments = (TubeSegment(0.0, c.length_m, c.diameter_m, c.diameter_m, c.wall_thickness_m),)
     else:

@@ -309,24 +309,36 @@ class StructuralModel:
             factor = (scipy.linalg.cholesky_banded(K_band, check_finite=False), False)
             inverse = LinearOperator((n, n), matvec=lambda v: scipy.linalg.cho_solve_banded(factor, v, check_finite=False), dtype=float)
             M_sparse = symmetric(_upper_band(self.cargo.mass, 3))
-            result = eigsh(
-                symmetric(K_band),
-                k=count,
-                M=M_sparse,
-                sigma=0.0,
-                which="LM",
-                OPinv=inverse,
-                v0=np.ones(n),
-                ncv=2 * count + 4,
-                return_eigenvectors=vectors,
-            )
+            K_sparse = symmetric(K_band)
+            # one call per branch: the eigenvectors' flag is a literal for each (the stubs overload on it)
             if vectors:
-                w2, phi = result
+                w2, phi = eigsh(
+                    K_sparse,
+                    k=count,
+                    M=M_sparse,
+                    sigma=0.0,
+                    which="LM",
+                    OPinv=inverse,
+                    v0=np.ones(n),
+                    ncv=2 * count + 4,
+                    return_eigenvectors=True,
+                )
                 order = np.argsort(w2)
                 w2, phi = w2[order], phi[:, order]
                 phi = phi / np.sqrt(np.einsum("ij,ij->j", phi, M_sparse @ phi))
             else:
-                w2, phi = np.sort(result), None
+                w2 = eigsh(
+                    K_sparse,
+                    k=count,
+                    M=M_sparse,
+                    sigma=0.0,
+                    which="LM",
+                    OPinv=inverse,
+                    v0=np.ones(n),
+                    ncv=2 * count + 4,
+                    return_eigenvectors=False,
+                )
+                w2, phi = np.sort(w2), None
         return np.sqrt(np.maximum(w2, 0.0)), phi
 
     def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:

@@ -31,9 +31,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from itertools import pairwise
+from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from seafast.vessel.hull_form import HullForm
 
@@ -110,7 +111,7 @@ class HullMesh:
         """Number of lid panels of the full (both sides) mesh."""
         return 2 * int(self.lid_faces.shape[0])
 
-    def to_capytaine(self):
+    def to_capytaine(self) -> tuple[Any, Any]:
         """Return ``(hull_mesh, lid_mesh)`` as capytaine ``ReflectionSymmetricMesh`` (plane xOz)."""
         import capytaine as cpt
 
@@ -130,7 +131,8 @@ class _Builder:
         self.faces: list[list[int]] = []
 
     def _vid(self, p: NDArray[np.float64]) -> int:
-        key = tuple(round(float(c), 9) + 0.0 for c in p)
+        x, y, z = (round(float(c), 9) + 0.0 for c in p)
+        key = (x, y, z)
         i = self._index.get(key)
         if i is None:
             i = len(self.vertices)
@@ -138,7 +140,7 @@ class _Builder:
             self.vertices.append(key)
         return i
 
-    def quad(self, p0, p1, p2, p3) -> None:
+    def quad(self, p0: ArrayLike, p1: ArrayLike, p2: ArrayLike, p3: ArrayLike) -> None:
         ids: list[int] = []
         for p in (p0, p1, p2, p3):
             i = self._vid(np.asarray(p, dtype=float))
@@ -153,7 +155,7 @@ class _Builder:
         v = np.array([self.vertices[i] for i in ids])
         n = np.cross(v[2] - v[0], v[3] - v[1])
         warp = abs(np.dot(n / np.linalg.norm(n), v[1] - v[0]))
-        if warp > 1e-6 * max(np.linalg.norm(v[2] - v[0]), 1.0):  # twisted quad: two triangles
+        if warp > 1e-6 * max(float(np.linalg.norm(v[2] - v[0])), 1.0):  # twisted quad: two triangles
             self.faces.append([ids[0], ids[1], ids[2], ids[2]])
             self.faces.append([ids[0], ids[2], ids[3], ids[3]])
         else:
@@ -274,8 +276,8 @@ def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_siz
             lid.quad(a, b, c, d)
     lid_v, lid_f = lid.arrays()
     # make lid normals point down (-z)
-    n = _face_normals(lid_v, lid_f)
-    flip = n[:, 2] > 0
+    normals = _face_normals(lid_v, lid_f)
+    flip = normals[:, 2] > 0
     lid_f[flip] = lid_f[flip][:, ::-1]
     return HullMesh(hull_v, hull_f, lid_v, lid_f, float(x_mid), float(lid_z_m))
 
@@ -287,7 +289,9 @@ def _face_normals(v: NDArray[np.float64], f: NDArray[np.int64]) -> NDArray[np.fl
     return n / np.linalg.norm(n, axis=1, keepdims=True)
 
 
-def _orient_outward(v: NDArray[np.float64], f: NDArray[np.int64], interior_point: NDArray[np.float64]):
+def _orient_outward(
+    v: NDArray[np.float64], f: NDArray[np.int64], interior_point: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Flip faces whose normal points towards ``interior_point`` (valid for convex hulls).
 
     Wall-sided sections (box or chine) and a convex waterline make the hull convex, so a face
@@ -301,7 +305,7 @@ def _orient_outward(v: NDArray[np.float64], f: NDArray[np.int64], interior_point
     return v, f
 
 
-def mesh_hull(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0):
+def mesh_hull(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0) -> tuple[Any, Any]:
     """Capytaine meshes ``(hull_mesh, lid_mesh)`` of the wetted hull and its interior lid.
 
     See :func:`hull_mesh_arrays` for the parameters and the frame (origin at midship on the

@@ -43,7 +43,7 @@ the docstrings that give each choice its source.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from itertools import pairwise
 
@@ -332,7 +332,9 @@ def weight_distribution_N_per_m(x_m: FloatArray | float, loading: VesselLoading,
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(6)
 
 
-def _integrate(fun, a: float, b: float, breakpoints: Sequence[float], max_segment_m: float = 2.0) -> float:
+def _integrate(
+    fun: Callable[[NDArray[np.float64]], NDArray[np.float64]], a: float, b: float, breakpoints: Sequence[float], max_segment_m: float = 2.0
+) -> float:
     """Integral of ``fun`` on [a, b] by Gauss-Legendre on segments split at ``breakpoints``.
 
     Exact (to round-off) for piecewise polynomials of degree <= 11 between breakpoints.

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import sparse
 from scipy.optimize import root
-from scipy.sparse.linalg import splu
+from scipy.sparse.linalg import SuperLU, splu
 
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.options import HBMOptions
@@ -122,8 +122,9 @@ class DenseJacobian:
 class SparseJacobian:
     """A sparse Jacobian factorised once (SuperLU) for Newton steps; LM steps on demand."""
 
-    def __init__(self, J: sparse.spmatrix):
+    def __init__(self, J: sparse.csc_matrix | sparse.csr_matrix) -> None:
         self.J = J.tocsc()
+        self.lu: SuperLU | None
         try:
             self.lu = splu(self.J)
         except RuntimeError:  # exactly singular
@@ -270,7 +271,9 @@ def _hybr(problem: NonlinearProblem, law: ContactLaw, amplitude: float, u0: NDAr
             return problem.jacobian(cache["state"])
         return problem.jacobian(problem.evaluate(u, law, amplitude)[1])
 
-    sol = root(fun, u0, jac=jac, method="hybr", options={"xtol": max(tol, 1e-14), "maxfev": 50 * max_iter})
+    # scipy-stubs 1.17 misspell hybr's maxfev (maxffev), fixed in 1.18.1.1 (scipy/scipy-stubs#2374); drop the ignore then
+    options = {"xtol": max(tol, 1e-14), "maxfev": 50 * max_iter}
+    sol = root(fun, u0, jac=jac, method="hybr", options=options)  # type: ignore[call-overload]
     u = np.asarray(sol.x, dtype=float)
     R, _ = problem.evaluate(u, law, amplitude)
     rel = float(np.max(np.abs(R))) / problem.scale
