@@ -162,11 +162,14 @@ def test_every_output_column_is_documented_exactly():
     from seafast.excitation.deck_table import DECK_TABLE_COLUMNS
     from seafast.output.sweep import COLUMNS as SWEEP_COLUMNS
     from seafast.results.dataset import SUMMARY_COLUMNS
+    from seafast.results.sweep import STRUCTURAL_COLUMNS, WAVE_COLUMNS
     from seafast.studies.limits import COMPLIANCE_COLUMNS, RANKING_COLUMNS
     from seafast.studies.runner import CORE_COLUMNS
 
     assert ",".join(SUMMARY_COLUMNS) in INTERFACE
     assert ",".join(SWEEP_COLUMNS) in INTERFACE
+    assert ",".join(STRUCTURAL_COLUMNS) in INTERFACE
+    assert ",".join(WAVE_COLUMNS[len(STRUCTURAL_COLUMNS):]) in INTERFACE
     assert ",".join(CORE_COLUMNS) in INTERFACE
     assert ",".join(COMPLIANCE_COLUMNS) in INTERFACE
     assert ",".join(RANKING_COLUMNS[2:]) in INTERFACE

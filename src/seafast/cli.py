@@ -121,25 +121,41 @@ def build_parser() -> argparse.ArgumentParser:
 
     sweep = sub.add_parser(
         "sweep",
-        help="nonlinear frequency response of the case's excitation (pseudo-arclength continuation)",
+        help="nonlinear frequency response by pseudo-arclength continuation (structural, or --wave: the case's wave amplitude)",
         epilog="examples:\n  seafast sweep --omega-min 0.2 --omega-max 2.0            # wave frequencies: quasi-static?\n"
-        "  seafast sweep --set seafastening.saddle_stiffness_N_per_m=1.1e7 --omega-min 0.5 --omega-max 12  # through resonance",
+        "  seafast sweep --set seafastening.saddle_stiffness_N_per_m=1.1e7 --omega-min 0.5 --omega-max 12  # through resonance\n"
+        "  seafast sweep --wave --omega-min 0.2 --omega-max 1.8     # nonlinear RAOs of saddle force and bending moment",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     sweep.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
     sweep.add_argument("-o", "--output", default="seafast-sweep", help="output directory (default: %(default)s)")
     sweep.add_argument("--omega-min", type=float, default=0.2, help="start frequency [rad/s] (default: %(default)s)")
     sweep.add_argument("--omega-max", type=float, default=2.0, help="end frequency [rad/s] (default: %(default)s)")
+    sweep.add_argument(
+        "--wave", action="store_true",
+        help="wave sweep: at each frequency a wave of the case's amplitude (its hull deflection and RAOs) instead of the case's motions held",
+    )
+    sweep.add_argument(
+        "--max-gap-m", type=float, default=None, metavar="GAP",
+        help="largest detachment gap inside the physically meaningful range [m] (default: 0.1); points beyond are flagged valid=false",
+    )
+    sweep.add_argument(
+        "--follow-beyond-range", action="store_true",
+        help="structural sweep: go on past the frequency where the held deck motion accelerates the deck faster than g (default: stop there)",
+    )
+    sweep.add_argument("--no-plots", action="store_true", help="skip frequency_response.png")
     _add_set(sweep)
     sweep.set_defaults(handler=_cmd_sweep)
 
-    # the study, sea-state and report commands are defined in their own packages
+    # the study, sea-state, operability and report commands are defined in their own packages
+    from seafast.operability.cli import add_operability_subcommand
     from seafast.output.report import add_report_subcommand
     from seafast.seastate.cli import add_seastate_subcommand
     from seafast.studies.cli import add_study_subcommand
 
     add_study_subcommand(sub)
     add_seastate_subcommand(sub)
+    add_operability_subcommand(sub)
     add_report_subcommand(sub)
     return parser
 
@@ -182,6 +198,14 @@ def _cmd_run(args: argparse.Namespace) -> int:
         for status in result.coupling.values():
             print(status.message)
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    orbit = getattr(result.responses.get("nonlinear_dynamic"), "orbit", None)
+    if orbit is not None and orbit.same_as_start is False:
+        print(
+            f"seafast: warning: dynamic nonlinear: the time-domain reference started on the {orbit.start_method} solution's "
+            f"orbit and settled on ANOTHER periodic state (RMS saddle-force distance {orbit.distance_from_start:.2e} > "
+            f"{orbit.orbit_tolerance:g}): that orbit is unstable or not unique; the numbers are the orbit reached",
+            file=sys.stderr,
+        )
     bad = [r for r in rows if not r["converged"]]
     for r in bad:
         coupling = result.coupling.get((r["load_case"], r["model"]))
@@ -203,21 +227,35 @@ def _cmd_run(args: argparse.Namespace) -> int:
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
-    from seafast.output.sweep import write_sweep_outputs
-    from seafast.pipeline import frequency_sweep
+    from seafast.output.sweep import format_sweep_summary, range_warning, write_sweep_outputs
+    from seafast.sweeps import SweepKind, frequency_sweep
 
-    if not (0 < args.omega_min < args.omega_max) or not all(map(math.isfinite, (args.omega_min, args.omega_max))):
+    if not all(map(math.isfinite, (args.omega_min, args.omega_max))) or not (0 < args.omega_min < args.omega_max):
         return _error(f"--omega-min = {args.omega_min}, --omega-max = {args.omega_max}: need 0 < omega-min < omega-max (rad/s)")
+    if args.max_gap_m is not None and not (math.isfinite(args.max_gap_m) and args.max_gap_m > 0):
+        return _error(f"--max-gap-m = {args.max_gap_m}: need a finite gap > 0 (m)")
+    kind = SweepKind.WAVE if args.wave else SweepKind.STRUCTURAL
     try:
         case = load_case(args.case, parse_overrides(args.overrides))
-        branch, model = frequency_sweep(case, args.omega_min, args.omega_max)
+        if kind is SweepKind.WAVE and not case.wave.amplitude_m > 0:
+            return _error(f"wave.amplitude_m = {case.wave.amplitude_m}: the wave sweep needs a wave amplitude > 0 (m)")
+        result = frequency_sweep(
+            case, args.omega_min, args.omega_max, kind=kind, max_gap_m=args.max_gap_m, follow_beyond_range=args.follow_beyond_range
+        )
     except (CaseError, ValueError) as exc:
         return _error(str(exc))
-    paths = write_sweep_outputs(branch, model, args.output)
-    w1 = float(model.natural_frequencies_rad_s(True, 1)[0])
-    print(f"{branch.message}; {len(branch.omega_rad_s)} points; first natural frequency on bilateral saddles {w1:.2f} rad/s")
-    print(f"peak cargo deflection at {branch.peak_omega_rad_s:.3f} rad/s; wrote {', '.join(str(p) for p in paths)}")
-    return EXIT_OK if bool(np.all(branch.converged)) else EXIT_NOT_CONVERGED
+    paths = write_sweep_outputs(result, args.output, plots=not args.no_plots)
+    if not args.global_quiet:
+        w1 = float(result.model.natural_frequencies_rad_s(True, 1)[0])
+        for line in format_sweep_summary(result):
+            print(line)
+        print(f"first natural frequency on bilateral saddles {w1:.3g} rad/s; wrote {', '.join(str(p) for p in paths)}")
+    warning = range_warning(result)
+    if warning is not None:
+        print(f"seafast: warning: {warning}", file=sys.stderr)
+    if not result.converged:
+        print("seafast: warning: some branch points did NOT converge (converged=false in frequency_response.csv)", file=sys.stderr)
+    return EXIT_OK if result.converged else EXIT_NOT_CONVERGED
 
 
 def _cmd_init(args: argparse.Namespace) -> int:

@@ -4,8 +4,8 @@ This is the only place that knows the order of the stages; each stage is a pure 
 the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
 
 Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a
-study point's short path, the two-way coupling and a sweep; each is a short function of the stages
-below.
+study point's short path and the two-way coupling; each is a short function of the stages below
+(frequency sweeps: :mod:`seafast.sweeps`).
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ __all__ = [
     "evaluate_summary",
     "solve_nonlinear",
     "couple_hull_and_cargo",
-    "frequency_sweep",
+    "hbm_options",
 ]
 
 
@@ -87,8 +87,13 @@ def build_model(case: Case) -> StructuralModel:
     )
 
 
+def hbm_options(case: Case, **changes: Any) -> Any:
+    """Harmonic-balance options (:class:`~seafast.solvers.hbm.HBMOptions`) from the case's solver settings, with ``changes`` applied."""
+    return _hbm_options(case, **changes)
+
+
 def _hbm_options(case: Case, **changes: Any) -> Any:
-    """Harmonic-balance options from the case's solver settings, with ``changes`` applied."""
+    """:func:`hbm_options` (the solves here call this name, which tests may patch)."""
     from seafast.solvers.hbm import HBMOptions
 
     s = case.solver
@@ -132,9 +137,12 @@ def solve_nonlinear(
 
         return solve_quasi_static(model, excitation, time_samples=s.reference_time_samples)
     if s.method == "time_domain":
+        from seafast.solvers.outcome import TimeDomainStart
         from seafast.solvers.references import solve_time_domain
 
-        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples)
+        # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
+        td_start = solve_hbm(model, excitation, _hbm_options(case)) if s.time_domain_start == "hbm" else TimeDomainStart.LINEAR
+        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples, start=td_start)
     opts = _hbm_options(case)
     start = None
     if warm_start is not None and s.formulation == "condensed":
@@ -261,12 +269,15 @@ def run_case(
         ("static", "nonlinear"): from_periodic_response(nl_static, N),
         ("dynamic", "nonlinear"): from_periodic_response(nl_dynamic, N),
     }
+    from seafast.solvers.references.orbit import orbit_attributes
+
     attrs = {
         "title": f"seafast results: {case.name}",
         "seafast_version": seafast.__version__,
         "excitation_source": excitation.source,
         "wave_frequency_rad_s": excitation.omega_rad_s,
         "solver_method": case.solver.method,
+        **orbit_attributes(nl_dynamic.orbit),  # the time-domain reference's start and orbit (docs/orbits.md)
         "solver_formulation": case.solver.formulation,
         "contact_law": case.solver.contact_law,
         "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == "hbm" else -1,
@@ -444,33 +455,3 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 
 COUPLING_HARMONICS = 32
 """Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""
-
-def frequency_sweep(case: Case, omega_start_rad_s: float, omega_end_rad_s: float) -> tuple[Any, StructuralModel]:
-    """Nonlinear frequency response of the case's excitation shape by pseudo-arclength continuation.
-
-    The deck-motion amplitudes and the rigid-body displacement amplitudes of the case's wave are
-    kept while the frequency is swept (:meth:`HarmonicExcitation.at_frequency`), so the sweep
-    shows where the quasi-static picture holds and what the cargo does near its resonances.
-
-    Returns
-    -------
-    branch, model
-        The :class:`~seafast.solvers.continuation.FrequencyResponseBranch` and the model.
-    """
-    from seafast.solvers.continuation import frequency_response
-
-    if case.vessel.coupling == "two_way":
-        # the coupled deck depends on the cargo's response at each frequency: continuation
-        # would have to re-couple at every point, which it does not
-        raise ValueError(
-            "vessel.coupling = 'two_way': the frequency sweep supports 'one_way' only (the coupled deck changes "
-            "with frequency); run the sweep with --set vessel.coupling=one_way, or single frequencies with seafast run"
-        )
-    model = build_model(case)
-    excitation, _ = _excitation(case, model)
-    # continuation runs on the condensed system with Newton correctors; its corrector's
-    # round-off floor near resonance is ~1e-9, hence the tolerance floor
-    opts = _hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    branch = frequency_response(model, excitation.at_frequency, omega_start_rad_s, omega_end_rad_s, opts)
-    return branch, model
-

@@ -9,6 +9,7 @@ import xarray as xr
 
 import seafast
 from seafast.cli import main
+from seafast.seastate.design_wave import sea_state_design_waves
 from seafast.seastate.spectral import SEASTATE_COLUMNS, spectral_analysis
 
 
@@ -25,13 +26,16 @@ def test_seastate_csv_has_the_contract_columns_and_rows(spectral_run):
         f.seek(0)
         rows = list(csv.DictReader(f))
     assert header == ",".join(SEASTATE_COLUMNS) == "model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged"
-    assert [(r["model"], r["method"]) for r in rows] == [("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo")]
-    spectral = spectral_analysis(seafast.load_case(None)).extremes.totals
+    assert [(r["model"], r["method"]) for r in rows] == [
+        ("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo"), ("nonlinear", "design_wave")]
+    analysis = spectral_analysis(seafast.load_case(None))
+    spectral, design = analysis.extremes.totals, sea_state_design_waves(analysis).totals
     for q in ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m", "uplift_per_hour"):
         assert float(rows[0][q]) == pytest.approx(spectral[q], rel=1e-12), q
-    assert rows[0]["converged"] == "true"
+        assert float(rows[3][q]) == pytest.approx(design[q], rel=1e-12), q
+    assert rows[0]["converged"] == "true" == rows[3]["converged"]
     # not computed: empty cells, never made-up numbers
-    for r in rows[1:]:
+    for r in rows[1:3]:
         assert all(r[c] == "" for c in SEASTATE_COLUMNS[2:])
 
 
@@ -41,6 +45,12 @@ def test_seastate_nc_labels_every_variable_and_the_figures_exist(spectral_run):
             assert var.attrs.get("units") and var.attrs.get("long_name"), name
         assert ds["F_N"].sel(model="linear", estimate_method="spectral") > 0
         assert bool(ds["F_N"].sel(model="nonlinear", estimate_method="monte_carlo").isnull())
+        assert ds["F_N"].sel(model="nonlinear", estimate_method="design_wave") < ds["F_N"].sel(model="linear", estimate_method="spectral")
+        assert bool(ds["F_N"].sel(model="linear", estimate_method="design_wave").isnull())
+        # the design waves: 3 per quantity (the spectral peak and the ends of its half-peak band)
+        assert ds.sizes["design_wave"] == 15 and set(ds["design_wave_role"].values) == {"peak", "band_low", "band_high"}
+        own = ds["design_wave_F_N"].where(ds["design_wave_quantity"] == "F_N")  # each quantity from its own waves
+        assert float(own.max()) == pytest.approx(float(ds["F_N"].sel(model="nonlinear", estimate_method="design_wave")), rel=1e-12)
         assert ds.attrs["significant_height_m"] == 3.0 and ds.attrs["duration_s"] == 10800.0
         for name in ("wave_spectrum_m2_s_per_rad", "saddle_force_transfer_N_per_m_real", "bending_moment_spectrum_Nm2_s_per_rad"):
             assert name in ds

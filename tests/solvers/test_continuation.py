@@ -84,6 +84,7 @@ def test_invalid_sweep_is_rejected():
 
 def test_a_branch_whose_first_point_fails_says_so():
     model = base_model()
+    # one Newton step of the smooth law cannot reach 1e-14 (the exact law's piecewise-linear system can)
     options = HBMOptions(harmonics=10, contact_law="tanh", max_iterations=1, continuation=False, tolerance=1e-14)
     branch = frequency_response(model, wave_excitation(model).at_frequency, 0.5, 1.0, options)
     assert branch.end is BranchEnd.FIRST_POINT_FAILED and branch.converged.tolist() == [False]

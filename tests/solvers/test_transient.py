@@ -1,4 +1,4 @@
-"""The non-periodic contact integrator (solvers/transient.py) against independent solutions.
+"""The project's one transient contact integrator (solvers/transient.py) against independent solutions.
 
 * every mode kept: the march is the full model's Newmark average-acceleration integration, so a
   regular wave marched to steady state equals the periodic full-DOF time-domain reference
@@ -7,9 +7,11 @@
 * the default reduction (4 modes + static residual flexibility) stays within 1e-4 of it;
 * the same steady state agrees with the exact-law HBM (H = 16) within 1 % in peak force (3 % in
   peak gap, which 16 harmonics truncate);
-* convergence in the time step; a free decay gives the model's own damping (complex eigenvalue
-  of M s^2 + D s + K); a detached start is the exact static contact state; the direct per-set
-  solve (more than 10 saddles) equals the precomputed table.
+* convergence in the time step; a free decay of modes 1 and 2 gives the requested damping ratio
+  (issue 12: the complex eigenvalue's rate of M s^2 + D s + K, 2 % on the base case, the documented
+  fallback on 1 % saddles); a detached start is the exact static contact state; the direct per-set
+  solve (more than 10 saddles) equals the precomputed table;
+* the periodic march (the HBM's start) is the same integrator marched through one repeated period.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from seafast.solvers.references import solve_exact_contact, solve_time_domain
 from seafast.solvers.transient import (
     MarchState,
     integrate_record,
+    march_periodic,
     modal_correction,
     reference_frequency_rad_s,
     time_step_s,
@@ -108,31 +111,67 @@ def test_time_step_convergence(wave):
     assert err16 < 0.5 * err8
 
 
-def test_free_decay_gives_the_model_damping():
-    """Newmark average acceleration adds no damping: a free decay of the first mode decays at -Re(s_1)."""
-    model = base_model()
+def _complex_modes(model, count: int = 2) -> np.ndarray:
+    """The lowest complex eigenvalues s = -zeta w + i w sqrt(1 - zeta^2) of M s^2 + D s + K (saddles bilateral, deck fixed)."""
     M, D = model.cargo.mass, model.damping_cc
     K = model.dynamic_stiffness(0.0, True)[0]
     n = M.shape[0]
-    # complex eigenvalues of M s^2 + D s + K (first-order form)
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(M, K), -np.linalg.solve(M, D)]])
     s = eig(A, right=False)
-    s1 = s[np.argmin(np.abs(np.abs(s) - 44.03))]
-    decay, omega_d = -s1.real, abs(s1.imag)
-    # the model's damping ratio, realised on the first mode (issue 12: Rayleigh fitted on the modes)
-    assert decay / abs(s1) == pytest.approx(model.modal_damping_ratios(1)[0], rel=0.02)
-    system = modal_correction(model, 2 * np.pi / omega_d / 128, np.inf)
+    s = s[s.imag > 0]
+    return s[np.argsort(np.abs(s))][:count]
+
+
+def free_decay(model, mode: int, periods: int = 40, steps_per_period: int = 128) -> tuple[float, float]:
+    """Release the cargo from rest displaced in one undamped mode and march it with every mode kept;
+    return the decay rate [1/s] and the damped frequency [rad/s] of that mode's coordinate, fitted on its peaks.
+
+    The modal coordinates are recovered from the compressions at the three saddles through the first three
+    mode shapes there (the higher modes are barely excited: the damping couples the modes only weakly).
+    """
+    omega_d = abs(_complex_modes(model, mode + 1)[mode].imag)
+    system = modal_correction(model, 2 * np.pi / omega_d / steps_per_period, np.inf)
     state = MarchState.at_rest(system)
-    state.eta[0] = 1e-4  # first mode displaced, released from rest
-    n_t = int(40 * 2 * np.pi / omega_d / system.time_step_s)
-    d_lin = np.full((n_t, 3), 1.0)  # far from lift-off: no contact change
-    rec = integrate_record(system, d_lin, initial=state)
-    y = 1.0 - rec.compression_m[:, 0]  # q_c at the aft saddle
-    peaks = np.flatnonzero((y[1:-1] > y[:-2]) & (y[1:-1] >= y[2:])) + 1
-    t, a = rec.time_s[peaks], y[peaks]
-    rate = -np.polyfit(t, np.log(a), 1)[0]
-    assert rate == pytest.approx(decay, rel=5e-3)
-    assert 2 * np.pi / np.mean(np.diff(t)) == pytest.approx(omega_d, rel=1e-3)
+    state.eta[mode] = 1e-4
+    n_t = periods * steps_per_period
+    rec = integrate_record(system, np.full((n_t, model.saddle_count), 1.0), initial=state)  # 1 m compressed: no lift-off
+    q_saddles = 1.0 - rec.compression_m
+    eta = np.linalg.solve(system.saddle_modes[:, :3], q_saddles.T).T[:, mode]
+    peaks = np.flatnonzero((eta[1:-1] > eta[:-2]) & (eta[1:-1] >= eta[2:])) + 1
+    t, a = rec.time_s[peaks], eta[peaks]
+    return float(-np.polyfit(t, np.log(a), 1)[0]), float(2 * np.pi / np.mean(np.diff(t)))
+
+
+@pytest.mark.parametrize("mode", [0, 1])
+def test_free_decay_gives_the_requested_damping(mode):
+    """Issue 12: the realised damping of modes 1 and 2 is model.damping_ratio, measured on a free decay of the
+    project's time integrator (Newmark average acceleration adds no numerical damping).
+
+    The damping is not proportional (beta multiplies the beam stiffness only), so a mode's free vibration
+    decays at the rate of its complex eigenvalue, -Re(s) = zeta |s|: released in the undamped mode shape it
+    is that complex mode plus an O(off-diagonal damping / frequency gap) admixture of the others. The fit
+    on the modes makes zeta_i = phi_i^T D phi_i / (2 w_i) equal the ratio, and the complex eigenvalue's zeta
+    differs from it at second order (5e-5 here). The classic formula realised 1.13 % / 1.10 % (the issue)."""
+    model = base_model()  # damping_ratio = 0.02, the default
+    ratio = 0.02
+    assert model.rayleigh_fit.exact
+    s = _complex_modes(model)[mode]
+    rate, omega_d = free_decay(model, mode)
+    assert rate == pytest.approx(-s.real, rel=2e-3)
+    assert omega_d == pytest.approx(abs(s.imag), rel=1e-3)
+    assert rate / np.hypot(rate, omega_d) == pytest.approx(ratio, rel=2e-3)
+
+
+def test_free_decay_on_soft_saddles_gives_the_documented_fallback():
+    """1 % saddles: bounce and pitch ride on the springs and no Rayleigh pair gives both 2 %; the documented
+    fallback (model/damping.py) realises fit.realised_damping_ratio (2.15 % / 1.82 %), and so does the decay."""
+    model = base_model(stiffness_scale=0.01)
+    fit = model.rayleigh_fit
+    assert not fit.exact
+    for mode in (0, 1):
+        rate, omega_d = free_decay(model, mode)
+        assert rate / np.hypot(rate, omega_d) == pytest.approx(fit.realised_damping_ratio[mode], rel=3e-3)
+        assert abs(rate / np.hypot(rate, omega_d) / 0.02 - 1.0) < 0.10
 
 
 def test_detached_start_is_the_exact_static_contact_state():
@@ -162,6 +201,30 @@ def test_direct_set_solves_equal_the_precomputed_table(wave, monkeypatch):
     a, b = integrate_record(table, d_lin), integrate_record(direct, d_lin)
     assert a.solved and b.solved
     assert np.max(np.abs(a.compression_m - b.compression_m)) < 1e-12
+
+
+def test_periodic_march_is_the_integrator_through_a_repeated_period(wave):
+    """march_periodic (the HBM's start) = integrate_record of the same period repeated, from rest, to
+    round-off; and with every mode kept and a fine step its periodic state is the full-DOF reference's."""
+    model, ex, compression = wave
+    T = 2 * np.pi / ex.omega_rad_s
+    steps = 1024
+    system = modal_correction(model, T / steps, np.pi * steps / T, minimum_modes=0)
+    d_lin = harmonics_to_time(compression, steps)
+    periodic = march_periodic(system, d_lin, max_periods=3, tolerance=1e-30)
+    assert periodic.periods == 3 and periodic.change > 0.0
+    record = integrate_record(system, np.vstack([np.tile(d_lin, (3, 1)), d_lin[:1]]), initial=MarchState.at_rest(system))
+    last = np.roll(record.compression_m[-steps:], 1, axis=0)  # t_1 .. t_N of the third period, t_N first
+    assert np.max(np.abs(periodic.compression_m - last)) < 1e-12 * np.max(np.abs(d_lin))
+    # settled, every mode kept, 2048 steps: the full-DOF reference (average acceleration) at the same step
+    full = modal_correction(model, T / 2048, np.inf)
+    settled = march_periodic(full, harmonics_to_time(compression, 2048), max_periods=20, tolerance=1e-9)
+    assert settled.change <= 1e-9 and settled.periods < 20
+    ref = solve_time_domain(model, ex, N, steps_per_period=2048, hht_alpha=0.0)
+    delta = settled.compression_m[:: 2048 // N]
+    assert np.max(np.abs(delta - ref.saddle_compression_time_m)) < 1e-6 * np.max(np.abs(ref.saddle_compression_time_m))
+    with pytest.raises(ValueError, match="saddles"):
+        march_periodic(system, d_lin[:, :2])
 
 
 def test_bad_settings_are_refused():

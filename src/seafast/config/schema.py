@@ -297,6 +297,11 @@ class SolverConfig(_Strict):
     )
     method: Literal["hbm", "quasi_static", "time_domain"] = "hbm"
     formulation: Literal["condensed", "full"] = "condensed"
+    time_domain_start: Literal["linear", "hbm"] = Field(
+        "linear", description="State the time-domain reference (solver.method: time_domain) starts from: 'linear' (the "
+        "linear periodic solution at t = 0) or 'hbm' (the harmonic balance's solution with the case's settings: the "
+        "reference then reports whether it stays on that orbit, solver outcome 'other_orbit' when it does not)"
+    )
     contact_law: Literal["tanh", "softplus", "exact"] = Field(
         "exact", description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
     )

@@ -1,4 +1,11 @@
-"""Outputs of ``seafast sweep``: the frequency-response branch as CSV and a figure."""
+"""Outputs of ``seafast sweep``: ``frequency_response.csv`` and ``frequency_response.png``.
+
+The CSV has one row per branch point in continuation order (omega is not monotonic past a fold),
+the columns of :data:`seafast.results.sweep.STRUCTURAL_COLUMNS` or
+:data:`~seafast.results.sweep.WAVE_COLUMNS` (the first six are the columns the file always had).
+The figure draws stable parts solid and unstable parts dashed red, marks the folds, shades what
+lies beyond the physically meaningful range, and puts the linear model beside the nonlinear one.
+"""
 
 from __future__ import annotations
 
@@ -11,43 +18,196 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from numpy.typing import NDArray  # noqa: E402
 
-__all__ = ["write_sweep_outputs"]
+from seafast.results.sweep import BASE_COLUMNS, SweepTable  # noqa: E402
+from seafast.results.sweep_range import RangeLimit  # noqa: E402
 
-COLUMNS = ("omega_rad_s", "max_saddle_force_N", "max_gap_m", "max_cargo_deflection_m", "converged", "contact_preserved")
+__all__ = ["COLUMNS", "write_csv", "write_sweep_outputs", "format_sweep_summary", "range_warning"]
+
+COLUMNS = BASE_COLUMNS
+"""The first columns of every ``frequency_response.csv`` (kept for the scripts that read them)."""
+
+DPI = 200
 
 
-def write_sweep_outputs(branch: Any, model: Any, out_dir: str | Path) -> list[Path]:
-    """Write ``frequency_response.csv`` and ``frequency_response.png``; return their paths."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    csv_path = out / "frequency_response.csv"
-    with csv_path.open("w", newline="") as f:
+def _cell(value: Any) -> str:
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return value
+    return repr(float(value))
+
+
+def write_csv(table: SweepTable, path: Path) -> Path:
+    """Write the table as ``frequency_response.csv`` (booleans true/false, floats in full precision)."""
+    names = table.column_names
+    columns = [table.column(name) for name in names]
+    with path.open("w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for row in zip(*(getattr(branch, c) for c in COLUMNS)):
-            w.writerow([("true" if v else "false") if isinstance(v, (bool, np.bool_)) else repr(float(v)) for v in row])
-    omega = branch.omega_rad_s
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
-    lost = ~np.asarray(branch.contact_preserved)
-    for ax, values, label in (
-        (axes[0], branch.max_saddle_force_N / 1e6, "max saddle force [MN]"),
-        (axes[1], branch.max_gap_m * 1e3, "max detachment gap [mm]"),
-        (axes[2], branch.max_cargo_deflection_m * 1e3, "max cargo deflection [mm]"),
-    ):
-        ax.plot(omega, values, "k-", lw=1.2)
-        ax.plot(omega[lost], values[lost], "r.", ms=3, label="contact lost somewhere in the period")
+        w.writerow(names)
+        for row in zip(*columns):
+            w.writerow([_cell(v) for v in row])
+    return path
+
+
+def _runs(keys: NDArray) -> list[tuple[int, int, int]]:
+    """Maximal runs ``(start, stop, key)`` of equal keys (stop exclusive)."""
+    out, start = [], 0
+    for i in range(1, keys.size + 1):
+        if i == keys.size or keys[i] != keys[start]:
+            out.append((start, i, int(keys[start])))
+            start = i
+    return out
+
+
+_STYLES = {  # (stable, valid) -> format, alpha, legend label
+    (True, True): ("k-", 1.0, "nonlinear, stable"),
+    (False, True): ("r--", 1.0, "nonlinear, unstable (Floquet multiplier > 1)"),
+    (True, False): ("k-", 0.3, "stable, beyond the meaningful range"),
+    (False, False): ("r--", 0.3, "unstable, beyond the meaningful range"),
+}
+
+
+def _branch(ax: plt.Axes, table: SweepTable, values: NDArray) -> None:
+    """The nonlinear branch: stable runs solid black, unstable dashed red, faded beyond the meaningful range; folds as triangles."""
+    omega, stable, valid = table.omega_rad_s, table.stable, table.valid
+    labelled: set[tuple[bool, bool]] = set()
+    for start, stop, key in _runs(2 * stable.astype(int) + valid.astype(int)):
+        style = (bool(key // 2), bool(key % 2))
+        fmt, alpha, label = _STYLES[style]
+        seg = slice(max(start - 1, 0), stop)  # joined to the previous run
+        ax.plot(omega[seg], values[seg], fmt, lw=1.3, alpha=alpha, label=None if style in labelled else label)
+        labelled.add(style)
+    f = table.fold
+    if np.any(f):
+        ax.plot(omega[f], values[f], "^", color="tab:orange", ms=7, label="fold")
+
+
+def _structural_figure(table: SweepTable, model: Any, path: Path, acceleration_limit_rad_s: float | None) -> Path:
+    omega = table.omega_rad_s
+    fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
+    order = np.argsort(omega)
+    panels = (
+        (axes[0], table.max_saddle_force_N / 1e6, table.linear_max_saddle_force_N / 1e6, "max saddle force [MN]"),
+        (axes[1], table.max_gap_m * 1e3, None, "max detachment gap [mm]"),
+        (axes[2], table.max_bending_moment_Nm / 1e6, table.linear_max_bending_moment_Nm / 1e6, "max bending moment [MN m]"),
+    )
+    for ax, values, linear, label in panels:
+        if linear is not None:
+            ax.plot(omega[order], linear[order], color="tab:blue", ls=":", lw=1.2, label="linear model (bilateral saddles)")
+        _branch(ax, table, values)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
+    axes[1].axhline(table.limits.max_gap_m * 1e3, color="0.5", ls="--", lw=1, label=f"gap limit {table.limits.max_gap_m * 1e3:g} mm")
+    shaded = acceleration_limit_rad_s is not None and acceleration_limit_rad_s < float(omega.max())
+    if shaded:
+        for ax in axes:
+            ax.axvspan(acceleration_limit_rad_s, float(omega.max()), color="0.88", zorder=0)
+        axes[2].text(acceleration_limit_rad_s, axes[2].get_ylim()[1], " deck acceleration > g", va="top", fontsize=8, color="0.3")
     for w in model.natural_frequencies_rad_s(True, 3):
         if omega.min() <= w <= omega.max():
             for ax in axes:
-                ax.axvline(w, color="tab:blue", ls=":", lw=1)
+                ax.axvline(w, color="tab:blue", ls="-.", lw=0.8, alpha=0.6)
+    axes[0].legend(fontsize=8, loc="best")
+    axes[1].legend(fontsize=8, loc="best")
+    axes[0].set_title(
+        "Structural frequency response: the case's deck and rigid-body amplitudes held\n"
+        "dash-dot: natural frequencies on bilateral saddles" + ("; grey: deck accelerating faster than g" if shaded else ""),
+        fontsize=10,
+    )
+    axes[-1].set_xlabel("excitation frequency omega [rad/s]")
+    return _save(fig, path)
+
+
+def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
+    wave = table.wave
+    assert wave is not None
+    omega = table.omega_rad_s
+    order = np.argsort(omega)
+    fig, axes = plt.subplots(3, 1, figsize=(8, 9.5), sharex=True)
+    panels = (
+        (axes[0], wave.saddle_force_rao_N_per_m / 1e6, wave.linear_saddle_force_rao_N_per_m / 1e6, "saddle force RAO [MN/m]"),
+        (axes[1], wave.bending_moment_rao_Nm_per_m / 1e6, wave.linear_bending_moment_rao_Nm_per_m / 1e6, "bending moment RAO [MN m/m]"),
+        (axes[2], table.max_saddle_force_N / 1e6, table.linear_max_saddle_force_N / 1e6, "max saddle force [MN]"),
+    )
+    lost = ~table.contact_preserved
+    for ax, values, linear, label in panels:
+        ax.plot(omega[order], linear[order], color="tab:blue", ls=":", lw=1.4, label="linear model (bilateral saddles)")
+        _branch(ax, table, values)
+        if np.any(lost):
+            ax.plot(omega[lost], values[lost], ".", color="tab:red", ms=2, alpha=0.5, label="contact lost in the period")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[2].axhline(limit_N / 1e6, color="tab:green", ls="--", lw=1, label=f"design limit {limit_N / 1e6:g} MN")
+    breaking = np.array([RangeLimit.WAVE_BREAKING in why for why in table.beyond_range])
+    if np.any(breaking):  # a property of omega alone: shade it
+        start = float(omega[breaking].min())
+        for ax in axes:
+            ax.axvspan(start, float(omega.max()), color="0.9", zorder=0, label=f"breaking waves (H / lambda > 1/{1 / table.limits.breaking_steepness:.0f})")
     axes[0].legend(fontsize=8)
-    axes[0].set_title("Nonlinear frequency response (arclength continuation)\ndotted: linear natural frequencies on bilateral saddles", fontsize=10)
-    axes[-1].set_xlabel("excitation frequency [rad/s]")
+    axes[2].legend(fontsize=8)
+    top = axes[0].secondary_xaxis("top", functions=(lambda w: 2 * np.pi / np.maximum(w, 1e-9), lambda T: 2 * np.pi / np.maximum(T, 1e-9)))
+    periods = np.array([40, 30, 20, 15, 12, 10, 8, 7, 6, 5, 4, 3.5, 3, 2.5, 2])
+    lo, hi = 2 * np.pi / omega.max(), 2 * np.pi / omega.min()
+    top.set_xticks(periods[(periods >= lo) & (periods <= hi)])
+    top.set_xlabel("wave period T [s]")
+    amplitude = float(wave.wave_amplitude_m[0]) if wave.wave_amplitude_m.size else float("nan")
+    axes[0].set_title(f"Response to regular head waves of amplitude {amplitude:g} m, per metre of wave amplitude (RAOs)", fontsize=10)
+    axes[-1].set_xlabel("wave frequency omega [rad/s]")
+    return _save(fig, path)
+
+
+def _save(fig: plt.Figure, path: Path) -> Path:
     fig.tight_layout()
-    png = out / "frequency_response.png"
-    fig.savefig(png, dpi=200)
+    fig.savefig(path, dpi=DPI)
     plt.close(fig)
-    return [csv_path, png]
+    return path
+
+
+def write_sweep_outputs(result: Any, out_dir: str | Path, *, plots: bool = True) -> list[Path]:
+    """Write ``frequency_response.csv`` (and ``frequency_response.png`` with ``plots``) of a
+    :class:`~seafast.sweeps.SweepResult`; return their paths."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [write_csv(result.table, out / "frequency_response.csv")]
+    if plots and result.table.omega_rad_s.size:
+        png = out / "frequency_response.png"
+        if result.table.wave is not None:
+            paths.append(_wave_figure(result.table, float(result.case.limits.max_saddle_force_N), png))
+        else:
+            paths.append(_structural_figure(result.table, result.model, png, result.acceleration_limit_rad_s))
+    return paths
+
+
+def format_sweep_summary(result: Any) -> list[str]:
+    """Lines for people: how the branch ended, its folds and stability, the deck-acceleration limit, the peak RAO."""
+    t, b = result.table, result.branch
+    lines = [f"{result.kind.value} sweep {result.omega_start_rad_s:g} -> {result.omega_end_rad_s:g} rad/s: {b.message}; "
+             f"{t.omega_rad_s.size} points ({int(np.count_nonzero(~t.stable))} unstable), H = {b.options.get('harmonics')}"]
+    if t.fold_omegas_rad_s.size:
+        lines.append("folds at " + ", ".join(f"{w:.4g}" for w in t.fold_omegas_rad_s) + " rad/s (unstable between a pair)")
+    lim = result.acceleration_limit_rad_s
+    if lim is not None and lim < max(result.omega_start_rad_s, result.omega_end_rad_s):
+        beyond = "the sweep stopped there" if result.stopped_beyond_range else "points beyond it are flagged valid=false"
+        lines.append(f"the held deck motion accelerates the deck faster than g = {t.limits.gravity_m_per_s2:g} m/s^2 above "
+                     f"omega_g = {lim:.4g} rad/s: {beyond} (seafast sweep --wave: the waves of these frequencies)")
+    if t.wave is not None and np.any(t.valid):
+        i = int(np.argmax(np.where(t.valid, t.wave.saddle_force_rao_N_per_m, -np.inf)))
+        lines.append(f"largest saddle-force RAO in range: {t.wave.saddle_force_rao_N_per_m[i] / 1e6:.4g} MN/m nonlinear, "
+                     f"{t.wave.linear_saddle_force_rao_N_per_m[i] / 1e6:.4g} MN/m linear, at {t.omega_rad_s[i]:.4g} rad/s "
+                     f"(wave length {t.wave.wave_length_m[i]:.4g} m)")
+    return lines
+
+
+def range_warning(result: Any) -> str | None:
+    """One sentence when points lie beyond the physically meaningful range (which limits, where), else None."""
+    t = result.table
+    out = ~t.valid
+    if not np.any(out):
+        return None
+    reasons = sorted({r.value for rs in t.beyond_range for r in rs})
+    w = t.omega_rad_s[out]
+    return (f"{int(out.sum())} of {out.size} branch points, between {w.min():.4g} and {w.max():.4g} rad/s, lie beyond the "
+            f"physically meaningful range ({', '.join(reasons)}; gap limit {t.limits.max_gap_m:g} m): flagged valid=false "
+            "in frequency_response.csv, faded in the figure")

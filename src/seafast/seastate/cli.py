@@ -24,8 +24,9 @@ SEASTATE_EXAMPLES = """examples:
   seafast seastate --workers 1                              # Monte Carlo serially; --scheduler tcp://host:8786 for Dask
 
 Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged;
-maxima are most probable maxima over sea_state.duration_s, still water included; empty cells = not
-computed), seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
+rows linear/spectral, linear/monte_carlo, nonlinear/monte_carlo, nonlinear/design_wave; maxima are most
+probable maxima over sea_state.duration_s, still water included; empty cells = not computed),
+seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
 """
 
 EXIT_OK, EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED = 0, 2, 3
@@ -51,6 +52,7 @@ def _monte_carlo_engine() -> tuple[Any, str]:
 def _cmd_seastate(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.seastate.outputs import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
+    from seafast.seastate.design_wave import sea_state_design_waves
     from seafast.seastate.spectral import spectral_analysis
 
     if args.workers is not None and args.workers < 1:
@@ -70,6 +72,9 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     say(f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
         f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)")
     rows = [analysis.extremes.row()]
+    t1 = time.perf_counter()
+    design = sea_state_design_waves(analysis)
+    say(f"nonlinear design waves: {len(design.waves)} waves by harmonic balance ({(time.perf_counter() - t1) * 1e3:.0f} ms)")
     monte_carlo = None
     engine, why = (None, "--no-monte-carlo") if args.no_monte_carlo else _monte_carlo_engine()
     if engine is None:
@@ -78,7 +83,7 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
             say(message)
         else:  # the user asked for it: say so even when quiet
             print(f"seafast: warning: {message}", file=sys.stderr)
-        rows += [not_computed_row(model, method) for model, method in ROWS[1:]]
+        rows += [not_computed_row(model, method) for model, method in ROWS[1:3]]
     else:
         ss = case.sea_state
         say(f"Monte Carlo reference: {ss.realisations} realisations of {ss.duration_s:g} s, linear and nonlinear (resumable in {args.output})")
@@ -87,7 +92,8 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         except (CaseError, ValueError) as exc:
             return _error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
-    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots)
+    rows.append(design.row())
+    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design)
     if not args.quiet:
         sp = analysis.spectrum
         d = case.sea_state.duration_s
@@ -96,8 +102,8 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if r["converged"] is False]
     for r in bad:
-        print(f"seafast: warning: {r['model']} {r['method']}: not every realisation converged; "
-              "its numbers are flagged converged=false in seastate.csv", file=sys.stderr)
+        what = "a design wave's harmonic balance did not converge" if r["method"] == "design_wave" else "not every realisation converged"
+        print(f"seafast: warning: {r['model']} {r['method']}: {what}; its numbers are flagged converged=false in seastate.csv", file=sys.stderr)
     return EXIT_NOT_CONVERGED if bad else EXIT_OK
 
 
@@ -105,10 +111,10 @@ def add_seastate_subcommand(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``seafast seastate`` on an argparse subparsers object (handler returns the exit code)."""
     p = subparsers.add_parser(
         "seastate",
-        help="extremes in an irregular head sea: linear spectral and nonlinear Monte Carlo",
+        help="extremes in an irregular head sea: linear spectral, nonlinear design waves and Monte Carlo",
         description="Most probable maxima of saddle force, bending moment and stress, saddle compression and "
-        "detachment over a sea state (Hs, Tp, spectrum, duration), and the uplift rate: linear spectral analysis "
-        "and the nonlinear Monte Carlo reference.",
+        "detachment over a sea state (Hs, Tp, spectrum, duration), and the uplift rate: linear spectral analysis, "
+        "the nonlinear design-wave estimate (harmonic balance) and the nonlinear Monte Carlo reference.",
         epilog=SEASTATE_EXAMPLES,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

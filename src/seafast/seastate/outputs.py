@@ -1,12 +1,13 @@
 """What ``seafast seastate`` writes: seastate.csv, seastate.nc and the sea-state figures.
 
 ``seastate.csv`` has exactly :data:`~seafast.seastate.spectral.SEASTATE_COLUMNS`, one row per
-(model, method): (linear, spectral), (linear, monte_carlo), (nonlinear, monte_carlo). A row whose
-method was not run has empty cells (read as NaN), never made-up numbers.
+(model, method): (linear, spectral), (linear, monte_carlo), (nonlinear, monte_carlo), (nonlinear,
+design_wave). A row whose method was not run has empty cells (read as NaN), never made-up numbers.
 
 ``seastate.nc`` holds the spectrum, the transfer functions (real and imaginary parts, per metre
 of wave amplitude), the response spectra and spectral statistics, the table of seastate.csv as
-variables over (model, estimate_method), and the Monte Carlo engine's per-realisation data when it ran;
+variables over (model, estimate_method), the design waves and their nonlinear maxima (dimension
+``design_wave``), and the Monte Carlo engine's per-realisation data when it ran;
 ``units`` and ``long_name`` on every variable.
 """
 
@@ -35,7 +36,7 @@ __all__ = [
     "format_seastate_table",
 ]
 
-ROWS = (("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo"))
+ROWS = (("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo"), ("nonlinear", "design_wave"))
 """The (model, method) rows of seastate.csv, in order."""
 
 QUANTITIES = {
@@ -45,6 +46,15 @@ QUANTITIES = {
     "u_s_m": ("most probable maximum saddle compression over the duration, still water included", "m"),
     "u_d_m": ("most probable maximum saddle detachment (gap); 0 for the linear model (bilateral saddles)", "m"),
     "uplift_per_hour": ("expected uplift events per hour (downward zero crossings of a saddle's compression), all saddles", "1/h"),
+}
+
+
+_DESIGN_WAVE_MAXIMA = {
+    "F_N": "largest saddle force",
+    "M_b_Nm": "largest absolute cargo bending moment",
+    "sigma_b_Pa": "largest absolute cargo bending stress",
+    "u_s_m": "largest saddle compression",
+    "u_d_m": "largest saddle detachment (gap)",
 }
 
 
@@ -112,8 +122,28 @@ def _complex(out: dict[str, xr.Variable], name: str, dims: tuple[str, ...], data
         out[f"{name}_{part}"] = _var(dims, fn(data), f"{long_name}, {'real' if part == 'real' else 'imaginary'} part", units)
 
 
-def seastate_dataset(analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any]], monte_carlo: xr.Dataset | None = None) -> xr.Dataset:
-    """The content of seastate.nc (see the module docstring)."""
+def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
+    """The design waves (dimension ``design_wave``) and their nonlinear maxima."""
+    d = ("design_wave",)
+    waves, sols = design.waves, design.solutions
+    v = {
+        "design_wave_quantity": xr.Variable(d, np.array([w.quantity for w in waves], dtype=str), {"long_name": "quantity the design wave is designed for (seastate.csv column)", "units": "1"}),
+        "design_wave_role": xr.Variable(d, np.array([w.role for w in waves], dtype=str), {"long_name": "where in the response spectrum: peak, band_low, band_high (ends of the half-peak band) or band", "units": "1"}),
+        "design_wave_location": _var(d, [w.location for w in waves], "governing location: saddle index (F_N, u_s_m, u_d_m) or x_moment_m index (M_b_Nm, sigma_b_Pa)", "1"),
+        "design_wave_omega_rad_s": _var(d, [w.omega_rad_s for w in waves], "design wave frequency", "rad/s"),
+        "design_wave_amplitude_m": _var(d, [w.amplitude_m for w in waves], "design wave amplitude (linear response = linear spectral MPM)", "m"),
+        "design_wave_converged": _var(d, np.array([s.converged for s in sols], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"),
+        "design_wave_harmonics": _var(d, [s.harmonics for s in sols], "harmonics H of the harmonic balance that solved the wave", "1"),
+    }
+    for q, what in _DESIGN_WAVE_MAXIMA.items():
+        v[f"design_wave_{q}"] = _var(d, [s.maxima[q] for s in sols], f"{what} over the design wave's period (nonlinear, still water included)", QUANTITIES[q][1])
+    return v
+
+
+def seastate_dataset(
+    analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any]], monte_carlo: xr.Dataset | None = None, design: Any = None
+) -> xr.Dataset:
+    """The content of seastate.nc (see the module docstring); ``design``: the DesignWaveExtremes, if computed."""
     sp, tf, e = analysis.spectrum, analysis.transfer, analysis.extremes
     w, s, x = ("omega_rad_s",), ("omega_rad_s", "saddle"), ("omega_rad_s", "x_moment_m")
     per = "per metre of wave amplitude"
@@ -147,18 +177,20 @@ def seastate_dataset(analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any
     v["still_water_bending_moment_Nm"] = _var(("x_moment_m",), sw.bending_moment_Nm, "still-water cargo bending moment, sagging + (linear)", "N m")
     v["still_water_bending_stress_Pa"] = _var(("x_moment_m",), sw.bending_stress_Pa, "still-water cargo bending stress (linear)", "Pa")
     v["uplift_per_hour_per_saddle"] = _var(("saddle",), e.uplift_per_hour_per_saddle, "expected downward zero crossings of the saddle compression per hour (linear, Rice)", "1/h")
-    models, methods = ["linear", "nonlinear"], ["spectral", "monte_carlo"]
+    models, methods = ["linear", "nonlinear"], ["spectral", "monte_carlo", "design_wave"]
     for q, (long_name, unit) in QUANTITIES.items():
-        table = np.full((2, 2), np.nan)
+        table = np.full((2, 3), np.nan)
         for r in rows:
             if r[q] is not None:
                 table[models.index(r["model"]), methods.index(r["method"])] = r[q]
         v[q] = _var(("model", "estimate_method"), table, long_name + " (NaN: not computed)", unit)
-    conv = np.full((2, 2), -1, dtype=np.int8)
+    conv = np.full((2, 3), -1, dtype=np.int8)
     for r in rows:
         if r["converged"] is not None:
             conv[models.index(r["model"]), methods.index(r["method"])] = int(bool(r["converged"]))
     v["converged"] = _var(("model", "estimate_method"), conv, "all solves converged (1), not (0), not computed (-1)", "1")
+    if design is not None:
+        v.update(_design_wave_variables(design))
     case = analysis.case
     ds = xr.Dataset(
         v,
@@ -169,6 +201,7 @@ def seastate_dataset(analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any
             "model": xr.Variable(("model",), models, {"long_name": "cargo model (linear: bilateral saddles)", "units": "1"}),
             # not "method": xarray's .sel(method=...) is taken
             "estimate_method": xr.Variable(("estimate_method",), methods, {"long_name": "method of the extremes (seastate.csv column 'method')", "units": "1"}),
+            **({"design_wave": _var(("design_wave",), np.arange(len(design.waves)), "design wave index", "1")} if design is not None else {}),
         },
         attrs={
             "title": f"seafast sea state: {case.name}",
@@ -201,8 +234,12 @@ def write_seastate_outputs(
     *,
     monte_carlo: Any = None,
     plots: bool = True,
+    design: Any = None,
 ) -> dict[str, Path]:
-    """Write seastate.csv, seastate.nc, case.yaml and (``plots``) the PNG figures; return their paths."""
+    """Write seastate.csv, seastate.nc, case.yaml and (``plots``) the PNG figures; return their paths.
+
+    ``design``: the :class:`~seafast.seastate.design_wave.DesignWaveExtremes` (its waves go to seastate.nc).
+    """
     from seafast.output.files import write_netcdf
 
     out = Path(out_dir)
@@ -216,7 +253,7 @@ def write_seastate_outputs(
     )
     paths["case"] = out / "case.yaml"
     mc_ds = monte_carlo.to_dataset() if monte_carlo is not None else None
-    ds = seastate_dataset(analysis, rows, mc_ds)
+    ds = seastate_dataset(analysis, rows, mc_ds, design)
     nc = out / "seastate.nc"
     if nc.exists():
         nc.unlink()

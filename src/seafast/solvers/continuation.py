@@ -2,19 +2,28 @@
 
 The condensed HBM system (see :mod:`seafast.solvers.hbm`) ``R(u, omega) = 0`` -- u the harmonic
 coefficients of the saddle compressions -- is followed in omega with a predictor-corrector
-pseudo-arclength method: tangent predictor, Newton corrector on ``R = 0`` plus the arclength
-condition ``t . (y - y_pred) = 0`` (scaled variables: u over the largest linear compression,
-omega over the sweep span), step-size control on the corrector's iteration count, and the
-tangent's orientation kept from step to step so the branch can turn (folds). ``dR/domega`` is a
-central difference of the residual (the receptances depend on omega through the dynamic
-stiffness). Used to show that the wave frequencies (0.2-2 rad/s) are quasi-static, and to pass
-through the cargo's first resonance for soft saddles.
+pseudo-arclength method (Keller 1977): tangent predictor, Newton corrector on ``R = 0`` plus the
+arclength condition ``t . (y - y_pred) = 0`` (scaled variables: u over the largest linear
+compression fluctuation at the start, omega over the sweep span), step-size control on the
+corrector's iteration count and on how far the tangent turns, and the tangent's orientation kept
+from step to step so the branch turns at folds. ``dR/domega`` is a central difference of the
+residual (the receptances depend on omega through the dynamic stiffness): central for the
+tangent, one-sided in the corrector's iterations (the residual there is already known).
+
+Round-off. Moving omega re-solves the dynamic stiffness; with soft saddles on a stiff beam its
+condition number reaches 1e8-1e9 and the residual is noisy at up to ~1e-7 of the compression
+scale, which no corrector can go below. A corrector that stalls is therefore asked whether its
+residual is at the round-off floor *of that point* (the residual's change when omega moves by a
+few units of round-off) and accepted if it is within ten times that floor: the branch is followed
+through grazing folds and resonances of soft saddles instead of stopping there.
+
+Each point records the compression harmonics (for stability, moments and post-processing) and
+the omega component of the unit tangent, whose sign changes at the folds
+(:class:`~seafast.solvers.branch.FrequencyResponseBranch`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from enum import Enum
 from typing import Any, Callable
 
 import numpy as np
@@ -23,67 +32,18 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
+from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, CondensedProblem, HBMOptions, condensed_operators, solve_condensed
 
-__all__ = ["BranchEnd", "FrequencyResponseBranch", "frequency_response"]
+__all__ = ["DEFAULT_HARMONICS", "BranchEnd", "FrequencyResponseBranch", "frequency_response"]
 
 DEFAULT_HARMONICS = 10
-"""H of a branch whose options leave it adaptive (continuation follows one branch at a fixed H)."""
+"""H of a continuation whose options leave ``harmonics`` unset (one branch is followed at a fixed H)."""
 
-
-class BranchEnd(Enum):
-    """Why a frequency-response branch ended."""
-
-    REACHED_END = "reached_end"
-    """The branch reached ``omega_end``."""
-    FIRST_POINT_FAILED = "first_point_failed"
-    """The HBM solve at ``omega_start`` did not converge: no branch to follow."""
-    STEP_BELOW_MIN = "step_below_min"
-    """The corrector kept failing until the step fell below ``min_step`` (e.g. a sharp grazing fold)."""
-    MAX_POINTS = "max_points"
-    """``max_points`` points were recorded."""
-
-
-@dataclass(frozen=True)
-class FrequencyResponseBranch:
-    """Points of a frequency-response branch, in continuation order.
-
-    Attributes
-    ----------
-    omega_rad_s
-        Excitation frequency of each point [rad/s] (not monotonic past a fold).
-    max_saddle_force_N
-        Largest saddle contact force over the period and the saddles [N].
-    max_gap_m
-        Largest detachment ``max(-delta)`` [m] (0 while contact is preserved).
-    max_cargo_deflection_m
-        Largest |z| over the period and the cargo nodes [m] (static part included).
-    converged
-        Whether each point met the tolerance.
-    contact_preserved
-        Whether every saddle stayed in contact over the whole period at each point.
-    message
-        How the sweep ended, for people.
-    end
-        How the sweep ended (:class:`BranchEnd`).
-    """
-
-    omega_rad_s: NDArray[np.float64]
-    max_saddle_force_N: NDArray[np.float64]
-    max_gap_m: NDArray[np.float64]
-    max_cargo_deflection_m: NDArray[np.float64]
-    converged: NDArray[np.bool_]
-    contact_preserved: NDArray[np.bool_]
-    message: str = ""
-    steps: int = 0
-    options: dict[str, Any] = field(default_factory=dict)
-    end: BranchEnd = BranchEnd.REACHED_END
-
-    @property
-    def peak_omega_rad_s(self) -> float:
-        """Frequency of the largest cargo deflection on the branch [rad/s]."""
-        return float(self.omega_rad_s[int(np.argmax(self.max_cargo_deflection_m))])
+_NOISE_FACTOR = 10.0  # a stalled corrector is accepted within this multiple of the point's round-off floor
+_NOISE_CAP = 1e-5  # ... and never above this relative residual
+_ROUND_OFF_SHIFTS = (1e-13, -1e-13, 3e-13)  # relative omega shifts that sample the round-off of the residual
 
 
 class _Branch:
@@ -102,35 +62,42 @@ class _Branch:
             ex = self.excitation_at(float(omega))
             if not np.isclose(ex.omega_rad_s, omega, rtol=1e-12, atol=0.0):
                 raise ValueError(f"excitation_at({omega!r}) returned an excitation at omega = {ex.omega_rad_s!r}")
-            ops = condensed_operators(self.model, ex, self.options.harmonics)
+            ops = condensed_operators(self.model, ex, self.options.harmonics)  # type: ignore[arg-type]
             if len(self._ops_cache) > 8:
                 self._ops_cache.clear()
             self._ops_cache[omega] = ops
         return ops
 
     def problem(self, omega: float) -> CondensedProblem:
-        return CondensedProblem(self.ops(omega), self.options.time_samples)
+        return CondensedProblem(self.ops(omega), self.options.time_samples)  # type: ignore[arg-type]
 
     def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, CondensedProblem]:
         p = self.problem(omega)
         R, state = p.evaluate(u, self.law, 1.0)
         return R, state, p
 
-    def d_residual_d_omega(self, u: NDArray, omega: float) -> NDArray:
+    def d_residual_d_omega(self, u: NDArray, omega: float, R: NDArray | None = None) -> NDArray:
+        """dR/domega [m s/rad]: central difference, or one-sided from ``R = R(u, omega)`` when given."""
         h = 1e-6 * max(abs(omega), 1e-3)
+        if R is not None:
+            return (self.residual(u, omega + h)[0] - R) / h
         return (self.residual(u, omega + h)[0] - self.residual(u, omega - h)[0]) / (2.0 * h)
+
+    def round_off(self, u: NDArray, omega: float, R: NDArray) -> float:
+        """Largest change of R [m] when omega moves by a few units of round-off (the residual's noise floor)."""
+        return max(float(np.max(np.abs(self.residual(u, omega * (1.0 + e))[0] - R))) for e in _ROUND_OFF_SHIFTS)
 
     def metrics(self, u: NDArray, omega: float) -> tuple[float, float, float, bool]:
         ops = self.ops(omega)
         n_h, n_s = 2 * ops.harmonics + 1, ops.saddle_count
-        inverse, forward = real_dft_matrices(ops.harmonics, self.options.time_samples)
+        inverse, forward = real_dft_matrices(ops.harmonics, self.options.time_samples)  # type: ignore[arg-type]
         U = u.reshape(n_h, n_s)
         delta = inverse @ U
         force = self.law.force(delta, ops.saddle_stiffness_N_per_m)
         corr = forward @ (force - ops.saddle_stiffness_N_per_m * delta)
         C = real_to_complex_harmonics(corr)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
-        z = harmonics_to_time(X[:, 0::2], self.options.time_samples)
+        z = harmonics_to_time(X[:, 0::2], self.options.time_samples)  # type: ignore[arg-type]
         return float(np.max(force)), float(max(-np.min(delta), 0.0)), float(np.max(np.abs(z))), bool(np.all(delta > 0.0))
 
 
@@ -147,6 +114,7 @@ def frequency_response(
     max_omega_step: float = 0.01,
     max_points: int = 2000,
     corrector_iterations: int = 12,
+    stop_when: Callable[[float, NDArray[np.float64]], bool] | None = None,
 ) -> FrequencyResponseBranch:
     """Follow the periodic response from ``omega_start`` to ``omega_end`` by pseudo-arclength continuation.
 
@@ -160,8 +128,8 @@ def frequency_response(
     omega_start_rad_s, omega_end_rad_s
         Sweep limits [rad/s], either order.
     options
-        HBM settings (condensed formulation; ``solver`` applies to the first point only); an adaptive H
-        (``harmonics=None``) becomes :data:`DEFAULT_HARMONICS`.
+        HBM settings with a fixed ``harmonics`` (condensed formulation; ``solver`` applies to the
+        first point only).
     initial_step, min_step, max_step
         Arclength steps in scaled variables (omega scaled by the sweep span, compressions by
         their largest linear fluctuation at the start). The step grows when the corrector
@@ -173,6 +141,9 @@ def frequency_response(
         Safety limit on the number of branch points.
     corrector_iterations
         Newton iterations per corrector before the step is halved.
+    stop_when
+        Optional ``(omega [rad/s], compression harmonics (2H+1, n_s) [m]) -> bool``, asked after each
+        recorded point; True ends the branch there (:attr:`BranchEnd.STOPPED`).
 
     Returns
     -------
@@ -181,9 +152,6 @@ def frequency_response(
         raises for non-convergence.
     """
     options = HBMOptions() if options is None else options
-    if options.harmonics is None or options.time_samples is None:
-        # a branch is followed at one H: the adaptive choice belongs to single solves
-        options = options.with_harmonics(DEFAULT_HARMONICS if options.harmonics is None else options.harmonics)
     if not (omega_start_rad_s > 0 and omega_end_rad_s > 0) or omega_start_rad_s == omega_end_rad_s:
         raise ValueError(
             f"omega_start_rad_s = {omega_start_rad_s!r}, omega_end_rad_s = {omega_end_rad_s!r}; allowed: two different positive frequencies"
@@ -193,6 +161,8 @@ def frequency_response(
             f"steps: need 0 < min_step <= initial_step <= max_step and 0 < max_omega_step <= 1, got "
             f"{min_step}, {initial_step}, {max_step}, {max_omega_step}"
         )
+    H = DEFAULT_HARMONICS if options.harmonics is None else int(options.harmonics)  # one branch, at a fixed H
+    options = options.with_harmonics(H)
     branch = _Branch(model, excitation_at, options)
     w0, w1 = float(omega_start_rad_s), float(omega_end_rad_s)
     direction = 1.0 if w1 > w0 else -1.0
@@ -203,26 +173,26 @@ def frequency_response(
     lin = branch.ops(w0).linear_compression_m
     u_scale = float(max(np.max(np.abs(lin[1:])) if lin.shape[0] > 1 else 0.0, 1e-3 * np.max(np.abs(lin)), 1e-9))
     w_scale = abs(w1 - w0)
-    # Corrector tolerance: moving omega re-solves the dynamic stiffness, whose round-off near a
-    # resonance (condition ~ 1e7..1e9) makes the residual noisy at ~1e-9 of the compression
-    # scale; 1e-7 of it (tens of nanometres) is the floor asked of the corrector.
     tol_corrector = max(tol, 1e-7)
     r_scale = branch.ops(w0).compression_scale_m
-    # scaled variables y = (u / u_scale, omega / w_scale)
+    shape = (2 * H + 1, model.saddle_count)
     pts: list[tuple[float, float, float, float, bool, bool]] = []
+    extra: list[tuple[NDArray, float, float]] = []  # harmonics, tangent omega component, residual
 
-    def record(u: NDArray, omega: float, ok: bool) -> None:
+    def record(u: NDArray, omega: float, ok: bool, t_omega: float, residual: float) -> None:
         f, g, z, keep = branch.metrics(u, omega)
         pts.append((omega, f, g, z, ok, keep))
+        extra.append((u.reshape(shape).copy(), t_omega, residual))
 
-    record(first.saddle_compression.ravel(), w0, first.converged)
-    if not first.converged:
-        return _finish(pts, "the first point did not converge", 0, options, BranchEnd.FIRST_POINT_FAILED)
     u = first.saddle_compression.ravel().copy()
     omega = w0
+    if not first.converged:
+        record(u, omega, False, 0.0, first.residual_norm)
+        return _finish(pts, extra, "the first point did not converge", 0, options, BranchEnd.FIRST_POINT_FAILED)
 
     def tangent(u: NDArray, omega: float, previous: NDArray | None) -> NDArray:
-        R, state, p = branch.residual(u, omega)
+        """Unit tangent in scaled variables."""
+        _, state, p = branch.residual(u, omega)
         J = p.jacobian(state) * u_scale  # dR / d(u/u_scale)
         Rw = branch.d_residual_d_omega(u, omega) * w_scale
         n = u.size
@@ -239,6 +209,7 @@ def frequency_response(
         return t / np.linalg.norm(t)
 
     t = tangent(u, omega, None)
+    record(u, omega, True, float(t[-1]), first.residual_norm)
     ds = float(initial_step)
     steps = 0
     message = "reached omega_end"
@@ -264,17 +235,19 @@ def frequency_response(
         yk = y_pred.copy()
         ok = False
         its = 0
+        residual = np.inf
         try:
             F, (state, p, uk, wk) = augmented(yk, y_pred, t)
             for its in range(1, corrector_iterations + 1):
-                if np.max(np.abs(F[:-1])) <= tol_corrector and abs(F[-1]) <= 1e-8:
+                residual = float(np.max(np.abs(F[:-1])))
+                if residual <= tol_corrector and abs(F[-1]) <= 1e-8:
                     ok = True
                     break
                 J = p.jacobian(state) * (u_scale / r_scale)
-                Rw = branch.d_residual_d_omega(uk, wk) * (w_scale / r_scale)
+                column = branch.d_residual_d_omega(uk, wk, F[:-1] * r_scale) * (w_scale / r_scale)
                 n = uk.size
                 A = np.zeros((n + 1, n + 1))
-                A[:n, :n], A[:n, n], A[n] = J, Rw, t
+                A[:n, :n], A[:n, n], A[n] = J, column, t
                 dy = np.linalg.solve(A, -F)
                 norm0 = float(np.linalg.norm(F))
                 lam = 1.0
@@ -288,6 +261,12 @@ def frequency_response(
                 else:
                     break
                 yk, F, (state, p, uk, wk) = y_try, F_try, aux
+            else:
+                residual = float(np.max(np.abs(F[:-1])))
+            if not ok and residual <= _NOISE_CAP and abs(F[-1]) <= 1e-6:
+                # stalled: accept if the residual is at this point's round-off floor
+                floor = branch.round_off(uk, wk, F[:-1] * r_scale) / r_scale
+                ok = residual <= _NOISE_FACTOR * floor
         except (np.linalg.LinAlgError, FloatingPointError):
             ok = False
         steps += 1
@@ -302,7 +281,11 @@ def frequency_response(
         t_new = tangent(u_new, w_new, t)
         cos_angle = float(t_new @ t)
         u, omega, t = u_new, w_new, t_new
-        record(u, omega, True)
+        record(u, omega, True, float(t[-1]), residual)
+        if stop_when is not None and stop_when(omega, u.reshape(shape)):
+            message = f"stopped at omega = {omega:.6g} rad/s by the caller's range check"
+            ending = BranchEnd.STOPPED
+            break
         if its <= 3 and cos_angle > np.cos(np.radians(5.0)):
             grow = 1.6
         elif its <= 6 and cos_angle > np.cos(np.radians(12.0)):
@@ -319,11 +302,14 @@ def frequency_response(
         if end.converged:
             if direction * (omega - w1) > 0:
                 pts.pop()
-            record(end.saddle_compression.ravel(), w1, True)
-    return _finish(pts, message, steps, options, ending)
+                extra.pop()
+            record(end.saddle_compression.ravel(), w1, True, float(t[-1]), end.residual_norm)
+    return _finish(pts, extra, message, steps, options, ending)
 
 
-def _finish(pts: list, message: str, steps: int, options: HBMOptions, end: BranchEnd) -> FrequencyResponseBranch:
+def _finish(
+    pts: list, extra: list[tuple[NDArray, float, float]], message: str, steps: int, options: HBMOptions, end: BranchEnd
+) -> FrequencyResponseBranch:
     a: list[Any] = list(zip(*pts)) if pts else [[]] * 6
     return FrequencyResponseBranch(
         omega_rad_s=np.asarray(a[0], dtype=float),
@@ -336,4 +322,7 @@ def _finish(pts: list, message: str, steps: int, options: HBMOptions, end: Branc
         steps=steps,
         options=options.to_dict(),
         end=end,
+        compression_harmonics_m=np.stack([e[0] for e in extra]) if extra else np.zeros((0, 1, 1)),
+        tangent_omega=np.array([e[1] for e in extra], dtype=float),
+        residual_norm=np.array([e[2] for e in extra], dtype=float),
     )

@@ -9,9 +9,10 @@ The values (``"converged"``, ...) are what ``results.nc`` stores.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from enum import Enum
 
-__all__ = ["SolverOutcome", "SolverWarning"]
+__all__ = ["SolverOutcome", "SolverWarning", "TimeDomainStart", "OrbitRecord"]
 
 
 class SolverOutcome(Enum):
@@ -28,18 +29,29 @@ class SolverOutcome(Enum):
         Harmonic balance: neither the direct solve nor any continuation met the tolerance; the
         best iterate is returned with its residual.
     ``NOT_PERIODIC``
-        Time-domain reference: no periodic steady state within ``max_periods``.
+        Time-domain reference: no periodic steady state within ``max_periods`` (a motion that
+        wanders, is chaotic, or repeats only after several periods).
+    ``OTHER_ORBIT``
+        Time-domain reference started on a given periodic solution (e.g. the harmonic balance's):
+        it reached a periodic steady state, but not the start's (the start's orbit is unstable,
+        or not a solution of the same model). The numbers are the orbit reached; the
+        :class:`OrbitRecord` says how far it is from the start's.
     """
 
     CONVERGED = "converged"
     CONVERGED_BY_CONTINUATION = "converged_by_continuation"
     NOT_CONVERGED = "not_converged"
     NOT_PERIODIC = "not_periodic"
+    OTHER_ORBIT = "other_orbit"
 
     @property
     def converged(self) -> bool:
-        """Whether the result meets its solver's tolerance (its numbers can be used)."""
-        return self in (SolverOutcome.CONVERGED, SolverOutcome.CONVERGED_BY_CONTINUATION)
+        """Whether the result meets its solver's tolerance (its numbers can be used).
+
+        ``OTHER_ORBIT`` counts: the periodic state reached is a solution; that it is not the
+        start's is reported by the outcome itself (the CLI and the report warn).
+        """
+        return self in (SolverOutcome.CONVERGED, SolverOutcome.CONVERGED_BY_CONTINUATION, SolverOutcome.OTHER_ORBIT)
 
 
 class SolverWarning(Enum):
@@ -74,3 +86,60 @@ _DESCRIPTIONS = {
     SolverWarning.TOO_FEW_HARMONICS: "too few harmonics: the peak forces may move by more than solver.truncation_tolerance "
     "(leave solver.harmonics unset, or raise it / solver.max_harmonics)",
 }
+
+
+class TimeDomainStart(Enum):
+    """The state a time-domain reference starts from (at t = 0 of the period).
+
+    ``LINEAR``
+        The linear periodic solution (every saddle bilateral): displacement and velocity at t = 0.
+        The default of both formulations.
+    ``QUASI_STATIC``
+        The exact-contact quasi-static state at t = 0, velocity from the quasi-static states at
+        -dt and +dt (the full-DOF formulation's former start).
+    ``GIVEN``
+        A given periodic solution (e.g. the harmonic balance's): its displacement and velocity at
+        t = 0; the orbit reached is compared with it.
+    """
+
+    LINEAR = "linear"
+    QUASI_STATIC = "quasi_static"
+    GIVEN = "given"
+
+
+@dataclass(frozen=True)
+class OrbitRecord:
+    """Where a time-domain reference started and what it reached.
+
+    Attributes
+    ----------
+    start
+        The start (:class:`TimeDomainStart`).
+    start_method
+        What the start came from: ``"linear"``, ``"quasi_static"``, or the given solution's
+        ``method`` (``"hbm"``, ...).
+    periodic
+        Whether a periodic steady state (period T) was reached within the periods allowed.
+    periods
+        Periods integrated.
+    period_change
+        Last period-to-period change of the saddle forces, over the largest force seen [-].
+    distance_from_start
+        ``GIVEN`` only (else None): RMS over the last period and the saddles of the saddle-force
+        difference between the orbit reached and the start's orbit, through the start's harmonics,
+        over the RMS of the start's saddle forces [-] (both with the exact law, on the reference's
+        time grid; :func:`seafast.solvers.references.orbit.orbit_distance`).
+    same_as_start
+        ``GIVEN`` and periodic only (else None): ``distance_from_start <= orbit_tolerance``.
+    orbit_tolerance
+        The distance below which two periodic states are the same orbit [-].
+    """
+
+    start: TimeDomainStart
+    start_method: str
+    periodic: bool
+    periods: int
+    period_change: float
+    distance_from_start: float | None
+    same_as_start: bool | None
+    orbit_tolerance: float

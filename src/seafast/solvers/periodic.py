@@ -25,10 +25,11 @@ from numpy.typing import NDArray
 
 # re-exported: their public import path was this module before the Fourier kernels moved down
 from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, period_fraction
-from seafast.solvers.outcome import SolverOutcome, SolverWarning
+from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
 
 __all__ = [
     "PeriodicResponse",
+    "OrbitRecord",
     "SolverOutcome",
     "SolverWarning",
     "period_fraction",
@@ -81,6 +82,9 @@ class PeriodicResponse:
         Per saddle, the estimated error of the peak force from the harmonics left out, relative to
         the saddle's force scale [-] (:func:`seafast.solvers.hbm.harmonics.truncation_error`); None
         for the references (they have no harmonic truncation).
+    orbit
+        Time-domain reference only (else None): where it started and what it reached
+        (:class:`~seafast.solvers.outcome.OrbitRecord`).
     """
 
     method: str
@@ -98,6 +102,7 @@ class PeriodicResponse:
     options: dict[str, Any] = field(default_factory=dict)
     truncation_error: NDArray[np.float64] | None = None
     warnings: tuple[SolverWarning, ...] = ()
+    orbit: OrbitRecord | None = None
 
     @property
     def converged(self) -> bool:

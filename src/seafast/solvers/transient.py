@@ -1,9 +1,10 @@
-"""Nonlinear time integration of the cargo under non-periodic loading, contact condensed on the saddles.
+"""The transient integrator of the saddles' contact problem: any loading, from any state, compiled.
 
-A sea state is not periodic, so the periodic references of ``solvers/references.py`` cannot
-serve it. This module marches the cargo's contact problem from any state through any record of
-loading, fast enough for 3-hour records (a compiled loop of a few microseconds per step); it
-serves the Monte Carlo reference of :mod:`seafast.seastate.monte_carlo`.
+One integrator serves every march of the nonlinear cargo (issue 12): the Monte Carlo reference of a sea
+state (:mod:`seafast.seastate.realisation`: windows, states, moment outputs, 3-hour records at a few
+microseconds a step) and the periodic march that starts the high-harmonic harmonic balance solves
+(:func:`march_periodic`, used by :mod:`seafast.solvers.hbm.harmonics`). (The exact periodic references,
+:mod:`seafast.solvers.references`, integrate all cargo DOFs on their own, independently of this.)
 
 Superposition (the formulation of the condensed references and the HBM)
 -----------------------------------------------------------------------
@@ -22,13 +23,13 @@ stays compressed.
 
 Modal reduction with static residual flexibility
 ------------------------------------------------
-``q_c = Phi eta + R c``: the mass-normalised undamped modes Phi of (K, M) up to
-``cutoff_rad_s`` (their coupled modal damping ``Xi = Phi^T D Phi`` kept whole: the springs are
-undamped, so Rayleigh damping on the beam is not modal), and for the truncated modes their
-static (residual) flexibility ``R = K^-1 B - Phi Omega^-2 Phi^T B``. So ``eta'' + Xi eta' +
-Omega^2 eta = Phi^T B c``, and the static response to saddle forces is exact whatever the
-cutoff; with every mode kept, ``R = 0`` and the march is the full model's (a test checks this
-against the periodic full-DOF reference to round-off).
+``q_c = Phi eta + R c`` (:func:`seafast.solvers.modal_correction.modal_correction_system`): the
+mass-normalised undamped modes Phi of (K, M) up to ``cutoff_rad_s`` (their coupled modal damping
+``Xi = Phi^T D Phi`` kept whole: the springs are undamped, so Rayleigh damping on the beam is not
+modal), and for the truncated modes their static (residual) flexibility ``R = K^-1 B - Phi
+Omega^-2 Phi^T B``. So ``eta'' + Xi eta' + Omega^2 eta = Phi^T B c``, and the static response to
+saddle forces is exact whatever the cutoff; with every mode kept, ``R = 0`` and the march is the
+full model's (a test checks this against the periodic full-DOF reference to round-off).
 
 Newmark average acceleration (gamma = 1/2, beta = 1/4: unconditionally stable, no algorithmic
 damping, so a free decay shows the model's own damping): per step the predictor
@@ -54,9 +55,9 @@ free vibration left is below a tolerance (``sum_r max|phi_r| sqrt(eta_r^2 + (eta
 <= tolerance_m``, a bound on the cargo deflection it can still cause); outside windows
 ``q_c = 0`` exactly.
 
-Units: SI throughout (m, rad, N, s). Nothing here prints, reads or writes files. (The module is
-longer than the house's ~400 lines because the compiled kernels and the reduction whose arrays
-they take are kept side by side: a change to one needs the other in view.)
+Units: SI throughout (m, rad, N, s). Nothing here prints, reads or writes files. Size: longer than
+the house's ~400 lines because the compiled kernels and the Newmark operators whose arrays they take
+are kept side by side (a change to one needs the other in view).
 """
 
 from __future__ import annotations
@@ -66,10 +67,11 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import eigh
 from scipy.ndimage import spline_filter1d
 
 from seafast.model.structure import StructuralModel
+from seafast.solvers.exact_contact import solve_exact_contact
+from seafast.solvers.modal_correction import modal_correction_system
 
 __all__ = [
     "DEFAULT_STEPS_PER_PERIOD",
@@ -85,6 +87,9 @@ __all__ = [
     "march_window",
     "TransientRecord",
     "integrate_record",
+    "PeriodicMarch",
+    "march_period",
+    "march_periodic",
 ]
 
 DEFAULT_STEPS_PER_PERIOD = 16
@@ -192,7 +197,7 @@ class ModalCorrection:
 
 
 def modal_correction(
-    model: StructuralModel, time_step_s: float, cutoff_rad_s: float | None = None
+    model: StructuralModel, time_step_s: float, cutoff_rad_s: float | None = None, *, minimum_modes: int | None = None
 ) -> ModalCorrection:
     """Reduce the correction system of ``model`` and build its Newmark operators.
 
@@ -203,9 +208,11 @@ def modal_correction(
     time_step_s
         dt [s], > 0.
     cutoff_rad_s
-        Keep the modes with natural frequency <= cutoff [rad/s] (at least ``n_s`` modes);
+        Keep the modes with natural frequency <= cutoff [rad/s];
         default :data:`DEFAULT_CUTOFF_FACTOR` times :func:`reference_frequency_rad_s`;
         ``numpy.inf`` keeps every mode (the full model).
+    minimum_modes
+        Keep at least this many modes (default ``n_s``: the modes the saddle forces drive).
 
     Raises
     ------
@@ -218,27 +225,19 @@ def modal_correction(
     cutoff = DEFAULT_CUTOFF_FACTOR * reference_frequency_rad_s(model) if cutoff_rad_s is None else float(cutoff_rad_s)
     if not cutoff > 0.0:
         raise ValueError(f"cutoff_rad_s = {cutoff_rad_s!r}; allowed: a number > 0 [rad/s] (inf keeps every mode)")
-    M = np.asarray(model.cargo.mass, dtype=float)
-    D = np.asarray(model.damping_cc, dtype=float)
-    K = np.asarray(model.dynamic_stiffness(0.0, True)[0], dtype=float)  # every saddle bilateral
-    n_c, n_s = M.shape[0], model.saddle_count
-    sad = np.asarray(model.saddle_cargo_dof)
-    w2, phi = eigh(K, M)
-    w = np.sqrt(np.maximum(w2, 0.0))
-    m = max(int(np.count_nonzero(w <= cutoff)), min(n_s, n_c))
-    w, phi = w[:m], phi[:, :m]
-    xi = phi.T @ D @ phi
-    B = np.zeros((n_c, n_s))
-    B[sad, np.arange(n_s)] = 1.0
-    static = np.linalg.solve(K, B)
-    phi_b = phi[sad]
-    residual = static - phi @ (phi_b.T / w[:, None] ** 2)
+    n_s = model.saddle_count
+    reduced = modal_correction_system(model, cutoff, minimum_modes=n_s if minimum_modes is None else int(minimum_modes))
+    w, phi, xi = reduced.natural_frequency_rad_s, reduced.mode_shape, reduced.modal_damping
+    m = w.size
+    sad = reduced.saddle_dof
+    phi_b = reduced.saddle_mode_shape
+    residual = reduced.residual_displacement_m_per_N
     eye = np.eye(m)
     k_hat_inv = np.linalg.inv(4.0 / dt**2 * eye + 2.0 / dt * xi + np.diag(w**2))
     predictor = np.hstack([k_hat_inv @ (4.0 / dt**2 * eye + 2.0 / dt * xi), k_hat_inv @ (4.0 / dt * eye + xi), k_hat_inv])
     force_response = k_hat_inv @ phi_b.T
     G = phi_b @ force_response + residual[sad]
-    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
+    k_u = reduced.unilateral_stiffness_N_per_m
     if n_s <= PRECOMPUTED_SETS_LIMIT:
         codes = np.arange(2**n_s)
         masks = ((codes[:, None] >> np.arange(n_s)[None, :]) & 1).astype(float)
@@ -256,10 +255,10 @@ def modal_correction(
         saddle_modes=np.ascontiguousarray(phi_b),
         residual_displacement=residual,
         receptance_m_per_N=np.ascontiguousarray(G),
-        static_receptance_m_per_N=static[sad],
+        static_receptance_m_per_N=reduced.static_flexibility_m_per_N,
         stiffness_N_per_m=k_u,
         set_inverses=np.ascontiguousarray(inverses),
-        mode_deflection_bound=np.max(np.abs(phi[0::2]), axis=0),
+        mode_deflection_bound=np.max(np.abs(phi[0::2]), axis=0, initial=0.0),
         saddle_dof=sad,
     )
 
@@ -497,25 +496,15 @@ class MarchState:
     def quasi_static(system: ModalCorrection, linear_compression_m: NDArray) -> "MarchState":
         """At rest in the exact-contact static state of ``linear_compression_m`` (n_s,).
 
-        ``c`` from ``delta = delta_lin - G_0 c``, ``G_0 = B^T K^-1 B``; ``eta = Omega^-2 Phi_B^T c``
+        ``c`` from ``delta = delta_lin - G_0 c``, ``G_0 = B^T K^-1 B``, solved exactly by
+        :func:`~seafast.solvers.exact_contact.solve_exact_contact`; ``eta = Omega^-2 Phi_B^T c``
         (the static modal part; the residual flexibility carries the rest).
         """
         d_lin = np.asarray(linear_compression_m, dtype=float)
-        n_s = d_lin.size
-        k = system.stiffness_N_per_m
-        G0 = system.static_receptance_m_per_N
-        detached = d_lin < 0.0
-        for _ in range(4 * n_s + 8):  # active set on the static problem (same as the kernel's)
-            A = np.eye(n_s) - G0 * (k * detached)[None, :]
-            delta = np.linalg.solve(A, d_lin)
-            new = delta < 0.0
-            if np.array_equal(new, detached):
-                break
-            detached = new
-        c = k * np.maximum(-delta, 0.0)
-        eta = (system.saddle_modes.T @ c) / system.omega_rad_s**2
+        delta, c = solve_exact_contact(d_lin[None], system.static_receptance_m_per_N, system.stiffness_N_per_m)
+        eta = (system.saddle_modes.T @ c[0]) / system.omega_rad_s**2
         m = system.mode_count
-        return MarchState(eta, np.zeros(m), np.zeros(m), c, detached)
+        return MarchState(eta, np.zeros(m), np.zeros(m), c[0], delta[0] < 0.0)
 
 
 def march_window(
@@ -635,3 +624,94 @@ def integrate_record(
         tolerance_m=0.0, capture_every=1, capture_compression=compression, capture_lifted=lifted,
     )
     return TransientRecord(np.asarray(np.arange(n_t) * system.time_step_s, dtype=np.float64), compression, system.stiffness_N_per_m * np.maximum(compression, 0.0), outcome.solved)
+
+
+# ====================================================================== periodic march
+@dataclass(frozen=True)
+class PeriodicMarch:
+    """The periodic state a march of one repeated period settled on.
+
+    Attributes
+    ----------
+    compression_m
+        The last period's compressions at ``t_n = n T / N`` (N, n_s) [m].
+    periods
+        Periods marched.
+    change
+        Last largest change of the compressions between two periods, over the largest linear compression [-].
+    """
+
+    compression_m: NDArray[np.float64]
+    periods: int
+    change: float
+
+
+def march_periodic(
+    system: ModalCorrection,
+    linear_compression_m: NDArray[np.float64],
+    *,
+    max_periods: int = 50,
+    tolerance: float = 1e-6,
+) -> PeriodicMarch:
+    """March one period of linear compressions over and over, from rest, until the compressions repeat.
+
+    From rest with no correction force, the start is the linear periodic solution: the periodic state
+    reached is the one the physical system settles on from there.
+
+    Parameters
+    ----------
+    system
+        The reduced correction system for the step ``T / N`` (the samples are the steps).
+    linear_compression_m
+        ``delta_lin`` over one period at ``t_n = n T / N``, (N, n_s) [m].
+    max_periods, tolerance
+        Stop when the largest change of ``delta`` between two periods is below ``tolerance`` times the
+        largest linear compression, or after ``max_periods``.
+    """
+    d_lin = np.ascontiguousarray(linear_compression_m, dtype=float)
+    N, n_s = d_lin.shape
+    if n_s != system.saddle_count:
+        raise ValueError(f"linear_compression_m has {n_s} columns; the model has {system.saddle_count} saddles")
+    scale = max(float(np.max(np.abs(d_lin))), 1e-12)
+    state = MarchState.at_rest(system)
+    previous: NDArray[np.float64] | None = None
+    change = np.inf
+    periods = 0
+    delta = d_lin
+    for periods in range(1, int(max_periods) + 1):
+        delta = march_period(system, d_lin, state)
+        if previous is not None:
+            change = float(np.max(np.abs(delta - previous))) / scale
+            if change <= tolerance:
+                break
+        previous = delta
+    return PeriodicMarch(delta, periods, change)
+
+
+def march_period(system: ModalCorrection, linear_compression_m: NDArray[np.float64], state: MarchState) -> NDArray[np.float64]:
+    """March one period of periodic linear compressions from ``state`` (updated in place to the period's end).
+
+    Parameters
+    ----------
+    system
+        The reduced correction system for the step ``T / N``.
+    linear_compression_m
+        ``delta_lin`` over one period at ``t_n = n T / N``, (N, n_s) [m] (step N is step 0 again).
+    state
+        The state at ``t_0``.
+
+    Returns
+    -------
+    The compressions at ``t_0 .. t_{N-1}`` of this period (N, n_s) [m], ``t_0`` being the state's own.
+    """
+    d_lin = np.ascontiguousarray(linear_compression_m, dtype=float)
+    N, n_s = d_lin.shape
+    coef = np.ascontiguousarray(spline_filter1d(d_lin, order=3, axis=0, mode="grid-wrap"))  # periodic: step N is step 0
+    captured = np.empty((N + 1, n_s))
+    lifted = np.zeros((N + 1, n_s), dtype=bool)
+    captured[0] = d_lin[0] - system.saddle_displacement_m(state.eta, state.force_N)
+    march_window(
+        system, coef, 1, np.zeros(n_s), np.ones(N, dtype=bool), 0, N, state, tolerance_m=0.0,
+        capture_every=1, capture_compression=captured, capture_lifted=lifted,
+    )
+    return np.roll(captured[1:], 1, axis=0)  # t_1 .. t_N, and t_N is t_0 of the next period

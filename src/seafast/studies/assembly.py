@@ -70,13 +70,17 @@ def _axis_columns(grid: StudyGrid) -> list[str]:
 
 
 def _labels(records: Iterable[PointRecord], key: str, canonical: tuple[str, ...]) -> list[str]:
-    seen = list(canonical)
+    """The labels the rows use: the canonical ones first (all of them when no row has a label, e.g. every
+    point failed), then others in order of appearance (a sea-state study's ``sea_state`` load case)."""
+    found: list[str] = []
     for r in records:
         for row in r.rows:
             v = row.get(key)
-            if isinstance(v, str) and v not in seen:
-                seen.append(v)
-    return seen
+            if isinstance(v, str) and v not in found:
+                found.append(v)
+    if not found:
+        return list(canonical)
+    return [c for c in canonical if c in found] + [v for v in found if v not in canonical]
 
 
 def _extra_keys(records: Iterable[PointRecord]) -> list[str]:

@@ -32,6 +32,7 @@ examples:
   seafast study lashing --workers 1                    # serial
   seafast study my_study.yaml --set wave.amplitude_m=2 # a study file, base case overridden
   seafast study cargo --scheduler tcp://10.0.0.5:8786  # a Dask cluster
+  seafast study saddles --response sea_state            # ranked by the nonlinear MPM in the base case's sea state
 An interrupted study resumes when the same command is run again (finished points are kept).
 
 study file (YAML):
@@ -43,6 +44,7 @@ study file (YAML):
     - {key: seafastening.saddle_stiffness_N_per_m, start: 1.1e7, stop: 1.1e10, num: 20, scale: log}
   derived: {cargo.wall_thickness_m: cargo.diameter_m / 110}   # optional
   limits: {max_saddle_force_N: 7.0e6, max_bending_stress_Pa: 20.0e6}
+  response: sea_state           # optional: judge points on their sea state's MPMs (default when an axis is sea_state.*)
 """
 
 
@@ -61,6 +63,9 @@ def _configure(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")
     parser.add_argument("--batch-size", type=int, default=None, metavar="N", help="points per task (default: automatic, at most 25)")
+    parser.add_argument("--response", choices=("regular_wave", "sea_state"), default=None,
+                        help="judge points on the regular wave (seafast run) or on their sea state's most probable maxima "
+                        "(linear spectral, nonlinear design waves); overrides the study file's response")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     parser.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
@@ -101,7 +106,7 @@ def cmd_study(args: argparse.Namespace) -> int:
     from seafast.studies.limits import RANKING_COLUMNS, DesignLimits, compliance_rows, format_table, rank_compliant, write_rows_csv
     from seafast.studies.limits import COMPLIANCE_COLUMNS
     from seafast.studies.runner import ExecutionOptions, run_study
-    from seafast.studies.spec import build_grid, load_study_spec
+    from seafast.studies.spec import build_grid, load_study_spec, study_spec_from_mapping
 
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     if args.workers is not None and args.workers < 1:
@@ -111,6 +116,8 @@ def cmd_study(args: argparse.Namespace) -> int:
     try:
         overrides = parse_overrides(args.overrides)
         spec, directory = load_study_spec(args.study)
+        if args.response is not None and args.response != spec.response:
+            spec = study_spec_from_mapping({**spec.model_dump(mode="json", exclude_none=True), "response": args.response}, f"'{args.study}'")
         grid = build_grid(spec, directory, overrides)
     except CaseError as exc:
         return _error(str(exc))

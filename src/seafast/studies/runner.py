@@ -52,6 +52,9 @@ from seafast.studies.store import PointRecord, PointStore
 
 logger = logging.getLogger(__name__)
 
+SEA_STATE_EVALUATOR = "seafast.seastate.study:evaluate_sea_state"
+"""The evaluator of studies judged on their sea state (``response: sea_state``)."""
+
 __all__ = [
     "Evaluator",
     "ExecutionOptions",
@@ -68,6 +71,7 @@ __all__ = [
     "evaluate_batches",
     "plan_batches",
     "run_study",
+    "SEA_STATE_EVALUATOR",
     "assemble_dataset",
     "study_rows",
     "write_study_csv",
@@ -151,7 +155,8 @@ def run_study(
         Output directory; holds the resumable store ``points.jsonl``.
     evaluator : callable, str or None
         Per-point evaluator (see :func:`resolve_evaluator`); must be picklable (a module-level
-        function) for the process and Dask back-ends.
+        function) for the process and Dask back-ends. None: the sea-state evaluator
+        (:data:`SEA_STATE_EVALUATOR`) for a study judged on its sea state, else the default.
     execution : ExecutionOptions
         Serial, local processes (default, all cores) or a Dask scheduler address.
 
@@ -166,6 +171,8 @@ def run_study(
     """
     t0 = time.perf_counter()
     out = Path(directory)
+    if evaluator is None and grid.spec.evaluates_sea_state:
+        evaluator = SEA_STATE_EVALUATOR
     if isinstance(evaluator, str):
         resolve_evaluator(evaluator)  # fail early on a bad reference
     with PointStore(out, grid) as store:

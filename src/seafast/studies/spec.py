@@ -424,6 +424,12 @@ class StudySpec(_Strict):
         default_factory=dict, description="Dotted key -> expression over other keys, applied per point, in order"
     )
     limits: LimitsSpec = LimitsSpec()
+    response: Literal["regular_wave", "sea_state"] | None = Field(
+        None,
+        description="What each point is judged on: 'regular_wave' (seafast run's dynamic response to wave.*) or 'sea_state' "
+        "(the most probable maxima in the sea_state.* sea: linear spectral and nonlinear design waves, docs/operability.md); "
+        "default: sea_state when an axis or derived key is a sea_state.* key, else regular_wave",
+    )
 
     @field_validator("axes")
     @classmethod
@@ -453,7 +459,20 @@ class StudySpec(_Strict):
         both = sorted(axis_keys & set(self.derived))
         if both:
             raise ValueError(f"key(s) {both} are both an axis and derived; a key may be one or the other")
+        sea = sorted(k for k in (*axis_keys, *self.derived) if k.startswith("sea_state."))
+        if sea and self.response == "regular_wave":
+            raise ValueError(
+                f"response = 'regular_wave' with sea-state key(s) {sea}: a regular-wave study ignores the sea_state section; "
+                "allowed: response: sea_state (or leave response unset)"
+            )
         return self
+
+    @property
+    def evaluates_sea_state(self) -> bool:
+        """Whether points are judged on their sea state's MPMs (``response``, or its default)."""
+        if self.response is not None:
+            return self.response == "sea_state"
+        return any(k.startswith("sea_state.") for k in (*self.axis_keys, *self.derived))
 
     @property
     def axis_keys(self) -> tuple[str, ...]:
@@ -470,7 +489,7 @@ def _format_error(err: ValidationError, source: str) -> str:
         value = e.get("input")
         if e["type"] == "extra_forbidden":
             lines.append(
-                f"{loc}: unknown key (value {value!r}); allowed: name, description, base, set, axes, derived, limits "
+                f"{loc}: unknown key (value {value!r}); allowed: name, description, base, set, axes, derived, limits, response "
                 "(axes: key, values, start, stop, num, scale; limits: max_saddle_force_N, max_bending_stress_Pa)"
             )
         elif e["type"] == "missing":
@@ -636,11 +655,13 @@ class StudyGrid:
 
     def fingerprint(self) -> str:
         """SHA-256 (hex, 16 chars) of everything that determines the points' results."""
-        payload = {
+        payload: dict[str, Any] = {
             "base": self.base,
             "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
             "derived": self.spec.derived,
         }
+        if self.spec.evaluates_sea_state:  # regular-wave studies keep their fingerprint (stores made before resume)
+            payload["response"] = "sea_state"
         text = json.dumps(payload, sort_keys=True, separators=(",", ":"), default=str)
         return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
@@ -678,4 +699,8 @@ def build_grid(spec: StudySpec, directory: Path | None = None, overrides: Mappin
     grid = StudyGrid(spec=spec, base=base, coordinates=coordinates)
     if grid.size > 0:
         grid.point_overrides(0)  # surfaces derived-expression errors before any work
+    if spec.evaluates_sea_state and base_case.sea_state.spectrum in ("jonswap", "pierson_moskowitz"):
+        for key in ("sea_state.significant_height_m", "sea_state.peak_period_s"):
+            if grid.base_value(key) is None and key not in spec.axis_keys and key not in spec.derived:
+                raise StudyError(f"{key} = null in the base case: a sea-state study needs it; set it (set: or --set) or make it an axis")
     return grid

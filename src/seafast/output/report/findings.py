@@ -12,7 +12,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import Finding, coord_labels, saddle_label, study_keys, total_response
-from seafast.solvers.outcome import SolverWarning
+from seafast.solvers.outcome import SolverOutcome, SolverWarning
 
 __all__ = ["TRUNCATION_LIMIT", "TENSILE_NOTE_FRACTION", "run_findings", "study_findings"]
 
@@ -66,6 +66,17 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
                         f"{lc} {m}: the solver did NOT converge",
                         f"residual norm {res:.3e}. Its numbers (summary, figures) must not be trusted; "
                         "try more harmonics/time samples, the 'newton' solver or another contact law.",
+                    )
+                )
+            if "solver_outcome" in sel and str(sel["solver_outcome"].values.item()) == SolverOutcome.OTHER_ORBIT.value:
+                distance = float(ds.attrs.get("time_domain_orbit_distance_from_start", math.nan))
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the time-domain reference left the orbit it started on",
+                        f"started on the {ds.attrs.get('time_domain_start', 'given')} solution, it settled on another periodic "
+                        f"state (RMS saddle-force distance {distance:.2e} > {ds.attrs.get('time_domain_orbit_tolerance', '?')}): "
+                        "the starting orbit is unstable or not unique (docs/orbits.md). The numbers shown are the orbit reached.",
                     )
                 )
             if "harmonic_truncation_indicator" in sel:

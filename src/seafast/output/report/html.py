@@ -226,6 +226,7 @@ def build_report_html(
     ranking_csv: Path | None = None,
     files_note: str = "",
     seastate: xr.Dataset | None = None,
+    operability: xr.Dataset | None = None,
 ) -> tuple[str, list[ReportFigure], list[Finding]]:
     """The report page of a run and/or a study dataset (pure: no files written).
 
@@ -267,7 +268,15 @@ def build_report_html(
         figures += sfigs
         findings += sfnd
         names.append(f"sea state {seastate.attrs.get('title', '').removeprefix('seafast sea state: ')}")
-    sources = [d for d in (run, study, seastate) if d is not None]
+    if operability is not None:
+        from seafast.output.report.operability import operability_report_sections
+
+        s, ofigs, ofnd, first = operability_report_sections(operability, first)
+        sections += s
+        figures += ofigs
+        findings += ofnd
+        names.append(f"operability {operability.attrs.get('title', '').removeprefix('seafast operability: ')}")
+    sources = [d for d in (run, study, seastate, operability) if d is not None]
     version = sources[0].attrs.get("seafast_version", "") if sources else ""
     stamp = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     subtitle = f"seafast {version or ''} report, generated {stamp}. SI inputs; results in mm, MN, MN m, MPa."

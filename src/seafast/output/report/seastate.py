@@ -26,9 +26,16 @@ def _value(ds: xr.Dataset, name: str, model: str, method: str) -> float:
     return float(ds[name].sel({"model": model, "estimate_method": method}).values)
 
 
+def _methods(ds: xr.Dataset) -> tuple[tuple[str, str], ...]:
+    """The (model, method) rows the dataset holds (seastate.nc files written before the design waves have three)."""
+    rows = (("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo"), ("nonlinear", "design_wave"))
+    methods = [str(m) for m in ds["estimate_method"].values]
+    return tuple(r for r in rows if r[1] in methods)
+
+
 def _rows(ds: xr.Dataset) -> list[list[str]]:
     out = []
-    for model, method in (("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo")):
+    for model, method in _methods(ds):
         row = [model, method]
         for name, scale, digits in _SCALE:
             v = _value(ds, name, model, method)
@@ -47,22 +54,23 @@ def seastate_findings(ds: xr.Dataset) -> list[Finding]:
     if events >= 1.0:
         out.append(Finding("WARNING", f"The linear model predicts {events:.1f} uplift events in {hours:g} h: saddles lift off",
                            "The linear spectral extremes assume saddles that pull; with lift-off they are not to be trusted. "
-                           "Use the nonlinear Monte Carlo row."))
+                           "Use the nonlinear rows (design waves, Monte Carlo)."))
     elif events >= 0.01:
         out.append(Finding("NOTE", f"Lift-off is possible: {events:.2f} expected uplift events in {hours:g} h (linear, Rice)",
-                           "Compare with the nonlinear Monte Carlo row."))
+                           "Compare with the nonlinear rows (design waves, Monte Carlo)."))
     else:
         out.append(Finding("OK", f"No lift-off expected ({events:.1e} uplift events in {hours:g} h): the linear extremes hold", ""))
     limits = {"F_N": float(ds.attrs.get("max_saddle_force_N", math.nan)), "sigma_b_Pa": float(ds.attrs.get("max_bending_stress_Pa", math.nan))}
-    for model, method in (("linear", "spectral"), ("nonlinear", "monte_carlo")):
+    for model, method in [r for r in _methods(ds) if r[1] != "monte_carlo" or r[0] == "nonlinear"]:
         for name, label, unit, scale in (("F_N", "saddle force", "MN", 1e-6), ("sigma_b_Pa", "bending stress", "MPa", 1e-6)):
             v = _value(ds, name, model, method)
             if math.isfinite(v) and math.isfinite(limits[name]) and v > limits[name]:
                 out.append(Finding("WARNING", f"{model} {method}: MPM {label} {v * scale:.2f} {unit} exceeds the limit "
                                    f"{limits[name] * scale:g} {unit}", "limits.* keys of the case."))
-    conv = ds["converged"].values
-    if np.any(conv == 0):
-        out.append(Finding("WARNING", "A Monte Carlo realisation did not converge", "Its row is flagged converged = NO."))
+    for model, method in _methods(ds):
+        if int(ds["converged"].sel({"model": model, "estimate_method": method}).values) == 0:
+            what = "A design wave's harmonic balance" if method == "design_wave" else "A Monte Carlo realisation"
+            out.append(Finding("WARNING", f"{what} did not converge ({model}, {method})", "Its row is flagged converged = NO."))
     if not math.isfinite(_value(ds, "F_N", "nonlinear", "monte_carlo")):
         out.append(Finding("NOTE", "The nonlinear Monte Carlo reference was not computed", "Run seafast seastate without --no-monte-carlo."))
     return out
@@ -202,7 +210,8 @@ def seastate_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[list[t
     summary = (
         f"<p>{html.escape(str(ds.attrs.get('spectrum', '')))}: Hs = {hs:g} m, Tp = {tp:.3g} s, head seas; most probable "
         f"maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included "
-        "(linear spectral: Rayleigh; Monte Carlo: mode of the Gumbel fit to the per-realisation maxima).</p>"
+        "(linear spectral: Rayleigh; design waves: harmonic balance of the regular waves whose linear response is the "
+        "linear MPM, docs/operability.md; Monte Carlo: mode of the Gumbel fit to the per-realisation maxima).</p>"
         + _finding_html(findings)
         + _table_html(SEASTATE_TABLE_HEADER, _rows(ds))
     )

@@ -28,7 +28,8 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
     Parameters
     ----------
     directory : str or Path
-        Holds ``results.nc`` (run) and/or ``study.nc`` (study).
+        Holds ``results.nc`` (run), ``study.nc`` (study), ``seastate.nc`` (sea state) and/or
+        ``operability.nc`` (operability).
     output : str or Path, optional
         The HTML file (default ``DIR/report.html``). The print figures go next to it:
         ``report_figures/*.png`` and ``report_figures.pdf``.
@@ -45,15 +46,16 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
         raise ReportError(f"directory '{d}' does not exist")
     if not d.is_dir():
         raise ReportError(f"'{d}' is not a directory; give the output directory of 'seafast run' or 'seafast study'")
-    run_nc, study_nc, seastate_nc = d / "results.nc", d / "study.nc", d / "seastate.nc"
-    if not run_nc.is_file() and not study_nc.is_file() and not seastate_nc.is_file():
+    run_nc, study_nc, seastate_nc, operability_nc = d / "results.nc", d / "study.nc", d / "seastate.nc", d / "operability.nc"
+    if not any(p.is_file() for p in (run_nc, study_nc, seastate_nc, operability_nc)):
         raise ReportError(
-            f"'{d}' holds neither results.nc (from 'seafast run -o DIR'), study.nc (from 'seafast study NAME -o DIR') "
-            "nor seastate.nc (from 'seafast seastate -o DIR')"
+            f"'{d}' holds neither results.nc (from 'seafast run -o DIR'), study.nc (from 'seafast study NAME -o DIR'), "
+            "seastate.nc (from 'seafast seastate -o DIR') nor operability.nc (from 'seafast operability --tp ... -o DIR')"
         )
     run = _open(run_nc) if run_nc.is_file() else None
     study = _open(study_nc) if study_nc.is_file() else None
     seastate = _open(seastate_nc) if seastate_nc.is_file() else None
+    operability = _open(operability_nc) if operability_nc.is_file() else None
     out = Path(output) if output is not None else d / REPORT_FILENAME
     out.parent.mkdir(parents=True, exist_ok=True)
     fig_dir, pdf_path = out.parent / FIGURES_DIRNAME, out.parent / PDF_FILENAME
@@ -65,6 +67,11 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
 
             fig_dir.mkdir(parents=True, exist_ok=True)
             pngs = list(pngs) + write_seastate_figures(seastate, fig_dir)
+        if operability is not None:
+            from seafast.operability.outputs import plot_operability
+
+            fig_dir.mkdir(parents=True, exist_ok=True)
+            pngs = list(pngs) + [plot_operability(operability, fig_dir / "operability.png")]
     listed = "".join(f'<li><a href="{html.escape(p.relative_to(out.parent).as_posix())}">{html.escape(p.name)}</a></li>' for p in pngs if p.is_relative_to(out.parent))
     files_note = (
         f'<details><summary>Print figures ({len(pngs)} PNG at {PNG_DPI} dpi, and {PDF_FILENAME})</summary><ul>{listed}'
@@ -72,6 +79,7 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
         if pngs
         else ""
     )
-    page, figs, findings = build_report_html(run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate)
+    page, figs, findings = build_report_html(run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate,
+                                             operability=operability)
     out.write_text(page, encoding="utf-8")
     return ReportOutputs(out, tuple(pngs), pdf_path if figures else None, tuple(f.id for f in figs), tuple(findings))

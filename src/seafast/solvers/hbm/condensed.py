@@ -148,6 +148,8 @@ def condensed_operators(
     w = float(excitation.omega_rad_s)
     if reuse is not None and (reuse.omega_rad_s != w or reuse.saddle_count != n_s or reuse.harmonics > H):
         reuse = None
+    if reuse is not None and reuse.harmonics == H:
+        return reuse  # nothing to add (the operators are immutable)
     k0 = 0 if reuse is None else reuse.harmonics + 1  # first harmonic to solve
     B = saddle_selection(model)
     xo = np.zeros((H + 1, model.deck_dof_count), dtype=complex)
@@ -226,6 +228,21 @@ class CondensedProblem:
         """The largest linear compression coefficient [m] (>= 1 um)."""
         return self.ops.compression_scale_m
 
+    def to_samples(self, U: NDArray) -> NDArray[np.float64]:
+        """Samples (N, n_s) of real-layout coefficients (2H+1, n_s): ``inverse @ U`` by an inverse real FFT."""
+        X = real_to_complex_harmonics(U)
+        N = self.time_samples
+        A = np.zeros((N // 2 + 1, X.shape[1]), dtype=complex)
+        A[0] = X[0].real * N
+        A[1 : X.shape[0]] = X[1:] * (0.5 * N)
+        return np.fft.irfft(A, n=N, axis=0)
+
+    def to_harmonics(self, samples: NDArray) -> NDArray[np.float64]:
+        """Real-layout coefficients (2H+1, n_s) of samples (N, n_s): ``forward @ samples`` by a real FFT."""
+        F = np.fft.rfft(samples, axis=0)[: self.ops.harmonics + 1] * (2.0 / self.time_samples)
+        F[0] *= 0.5
+        return complex_to_real_harmonics(F)
+
     def initial_guess(self, amplitude: float) -> NDArray:
         return self.ops.linear_compression_at(amplitude).ravel().copy()
 
@@ -249,10 +266,10 @@ class CondensedProblem:
 
     def evaluate(self, u: NDArray, law: ContactLaw, amplitude: float) -> tuple[NDArray, NDArray]:
         U = u.reshape(self.n_h, self.n_s)
-        delta = self.inverse @ U
+        delta = self.to_samples(U)
         f, fp = law.force_and_derivative(delta, self.k_u)
         correction = f - self.k_u * delta
-        C = self.forward @ correction
+        C = self.to_harmonics(correction)
         R = u - self.ops.linear_compression_at(amplitude).ravel() + self.ops.apply_receptance(C).ravel()
         return R, fp
 
@@ -313,7 +330,7 @@ class DetachedSampleJacobian:
             return None
         v = np.zeros((p.time_samples, p.n_s))
         v[self.samples, self.saddles] = self.weights * z
-        x = (r - p.ops.apply_receptance(p.forward @ v)).ravel()
+        x = (r - p.ops.apply_receptance(p.to_harmonics(v))).ravel()
         return x if np.all(np.isfinite(x)) else None
 
     def dense(self) -> DenseJacobian:

@@ -15,8 +15,8 @@ estimated error of the saddle-force peaks. Unlike the share of force energy abov
 missing harmonic by the cargo's dynamic amplification there.
 
 The adaptive choice (:func:`select_harmonics`) marches the correction system of the periodic problem
-(:mod:`seafast.solvers.modal_correction`: exact contact, modes below the march's Nyquist frequency, the
-rest static) to its periodic state from the linear solution (the attractor the physical system reaches
+(:func:`seafast.solvers.transient.march_periodic`, the project's one transient integrator: exact contact,
+modes below the march's Nyquist frequency, the rest static) to its periodic state from the linear solution (the attractor the physical system reaches
 from there), reads the harmonic content of the compressions, and takes the smallest H whose neglected
 harmonics move every saddle force by less than the tolerance. The march, projected on those harmonics,
 is also the Newton start: from the few-harmonic solution the semi-smooth Newton at H ~ 150 does not
@@ -32,12 +32,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, real_dft_matrices
+from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.condensed import condensed_operators
 from seafast.solvers.hbm.options import MINIMUM_TIME_SAMPLES, samples_for
 from seafast.solvers.modal_correction import modal_basis, modal_correction_system
+from seafast.solvers.transient import march_periodic, modal_correction
 
 __all__ = [
     "HarmonicSelection",
@@ -142,8 +143,10 @@ def select_harmonics(
         # contact kept all period by the linear solution: it is the answer, with the excitation's harmonics
         march, periods, change = d_lin, 0, 0.0
     else:
-        system = modal_correction_system(model, math.pi * N0 / period)
-        march, periods, change = system.periodic(d_lin, period, max_periods=_MARCH_MAX_PERIODS, tolerance=1e-6)
+        # every mode below the march's Nyquist frequency, the rest static
+        system = modal_correction(model, period / N0, math.pi * N0 / period, minimum_modes=0)
+        periodic = march_periodic(system, d_lin, max_periods=_MARCH_MAX_PERIODS, tolerance=1e-6)
+        march, periods, change = periodic.compression_m, periodic.periods, periodic.change
     X = np.fft.rfft(march, axis=0) / N0  # half the complex amplitudes, k = 0 .. N0/2
     scale = force_scale_N(np.max(k_u * np.maximum(march, 0.0), axis=0))
     in_contact = march > 0.0
@@ -206,8 +209,7 @@ def truncation_error(
     H = (U.shape[0] - 1) // 2
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     N_f = 2 ** int(math.ceil(math.log2(max(8 * max(H, 1), 256))))
-    inverse, _ = real_dft_matrices(H, N_f)
-    delta = inverse @ U
+    delta = harmonics_to_time(real_to_complex_harmonics(U), N_f)  # an inverse real FFT
     force, _ = law.force_and_derivative(delta, k_u)
     correction = force - k_u * delta
     C = np.fft.rfft(correction, axis=0) * (2.0 / N_f)  # complex amplitudes X_k (k >= 1)

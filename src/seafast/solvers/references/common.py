@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
-from seafast.solvers.outcome import SolverOutcome, SolverWarning
+from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["exact_law_response"]
@@ -30,12 +30,13 @@ def exact_law_response(
     harmonics_for_indicator: int,
     options: dict[str, Any],
     warnings: tuple[SolverWarning, ...] = (),
+    orbit: OrbitRecord | None = None,
 ) -> PeriodicResponse:
     """A reference's :class:`PeriodicResponse` from its samples (exact law, no harmonics).
 
     ``cargo_time`` (N, n_c) [m, rad] and ``delta`` (N, n_s) [m] on the grid ``t_n = n T / N``;
     the saddle force is ``k_u max(delta, 0)`` [N]; the truncation indicator is taken at
-    ``harmonics_for_indicator``.
+    ``harmonics_for_indicator``; ``orbit`` the time-domain reference's record.
     """
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     force = k_u * np.maximum(delta, 0.0)
@@ -54,4 +55,5 @@ def exact_law_response(
         function_evaluations=int(evaluations),
         options=options,
         warnings=warnings,
+        orbit=orbit,
     )

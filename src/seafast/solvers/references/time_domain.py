@@ -12,18 +12,26 @@ below ``tolerance`` (the periodic steady state). Two formulations of the same eq
     iteration on the full effective stiffness; one banded Cholesky factorisation is cached
     per active set, so a step costs one banded matrix-vector product and one or two banded
     triangular solves. It uses the model's matrices directly (none of the receptance /
-    condensation machinery of the HBM) and starts from the exact-contact quasi-static
-    state at t = 0.
+    condensation machinery of the HBM).
 ``formulation="condensed"``
     The same integration with the saddles bilateral in the linear stiffness and the
     implicit contact problem of each step condensed onto the saddles (the step's
     effective receptance) and solved with the active-set method of
-    :class:`~seafast.solvers.exact_contact.ExactContact`; starts from the linear periodic solution.
+    :class:`~seafast.solvers.exact_contact.ExactContact`.
+
+Both start from the same state (:mod:`~seafast.solvers.references.orbit`): the linear periodic
+solution at t = 0 by default, or a given periodic solution (e.g. the HBM's), whose orbit the one
+reached is then compared with. A cargo that lifts off can have several periodic states and a
+chaotic motion for one excitation; the start decides which one a time integration finds, and the
+result says what it found (:class:`~seafast.solvers.outcome.OrbitRecord`, outcome ``CONVERGED``,
+``NOT_PERIODIC`` or ``OTHER_ORBIT``).
 """
 
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,11 +40,12 @@ from scipy.sparse import csr_array
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
-from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
+from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection
 from seafast.solvers.exact_contact import BandedActiveSet, ExactContact
-from seafast.solvers.outcome import SolverOutcome
+from seafast.solvers.outcome import SolverOutcome, TimeDomainStart
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.common import exact_law_response
+from seafast.solvers.references.orbit import ORBIT_TOLERANCE, StartState, orbit_outcome, settling_periods, start_state
 
 __all__ = ["TIME_DOMAIN_FORMULATIONS", "solve_time_domain"]
 
@@ -45,22 +54,17 @@ logger = logging.getLogger(__name__)
 TIME_DOMAIN_FORMULATIONS = ("full", "condensed")
 
 
-def _time_domain_options(
-    time_samples: int, steps_per_period: int, max_periods: int, tolerance: float, hht_alpha: float,
-    harmonics_for_indicator: int, formulation: str, **extra: float,
-) -> dict:
-    """The settings a time-domain result records (``PeriodicResponse.options``)."""
-    return {
-        "time_samples": int(time_samples),
-        "steps_per_period": int(steps_per_period),
-        "max_periods": int(max_periods),
-        "tolerance": float(tolerance),
-        "hht_alpha": float(hht_alpha),
-        "harmonics_for_indicator": int(harmonics_for_indicator),
-        "contact_law": "exact",
-        "formulation": formulation,
-        **extra,
-    }
+@dataclass(frozen=True)
+class _Run:
+    """What one integration produced: the last period's samples and how the periods went."""
+
+    cargo_m: NDArray[np.float64]
+    compression_m: NDArray[np.float64]
+    check: "_PeriodicityCheck"
+    periods: int
+    steps: int
+    description: str
+    extra_options: dict[str, Any]
 
 
 def solve_time_domain(
@@ -69,11 +73,13 @@ def solve_time_domain(
     time_samples: int = 128,
     *,
     formulation: str = "full",
+    start: TimeDomainStart | PeriodicResponse = TimeDomainStart.LINEAR,
     steps_per_period: int | None = None,
-    max_periods: int = 40,
+    max_periods: int | None = None,
     tolerance: float = 1e-7,
     hht_alpha: float = -0.05,
     harmonics_for_indicator: int = 5,
+    orbit_tolerance: float = ORBIT_TOLERANCE,
 ) -> PeriodicResponse:
     """Periodic steady state by implicit time integration with the exact contact law.
 
@@ -88,26 +94,40 @@ def solve_time_domain(
         stiffness with banded Cholesky factorisations cached per active set; independent of
         the HBM's receptance machinery. ``"condensed"``: the same equations with the saddles
         bilateral in ``K`` and each step's contact problem condensed onto the saddles.
-        Both integrate the same discrete equations and agree to the period-to-period
-        tolerance.
+        Both integrate the same discrete equations from the same start and agree to the
+        period-to-period tolerance.
+    start
+        The state at t = 0 both formulations start from: ``TimeDomainStart.LINEAR`` (default, the
+        linear periodic solution), a :class:`PeriodicResponse` of the same model and frequency
+        (e.g. the HBM's: its displacement and velocity at t = 0; the orbit reached is compared
+        with it), or ``TimeDomainStart.QUASI_STATIC`` (the exact-contact quasi-static state).
     steps_per_period
         Time steps per period, a multiple of N (default 16 N).
     max_periods
-        Periods integrated at most.
+        Periods integrated at most; default
+        :func:`~seafast.solvers.references.orbit.settling_periods` (twice what the slowest free
+        vibration needs to decay by ``tolerance``, at least 40).
     tolerance
         Steady state when the largest change of the saddle forces between two consecutive
         periods, over the largest saddle force, is below this.
     hht_alpha
         HHT-alpha parameter in [-1/3, 0]; 0 is the average-acceleration Newmark rule, a small
         negative value damps the spurious high-frequency response of contact switches.
+    orbit_tolerance
+        With a given start: the distance (:func:`~seafast.solvers.references.orbit.orbit_distance`)
+        above which the periodic state reached is another orbit [-] (default
+        :data:`~seafast.solvers.references.orbit.ORBIT_TOLERANCE`).
 
     Returns
     -------
     PeriodicResponse
         ``method = "time_domain"`` (last period); ``outcome`` ``NOT_PERIODIC`` (``converged``
-        False) if the periodic steady state was not reached in ``max_periods``; ``iterations`` = periods integrated,
-        ``function_evaluations`` = time steps, ``residual_norm`` = last period-to-period change;
-        ``message`` and ``options["formulation"]`` name the formulation.
+        False) if the periodic steady state was not reached in ``max_periods``, ``OTHER_ORBIT``
+        if it was reached from a given solution but is not that solution's orbit, else
+        ``CONVERGED``; ``orbit`` the :class:`~seafast.solvers.outcome.OrbitRecord`;
+        ``iterations`` = periods integrated, ``function_evaluations`` = time steps,
+        ``residual_norm`` = last period-to-period change; ``message`` and
+        ``options["formulation"]``, ``options["start"]`` name the formulation and the start.
     """
     N = int(time_samples)
     S = 16 * N if steps_per_period is None else int(steps_per_period)
@@ -119,12 +139,52 @@ def solve_time_domain(
         raise ValueError(f"steps_per_period = {steps_per_period!r}; allowed: a positive multiple of time_samples = {N}")
     if not (-1.0 / 3.0 <= hht_alpha <= 0.0):
         raise ValueError(f"hht_alpha = {hht_alpha!r}; allowed: a number in [-1/3, 0]")
-    if int(max_periods) < 2:
-        raise ValueError(f"max_periods = {max_periods!r}; allowed: an integer >= 2")
-    run = _time_domain_full if formulation == "full" else _time_domain_condensed
-    response = run(model, excitation, N, S, int(max_periods), float(tolerance), float(hht_alpha), int(harmonics_for_indicator))
-    logger.log(logging.DEBUG if response.converged else logging.INFO, "time-domain reference: %s", response.message)
+    if max_periods is not None and int(max_periods) < 2:
+        raise ValueError(f"max_periods = {max_periods!r}; allowed: an integer >= 2, or None")
+    if not (0.0 < float(orbit_tolerance) < 1.0):
+        raise ValueError(f"orbit_tolerance = {orbit_tolerance!r}; allowed: a number in (0, 1)")
+    omega = float(excitation.omega_rad_s)
+    periods_allowed = settling_periods(model, omega, float(tolerance)) if max_periods is None else int(max_periods)
+    initial = start_state(model, excitation, start, N, 2.0 * np.pi / omega / S)
+    integrate = _time_domain_full if formulation == "full" else _time_domain_condensed
+    run = integrate(model, excitation, initial, N, S, periods_allowed, float(tolerance), float(hht_alpha))
+    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
+    outcome, orbit = orbit_outcome(
+        initial, k_u, run.compression_m, run.check.converged, run.periods, run.check.change, float(orbit_tolerance)
+    )
+    options = {
+        "time_samples": N,
+        "steps_per_period": S,
+        "max_periods": periods_allowed,
+        "tolerance": float(tolerance),
+        "hht_alpha": float(hht_alpha),
+        "harmonics_for_indicator": int(harmonics_for_indicator),
+        "contact_law": "exact",
+        "formulation": formulation,
+        "start": initial.kind.value,
+        "start_method": initial.method,
+        "orbit_tolerance": float(orbit_tolerance),
+        **run.extra_options,
+    }
+    given = f" ({initial.method})" if initial.kind is TimeDomainStart.GIVEN else ""
+    message = f"{run.description}; from the {_START_WORDS[initial.kind]}{given}; " + run.check.describe(run.periods)
+    if orbit.distance_from_start is not None:
+        message += f"; distance from the start's orbit {orbit.distance_from_start:.2e} (" + (
+            "the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached"
+        ) + f", tolerance {orbit.orbit_tolerance:g})"
+    response = exact_law_response(
+        "time_domain", model, excitation, run.cargo_m, run.compression_m, outcome, run.check.change, run.periods, run.steps,
+        message, int(harmonics_for_indicator), options, orbit=orbit,
+    )
+    logger.log(logging.DEBUG if outcome is SolverOutcome.CONVERGED else logging.INFO, "time-domain reference: %s", response.message)
     return response
+
+
+_START_WORDS = {
+    TimeDomainStart.LINEAR: "linear periodic solution at t = 0",
+    TimeDomainStart.QUASI_STATIC: "exact-contact quasi-static state at t = 0",
+    TimeDomainStart.GIVEN: "given periodic solution at t = 0",
+}
 
 
 class _PeriodicityCheck:
@@ -159,9 +219,9 @@ class _PeriodicityCheck:
 
 
 def _time_domain_full(
-    model: StructuralModel, excitation: HarmonicExcitation, N: int, S: int, max_periods: int, tolerance: float,
-    alpha: float, harmonics_for_indicator: int,
-) -> PeriodicResponse:
+    model: StructuralModel, excitation: HarmonicExcitation, initial: StartState, N: int, S: int, max_periods: int,
+    tolerance: float, alpha: float,
+) -> _Run:
     """Full-DOF HHT-alpha with the exact unilateral saddle springs (see :func:`solve_time_domain`).
 
     With ``F(q) = K_lin q - B f_c(q)`` the HHT-alpha step reads ``M a_1 + (1+alpha)(D v_1 +
@@ -191,14 +251,10 @@ def _time_domain_full(
     g = (1.0 + alpha) * np.roll(P_t, -1, axis=0) - alpha * P_t  # load of step n -> n+1
     z_next = np.roll(z_t, -1, axis=0)
     tol_m = 1e-12 * max(float(np.max(np.abs(z_t))), 1e-3)
-    # start: the exact-contact quasi-static state at t = 0, velocity from the states at -dt and +dt
-    static = BandedActiveSet(K_lin, sad_c, k_u, tol_m)
-    active = np.ones(n_s, dtype=bool)
-    qs = {}
-    for n in (-1, 1, 0):
-        qs[n] = static.solve(P_t[n], z_t[n], active)
-    q0, delta0, active = qs[0]
-    v0 = (qs[1][0] - qs[-1][0]) / (2.0 * dt)
+    # the start: q and v given, the acceleration from the equation of motion with the exact contact force
+    q0, v0 = initial.displacement, initial.velocity
+    delta0 = z_t[0] - q0[sad_c]
+    active = delta0 > 0.0
     fc = k_u * delta0 * active
     rhs0 = P_t[0] - D @ v0 - K_lin @ q0
     rhs0[sad_c] += fc
@@ -235,29 +291,21 @@ def _time_domain_full(
         steps += S
         if check.settled(delta_out):
             break
-    converged, change = check.converged, check.change
-    options = _time_domain_options(
-        N, S, max_periods, tolerance, alpha, harmonics_for_indicator, "full",
-        contact_states_factorised=len(step.factors), solves_per_step=step.solves / max(steps, 1),
-    )
-    msg = (
+    per_step = step.solves / max(steps, 1)
+    description = (
         f"full-DOF formulation: HHT-alpha (alpha={alpha:g}) on {n_c} cargo DOFs, exact unilateral saddle springs by active-set "
-        f"Newton ({step.solves / max(steps, 1):.3f} banded solves/step, {len(step.factors)} contact states factorised"
+        f"Newton ({per_step:.3f} banded solves/step, {len(step.factors)} contact states factorised"
         + (f", {step.enumerations} enumerations" if step.enumerations else "")
-        + f"), {S} steps/period; "
-        + check.describe(periods)
+        + f"), {S} steps/period"
     )
-    return exact_law_response(
-        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(),
-        SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_PERIODIC, change, periods, steps,
-        msg, harmonics_for_indicator, options,
-    )
+    extra = {"contact_states_factorised": len(step.factors), "solves_per_step": per_step}
+    return _Run(cargo_out.copy(), delta_out.copy(), check, periods, steps, description, extra)
 
 
 def _time_domain_condensed(
-    model: StructuralModel, excitation: HarmonicExcitation, N: int, S: int, max_periods: int, tolerance: float,
-    hht_alpha: float, harmonics_for_indicator: int,
-) -> PeriodicResponse:
+    model: StructuralModel, excitation: HarmonicExcitation, initial: StartState, N: int, S: int, max_periods: int,
+    tolerance: float, hht_alpha: float,
+) -> _Run:
     """HHT-alpha with the saddles bilateral in K and each step's contact condensed on the saddles."""
     q = quadratic_matrices(model, True)
     K, M, D = q.stiffness, q.mass, q.damping
@@ -286,14 +334,8 @@ def _time_domain_condensed(
     g = ((1.0 + alpha) * np.roll(P_t, -1, axis=0) - alpha * P_t) @ K_inv.T  # forcing of step n -> n+1
     deck_z = harmonics_to_time(excitation.deck_displacement[:, sad_o], S)
     deck_z_next = np.roll(deck_z, -1, axis=0)
-    # start from the linear periodic solution (saddles bilateral)
-    n_k = excitation.harmonic_count
-    X = np.zeros((n_k, model.cargo_dof_count), dtype=complex)
-    for k in range(n_k):
-        X[k] = solve_dynamic(q, k * omega, P[k]) if np.any(P[k]) else 0.0
-    kw = 1j * omega * np.arange(n_k)[:, None]
-    q_n = np.real(np.sum(X, axis=0))
-    v_n = np.real(np.sum(kw * X, axis=0))
+    # the start: q and v given, the acceleration from the equation of motion with the exact contact force
+    q_n, v_n = initial.displacement, initial.velocity
     delta_n = deck_z[0] - q_n[sad_c]
     c_n = k_u * np.maximum(-delta_n, 0.0)
     a_n = np.linalg.solve(M, P_t[0] + B @ c_n - D @ v_n - K @ q_n)
@@ -329,15 +371,8 @@ def _time_domain_condensed(
             steps += 1
         if check.settled(delta_out):
             break
-    converged, change = check.converged, check.change
-    options = _time_domain_options(N, S, max_periods, tolerance, alpha, harmonics_for_indicator, "condensed")
-    msg = (
+    description = (
         f"condensed formulation: HHT-alpha (alpha={alpha:g}) on {model.cargo_dof_count} cargo DOFs, saddles bilateral in K "
-        f"and each step's contact condensed on the saddles, exact contact, {S} steps/period; "
-        + check.describe(periods)
+        f"and each step's contact condensed on the saddles, exact contact, {S} steps/period"
     )
-    return exact_law_response(
-        "time_domain", model, excitation, cargo_out.copy(), delta_out.copy(),
-        SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_PERIODIC, change, periods, steps,
-        msg, harmonics_for_indicator, options,
-    )
+    return _Run(cargo_out.copy(), delta_out.copy(), check, periods, steps, description, {})

@@ -1,0 +1,319 @@
+"""Allowable significant wave height per peak period: linear (closed form) and nonlinear (design waves).
+
+For a peak period Tp (the case's spectrum shape, duration and limits), with every linear MPM
+proportional to Hs (``MPM = sigma sqrt(2 ln(D / Tz))``, sigma proportional to Hs, Tz independent of it):
+
+* **linear allowable** ``min over saddles (F_max - F_0,s) / m_F,s`` and ``min over x (sigma_max -
+  |sigma_0(x)|) / m_sigma(x)``, m the MPM per metre of Hs, capped by the limiting steepness
+  (:func:`seafast.config.schema.max_significant_height_m`); 0 when the still water alone exceeds a limit;
+* **uplift onset** ``min over saddles delta_0,s / m_delta,s``: the Hs at which the MPM of some
+  saddle's compression reaches its still-water compression (where Rice's expected number of
+  uplift events over the duration is exactly one); empty above the steepness limit;
+* **nonlinear allowable**: the Hs at which the design-wave estimate
+  (:mod:`seafast.seastate.design_wave`) of F or sigma_b reaches its limit, by bracketing from the
+  linear allowable (steps of :attr:`OperabilitySettings.expansion`) and Brent's method
+  (``scipy.optimize.brentq``); the design frequencies do not change with Hs, so every evaluation
+  reuses the wave operators and starts each solve from the previous Hs's solution at that
+  frequency.
+
+The sea states share their transfer functions (:mod:`seafast.operability.family`).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import brentq
+
+from seafast.config.schema import Case, max_significant_height_m
+from seafast.operability.family import MASTER_STEP_RAD_S, SeaStateFamily, analysis_at, rescaled, sea_state_family
+from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes
+from seafast.seastate.wave_response import WaveOperators, WaveSolution
+
+__all__ = [
+    "GOVERNING",
+    "OperabilitySettings",
+    "OperabilityPoint",
+    "OperabilityResult",
+    "allowable_sea_states",
+]
+
+logger = logging.getLogger(__name__)
+
+GOVERNING: tuple[str, ...] = ("saddle_force", "bending_stress", "steepness", "not_converged")
+"""Values of the governing_* columns: the limit reached first; ``steepness`` when neither is reached
+up to the steepest sea state at that Tp; ``not_converged`` when a nonlinear solve failed."""
+
+_LIMIT_QUANTITY = {"saddle_force": "F_N", "bending_stress": "sigma_b_Pa"}
+
+
+@dataclass(frozen=True)
+class OperabilitySettings:
+    """Numerical settings of the allowable-Hs search (not case keys; defaults verified).
+
+    Attributes
+    ----------
+    design_wave
+        The design-wave rule and its harmonic balance.
+    master_step_rad_s
+        Spacing of the master grid the transfer functions are computed on [rad/s].
+    hs_tolerance_m
+        Absolute tolerance of the nonlinear allowable Hs [m] (Brent's ``xtol``).
+    expansion
+        Factor of each bracketing step in Hs [-].
+    """
+
+    design_wave: DesignWaveSettings = field(default_factory=DesignWaveSettings)
+    master_step_rad_s: float = MASTER_STEP_RAD_S
+    hs_tolerance_m: float = 1e-3
+    expansion: float = 1.25
+
+
+@dataclass(frozen=True)
+class OperabilityPoint:
+    """Allowable sea states at one peak period.
+
+    Attributes
+    ----------
+    peak_period_s
+        Tp [s].
+    hs_allowable_linear_m, hs_allowable_nonlinear_m
+        Largest Hs within both limits [m], linear spectral and nonlinear design-wave MPMs (NaN:
+        the nonlinear search failed).
+    hs_uplift_onset_m
+        Hs at which the MPM compression of a saddle reaches its still-water compression [m]
+        (NaN: not within the steepness limit).
+    governing_linear, governing_nonlinear
+        The limit reached first (:data:`GOVERNING`).
+    hs_max_steepness_m
+        The steepest sea state at this Tp [m] (the cap of the search).
+    hs_force_linear_m, hs_stress_linear_m, hs_force_nonlinear_m, hs_stress_nonlinear_m
+        Hs at which each limit alone is reached [m] (inf: not below the steepness limit). The
+        nonlinear search looks for the limit the linear model reaches first, then for the other
+        only below that Hs: NaN when the other limit is not reached there (not searched), or the
+        search did not converge (``converged``).
+    converged
+        Every harmonic-balance solve of the search converged.
+    evaluations
+        Design-wave evaluations (each a few harmonic-balance solves) of the nonlinear search.
+    """
+
+    peak_period_s: float
+    hs_allowable_linear_m: float
+    hs_allowable_nonlinear_m: float
+    hs_uplift_onset_m: float
+    governing_linear: str
+    governing_nonlinear: str
+    hs_max_steepness_m: float
+    hs_force_linear_m: float
+    hs_stress_linear_m: float
+    hs_force_nonlinear_m: float
+    hs_stress_nonlinear_m: float
+    converged: bool
+    evaluations: int
+
+    def row(self) -> dict[str, Any]:
+        """The row of operability.csv."""
+        return {
+            "peak_period_s": self.peak_period_s,
+            "hs_allowable_linear_m": self.hs_allowable_linear_m,
+            "hs_allowable_nonlinear_m": self.hs_allowable_nonlinear_m,
+            "hs_uplift_onset_m": self.hs_uplift_onset_m,
+            "governing_linear": self.governing_linear,
+            "governing_nonlinear": self.governing_nonlinear,
+        }
+
+
+@dataclass(frozen=True)
+class OperabilityResult:
+    """Allowable sea states over peak periods (what ``seafast operability`` writes)."""
+
+    case: Case
+    points: tuple[OperabilityPoint, ...]
+    settings: OperabilitySettings
+
+    @property
+    def converged(self) -> bool:
+        """Every point's nonlinear search converged."""
+        return all(p.converged for p in self.points)
+
+
+def _linear_limit_hs(static: NDArray, per_hs: NDArray, limit: float) -> float:
+    """Smallest Hs with ``max(static + Hs per_hs) = limit`` (0 if the still water exceeds it; inf if never)."""
+    if np.any(static >= limit):
+        return 0.0
+    with np.errstate(divide="ignore"):
+        hs = np.where(per_hs > 0, (limit - static) / np.where(per_hs > 0, per_hs, 1.0), np.inf)
+    return float(np.min(hs))
+
+
+def _governing(candidates: dict[str, float], cap: float) -> tuple[float, str]:
+    name = min(candidates, key=lambda k: candidates[k])
+    hs = candidates[name]
+    if not hs < cap:
+        return cap, "steepness"
+    return hs, name
+
+
+def _nonlinear_limit_hs(
+    value: Callable[[float], tuple[float, bool]], limit: float, start_hs: float, cap: float, settings: OperabilitySettings
+) -> tuple[float, bool, int]:
+    """Smallest Hs <= cap where ``value(Hs) = limit`` by bracketing from ``start_hs`` and Brent; (hs, converged, evaluations).
+
+    ``value`` returns the nonlinear estimate and whether its solves converged. inf when the
+    limit is not reached at the cap.
+    """
+    ok = [True]
+    seen: dict[float, float] = {}  # Brent starts by evaluating the bracket again: reuse, never re-solve
+
+    def g(hs: float) -> float:
+        if hs not in seen:
+            v, conv = value(hs)
+            ok[0] &= conv
+            seen[hs] = v / limit - 1.0
+        return seen[hs]
+
+    hs = min(max(start_hs, 1e-3), cap)
+    f = g(hs)
+    if abs(f) <= 1e-7:  # no lift-off in the design waves: the nonlinear answer is the linear one (to the peak reading)
+        return hs, ok[0], len(seen)
+    if f < 0.0:
+        lo, hi, f_hi = hs, hs, f
+        while f_hi < 0.0:
+            if hi >= cap:
+                return math.inf, ok[0], len(seen)
+            lo, hi = hi, min(hi * settings.expansion, cap)
+            f_hi = g(hi)
+    else:
+        lo, hi, f_lo = hs, hs, f
+        while f_lo > 0.0:
+            hi, lo = lo, lo / settings.expansion
+            if lo < 1e-3:
+                return 0.0, ok[0], len(seen)
+            f_lo = g(lo)
+    root = brentq(g, lo, hi, xtol=settings.hs_tolerance_m, rtol=1e-10)
+    return float(root), ok[0], len(seen)
+
+
+def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> OperabilityPoint:
+    case = family.case
+    cap = max_significant_height_m(tp, case.model.gravity_m_per_s2)
+    ref = analysis_at(family, tp, 1.0)  # MPMs per metre of Hs
+    e, sw = ref.extremes, family.still
+    limits = {"saddle_force": case.limits.max_saddle_force_N, "bending_stress": case.limits.max_bending_stress_Pa}
+    linear = {
+        "saddle_force": _linear_limit_hs(sw.saddle_force_N, e.saddle_force.mpm, limits["saddle_force"]),
+        "bending_stress": _linear_limit_hs(np.abs(sw.bending_stress_Pa), e.bending_stress.mpm, limits["bending_stress"]),
+    }
+    hs_lin, gov_lin = _governing(linear, cap)
+    comp0, comp_mpm = sw.saddle_compression_m, e.saddle_compression.mpm
+    if np.any(comp0 <= 0.0):
+        onset = 0.0
+    else:
+        with np.errstate(divide="ignore"):
+            onset = float(np.min(np.where(comp_mpm > 0, comp0 / np.where(comp_mpm > 0, comp_mpm, 1.0), np.inf)))
+    onset = onset if onset <= cap else math.nan
+    operators: dict[tuple[int, int], WaveOperators] = {}
+    warm: dict[int, WaveSolution] = {}
+    evaluations = 0
+    converged = True
+    nonlinear = {name: math.nan for name in _LIMIT_QUANTITY}
+
+    def value_of(quantity: str) -> Callable[[float], tuple[float, bool]]:
+        def value(hs: float) -> tuple[float, bool]:
+            dw = design_wave_extremes(rescaled(ref, hs), family.static, settings.design_wave, quantities=(quantity,),
+                                      operators=operators, moments=family.moments, warm=warm)
+            return float(dw.totals[quantity]), dw.converged
+
+        return value
+
+    # the limit the linear model reaches first is searched first; the other only below its Hs, and
+    # not at all when it is still within its limit there (the MPMs grow with Hs)
+    first, second = sorted(_LIMIT_QUANTITY, key=lambda n: linear[n])
+    bound = cap
+    for name in (first, second):
+        if linear[name] == 0.0:
+            nonlinear[name] = 0.0  # the still water alone exceeds the limit: no waves allowed, either model
+            break
+        value = value_of(_LIMIT_QUANTITY[name])
+        if name == second and bound < cap:
+            v, ok = value(bound)
+            evaluations += 1
+            converged &= ok
+            if v < limits[name]:
+                break  # within its limit where the first is reached: not searched (NaN)
+        hs, ok, count = _nonlinear_limit_hs(value, limits[name], min(linear[name], bound), bound, settings)
+        evaluations += count
+        converged &= ok
+        nonlinear[name] = hs if ok else math.nan
+        if ok and math.isfinite(hs):
+            bound = min(bound, hs)
+    if converged:
+        hs_nl, gov_nl = _governing({k: (math.inf if math.isnan(v) else v) for k, v in nonlinear.items()}, cap)
+    else:
+        hs_nl, gov_nl = math.nan, "not_converged"
+        logger.warning("operability: Tp = %g s: a harmonic-balance solve of the nonlinear search did not converge", tp)
+    return OperabilityPoint(
+        peak_period_s=float(tp),
+        hs_allowable_linear_m=float(hs_lin),
+        hs_allowable_nonlinear_m=float(hs_nl),
+        hs_uplift_onset_m=float(onset),
+        governing_linear=gov_lin,
+        governing_nonlinear=gov_nl,
+        hs_max_steepness_m=float(cap),
+        hs_force_linear_m=linear["saddle_force"],
+        hs_stress_linear_m=linear["bending_stress"],
+        hs_force_nonlinear_m=nonlinear["saddle_force"],
+        hs_stress_nonlinear_m=nonlinear["bending_stress"],
+        converged=converged,
+        evaluations=evaluations,
+    )
+
+
+def allowable_sea_states(
+    case: Case,
+    peak_periods_s: Sequence[float],
+    settings: OperabilitySettings = OperabilitySettings(),
+    *,
+    family: SeaStateFamily | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> OperabilityResult:
+    """Allowable Hs per peak period, linear and nonlinear, and the uplift onset (module docstring).
+
+    Parameters
+    ----------
+    case
+        The case: its sea state's spectrum shape, gamma and duration (its Hs and Tp are not
+        used), its limits (``limits.max_saddle_force_N``, ``limits.max_bending_stress_Pa``).
+    peak_periods_s
+        Tp values [s].
+    settings
+        Numerical settings.
+    family
+        The shared part (:func:`~seafast.operability.family.sea_state_family`) when already computed for these Tp.
+    progress
+        Called with (done, total) after each peak period.
+
+    Returns
+    -------
+    OperabilityResult
+        A nonlinear search that fails is reported in its point (``not_converged``), never raised.
+
+    Raises
+    ------
+    seafast.config.CaseError
+        See :func:`~seafast.operability.family.sea_state_family`.
+    """
+    tps = [float(t) for t in peak_periods_s]
+    fam = sea_state_family(case, tps, settings.master_step_rad_s) if family is None else family
+    points = []
+    for i, tp in enumerate(tps):
+        points.append(_point(fam, tp, settings))
+        if progress is not None:
+            progress(i + 1, len(tps))
+    return OperabilityResult(case, tuple(points), settings)

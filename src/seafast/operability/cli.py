@@ -1,0 +1,151 @@
+"""The ``seafast operability`` subcommand: allowable Hs per peak period, linear and nonlinear.
+
+``seafast operability [CASE] --tp START:STOP:STEP [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]``
+
+Exit codes as ``seafast run``: 0 success; 2 invalid input (one message naming the option or key,
+the value and what is allowed); 3 a nonlinear search did not converge (results written, its
+governing_nonlinear is ``not_converged``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+__all__ = ["add_operability_subcommand", "parse_peak_periods", "OPERABILITY_EXAMPLES", "MAX_PEAK_PERIODS"]
+
+MAX_PEAK_PERIODS = 1000
+
+OPERABILITY_EXAMPLES = """examples:
+  seafast operability --tp 5:16:0.5                          # the base case, 23 peak periods, limits 7 MN / 20 MPa
+  seafast operability case.yaml --tp 6:14:1 -o out/op --set limits.max_saddle_force_N=11.5e6
+  seafast operability --tp 4:18:1 --scatter hindcast.csv    # also the share of a scatter diagram within the limits
+
+Outputs in DIR: operability.csv (peak_period_s,hs_allowable_linear_m,hs_allowable_nonlinear_m,hs_uplift_onset_m,
+governing_linear,governing_nonlinear; empty cell = not found), operability.nc, operability.png (Hs against Tp),
+case.yaml, and with --scatter scatter.csv. The spectrum shape, gamma and duration are the case's sea_state keys
+(its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa.
+'seafast report DIR' adds the operability section.
+"""
+
+EXIT_OK, EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED = 0, 2, 3
+
+
+def _error(message: str) -> int:
+    print(f"seafast: error: {message}", file=sys.stderr)
+    return EXIT_INVALID_INPUT
+
+
+def parse_peak_periods(text: str) -> list[float]:
+    """``START:STOP:STEP`` [s] to the peak periods START, START + STEP, ... up to STOP inclusive.
+
+    Raises
+    ------
+    ValueError
+        With a message naming ``--tp``, the value and what is allowed.
+    """
+    allowed = "START:STOP:STEP in seconds with 0 < START <= STOP and STEP > 0, e.g. 5:16:0.5"
+    parts = str(text).split(":")
+    try:
+        start, stop, step = (float(p) for p in parts)
+    except ValueError:
+        raise ValueError(f"--tp {text!r}: allowed: {allowed}") from None
+    if not all(math.isfinite(v) for v in (start, stop, step)) or start <= 0 or stop < start or step <= 0:
+        raise ValueError(f"--tp {text!r}: allowed: {allowed}")
+    n = int(math.floor((stop - start) / step + 1e-9)) + 1
+    if n > MAX_PEAK_PERIODS:
+        raise ValueError(f"--tp {text!r} gives {n} peak periods; allowed: at most {MAX_PEAK_PERIODS}")
+    return [round(start + i * step, 10) for i in range(n)]
+
+
+def _cmd_operability(args: argparse.Namespace) -> int:
+    from seafast.config import CaseError, load_case, parse_overrides
+    from seafast.operability.allowable import allowable_sea_states
+    from seafast.operability.family import sea_state_family
+    from seafast.operability.outputs import format_operability_table, write_operability_outputs
+    from seafast.operability.scatter import assess_scatter, read_scatter_diagram
+
+    try:
+        tps = parse_peak_periods(args.tp)
+    except ValueError as exc:
+        return _error(str(exc))
+    if args.scatter and Path(args.scatter).resolve() == (Path(args.output) / "scatter.csv").resolve():
+        return _error(f"--scatter {args.scatter}: it is the output scatter.csv of -o {args.output}; allowed: a file outside it, "
+                      "or another output directory")
+    try:
+        case = load_case(args.case, parse_overrides(args.overrides))
+        scatter = read_scatter_diagram(args.scatter) if args.scatter else None
+    except CaseError as exc:
+        return _error(str(exc))
+    say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
+    t0 = time.perf_counter()
+    scatter_tps = [float(t) for t in scatter.peak_periods_s] if scatter is not None else []
+    say(f"seafast operability: '{case.name}', {len(tps)} peak periods {tps[0]:g}-{tps[-1]:g} s"
+        + (f" and the {len(scatter_tps)} of the scatter diagram" if scatter is not None else ""))
+    try:
+        family = sea_state_family(case, tps + scatter_tps)
+    except CaseError as exc:
+        message = str(exc)
+        if "sea_state.peak_period_s" in message:
+            message = f"--tp / --scatter: a peak period is outside what the transfer functions resolve: {message}"
+        return _error(message)
+    except ValueError as exc:
+        return _error(str(exc))
+    say(f"transfer functions on {family.master_omega_rad_s.size} frequencies ({time.perf_counter() - t0:.2f} s)")
+
+    def progress(done: int, total: int) -> None:
+        if not args.quiet and sys.stderr.isatty():
+            print(f"\r  peak period {done}/{total}", end="" if done < total else "\n", file=sys.stderr)
+
+    result = allowable_sea_states(case, tps, family=family, progress=progress)
+    assessment = None
+    if scatter is not None:
+        at = allowable_sea_states(case, scatter_tps, family=family)
+        assessment = assess_scatter(scatter, [p.peak_period_s for p in at.points],
+                                    [p.hs_allowable_linear_m for p in at.points], [p.hs_allowable_nonlinear_m for p in at.points])
+    paths = write_operability_outputs(result, args.output, scatter=assessment, plots=not args.no_plots)
+    if not args.quiet:
+        lim = case.limits
+        print(f"{case.name}: allowable Hs per peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
+              f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)")
+        print(format_operability_table(result))
+        if assessment is not None:
+            print(f"scatter diagram {assessment.diagram.source}: within the limits {assessment.share_within_linear:.1%} of the "
+                  f"time (linear), {assessment.share_within_nonlinear:.1%} (nonlinear)")
+        print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    failed = [p.peak_period_s for p in result.points if not p.converged]
+    if assessment is not None and bool(assessment.not_assessed.any()):
+        failed += sorted(set(assessment.diagram.peak_period_s[assessment.not_assessed].tolist()))
+    if failed:
+        print(f"seafast: warning: the nonlinear search did not converge at Tp = {', '.join(f'{t:g}' for t in failed)} s "
+              "(governing_nonlinear = not_converged, empty Hs)", file=sys.stderr)
+        return EXIT_NOT_CONVERGED
+    return EXIT_OK
+
+
+def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
+    """Register ``seafast operability`` on an argparse subparsers object (handler returns the exit code)."""
+    p = subparsers.add_parser(
+        "operability",
+        help="allowable significant wave height per peak period, linear and nonlinear (design waves)",
+        description="For each peak period, the significant wave height at which the most probable maximum saddle force "
+        "or bending stress reaches its limit (linear spectral and nonlinear design-wave estimates), and the one at which "
+        "a saddle first lifts off; optionally the share of a wave scatter diagram within the limits.",
+        epilog=OPERABILITY_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
+    p.add_argument("--tp", required=True, metavar="START:STOP:STEP", help="peak periods [s], STOP included, e.g. 5:16:0.5")
+    p.add_argument("-o", "--output", default="seafast-operability", help="output directory (default: %(default)s)")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a case key (dotted, e.g. limits.max_saddle_force_N=11.5e6); repeatable")
+    p.add_argument("--scatter", default=None, metavar="FILE",
+                   help="wave scatter diagram, CSV significant_height_m,peak_period_s,occurrence")
+    p.add_argument("--no-plots", action="store_true", help="skip the PNG chart")
+    p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    p.set_defaults(handler=_cmd_operability)
+    return p

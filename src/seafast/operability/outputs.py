@@ -1,0 +1,212 @@
+"""What ``seafast operability`` writes: operability.csv, operability.nc, operability.png, scatter.csv.
+
+``operability.csv`` has exactly :data:`OPERABILITY_COLUMNS`, one row per peak period; an Hs that
+could not be found (the nonlinear search did not converge, or no lift-off below the limiting
+steepness for the uplift onset) is an empty cell. ``operability.nc`` holds the same and the
+diagnostics of each search (per limit, steepness cap, convergence, evaluations), ``units`` and
+``long_name`` on every variable; with a scatter diagram also its cells and the shares within the
+limits. The chart plots Hs against Tp: both allowable curves, the uplift onset and the limiting
+steepness (and the scatter cells).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+import yaml
+
+import seafast
+from seafast.operability.allowable import OperabilityResult
+from seafast.operability.scatter import ScatterAssessment
+
+__all__ = [
+    "OPERABILITY_COLUMNS",
+    "SCATTER_RESULT_COLUMNS",
+    "operability_csv_text",
+    "operability_dataset",
+    "write_operability_outputs",
+    "format_operability_table",
+    "plot_operability",
+]
+
+OPERABILITY_COLUMNS = (
+    "peak_period_s",
+    "hs_allowable_linear_m",
+    "hs_allowable_nonlinear_m",
+    "hs_uplift_onset_m",
+    "governing_linear",
+    "governing_nonlinear",
+)
+"""Columns of operability.csv (the scriptable contract)."""
+
+SCATTER_RESULT_COLUMNS = ("significant_height_m", "peak_period_s", "occurrence", "within_limits_linear", "within_limits_nonlinear")
+"""Columns of scatter.csv (one row per cell of the user's scatter diagram; occurrence normalised)."""
+
+
+def _cell(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, (float, np.floating)):
+        return "" if not math.isfinite(float(value)) else repr(float(value))
+    return str(value)
+
+
+def operability_csv_text(result: OperabilityResult) -> str:
+    """operability.csv text (SI units; empty cell = not found)."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(OPERABILITY_COLUMNS)
+    for p in result.points:
+        row = p.row()
+        w.writerow([_cell(row[c]) for c in OPERABILITY_COLUMNS])
+    return buf.getvalue()
+
+
+def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Variable:
+    return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units})
+
+
+def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | None = None) -> xr.Dataset:
+    """The content of operability.nc (see the module docstring)."""
+    P = result.points
+    d = ("peak_period_s",)
+    case = result.case
+    v = {
+        "hs_allowable_linear_m": _var(d, [p.hs_allowable_linear_m for p in P], "largest Hs within both limits, linear spectral MPMs", "m"),
+        "hs_allowable_nonlinear_m": _var(d, [p.hs_allowable_nonlinear_m for p in P], "largest Hs within both limits, nonlinear design-wave MPMs (NaN: not converged)", "m"),
+        "hs_uplift_onset_m": _var(d, [p.hs_uplift_onset_m for p in P], "Hs at which the MPM compression of a saddle reaches its still-water compression (NaN: beyond the limiting steepness)", "m"),
+        "governing_linear": xr.Variable(d, np.array([p.governing_linear for p in P], dtype=str), {"long_name": "limit reached first, linear: saddle_force, bending_stress or steepness", "units": "1"}),
+        "governing_nonlinear": xr.Variable(d, np.array([p.governing_nonlinear for p in P], dtype=str), {"long_name": "limit reached first, nonlinear: saddle_force, bending_stress, steepness or not_converged", "units": "1"}),
+        "hs_max_steepness_m": _var(d, [p.hs_max_steepness_m for p in P], "steepest sea state at this Tp (DNV-RP-C205 limiting steepness): the cap of the search", "m"),
+        "hs_force_linear_m": _var(d, [p.hs_force_linear_m for p in P], "Hs at which the linear MPM saddle force reaches its limit (inf: never)", "m"),
+        "hs_stress_linear_m": _var(d, [p.hs_stress_linear_m for p in P], "Hs at which the linear MPM bending stress reaches its limit (inf: never)", "m"),
+        "hs_force_nonlinear_m": _var(d, [p.hs_force_nonlinear_m for p in P], "Hs at which the nonlinear design-wave saddle force reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)", "m"),
+        "hs_stress_nonlinear_m": _var(d, [p.hs_stress_nonlinear_m for p in P], "Hs at which the nonlinear design-wave bending stress reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)", "m"),
+        "converged": _var(d, np.array([p.converged for p in P], dtype=np.int8), "every harmonic-balance solve of the nonlinear search converged (1) or not (0)", "1"),
+        "evaluations": _var(d, [p.evaluations for p in P], "design-wave evaluations of the nonlinear search", "1"),
+    }
+    coords: dict[str, Any] = {"peak_period_s": _var(d, [p.peak_period_s for p in P], "spectral peak period Tp", "s")}
+    attrs: dict[str, Any] = {
+        "title": f"seafast operability: {case.name}",
+        "seafast_version": seafast.__version__,
+        "spectrum": case.sea_state.spectrum,
+        "peak_enhancement": case.sea_state.peak_enhancement,
+        "duration_s": case.sea_state.duration_s,
+        "max_saddle_force_N": case.limits.max_saddle_force_N,
+        "max_bending_stress_Pa": case.limits.max_bending_stress_Pa,
+        "design_wave_harmonics": result.settings.design_wave.harmonics,
+        "design_wave_band_fraction": result.settings.design_wave.band_fraction,
+        "design_wave_band_points": result.settings.design_wave.band_points,
+        "hs_tolerance_m": result.settings.hs_tolerance_m,
+        "case_json": case.model_dump_json(),
+        "conventions": "MPMs over duration_s, still water included; head seas; Hs = 4 sqrt(m0)",
+    }
+    if scatter is not None:
+        c = ("scatter_cell",)
+        dg = scatter.diagram
+        v.update({
+            "scatter_significant_height_m": _var(c, dg.significant_height_m, "scatter cell significant wave height", "m"),
+            "scatter_peak_period_s": _var(c, dg.peak_period_s, "scatter cell peak period", "s"),
+            "scatter_occurrence": _var(c, dg.occurrence, "scatter cell occurrence, normalised to sum 1", "1"),
+            "scatter_within_limits_linear": _var(c, scatter.within_linear.astype(np.int8), "cell within the limits, linear (1) or not (0)", "1"),
+            "scatter_within_limits_nonlinear": _var(c, scatter.within_nonlinear.astype(np.int8), "cell within the limits, nonlinear (1) or not (0)", "1"),
+        })
+        coords["scatter_cell"] = _var(c, np.arange(dg.occurrence.size), "scatter diagram cell index", "1")
+        attrs.update(scatter_source=dg.source, share_within_limits_linear=scatter.share_within_linear,
+                     share_within_limits_nonlinear=scatter.share_within_nonlinear)
+    return xr.Dataset(v, coords=coords, attrs=attrs)
+
+
+def format_operability_table(result: OperabilityResult) -> str:
+    """Terminal table (Hs in m)."""
+    head = ("Tp [s]", "Hs lin [m]", "Hs nonlin [m]", "uplift Hs [m]", "governing (lin)", "governing (nonlin)")
+    lines = []
+    for p in result.points:
+        def m(x: float) -> str:
+            return "-" if not math.isfinite(x) else f"{x:.2f}"
+        lines.append([f"{p.peak_period_s:g}", m(p.hs_allowable_linear_m), m(p.hs_allowable_nonlinear_m), m(p.hs_uplift_onset_m),
+                      p.governing_linear, p.governing_nonlinear])
+    widths = [max(len(h), *(len(r[i]) for r in lines)) for i, h in enumerate(head)]
+    fmt = lambda cells: "  ".join(c.rjust(w) if i < 4 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))  # noqa: E731
+    return "\n".join([fmt(head), fmt(["-" * w for w in widths])] + [fmt(r) for r in lines])
+
+
+def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
+    """The operability chart (PNG, 200 dpi): allowable Hs against Tp, uplift onset, steepness limit, scatter cells."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    tp = ds["peak_period_s"].values
+    fig, ax = plt.subplots(figsize=(8.0, 5.0))
+    ax.plot(tp, ds["hs_max_steepness_m"].values, color="0.6", lw=1.0, ls=":", label="limiting steepness (DNV-RP-C205)")
+    ax.plot(tp, ds["hs_allowable_nonlinear_m"].values, color="tab:red", lw=2.5, marker=".", label="allowable Hs, nonlinear (design waves)")
+    ax.plot(tp, ds["hs_allowable_linear_m"].values, color="tab:blue", lw=1.5, ls="--", marker=".", label="allowable Hs, linear (spectral MPM)")
+    ax.plot(tp, ds["hs_uplift_onset_m"].values, color="tab:green", lw=1.5, ls="-.", label="uplift onset (a saddle lifts off)")
+    if "scatter_occurrence" in ds:
+        occ = ds["scatter_occurrence"].values
+        within = ds["scatter_within_limits_nonlinear"].values.astype(bool)
+        size = 10.0 + 400.0 * occ / max(float(occ.max()), 1e-300)
+        for sel, colour, label in ((within, "tab:green", "scatter: within limits (nonlinear)"), (~within, "tab:gray", "scatter: not within")):
+            ax.scatter(ds["scatter_peak_period_s"].values[sel], ds["scatter_significant_height_m"].values[sel], s=size[sel],
+                       facecolors="none", edgecolors=colour, label=label)
+    top = np.nanmax(np.concatenate([ds["hs_allowable_linear_m"].values, ds["hs_allowable_nonlinear_m"].values,
+                                    np.nan_to_num(ds["hs_uplift_onset_m"].values, nan=0.0)]))
+    ax.set_ylim(0.0, 1.15 * max(top, 0.1))
+    ax.set_xlabel("peak period Tp [s]")
+    ax.set_ylabel("significant wave height Hs [m]")
+    f, s = float(ds.attrs["max_saddle_force_N"]), float(ds.attrs["max_bending_stress_Pa"])
+    ax.set_title(f"{ds.attrs.get('title', '').removeprefix('seafast operability: ')}: F <= {f / 1e6:g} MN, "
+                 f"sigma_b <= {s / 1e6:g} MPa, MPM over {float(ds.attrs['duration_s']) / 3600:g} h", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    out = Path(path)
+    fig.savefig(out, dpi=200)
+    plt.close(fig)
+    return out
+
+
+def write_operability_outputs(
+    result: OperabilityResult, out_dir: str | Path, *, scatter: ScatterAssessment | None = None, plots: bool = True
+) -> dict[str, Path]:
+    """Write operability.csv, operability.nc, case.yaml, operability.png and (with a scatter diagram) scatter.csv."""
+    from seafast.output.files import write_netcdf
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths: dict[str, Path] = {}
+    (out / "operability.csv").write_text(operability_csv_text(result), encoding="utf-8")
+    paths["operability_csv"] = out / "operability.csv"
+    (out / "case.yaml").write_text(
+        "# the case as run (all defaults filled in)\n" + yaml.safe_dump(result.case.model_dump(mode="json"), sort_keys=False),
+        encoding="utf-8",
+    )
+    paths["case"] = out / "case.yaml"
+    ds = operability_dataset(result, scatter)
+    nc = out / "operability.nc"
+    if nc.exists():
+        nc.unlink()
+    paths["operability_nc"] = write_netcdf(ds, nc)
+    if scatter is not None:
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(SCATTER_RESULT_COLUMNS)
+        dg = scatter.diagram
+        for i in range(dg.occurrence.size):
+            w.writerow([_cell(float(dg.significant_height_m[i])), _cell(float(dg.peak_period_s[i])), _cell(float(dg.occurrence[i])),
+                        _cell(bool(scatter.within_linear[i])), _cell(bool(scatter.within_nonlinear[i]))])
+        (out / "scatter.csv").write_text(buf.getvalue(), encoding="utf-8")
+        paths["scatter_csv"] = out / "scatter.csv"
+    if plots:
+        paths["operability_png"] = plot_operability(ds, out / "operability.png")
+    return paths

@@ -1,0 +1,388 @@
+"""What a frequency sweep reports at each branch point: maxima, RAOs, stability, meaningful range.
+
+A :class:`~seafast.solvers.continuation.FrequencyResponseBranch` holds the saddle compressions of
+each point; this module turns them into the columns of ``frequency_response.csv``
+(:class:`SweepTable`):
+
+* the nonlinear maxima (saddle force, gap, cargo deflection, bending moment) and the linear
+  (bilateral-saddle) model's at the same frequency;
+* stability (:func:`seafast.solvers.floquet.floquet_multipliers`) and the folds;
+* the physically meaningful range (:mod:`seafast.results.sweep_range`): the deck under the saddles
+  accelerating faster than g, a detachment gap beyond a stated size, and, for the wave sweep, a
+  wave steeper than the breaking limit;
+* for the wave sweep, the nonlinear and linear RAOs of saddle force and bending moment: the
+  largest rise above the still-water value per metre of wave amplitude.
+
+Units: SI; the unit is in every name. Nothing here prints or writes files.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
+from seafast.model.beam import bending_moment_line
+from seafast.model.structure import StructuralModel
+from seafast.results.sweep_range import RangeLimit, RangeLimits, deck_acceleration_m_per_s2, time_extremes
+from seafast.solvers.contact import ContactLaw
+from seafast.solvers.branch import FrequencyResponseBranch
+from seafast.solvers.floquet import floquet_multipliers, stability_system
+from seafast.solvers.hbm import CondensedOperators, condensed_operators
+from seafast.solvers.hbm.harmonics import truncation_error
+
+__all__ = [
+    "FOLD_SEPARATION",
+    "FOLD_RESPONSE_CHANGE",
+    "WaveColumns",
+    "SweepTable",
+    "significant_folds",
+    "sweep_table",
+    "BASE_COLUMNS",
+    "STRUCTURAL_COLUMNS",
+    "WAVE_COLUMNS",
+]
+
+FOLD_SEPARATION = 0.005
+"""Two turns of a branch closer than this share of omega ... """
+
+FOLD_RESPONSE_CHANGE = 0.02
+"""... and whose peak-to-peak compressions differ by less than this share are one fold (the small
+zigzags of the discrete AFT branch at a sharp fold, :func:`significant_folds`)."""
+
+_MOMENT_POINTS_PER_ELEMENT = 2  # as results.nc's x_moment_m
+
+BASE_COLUMNS = ("omega_rad_s", "max_saddle_force_N", "max_gap_m", "max_cargo_deflection_m", "converged", "contact_preserved")
+"""The columns ``frequency_response.csv`` always had (users' scripts read them)."""
+
+STRUCTURAL_COLUMNS = BASE_COLUMNS + (
+    "max_bending_moment_Nm",
+    "linear_max_saddle_force_N",
+    "linear_max_bending_moment_Nm",
+    "max_deck_acceleration_m_per_s2",
+    "stable",
+    "floquet_max_modulus",
+    "fold",
+    "truncation_error",
+    "valid",
+    "beyond_range",
+)
+"""Columns of the structural sweep's ``frequency_response.csv``."""
+
+WAVE_COLUMNS = STRUCTURAL_COLUMNS + (
+    "wave_length_m",
+    "wave_amplitude_m",
+    "wave_steepness",
+    "heave_rao_m_per_m",
+    "pitch_rao_rad_per_m",
+    "saddle_force_rao_N_per_m",
+    "linear_saddle_force_rao_N_per_m",
+    "bending_moment_rao_Nm_per_m",
+    "linear_bending_moment_rao_Nm_per_m",
+)
+"""Columns of the wave sweep's ``frequency_response.csv``."""
+
+
+@dataclass(frozen=True)
+class WaveColumns:
+    """The wave sweep's columns, one value per branch point.
+
+    Attributes
+    ----------
+    wave_length_m
+        Deep-water wave length ``2 pi g / omega^2`` [m].
+    wave_amplitude_m
+        The case's wave amplitude zeta_a [m].
+    wave_steepness
+        Wave height over length ``2 zeta_a / lambda`` [-].
+    heave_rao_m_per_m, pitch_rao_rad_per_m
+        |heave| [m/m] and |pitch| [rad/m] per metre of wave amplitude.
+    saddle_force_rao_N_per_m, linear_saddle_force_rao_N_per_m
+        Largest rise of a saddle force above its still-water value over the period, per metre of
+        wave amplitude [N/m], nonlinear / linear model (linear: the first-harmonic amplitude).
+    bending_moment_rao_Nm_per_m, linear_bending_moment_rao_Nm_per_m
+        Largest |M(x, t) - M_still_water(x)| over the cargo and the period per metre of wave
+        amplitude [N m/m], nonlinear / linear model.
+    """
+
+    wave_length_m: NDArray[np.float64]
+    wave_amplitude_m: NDArray[np.float64]
+    wave_steepness: NDArray[np.float64]
+    heave_rao_m_per_m: NDArray[np.float64]
+    pitch_rao_rad_per_m: NDArray[np.float64]
+    saddle_force_rao_N_per_m: NDArray[np.float64]
+    linear_saddle_force_rao_N_per_m: NDArray[np.float64]
+    bending_moment_rao_Nm_per_m: NDArray[np.float64]
+    linear_bending_moment_rao_Nm_per_m: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class SweepTable:
+    """The columns of ``frequency_response.csv``, one entry per branch point (continuation order).
+
+    Attributes
+    ----------
+    omega_rad_s, max_saddle_force_N, max_gap_m, max_cargo_deflection_m, converged, contact_preserved
+        As :class:`~seafast.solvers.continuation.FrequencyResponseBranch`.
+    max_bending_moment_Nm
+        Largest |bending moment| over the cargo and the period, nonlinear model [N m].
+    linear_max_saddle_force_N, linear_max_bending_moment_Nm
+        The same maxima of the linear (bilateral-saddle) model at the same frequency [N], [N m].
+    max_deck_acceleration_m_per_s2
+        Largest vertical acceleration of the deck under a saddle over the period (rigid-body heave and
+        pitch plus the hull's deflection) [m/s^2].
+    stable
+        Whether the point's Floquet multipliers all lie inside the unit circle.
+    floquet_max_modulus
+        The largest multiplier modulus [-] (> 1: unstable; crosses 1 at folds).
+    fold
+        True at the point where the branch turns at a fold (:func:`significant_folds`).
+    truncation_error
+        Estimated error of the peak saddle force from the harmonics above H, relative to the force
+        scale (:func:`seafast.solvers.hbm.harmonics.truncation_error`, largest over the saddles) [-].
+    beyond_range
+        The :class:`RangeLimit` s each point breaks (empty inside the meaningful range).
+    limits
+        The thresholds used.
+    wave
+        The wave sweep's columns (None for the structural sweep).
+    """
+
+    omega_rad_s: NDArray[np.float64]
+    max_saddle_force_N: NDArray[np.float64]
+    max_gap_m: NDArray[np.float64]
+    max_cargo_deflection_m: NDArray[np.float64]
+    converged: NDArray[np.bool_]
+    contact_preserved: NDArray[np.bool_]
+    max_bending_moment_Nm: NDArray[np.float64]
+    linear_max_saddle_force_N: NDArray[np.float64]
+    linear_max_bending_moment_Nm: NDArray[np.float64]
+    max_deck_acceleration_m_per_s2: NDArray[np.float64]
+    stable: NDArray[np.bool_]
+    floquet_max_modulus: NDArray[np.float64]
+    fold: NDArray[np.bool_]
+    truncation_error: NDArray[np.float64]
+    beyond_range: tuple[tuple[RangeLimit, ...], ...]
+    limits: RangeLimits = field(default_factory=RangeLimits)
+    wave: WaveColumns | None = None
+
+    @property
+    def valid(self) -> NDArray[np.bool_]:
+        """Whether each point lies inside the physically meaningful range."""
+        return np.array([not reasons for reasons in self.beyond_range], dtype=bool)
+
+    @property
+    def column_names(self) -> tuple[str, ...]:
+        """The CSV columns: :data:`STRUCTURAL_COLUMNS` or :data:`WAVE_COLUMNS`."""
+        return WAVE_COLUMNS if self.wave is not None else STRUCTURAL_COLUMNS
+
+    def column(self, name: str) -> NDArray | list[str]:
+        """One column by its CSV name (``beyond_range``: the reasons joined by '+', '' when valid)."""
+        if name == "beyond_range":
+            return ["+".join(r.value for r in reasons) for reasons in self.beyond_range]
+        if name == "valid":
+            return self.valid
+        if self.wave is not None and name in WaveColumns.__dataclass_fields__:
+            return np.asarray(getattr(self.wave, name))
+        if name not in STRUCTURAL_COLUMNS:
+            raise KeyError(f"no column {name!r}; columns: {', '.join(self.column_names)}")
+        return np.asarray(getattr(self, name))
+
+    @property
+    def fold_omegas_rad_s(self) -> NDArray[np.float64]:
+        """Frequencies of the folds [rad/s], in branch order."""
+        return self.omega_rad_s[self.fold]
+
+
+def significant_folds(
+    branch: FrequencyResponseBranch, min_separation: float = FOLD_SEPARATION, min_response_change: float = FOLD_RESPONSE_CHANGE
+) -> NDArray[np.intp]:
+    """Indices of the branch points at its folds (omega extremes), small zigzags merged.
+
+    The discrete branch turns wherever the tangent's omega component changes sign. At a sharp fold
+    the AFT's sampled contact can make it zigzag: two neighbouring turns are merged (closest first)
+    when they are closer than ``min_separation`` of omega *and* their peak-to-peak saddle
+    compressions differ by less than ``min_response_change`` (a real fold pair, e.g. at grazing,
+    changes the response); each remaining fold is put at the extreme omega between its neighbours.
+    """
+    turns = [int(i) for i in branch.turning_indices]
+    w = branch.omega_rad_s
+    if not turns:
+        return np.zeros(0, dtype=np.intp)
+    upper = {i: bool(branch.tangent_omega[i - 1] > 0) for i in turns}  # a maximum of omega
+    value = {i: float(v) for i, v in zip(turns, branch.turning_omegas_rad_s)}
+    U = branch.compression_harmonics_m
+    span = np.ptp(np.einsum("th,nhs->nts", real_dft_matrices(U.shape[1] // 2, 128)[0], U), axis=1).max(axis=1)
+
+    def close(a: int, b: int) -> bool:
+        near = abs(value[a] - value[b]) < min_separation * value[a]
+        return near and abs(span[a] - span[b]) < min_response_change * max(span[a], span[b], 1e-300)
+
+    while len(turns) >= 2:
+        pairs = [j for j in range(len(turns) - 1) if close(turns[j], turns[j + 1])]
+        if not pairs:
+            break
+        j = min(pairs, key=lambda j: abs(value[turns[j]] - value[turns[j + 1]]))
+        del turns[j : j + 2]
+    out = []
+    bounds = [0] + turns + [w.size - 1]
+    for j, i in enumerate(turns):
+        lo, hi = bounds[j], bounds[j + 2]
+        seg = w[lo : hi + 1]
+        out.append(lo + int(np.argmax(seg) if upper[i] else np.argmin(seg)))
+    return np.asarray(out, dtype=np.intp)
+
+
+def _cargo_harmonics(ops: CondensedOperators, U: NDArray, law: ContactLaw, time_samples: int) -> NDArray[np.complex128]:
+    """Cargo displacement harmonics (H+1, n_c) of compressions ``U`` (real layout) [m, rad]."""
+    inverse, forward = real_dft_matrices(ops.harmonics, time_samples)
+    delta = inverse @ U
+    k = ops.saddle_stiffness_N_per_m
+    correction = forward @ (law.force(delta, k) - k * delta)
+    return ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, real_to_complex_harmonics(correction))
+
+
+def _moments(model: StructuralModel, displacement: NDArray, excitation: HarmonicExcitation, time_samples: int) -> NDArray:
+    """Bending moment (N, n_x) [N m] of cargo harmonics (H+1, n_c), self-weight and vessel line loads included."""
+    beam = model.cargo
+    disp = harmonics_to_time(displacement, time_samples)
+    line = harmonics_to_time(excitation.cargo_line_load_N_per_m, time_samples) + beam.gravity_line_load_N_per_m
+    return bending_moment_line(beam.node_x_m, disp, beam.element_bending_stiffness_Nm2, None, line, _MOMENT_POINTS_PER_ELEMENT)[1]
+
+
+def _moment_harmonics(model: StructuralModel, displacement: NDArray, excitation: HarmonicExcitation) -> NDArray[np.complex128]:
+    """Bending-moment harmonics (n_k, n_x) [N m] of cargo harmonics (n_k, n_c) (the moment is linear in both)."""
+    beam = model.cargo
+    line = np.array(excitation.cargo_line_load_N_per_m, dtype=complex)
+    line[0] += beam.gravity_line_load_N_per_m
+    n_k = line.shape[0]
+    return bending_moment_line(beam.node_x_m, displacement[:n_k], beam.element_bending_stiffness_Nm2, None, line, _MOMENT_POINTS_PER_ELEMENT)[1]
+
+
+def _still_water(model: StructuralModel, excitation: HarmonicExcitation, law: ContactLaw, compression_m: NDArray) -> tuple[NDArray, NDArray]:
+    """Nonlinear still-water saddle forces (n_s,) [N] and moment line (n_x,) [N m] (``compression_m``: static compressions (1, n_s))."""
+    static = excitation.static_part()
+    ops = condensed_operators(model, static, 0)
+    X = _cargo_harmonics(ops, compression_m, law, 2)
+    return law.force(compression_m[0], ops.saddle_stiffness_N_per_m), _moments(model, X, static, 2)[0]
+
+
+def sweep_table(
+    model: StructuralModel,
+    branch: FrequencyResponseBranch,
+    excitation_at: Callable[[float], HarmonicExcitation],
+    law: ContactLaw,
+    limits: RangeLimits | None = None,
+    *,
+    wave_amplitude_m: float | None = None,
+    rao_at: Callable[[float], tuple[complex, complex]] | None = None,
+    still_water_compression_m: NDArray | None = None,
+) -> SweepTable:
+    """The table of a branch: maxima of both models, stability, folds and the meaningful range.
+
+    Parameters
+    ----------
+    model
+        Cargo and sea-fastening.
+    branch
+        The continuation's branch (with its compression harmonics).
+    excitation_at
+        ``omega -> HarmonicExcitation``, as given to the continuation.
+    law
+        The contact law of the branch.
+    limits
+        Thresholds of the meaningful range (default :class:`RangeLimits` ()).
+    wave_amplitude_m, rao_at, still_water_compression_m
+        For a wave sweep: the wave amplitude zeta_a [m], ``omega -> (heave [m/m], pitch [rad/m])``
+        and the nonlinear still-water compressions (1, n_s) [m]; all three or none.
+    """
+    limits = RangeLimits() if limits is None else limits
+    wave_sweep = wave_amplitude_m is not None
+    if wave_sweep != (rao_at is not None) or wave_sweep != (still_water_compression_m is not None):
+        raise ValueError("sweep_table: give wave_amplitude_m, rao_at and still_water_compression_m together (wave sweep) or none")
+    n = branch.omega_rad_s.size
+    H = branch.compression_harmonics_m.shape[1] // 2
+    N = int(branch.options.get("time_samples") or 128)
+    system = stability_system(model, float(np.max(branch.omega_rad_s)) if n else 1.0, H)
+    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
+    inverse, _ = real_dft_matrices(H, N)
+    names = ("moment", "lin_force", "lin_moment", "accel", "stable", "mu", "trunc", "f_rao", "lf_rao", "m_rao", "lm_rao")
+    cols: dict[str, list[float]] = {name: [] for name in names}
+    sw = _still_water(model, excitation_at(float(branch.omega_rad_s[0])), law, np.asarray(still_water_compression_m)) if wave_sweep else None
+    reasons: list[tuple[RangeLimit, ...]] = []
+    for i in range(n):
+        w, U = float(branch.omega_rad_s[i]), branch.compression_harmonics_m[i]
+        ex = excitation_at(w)
+        ops = condensed_operators(model, ex, H)
+        n_k = ex.harmonic_count
+        moment = _moments(model, _cargo_harmonics(ops, U, law, N), ex, N)  # nonlinear: on the HBM's samples, as seafast run
+        # the linear model lives on the excitation's harmonics: its extremes exactly
+        lin_force = k_u * real_to_complex_harmonics(ops.linear_compression_m)[:n_k]
+        lin_moment = _moment_harmonics(model, ops.linear_cargo_displacement, ex)
+        accel = deck_acceleration_m_per_s2(model, ex)
+        floquet = floquet_multipliers(model, w, U, law, system=system)
+        cols["moment"].append(float(np.max(np.abs(moment))))
+        cols["lin_force"].append(float(np.max(time_extremes(lin_force)[0])))
+        cols["lin_moment"].append(float(np.max(time_extremes(lin_moment)[1])))
+        cols["accel"].append(accel)
+        cols["stable"].append(floquet.stable)
+        cols["mu"].append(floquet.max_modulus)
+        cols["trunc"].append(float(np.max(truncation_error(model, w, U, law))))
+        why = []
+        if accel > limits.gravity_m_per_s2:
+            why.append(RangeLimit.DECK_ACCELERATION)
+        if branch.max_gap_m[i] > limits.max_gap_m:
+            why.append(RangeLimit.GAP)
+        if sw is not None and wave_amplitude_m is not None:
+            force = law.force(inverse @ U, k_u)
+            dynamic_force, dynamic_moment = lin_force.copy(), lin_moment.copy()
+            dynamic_force[0], dynamic_moment[0] = 0.0, 0.0  # the rise above the linear still-water state
+            cols["f_rao"].append(float(np.max(np.max(force, axis=0) - sw[0])) / wave_amplitude_m)
+            cols["lf_rao"].append(float(np.max(time_extremes(dynamic_force)[0])) / wave_amplitude_m)
+            cols["m_rao"].append(float(np.max(np.abs(moment - sw[1]))) / wave_amplitude_m)
+            cols["lm_rao"].append(float(np.max(time_extremes(dynamic_moment)[1])) / wave_amplitude_m)
+            steepness = 2.0 * wave_amplitude_m * w**2 / (2.0 * np.pi * limits.gravity_m_per_s2)
+            if steepness > limits.breaking_steepness:
+                why.append(RangeLimit.WAVE_BREAKING)
+        reasons.append(tuple(why))
+    fold = np.zeros(n, dtype=bool)
+    fold[significant_folds(branch)] = True
+    wave = None
+    if wave_sweep and rao_at is not None and wave_amplitude_m is not None:
+        omegas = branch.omega_rad_s
+        length = 2.0 * np.pi * limits.gravity_m_per_s2 / omegas**2
+        raos = [rao_at(float(x)) for x in omegas]
+        wave = WaveColumns(
+            wave_length_m=length,
+            wave_amplitude_m=np.full(n, float(wave_amplitude_m)),
+            wave_steepness=2.0 * wave_amplitude_m / length,
+            heave_rao_m_per_m=np.array([abs(r[0]) for r in raos]),
+            pitch_rao_rad_per_m=np.array([abs(r[1]) for r in raos]),
+            saddle_force_rao_N_per_m=np.array(cols["f_rao"]),
+            linear_saddle_force_rao_N_per_m=np.array(cols["lf_rao"]),
+            bending_moment_rao_Nm_per_m=np.array(cols["m_rao"]),
+            linear_bending_moment_rao_Nm_per_m=np.array(cols["lm_rao"]),
+        )
+    return SweepTable(
+        omega_rad_s=branch.omega_rad_s,
+        max_saddle_force_N=branch.max_saddle_force_N,
+        max_gap_m=branch.max_gap_m,
+        max_cargo_deflection_m=branch.max_cargo_deflection_m,
+        converged=branch.converged,
+        contact_preserved=branch.contact_preserved,
+        max_bending_moment_Nm=np.array(cols["moment"]),
+        linear_max_saddle_force_N=np.array(cols["lin_force"]),
+        linear_max_bending_moment_Nm=np.array(cols["lin_moment"]),
+        max_deck_acceleration_m_per_s2=np.array(cols["accel"]),
+        stable=np.array(cols["stable"], dtype=bool),
+        floquet_max_modulus=np.array(cols["mu"]),
+        fold=fold,
+        truncation_error=np.array(cols["trunc"]),
+        beyond_range=tuple(reasons),
+        limits=limits,
+        wave=wave,
+    )

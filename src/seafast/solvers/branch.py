@@ -1,0 +1,104 @@
+"""A frequency-response branch as continuation leaves it: its points and how it ended.
+
+Units: SI, the unit in every name; compressions positive when the saddle is compressed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["BranchEnd", "FrequencyResponseBranch"]
+
+
+class BranchEnd(Enum):
+    """Why a frequency-response branch ended."""
+
+    REACHED_END = "reached_end"
+    """The branch reached ``omega_end``."""
+    FIRST_POINT_FAILED = "first_point_failed"
+    """The HBM solve at ``omega_start`` did not converge: no branch to follow."""
+    STEP_BELOW_MIN = "step_below_min"
+    """The corrector kept failing until the step fell below ``min_step`` (e.g. a sharp grazing fold)."""
+    MAX_POINTS = "max_points"
+    """``max_points`` points were recorded."""
+    STOPPED = "stopped"
+    """The caller's ``stop_when`` said stop (e.g. the branch left the physically meaningful range)."""
+
+
+@dataclass(frozen=True)
+class FrequencyResponseBranch:
+    """Points of a frequency-response branch, in continuation order.
+
+    Attributes
+    ----------
+    omega_rad_s
+        Excitation frequency of each point [rad/s] (not monotonic past a fold).
+    max_saddle_force_N
+        Largest saddle contact force over the period and the saddles [N].
+    max_gap_m
+        Largest detachment ``max(-delta)`` [m] (0 while contact is preserved).
+    max_cargo_deflection_m
+        Largest |z| over the period and the cargo nodes [m] (static part included).
+    converged
+        Whether each point met the tolerance (or its round-off floor, see the module docstring).
+    contact_preserved
+        Whether every saddle stayed in contact over the whole period at each point.
+    message
+        How the sweep ended, for people.
+    steps
+        Predictor-corrector steps taken (accepted and rejected).
+    options
+        The HBM settings (``HBMOptions.to_dict``).
+    end
+        How the sweep ended (:class:`BranchEnd`).
+    compression_harmonics_m
+        Saddle compressions of each point, real harmonic layout (n_points, 2H+1, n_s) [m].
+    tangent_omega
+        Omega component of the unit tangent at each point, in the scaled variables [-]: positive
+        where omega grows along the branch; its sign changes at a fold.
+    residual_norm
+        Relative residual of each point (max |R| over the compression scale) [-].
+    """
+
+    omega_rad_s: NDArray[np.float64]
+    max_saddle_force_N: NDArray[np.float64]
+    max_gap_m: NDArray[np.float64]
+    max_cargo_deflection_m: NDArray[np.float64]
+    converged: NDArray[np.bool_]
+    contact_preserved: NDArray[np.bool_]
+    message: str = ""
+    steps: int = 0
+    options: dict[str, Any] = field(default_factory=dict)
+    end: BranchEnd = BranchEnd.REACHED_END
+    compression_harmonics_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 1, 1)))
+    tangent_omega: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    residual_norm: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def peak_omega_rad_s(self) -> float:
+        """Frequency of the largest cargo deflection on the branch [rad/s]."""
+        return float(self.omega_rad_s[int(np.argmax(self.max_cargo_deflection_m))])
+
+    @property
+    def turning_indices(self) -> NDArray[np.intp]:
+        """Indices i where the branch turns between points i-1 and i (the tangent's omega component changes sign).
+
+        Every such turn is a fold of the discrete branch; a fold of the response is where the
+        turn is (:attr:`turning_omegas_rad_s`).
+        """
+        s = np.sign(self.tangent_omega)
+        return np.nonzero(s[1:] * s[:-1] < 0)[0] + 1
+
+    @property
+    def turning_omegas_rad_s(self) -> NDArray[np.float64]:
+        """Frequency of each turn [rad/s]: the extreme omega of the two points it lies between."""
+        i = self.turning_indices
+        w = self.omega_rad_s
+        # a turn from increasing to decreasing omega is a maximum of omega, and the reverse a minimum
+        upper = self.tangent_omega[i - 1] > 0
+        return np.where(upper, np.maximum(w[i - 1], w[i]), np.minimum(w[i - 1], w[i]))

@@ -1,0 +1,262 @@
+"""Frequency sweeps (docs/sweeps.md): through both folds of a softening resonance, checked against
+time-domain up- and down-sweeps; the structural sweep's deck-acceleration limit; the wave sweep's
+excitation and RAOs against ``seafast run`` and the linear transfer functions; the command line.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+from threadpoolctl import threadpool_limits
+
+from seafast.cli import main
+from seafast.config import load_case
+from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
+from seafast.excitation.vessel import vessel_excitation
+from seafast.fourier import real_dft_matrices
+from seafast.pipeline import build_model, hbm_options
+from seafast.results.sweep import STRUCTURAL_COLUMNS, WAVE_COLUMNS
+from seafast.results.sweep_range import RangeLimit, deck_acceleration_m_per_s2
+from seafast.seastate.transfer import transfer_functions
+from seafast.solvers.branch import BranchEnd
+from seafast.solvers.hbm import solve_hbm
+from seafast.solvers.stepped_sine import stepped_sine_sweep
+from seafast.sweeps import SweepKind, frequency_sweep, wave_excitation
+
+ROOT = Path(__file__).resolve().parents[1]
+SOFT = {"seafastening.saddle_stiffness_N_per_m": 1.1e7}  # 1 % of the base saddles: bounce mode at 4.5 rad/s
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _one_blas_thread():
+    with threadpool_limits(1):
+        yield
+
+
+def deck_table_case(directory: Path, scale: float = 0.3):
+    """The example deck table (the base hull's own deflection) with its wave part scaled, no rigid-body motion."""
+    lines = (ROOT / "examples" / "deck_deflection.csv").read_text().splitlines()
+    out = []
+    for line in lines:
+        if line.startswith(("#", "x_m")):
+            out.append(line)
+        else:
+            x, still, amplitude, phase = line.split(",")
+            out.append(f"{x},{still},{float(amplitude) * scale:.6e},{phase}")
+    table = directory / "deck.csv"
+    table.write_text("\n".join(out) + "\n")
+    return load_case(None, {**SOFT, "vessel.motions": "none", "vessel.deck_deflection_table": str(table)})
+
+
+def spans(branch) -> np.ndarray:
+    """Peak-to-peak saddle compression (largest over the saddles) of each branch point [m]."""
+    inverse = real_dft_matrices(branch.compression_harmonics_m.shape[1] // 2, 256)[0]
+    return np.ptp(np.einsum("th,nhs->nts", inverse, branch.compression_harmonics_m), axis=1).max(axis=1)
+
+
+@pytest.fixture(scope="module")
+def deck_sweep(tmp_path_factory):
+    case = deck_table_case(tmp_path_factory.mktemp("deck"))
+    return frequency_sweep(case, 3.0, 8.0)
+
+
+def test_the_deck_table_sweep_passes_both_folds_and_returns_to_the_linear_branch(deck_sweep):
+    r = deck_sweep
+    b, t = r.branch, r.table
+    assert b.end is BranchEnd.REACHED_END and b.omega_rad_s[-1] == pytest.approx(8.0, rel=1e-9) and b.converged.all()
+    folds = np.nonzero(t.fold)[0]
+    print(f"\n{b.omega_rad_s.size} points; folds at {t.omega_rad_s[folds]} rad/s; turns {b.turning_omegas_rad_s.round(4)}")
+    assert folds.size == 2
+    i_up, i_down = folds  # the lower branch ends at a maximum of omega; the upper starts at a minimum
+    w_up, w_down = t.omega_rad_s[i_up], t.omega_rad_s[i_down]
+    assert 4.4 < w_down < w_up < 5.3  # softening: the resonance leans to lower frequencies
+    # stable outside the folds, unstable between them (the fold points themselves have a multiplier ~ 1)
+    # (a few points next to a fold carry a multiplier within 1 % of 1: the branch turns there)
+    assert t.stable[: i_up - 1].all() and t.stable[i_down + 4 :].all()
+    assert np.all(t.floquet_max_modulus[i_down + 2 : i_down + 4] < 1.01)
+    assert not t.stable[i_up + 2 : i_down - 1].any()
+    assert t.floquet_max_modulus[i_up + 2 : i_down - 1].max() > 1.1
+    # back on the linear branch at both ends: contact kept, the nonlinear peak force is the linear model's
+    # (the nonlinear peak is read on the N AFT samples, as seafast run reads it, the linear one exactly:
+    # a sampled cosine misses its peak by at most 1 - cos(pi / N))
+    sampling = 1.0 - np.cos(np.pi / b.options["time_samples"])
+    for end in (slice(0, 10), slice(-10, None)):
+        assert t.contact_preserved[end].all()
+        assert t.max_saddle_force_N[end] == pytest.approx(t.linear_max_saddle_force_N[end], rel=sampling)
+    assert not t.contact_preserved[i_up : i_down + 1].any()
+    # the upper branch lifts the cargo by up to half a metre: flagged beyond the meaningful range
+    assert not t.valid.all()
+    assert all((RangeLimit.GAP in reasons) == (gap > t.limits.max_gap_m) for reasons, gap in zip(t.beyond_range, t.max_gap_m))
+
+
+def test_the_folds_are_where_time_domain_up_and_down_sweeps_jump(deck_sweep):
+    r = deck_sweep
+    b, t = r.branch, r.table
+    excitation_at = vessel_excitation(r.case).cargo_excitation(r.model, r.case).at_frequency
+    up = stepped_sine_sweep(r.model, excitation_at, 4.0, 5.5)
+    down = stepped_sine_sweep(r.model, excitation_at, 6.0, 4.2)
+    i_up, i_down = np.nonzero(t.fold)[0]
+    jump_up = max(up.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m))
+    jump_down = max(down.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m))
+    print(f"\nfolds {t.omega_rad_s[i_up]:.4f} / {t.omega_rad_s[i_down]:.4f} rad/s; time-domain up-sweep jumps at "
+          f"{jump_up.omega_rad_s:.4f}, down-sweep at {jump_down.omega_rad_s:.4f} rad/s")
+    assert up.settled.all() and down.settled.all()
+    assert jump_up.range_after_m > 1.2 * jump_up.range_before_m and jump_down.range_after_m < 0.8 * jump_down.range_before_m
+    assert jump_up.omega_rad_s == pytest.approx(t.omega_rad_s[i_up], rel=0.02)
+    assert jump_down.omega_rad_s == pytest.approx(t.omega_rad_s[i_down], rel=0.02)
+    # between the folds the sweeps settle on the stable branches, never on the unstable one
+    s = spans(b)
+    lower, middle, upper = (slice(0, i_up + 1), slice(i_up, i_down + 1), slice(i_down, None))
+
+    def on(part, omega):
+        w = b.omega_rad_s[part]
+        order = np.argsort(w)
+        return float(np.interp(omega, w[order], s[part][order]))
+
+    # (3 % away from the folds, where the unstable branch has moved away from the stable ones)
+    lo, hi = 1.03 * t.omega_rad_s[i_down], 0.97 * t.omega_rad_s[i_up]
+    checked = 0
+    for sweep, stable_part in ((up, lower), (down, upper)):
+        for w, span in zip(sweep.omega_rad_s, sweep.compression_range_m):
+            if lo < w < hi:
+                print(f"  {w:.4f} rad/s: time domain {span:.4f} m, stable branch {on(stable_part, w):.4f} m, unstable {on(middle, w):.4f} m")
+                miss = abs(span - on(stable_part, w))
+                assert miss < 0.01 * span and abs(span - on(middle, w)) > max(10 * miss, 0.03 * span)
+                checked += 1
+    assert checked >= 10
+
+
+def test_the_structural_sweep_stops_where_the_held_deck_motion_passes_g():
+    case = load_case(None, {})
+    result = frequency_sweep(case, 1.0, 3.0)
+    limit = result.acceleration_limit_rad_s
+    excitation = vessel_excitation(case).cargo_excitation(result.model, case)
+    print(f"\nomega_g = {limit:.4f} rad/s; stopped at {result.branch.omega_rad_s[-1]:.4f} rad/s")
+    # the held motion's deck acceleration grows as omega^2: it is g at omega_g
+    assert deck_acceleration_m_per_s2(result.model, excitation.at_frequency(limit)) == pytest.approx(9.81, rel=1e-9)
+    assert result.stopped_beyond_range and limit < result.branch.omega_rad_s[-1] < 1.05 * limit
+    t = result.table
+    assert t.valid[:-1].all() and t.beyond_range[-1] == (RangeLimit.DECK_ACCELERATION,)
+    assert (t.max_deck_acceleration_m_per_s2[:-1] < 9.81).all() and t.stable.all()
+    # followed on, the branch goes past omega_g (where the cargo is thrown off its stiff saddles and
+    # bounces: the corrector may give up there), every point beyond it flagged
+    followed = frequency_sweep(case, 1.0, 3.0, follow_beyond_range=True)
+    beyond = followed.table.omega_rad_s > limit
+    assert followed.table.omega_rad_s.max() > 1.03 * limit
+    assert all((RangeLimit.DECK_ACCELERATION in why) == out for why, out in zip(followed.table.beyond_range, beyond))
+    with pytest.raises(ValueError, match="omega_g"):
+        frequency_sweep(case, 2.5, 3.0)
+
+
+def test_deck_acceleration_is_the_rigid_body_and_hull_acceleration_under_the_saddles():
+    case = load_case(None, {"vessel.motions": "none"})
+    model = build_model(case)
+    w, heave, pitch, ref = 0.9, 1.2 - 0.4j, 0.011j, 80.0
+    aft = 50.0
+    ex = assemble_excitation(model, aft, w, None, lambda x: (0.05 + 0.0 * x, 0.0 * x), RigidBodyAmplitudes(heave, pitch, ref))
+    z_rigid = heave + pitch * (aft + model.saddle_x_m - ref)
+    expected = w**2 * np.max(np.abs(z_rigid + 0.05))
+    assert deck_acceleration_m_per_s2(model, ex) == pytest.approx(expected, rel=1e-9)
+
+
+def test_the_wave_excitation_is_the_run_s_at_the_case_s_wave():
+    case = load_case(None, {"wave.amplitude_m": 2.5})  # below the hull's emergence amplitude (2.8 m)
+    model = build_model(case)
+    excitation_at, rao_at = wave_excitation(case, model, 0.3, 1.2)
+    run = vessel_excitation(case).cargo_excitation(model, case)
+    mine = excitation_at(run.omega_rad_s)
+    scale = np.max(np.abs(run.deck_displacement[1]))
+    assert np.max(np.abs(mine.deck_displacement - run.deck_displacement)) < 1e-7 * scale  # spline of the hull's transfer function
+    np.testing.assert_allclose(mine.cargo_load_N, run.cargo_load_N, rtol=1e-12, atol=1e-9 * np.max(np.abs(run.cargo_load_N)))
+    np.testing.assert_allclose(mine.cargo_line_load_N_per_m, run.cargo_line_load_N_per_m, rtol=1e-12, atol=1e-6)
+    heave, _ = rao_at(run.omega_rad_s)
+    assert abs(heave) == pytest.approx(float(vessel_excitation(case).to_dataset().attrs["heave_amplitude_m"]) / 2.5, rel=1e-12)
+
+
+@pytest.fixture(scope="module")
+def wave_sweep():
+    case = load_case(None, {"wave.amplitude_m": 2.5})  # the fore saddle lifts off by 3 mm; the hull stays immersed
+    return frequency_sweep(case, 0.4, case.wave_frequency_rad_s(), kind=SweepKind.WAVE)
+
+
+def test_the_wave_sweep_s_linear_raos_are_the_transfer_functions(wave_sweep):
+    r = wave_sweep
+    t = r.table
+    tf = transfer_functions(r.case, r.model, np.sort(t.omega_rad_s))
+    order = np.argsort(t.omega_rad_s)
+    force = np.abs(tf.saddle_force_N).max(axis=1)
+    moment = np.abs(tf.bending_moment_Nm).max(axis=1)
+    # the same numbers, to the cubic spline of the hull's transfer function between its grid frequencies
+    np.testing.assert_allclose(t.wave.linear_saddle_force_rao_N_per_m[order], force, rtol=1e-7)
+    np.testing.assert_allclose(t.wave.linear_bending_moment_rao_Nm_per_m[order], moment, rtol=1e-7)
+
+
+def test_the_wave_sweep_at_the_case_s_wave_is_seafast_run(wave_sweep):
+    r = wave_sweep
+    t = r.table
+    case, model = r.case, r.model
+    assert t.omega_rad_s[-1] == case.wave_frequency_rad_s()  # the continuation lands on omega_end
+    run = solve_hbm(model, vessel_excitation(case).cargo_excitation(model, case), hbm_options(case, harmonics=r.branch.options["harmonics"]))
+    force = float(np.max(run.saddle_force_time_N))
+    print(f"\nmax saddle force: wave sweep {t.max_saddle_force_N[-1] / 1e6:.6f} MN, seafast run's HBM {force / 1e6:.6f} MN; "
+          f"RAO {t.wave.saddle_force_rao_N_per_m[-1] / 1e6:.4f} MN/m (linear {t.wave.linear_saddle_force_rao_N_per_m[-1] / 1e6:.4f})")
+    assert t.max_saddle_force_N[-1] == pytest.approx(force, rel=1e-7)
+    # the fore saddle lifts off: the nonlinear RAO lies below the linear one, which lets the saddles pull
+    assert not t.contact_preserved[-1] and t.wave.saddle_force_rao_N_per_m[-1] < 0.97 * t.wave.linear_saddle_force_rao_N_per_m[-1]
+    assert t.contact_preserved[0] and t.wave.saddle_force_rao_N_per_m[0] == pytest.approx(t.wave.linear_saddle_force_rao_N_per_m[0], rel=1e-3)
+    assert (t.wave.wave_length_m[-1]) == pytest.approx(case.wave.length_m, rel=1e-12)
+    assert t.valid.all() and t.stable.all() and not t.fold.any()
+
+
+def test_a_wave_steeper_than_the_breaking_limit_is_flagged():
+    case = load_case(None, {})
+    r = frequency_sweep(case, 1.1, 1.4, kind=SweepKind.WAVE)
+    t = r.table
+    breaking = np.array([RangeLimit.WAVE_BREAKING in reasons for reasons in t.beyond_range])
+    # zeta_a = 3 m: H / lambda = 1/7 at omega = sqrt(2 pi g / 42 m) = 1.2124 rad/s
+    np.testing.assert_array_equal(breaking, t.omega_rad_s > np.sqrt(2 * np.pi * 9.81 / 42.0))
+    assert breaking.any() and not breaking.all()
+
+
+def _rows(path: Path) -> tuple[list[str], list[dict[str, str]]]:
+    with path.open(newline="") as f:
+        reader = csv.DictReader(f)
+        return list(reader.fieldnames or []), list(reader)
+
+
+def test_seafast_sweep_wave_writes_the_rao_columns_and_figure(tmp_path, capsys):
+    out = tmp_path / "wave"
+    assert main(["sweep", "--wave", "-o", str(out), "--omega-min", "0.4", "--omega-max", "0.8"]) == 0
+    header, rows = _rows(out / "frequency_response.csv")
+    assert tuple(header) == WAVE_COLUMNS
+    assert all(r["valid"] == "true" and r["beyond_range"] == "" and r["stable"] == "true" for r in rows)
+    assert (out / "frequency_response.png").stat().st_size > 10_000
+    assert "largest saddle-force RAO" in capsys.readouterr().out
+
+
+def test_seafast_sweep_says_when_the_branch_leaves_the_meaningful_range(tmp_path, capsys):
+    out = tmp_path / "structural"
+    assert main(["sweep", "-o", str(out), "--omega-min", "1.5", "--omega-max", "3", "--no-plots"]) == 0
+    captured = capsys.readouterr()
+    assert "omega_g" in captured.out and "stopped" in captured.out
+    assert "seafast: warning:" in captured.err and "deck_acceleration_above_g" in captured.err
+    header, rows = _rows(out / "frequency_response.csv")
+    assert tuple(header) == STRUCTURAL_COLUMNS and rows[-1]["valid"] == "false"
+    assert not (out / "frequency_response.png").exists()
+    # quiet: the warning only
+    assert main(["-q", "sweep", "-o", str(tmp_path / "quiet"), "--omega-min", "1.5", "--omega-max", "3", "--no-plots"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "" and "deck_acceleration_above_g" in captured.err
+
+
+def test_seafast_sweep_refuses_bad_input(tmp_path, capsys):
+    assert main(["sweep", "--max-gap-m", "-1"]) == 2
+    assert "--max-gap-m" in capsys.readouterr().err
+    assert main(["sweep", "--wave", "--set", "wave.amplitude_m=0"]) == 2
+    assert "wave.amplitude_m" in capsys.readouterr().err
+    table = ROOT / "examples" / "user_deck_table.yaml"
+    assert main(["sweep", str(table), "--wave", "-o", str(tmp_path / "x")]) == 2
+    assert "deck_deflection_table" in capsys.readouterr().err
