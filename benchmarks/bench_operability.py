@@ -68,10 +68,14 @@ def main() -> None:
         static = still_water_excitation(analysis)
         _, adaptive_ms = timed(lambda: design_wave_extremes(analysis, static, DesignWaveSettings(harmonics=None)), 3)
         t = dw.totals
-        print(f"design waves, base case Hs = 3 m, Tp = 10 s: {len(dw.waves)} waves ({distinct} distinct), {dw_ms:.1f} ms wall, "
-              f"{dw_cpu_ms:.1f} ms CPU (H = 16); adaptive H {adaptive_ms:.0f} ms")
-        print(f"  nonlinear MPM F = {t['F_N'] / 1e6:.3f} MN, M_b = {t['M_b_Nm'] / 1e6:.2f} MN m, u_d = {t['u_d_m'] * 1e3:.2f} mm "
-              f"(linear spectral {analysis.extremes.totals['F_N'] / 1e6:.3f} MN, {analysis.extremes.totals['M_b_Nm'] / 1e6:.2f} MN m)")
+        print(
+            f"design waves, base case Hs = 3 m, Tp = 10 s: {len(dw.waves)} waves ({distinct} distinct), {dw_ms:.1f} ms wall, "
+            f"{dw_cpu_ms:.1f} ms CPU (H = 16); adaptive H {adaptive_ms:.0f} ms"
+        )
+        print(
+            f"  nonlinear MPM F = {t['F_N'] / 1e6:.3f} MN, M_b = {t['M_b_Nm'] / 1e6:.2f} MN m, u_d = {t['u_d_m'] * 1e3:.2f} mm "
+            f"(linear spectral {analysis.extremes.totals['F_N'] / 1e6:.3f} MN, {analysis.extremes.totals['M_b_Nm'] / 1e6:.2f} MN m)"
+        )
 
         tps = np.arange(5.0, 16.0 + 1e-9, 0.5)
         raised = seafast.load_case(None, RAISED)
@@ -83,11 +87,19 @@ def main() -> None:
         t0 = time.perf_counter()
         allowable_sea_states(case, tps)
         base_s = time.perf_counter() - t0
-        print(f"operability over {tps.size} peak periods: {op_s:.2f} s wall, {op_cpu_s:.2f} s CPU with limits 11.5 MN / 28 MPa ({evaluations} design-wave "
-              f"evaluations, nonlinear differs from linear at {lifted} peak periods); {base_s:.2f} s with the base limits")
+        print(
+            f"operability over {tps.size} peak periods: {op_s:.2f} s wall, {op_cpu_s:.2f} s CPU with limits 11.5 MN / 28 MPa ({evaluations} design-wave "
+            f"evaluations, nonlinear differs from linear at {lifted} peak periods); {base_s:.2f} s with the base limits"
+        )
 
         mc_s, speedup = float("nan"), float("nan")
-        full_s = timed(lambda: sea_state_design_waves(spectral_analysis(seafast.load_case(None, {"wave.amplitude_m": 3.0 + 1e-9 * time.time()}))), 3)[1] / 1e3
+        full_s = (
+            timed(
+                lambda: sea_state_design_waves(spectral_analysis(seafast.load_case(None, {"wave.amplitude_m": 3.0 + 1e-9 * time.time()}))),
+                3,
+            )[1]
+            / 1e3
+        )
         if not skip_mc:
             from seafast.seastate.monte_carlo import run_monte_carlo
 
@@ -96,12 +108,16 @@ def main() -> None:
                 mc = run_monte_carlo(case, Path(d), workers=1, progress=False)
                 mc_s = time.perf_counter() - t0
             speedup = mc_s / full_s
-            print(f"Monte Carlo reference (20 x 3 h, one process): {mc_s:.1f} s, F = {mc.nonlinear.mpm['F_N'] / 1e6:.3f} MN; "
-                  f"spectral analysis + design waves from the case {full_s * 1e3:.0f} ms: {speedup:.0f}x "
-                  f"({mc_s / (dw_ms / 1e3):.0f}x against the design waves alone)")
-    print(f"design_wave_ms={dw_ms:.2f} design_wave_cpu_ms={dw_cpu_ms:.2f} design_wave_adaptive_ms={adaptive_ms:.0f} operability_s={op_s:.2f} "
-          f"operability_cpu_s={op_cpu_s:.2f} operability_base_s={base_s:.2f} "
-          f"design_wave_full_s={full_s:.3f} monte_carlo_s={mc_s:.1f} speedup_vs_monte_carlo={speedup:.0f}")
+            print(
+                f"Monte Carlo reference (20 x 3 h, one process): {mc_s:.1f} s, F = {mc.nonlinear.mpm['F_N'] / 1e6:.3f} MN; "
+                f"spectral analysis + design waves from the case {full_s * 1e3:.0f} ms: {speedup:.0f}x "
+                f"({mc_s / (dw_ms / 1e3):.0f}x against the design waves alone)"
+            )
+    print(
+        f"design_wave_ms={dw_ms:.2f} design_wave_cpu_ms={dw_cpu_ms:.2f} design_wave_adaptive_ms={adaptive_ms:.0f} operability_s={op_s:.2f} "
+        f"operability_cpu_s={op_cpu_s:.2f} operability_base_s={base_s:.2f} "
+        f"design_wave_full_s={full_s:.3f} monte_carlo_s={mc_s:.1f} speedup_vs_monte_carlo={speedup:.0f}"
+    )
 
 
 if __name__ == "__main__":

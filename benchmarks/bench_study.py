@@ -51,8 +51,20 @@ def fake_evaluator(case):
     for load_case in ("static", "dynamic"):
         for model in ("linear", "nonlinear"):
             rows.append(
-                dict(load_case=load_case, model=model, u_c_m=0.0, u_s_m=0.0, u_d_m=0.0, F_N=float(case.seafastening.saddle_count),
-                     M_b_Nm=1.0, sigma_b_Pa=1.0, converged=True, contact_preserved=True, residual_norm=0.0, iterations=0)
+                dict(
+                    load_case=load_case,
+                    model=model,
+                    u_c_m=0.0,
+                    u_s_m=0.0,
+                    u_d_m=0.0,
+                    F_N=float(case.seafastening.saddle_count),
+                    M_b_Nm=1.0,
+                    sigma_b_Pa=1.0,
+                    converged=True,
+                    contact_preserved=True,
+                    residual_norm=0.0,
+                    iterations=0,
+                )
             )
     return rows
 

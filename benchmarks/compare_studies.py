@@ -51,7 +51,11 @@ def compare_table(old: Path, new: Path, rtol: float) -> tuple[bool, dict[str, fl
         a = [row[j] for row in r_old]
         b = [row[j] for row in r_new]
         xa, xb = [_number(v) for v in a], [_number(v) for v in b]
-        numeric = all(v is not None or t == "" for v, t in zip(xa, a)) and any(v is not None for v in xa) and not all(t in ("true", "false") for t in a)
+        numeric = (
+            all(v is not None or t == "" for v, t in zip(xa, a))
+            and any(v is not None for v in xa)
+            and not all(t in ("true", "false") for t in a)
+        )
         if not numeric:
             mismatches = sum(1 for u, v in zip(a, b) if u != v)
             if mismatches and name not in DIAGNOSTICS:

@@ -37,8 +37,16 @@ def test_run_base_case_writes_interface_outputs(tmp_path):
         assert r["converged"] == "true"
         if r["model"] == "linear":
             assert float(r["u_d_m"]) == 0.0
-    for name in ("results.nc", "case.yaml", "deflection.png", "forces_moments.png", "saddle_time_histories.png",
-                 "saddle_surfaces.png", "aft_most_loaded_saddle.png", "hull_girder.png"):
+    for name in (
+        "results.nc",
+        "case.yaml",
+        "deflection.png",
+        "forces_moments.png",
+        "saddle_time_histories.png",
+        "saddle_surfaces.png",
+        "aft_most_loaded_saddle.png",
+        "hull_girder.png",
+    ):
         assert (out / name).stat().st_size > 1000, name
 
 
@@ -110,11 +118,25 @@ def test_missing_and_malformed_case_files(tmp_path, capsys):
 
 _keys = st.sampled_from(
     [
-        "cargo.length_m", "cargo.diameter_m", "cargo.wall_thickness_m", "cargo.position_m",
-        "seafastening.saddle_count", "seafastening.saddle_positions_m", "seafastening.saddle_stiffness_N_per_m",
-        "seafastening.lashing.stiffness_N_per_m", "seafastening.lashing.pretension_N", "wave.length_m",
-        "wave.amplitude_m", "solver.harmonics", "solver.time_samples", "solver.contact_law", "model.element_length_m",
-        "cargo", "solver", "nonsense.key", "cargo.sections",
+        "cargo.length_m",
+        "cargo.diameter_m",
+        "cargo.wall_thickness_m",
+        "cargo.position_m",
+        "seafastening.saddle_count",
+        "seafastening.saddle_positions_m",
+        "seafastening.saddle_stiffness_N_per_m",
+        "seafastening.lashing.stiffness_N_per_m",
+        "seafastening.lashing.pretension_N",
+        "wave.length_m",
+        "wave.amplitude_m",
+        "solver.harmonics",
+        "solver.time_samples",
+        "solver.contact_law",
+        "model.element_length_m",
+        "cargo",
+        "solver",
+        "nonsense.key",
+        "cargo.sections",
     ]
 )
 _values = st.one_of(

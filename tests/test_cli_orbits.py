@@ -22,14 +22,22 @@ from seafast.cli import main
 from seafast.output.report.findings import run_findings
 
 CASE = [
-    "--set", "seafastening.saddle_stiffness_N_per_m=1.1e7",
-    "--set", "vessel.motions=none",
-    "--set", "wave.amplitude_m=9.0",
-    "--set", "wave.frequency_rad_s=3.8",
-    "--set", "model.element_length_m=4.0",
-    "--set", "solver.method=time_domain",
-    "--set", "solver.time_samples=32",
-    "--no-plots", "-q",
+    "--set",
+    "seafastening.saddle_stiffness_N_per_m=1.1e7",
+    "--set",
+    "vessel.motions=none",
+    "--set",
+    "wave.amplitude_m=9.0",
+    "--set",
+    "wave.frequency_rad_s=3.8",
+    "--set",
+    "model.element_length_m=4.0",
+    "--set",
+    "solver.method=time_domain",
+    "--set",
+    "solver.time_samples=32",
+    "--no-plots",
+    "-q",
 ]
 
 

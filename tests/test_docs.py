@@ -169,7 +169,7 @@ def test_every_output_column_is_documented_exactly():
     assert ",".join(SUMMARY_COLUMNS) in INTERFACE
     assert ",".join(SWEEP_COLUMNS) in INTERFACE
     assert ",".join(STRUCTURAL_COLUMNS) in INTERFACE
-    assert ",".join(WAVE_COLUMNS[len(STRUCTURAL_COLUMNS):]) in INTERFACE
+    assert ",".join(WAVE_COLUMNS[len(STRUCTURAL_COLUMNS) :]) in INTERFACE
     assert ",".join(CORE_COLUMNS) in INTERFACE
     assert ",".join(COMPLIANCE_COLUMNS) in INTERFACE
     assert ",".join(RANKING_COLUMNS[2:]) in INTERFACE

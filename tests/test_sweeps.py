@@ -101,8 +101,10 @@ def test_the_folds_are_where_time_domain_up_and_down_sweeps_jump(deck_sweep):
     i_up, i_down = np.nonzero(t.fold)[0]
     jump_up = max(up.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m))
     jump_down = max(down.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m))
-    print(f"\nfolds {t.omega_rad_s[i_up]:.4f} / {t.omega_rad_s[i_down]:.4f} rad/s; time-domain up-sweep jumps at "
-          f"{jump_up.omega_rad_s:.4f}, down-sweep at {jump_down.omega_rad_s:.4f} rad/s")
+    print(
+        f"\nfolds {t.omega_rad_s[i_up]:.4f} / {t.omega_rad_s[i_down]:.4f} rad/s; time-domain up-sweep jumps at "
+        f"{jump_up.omega_rad_s:.4f}, down-sweep at {jump_down.omega_rad_s:.4f} rad/s"
+    )
     assert up.settled.all() and down.settled.all()
     assert jump_up.range_after_m > 1.2 * jump_up.range_before_m and jump_down.range_after_m < 0.8 * jump_down.range_before_m
     assert jump_up.omega_rad_s == pytest.approx(t.omega_rad_s[i_up], rel=0.02)
@@ -122,7 +124,9 @@ def test_the_folds_are_where_time_domain_up_and_down_sweeps_jump(deck_sweep):
     for sweep, stable_part in ((up, lower), (down, upper)):
         for w, span in zip(sweep.omega_rad_s, sweep.compression_range_m):
             if lo < w < hi:
-                print(f"  {w:.4f} rad/s: time domain {span:.4f} m, stable branch {on(stable_part, w):.4f} m, unstable {on(middle, w):.4f} m")
+                print(
+                    f"  {w:.4f} rad/s: time domain {span:.4f} m, stable branch {on(stable_part, w):.4f} m, unstable {on(middle, w):.4f} m"
+                )
                 miss = abs(span - on(stable_part, w))
                 assert miss < 0.01 * span and abs(span - on(middle, w)) > max(10 * miss, 0.03 * span)
                 checked += 1
@@ -199,14 +203,20 @@ def test_the_wave_sweep_at_the_case_s_wave_is_seafast_run(wave_sweep):
     t = r.table
     case, model = r.case, r.model
     assert t.omega_rad_s[-1] == case.wave_frequency_rad_s()  # the continuation lands on omega_end
-    run = solve_hbm(model, vessel_excitation(case).cargo_excitation(model, case), hbm_options(case, harmonics=r.branch.options["harmonics"]))
+    run = solve_hbm(
+        model, vessel_excitation(case).cargo_excitation(model, case), hbm_options(case, harmonics=r.branch.options["harmonics"])
+    )
     force = float(np.max(run.saddle_force_time_N))
-    print(f"\nmax saddle force: wave sweep {t.max_saddle_force_N[-1] / 1e6:.6f} MN, seafast run's HBM {force / 1e6:.6f} MN; "
-          f"RAO {t.wave.saddle_force_rao_N_per_m[-1] / 1e6:.4f} MN/m (linear {t.wave.linear_saddle_force_rao_N_per_m[-1] / 1e6:.4f})")
+    print(
+        f"\nmax saddle force: wave sweep {t.max_saddle_force_N[-1] / 1e6:.6f} MN, seafast run's HBM {force / 1e6:.6f} MN; "
+        f"RAO {t.wave.saddle_force_rao_N_per_m[-1] / 1e6:.4f} MN/m (linear {t.wave.linear_saddle_force_rao_N_per_m[-1] / 1e6:.4f})"
+    )
     assert t.max_saddle_force_N[-1] == pytest.approx(force, rel=1e-7)
     # the fore saddle lifts off: the nonlinear RAO lies below the linear one, which lets the saddles pull
     assert not t.contact_preserved[-1] and t.wave.saddle_force_rao_N_per_m[-1] < 0.97 * t.wave.linear_saddle_force_rao_N_per_m[-1]
-    assert t.contact_preserved[0] and t.wave.saddle_force_rao_N_per_m[0] == pytest.approx(t.wave.linear_saddle_force_rao_N_per_m[0], rel=1e-3)
+    assert t.contact_preserved[0] and t.wave.saddle_force_rao_N_per_m[0] == pytest.approx(
+        t.wave.linear_saddle_force_rao_N_per_m[0], rel=1e-3
+    )
     assert (t.wave.wave_length_m[-1]) == pytest.approx(case.wave.length_m, rel=1e-12)
     assert t.valid.all() and t.stable.all() and not t.fold.any()
 

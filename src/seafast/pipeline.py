@@ -112,9 +112,7 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
     return HBMOptions(**settings)
 
 
-def solve_nonlinear(
-    model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: Any = None
-) -> Any:
+def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: Any = None) -> Any:
     """Nonlinear (unilateral-saddle) response by the case's method; returns a PeriodicResponse.
 
     ``static=True`` solves the still-water state alone (harmonic balance with H = 0).
@@ -180,8 +178,13 @@ class CaseResult:
             return None
         v = self.vessel
         return coupled_hull(
-            v.girder, v.loading, self.compliance, v.still_water, self.deck_couplings[("static", "nonlinear")],
-            v.wave, self.deck_couplings[("dynamic", "nonlinear")] if v.wave is not None else None,
+            v.girder,
+            v.loading,
+            self.compliance,
+            v.still_water,
+            self.deck_couplings[("static", "nonlinear")],
+            v.wave,
+            self.deck_couplings[("dynamic", "nonlinear")] if v.wave is not None else None,
         )
 
     @property
@@ -361,21 +364,44 @@ def couple_hull_and_cargo(
 
     out = {
         ("static", "linear"): couple_deck(
-            model, static, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, 1), 1,
-            jacobian0=jac[1], label="static, linear",
+            model,
+            static,
+            compliance,
+            linear,
+            lambda e, r: deck_forces_N(model, e, r, False, 1),
+            1,
+            jacobian0=jac[1],
+            label="static, linear",
         ),
         ("static", "nonlinear"): couple_deck(
-            model, static, compliance, lambda e: solve_nonlinear(model, e, case, static=True),
-            lambda e, r: deck_forces_N(model, e, r, True, 1), 1, jacobian0=jac[1], label="static, nonlinear",
+            model,
+            static,
+            compliance,
+            lambda e: solve_nonlinear(model, e, case, static=True),
+            lambda e, r: deck_forces_N(model, e, r, True, 1),
+            1,
+            jacobian0=jac[1],
+            label="static, nonlinear",
         ),
         ("dynamic", "linear"): couple_deck(
-            model, excitation, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, k_linear), k_linear,
-            jacobian0=jac[k_linear], label="dynamic, linear",
+            model,
+            excitation,
+            compliance,
+            linear,
+            lambda e, r: deck_forces_N(model, e, r, False, k_linear),
+            k_linear,
+            jacobian0=jac[k_linear],
+            label="dynamic, linear",
         ),
         ("dynamic", "nonlinear"): couple_deck(
-            model, excitation, compliance, warm_dynamic,
-            lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear), k_nonlinear,
-            jacobian0=jac[k_nonlinear], label="dynamic, nonlinear",
+            model,
+            excitation,
+            compliance,
+            warm_dynamic,
+            lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear),
+            k_nonlinear,
+            jacobian0=jac[k_nonlinear],
+            label="dynamic, nonlinear",
         ),
     }
     return out
@@ -447,8 +473,14 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     )
     assert dynamic.cargo_displacement_harmonics is not None  # the harmonic balance's solution has harmonics
     rows[("dynamic", "nonlinear")] = RowSolution(
-        dynamic.cargo_displacement_harmonics, dynamic.saddle_compression_time_m, dynamic.saddle_force_time_N, excitation, True,
-        dynamic.converged, dynamic.residual_norm, dynamic.iterations,
+        dynamic.cargo_displacement_harmonics,
+        dynamic.saddle_compression_time_m,
+        dynamic.saddle_force_time_N,
+        excitation,
+        True,
+        dynamic.converged,
+        dynamic.residual_norm,
+        dynamic.iterations,
     )
     return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 

@@ -242,8 +242,13 @@ def frequency_sweep(
         static = excitation_at(float(branch.omega_rad_s[0])).static_part()
         still = solve_condensed(condensed_operators(model, static, 0), opts.with_harmonics(0, 2)).saddle_compression
     table = sweep_table(
-        model, branch, excitation_at, opts.law, limits,
+        model,
+        branch,
+        excitation_at,
+        opts.law,
+        limits,
         wave_amplitude_m=float(case.wave.amplitude_m) if kind is SweepKind.WAVE else None,
-        rao_at=rao_at, still_water_compression_m=still,
+        rao_at=rao_at,
+        still_water_compression_m=still,
     )
     return SweepResult(kind, case, model, branch, table, float(omega_start_rad_s), float(omega_end_rad_s), limit_rad_s)

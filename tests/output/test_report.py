@@ -44,8 +44,19 @@ def run_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A real `seafast run` of the base case without rigid-body motions, small settings."""
     out = tmp_path_factory.mktemp("run")
     code = main(
-        ["run", "-o", str(out), "-q", "--no-plots", "--set", "vessel.motions=none", "--set", "solver.time_samples=32",
-         "--set", "model.element_length_m=2.0"]
+        [
+            "run",
+            "-o",
+            str(out),
+            "-q",
+            "--no-plots",
+            "--set",
+            "vessel.motions=none",
+            "--set",
+            "solver.time_samples=32",
+            "--set",
+            "model.element_length_m=2.0",
+        ]
     )
     assert code == 0
     assert (out / "results.nc").is_file()
@@ -227,14 +238,28 @@ def _chromium() -> str | None:
 
 def _browser_args(browser: str, profile: Path) -> list[str]:
     return [
-        browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync",
-        f"--user-data-dir={profile}", "--enable-logging=stderr", "--v=0", "--virtual-time-budget=10000",
+        browser,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={profile}",
+        "--enable-logging=stderr",
+        "--v=0",
+        "--virtual-time-budget=10000",
     ]
 
 
 def _js_errors(stderr: str) -> list[str]:
-    return [line for line in stderr.splitlines() if "Uncaught" in line or "ERROR:CONSOLE" in line or ":CONSOLE(" in line and "error" in line.lower()]
+    return [
+        line
+        for line in stderr.splitlines()
+        if "Uncaught" in line or "ERROR:CONSOLE" in line or ":CONSOLE(" in line and "error" in line.lower()
+    ]
 
 
 @pytest.mark.parametrize("which", ["run", "study"])
@@ -266,7 +291,9 @@ def test_report_renders_in_headless_chromium(which: str, run_dir: Path, study_di
     shot = tmp_path / "report.png"
     res = subprocess.run(
         [*_browser_args(browser, tmp_path / "profile-shot"), f"--screenshot={shot}", "--window-size=1400,3000", url],
-        capture_output=True, text=True, timeout=180,
+        capture_output=True,
+        text=True,
+        timeout=180,
     )
     assert res.returncode == 0, res.stderr[-2000:]
     assert not _js_errors(res.stderr), _js_errors(res.stderr)

@@ -72,7 +72,10 @@ def test_sigkill_then_resume_loses_and_repeats_nothing(tmp_path: Path):
 
     # the stored records equal an uninterrupted in-process evaluation
     plan = build_plan(seafast.load_case(None, OVERRIDES))
-    lines = {json.loads(line)["index"]: json.loads(line)["record"] for line in (out / STORE_DIRECTORY / TaskStore.RECORDS).read_text().splitlines()}
+    lines = {
+        json.loads(line)["index"]: json.loads(line)["record"]
+        for line in (out / STORE_DIRECTORY / TaskStore.RECORDS).read_text().splitlines()
+    }
     for index in (after_kill[0], stored[-1]):
         record, _ = evaluate_realisation(plan, index)
         for model in ("linear", "nonlinear"):

@@ -95,7 +95,9 @@ def test_hull_wave_response_is_linear_until_a_section_emerges():
             assert err > 1e-5 and second > 1e-5, a
     # moments too, and a crest amidships hogs (negative moment amidships at t = 0)
     r = wave_response(v.girder, v.loading, lam, 1.0)
-    assert np.max(np.abs(r.bending_moment_harmonics_Nm[1] - tf.bending_moment_Nm_per_m[0])) < 1e-9 * np.max(np.abs(r.bending_moment_harmonics_Nm[1]))
+    assert np.max(np.abs(r.bending_moment_harmonics_Nm[1] - tf.bending_moment_Nm_per_m[0])) < 1e-9 * np.max(
+        np.abs(r.bending_moment_harmonics_Nm[1])
+    )
     mid = np.argmin(np.abs(tf.x_m - 85.5))
     assert tf.bending_moment_Nm_per_m[0, mid].real < 0
 
@@ -151,8 +153,10 @@ def test_transfer_functions_vanish_in_very_long_and_very_short_waves(base):
 def test_vessel_setups_without_a_per_frequency_hull_are_refused(tmp_path):
     table = tmp_path / "deck.csv"
     table.write_text("x_m,still_water_m,wave_amplitude_m,wave_phase_rad\n0,0,0,0\n85,0.01,0.02,0\n171,0,0,0\n")
-    for overrides, key in (({"vessel.deck_deflection_table": str(table)}, "vessel.deck_deflection_table"),
-                           ({"vessel.coupling": "two_way"}, "vessel.coupling")):
+    for overrides, key in (
+        ({"vessel.deck_deflection_table": str(table)}, "vessel.deck_deflection_table"),
+        ({"vessel.coupling": "two_way"}, "vessel.coupling"),
+    ):
         case = seafast.load_case(None, overrides)
         with pytest.raises(CaseError, match=key):
             transfer_functions(case, build_model(case), np.array([0.5, 0.6]))

@@ -52,8 +52,13 @@ def uniform_heave(model, amplitude_m):
     def at(omega):
         deck = np.zeros((2, model.deck_dof_count), complex)
         deck[1, 0::2] = amplitude_m
-        return HarmonicExcitation(omega, deck, np.zeros((2, model.cargo_dof_count), complex),
-                                  np.zeros((2, model.cargo.element_count), complex), "uniform deck heave")
+        return HarmonicExcitation(
+            omega,
+            deck,
+            np.zeros((2, model.cargo_dof_count), complex),
+            np.zeros((2, model.cargo.element_count), complex),
+            "uniform deck heave",
+        )
 
     return at
 
@@ -85,6 +90,7 @@ def test_a_saddle_detached_all_period_gives_the_model_without_it(soft_model):
     lam = _spectrum(model, K)
     expected = np.exp(lam[0] * 2 * np.pi / w)
     print(f"\nleading multiplier {floquet.leading_multiplier:.6f}, without the saddle {expected:.6f}")
+
     def distance(mu: complex) -> float:  # to the expected multiplier or its conjugate (a pair)
         return min(abs(mu - expected), abs(np.conj(mu) - expected))
 
@@ -115,8 +121,15 @@ def test_a_perturbation_of_an_unstable_orbit_grows_by_the_leading_multiplier(sof
     C[1:] *= 2.0
     kw = np.arange(C.shape[0]) * w
     m = system.mode_count
-    eta = np.stack([np.linalg.solve(np.diag(system.natural_frequency_rad_s**2) - k**2 * np.eye(m) + 1j * k * system.modal_damping,
-                                    system.saddle_mode_shape.T @ C[j]) for j, k in enumerate(kw)])
+    eta = np.stack(
+        [
+            np.linalg.solve(
+                np.diag(system.natural_frequency_rad_s**2) - k**2 * np.eye(m) + 1j * k * system.modal_damping,
+                system.saddle_mode_shape.T @ C[j],
+            )
+            for j, k in enumerate(kw)
+        ]
+    )
     state = MarchState(eta.sum(0).real, (1j * kw[:, None] * eta).sum(0).real, (-(kw[:, None] ** 2) * eta).sum(0).real, c[0], c[0] > 0.0)
     linear = harmonics_to_time(real_to_complex_harmonics(condensed_operators(model, excitation_at(w), H).linear_compression_m), N)
     marcher = modal_correction(model, 2 * np.pi / w / N, system.cutoff_rad_s, minimum_modes=0)  # the same modes

@@ -89,7 +89,9 @@ def test_regularised_law_error_against_exact_reference(base):
             r = solve_hbm(model, ex, HBMOptions(harmonics=H, time_samples=128, contact_law=law))
             assert r.converged
             errors[law, H] = (force_error(r, td), moment_error(model, r, td), r.tensile_force_error_N)
-            lines.append(f"{law:9s} H={H:2d}: force {errors[law, H][0]:.3%}  moment {errors[law, H][1]:.3%}  tension {r.tensile_force_error_N / 1e3:.0f} kN")
+            lines.append(
+                f"{law:9s} H={H:2d}: force {errors[law, H][0]:.3%}  moment {errors[law, H][1]:.3%}  tension {r.tensile_force_error_N / 1e3:.0f} kN"
+            )
     print("\nerror vs exact time-domain reference (kappa = 1000 1/m):\n" + "\n".join(lines))
     tanh_err = errors["tanh", 20][0]
     assert 0.005 < tanh_err < 0.03  # the documented ~1.4 %
@@ -396,7 +398,9 @@ def test_time_domain_full_real_case(real_case):
     assert tf.options["formulation"] == "full"
     e_f, e_x = force_error(tf, tc), displacement_error(tf, tc)
     e_peak = abs(tf.max_saddle_force_N / qs.max_saddle_force_N - 1.0)
-    print(f"\nreal case: full vs condensed TD force {e_f:.1e}, displacement {e_x:.1e}; full TD vs QS peak force {e_peak:.3%} ({tf.message})")
+    print(
+        f"\nreal case: full vs condensed TD force {e_f:.1e}, displacement {e_x:.1e}; full TD vs QS peak force {e_peak:.3%} ({tf.message})"
+    )
     assert e_f < 1e-6 and e_x < 1e-6
     assert e_peak < 0.01
     assert not tf.contact_preserved and tf.saddle_force_time_N.min() >= 0.0

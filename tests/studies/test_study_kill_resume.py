@@ -27,8 +27,21 @@ axes:
 
 
 def _command(study: Path, out: Path, workers: int = 2) -> list[str]:
-    return [sys.executable, "-m", "seafast.studies.cli", str(study), "-o", str(out), "--workers", str(workers),
-            "--batch-size", "2", "--no-progress", "--no-figures", "-q"]
+    return [
+        sys.executable,
+        "-m",
+        "seafast.studies.cli",
+        str(study),
+        "-o",
+        str(out),
+        "--workers",
+        str(workers),
+        "--batch-size",
+        "2",
+        "--no-progress",
+        "--no-figures",
+        "-q",
+    ]
 
 
 def _env(log: Path, sleep_s: float) -> dict[str, str]:
@@ -93,7 +106,10 @@ def test_sigkill_then_resume_equals_an_uninterrupted_run(tmp_path: Path):
     reference = tmp_path / "reference"
     ref = subprocess.run(
         _command(study, reference, workers=1),
-        env=_env(tmp_path / "ref.log", 0.0), capture_output=True, text=True, timeout=120,
+        env=_env(tmp_path / "ref.log", 0.0),
+        capture_output=True,
+        text=True,
+        timeout=120,
     )
     assert ref.returncode == 0, ref.stderr
     assert (out / "study.csv").read_text() == (reference / "study.csv").read_text()

@@ -226,8 +226,15 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
 
     def value_of(quantity: str) -> Callable[[float], tuple[float, bool]]:
         def value(hs: float) -> tuple[float, bool]:
-            dw = design_wave_extremes(rescaled(ref, hs), family.static, settings.design_wave, quantities=(quantity,),
-                                      operators=operators, moments=family.moments, warm=warm)
+            dw = design_wave_extremes(
+                rescaled(ref, hs),
+                family.static,
+                settings.design_wave,
+                quantities=(quantity,),
+                operators=operators,
+                moments=family.moments,
+                warm=warm,
+            )
             return float(dw.totals[quantity]), dw.converged
 
         return value

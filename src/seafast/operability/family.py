@@ -76,8 +76,15 @@ class SeaStateFamily:
 
 
 _COMPLEX_FIELDS = (
-    "deck_displacement", "cargo_load_N", "cargo_line_load_N_per_m", "heave_m", "pitch_rad",
-    "cargo_displacement", "saddle_compression_m", "saddle_force_N", "bending_moment_Nm",
+    "deck_displacement",
+    "cargo_load_N",
+    "cargo_line_load_N_per_m",
+    "heave_m",
+    "pitch_rad",
+    "cargo_displacement",
+    "saddle_compression_m",
+    "saddle_force_N",
+    "bending_moment_Nm",
 )
 
 
@@ -162,8 +169,9 @@ def analysis_at(family: SeaStateFamily, peak_period_s: float, significant_height
 def _scaled_statistics(stats: ResponseStatistics, k: float) -> ResponseStatistics:
     """Statistics of the response in the same sea scaled in variance by ``k`` (Tz unchanged)."""
     r = math.sqrt(k)
-    return ResponseStatistics(stats.spectrum * k, stats.m0 * k, stats.m2 * k, stats.m4 * k, stats.sigma * r,
-                              stats.zero_crossing_period_s, stats.mpm * r)
+    return ResponseStatistics(
+        stats.spectrum * k, stats.m0 * k, stats.m2 * k, stats.m4 * k, stats.sigma * r, stats.zero_crossing_period_s, stats.mpm * r
+    )
 
 
 def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
@@ -174,10 +182,16 @@ def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
     """
     sp, e = analysis.spectrum, analysis.extremes
     k = (hs / sp.significant_height_m) ** 2
-    spectrum = replace(sp, density_m2_s_per_rad=sp.density_m2_s_per_rad * k, significant_height_m=float(hs),
-                       variance_outside_grid_m2=sp.variance_outside_grid_m2 * k,
-                       description=sp.description.replace(f"Hs = {sp.significant_height_m:g} m", f"Hs = {hs:g} m"))
-    force, comp, moment, stress = (_scaled_statistics(s, k) for s in (e.saddle_force, e.saddle_compression, e.bending_moment, e.bending_stress))
+    spectrum = replace(
+        sp,
+        density_m2_s_per_rad=sp.density_m2_s_per_rad * k,
+        significant_height_m=float(hs),
+        variance_outside_grid_m2=sp.variance_outside_grid_m2 * k,
+        description=sp.description.replace(f"Hs = {sp.significant_height_m:g} m", f"Hs = {hs:g} m"),
+    )
+    force, comp, moment, stress = (
+        _scaled_statistics(s, k) for s in (e.saddle_force, e.saddle_compression, e.bending_moment, e.bending_stress)
+    )
     still = e.still_water
     uplift = 3600.0 * downcrossing_rate_per_s(still.saddle_compression_m, comp.m0, comp.m2)
     totals = {
@@ -191,5 +205,3 @@ def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
     extremes = SpectralExtremes(e.duration_s, force, comp, moment, stress, still, uplift, totals)
     case = case_at(analysis.case, float(analysis.case.sea_state.peak_period_s or sp.peak_period_s), hs)
     return SpectralAnalysis(case, analysis.model, spectrum, analysis.transfer, extremes)
-
-

@@ -109,7 +109,9 @@ def conditioned_wave(
     load[j] = Z[:, None] * interpolate_transfer(w_grid, tf.cargo_load_N, w)
     line[j] = Z[:, None] * interpolate_transfer(w_grid, tf.cargo_line_load_N_per_m, w)
     excitation = HarmonicExcitation(dw, deck, load, line, f"conditioned wave (MLER), base period {base_period_s:.1f} s")
-    return ConditionedWave(float(base_period_s), np.asarray(w, dtype=np.float64), np.asarray(Z, dtype=np.complex128), float(target), excitation)
+    return ConditionedWave(
+        float(base_period_s), np.asarray(w, dtype=np.float64), np.asarray(Z, dtype=np.complex128), float(target), excitation
+    )
 
 
 def solve_conditioned_wave(

@@ -250,7 +250,12 @@ class DesignWaveExtremes:
 
     def row(self) -> dict[str, Any]:
         """The (nonlinear, design_wave) row of seastate.csv."""
-        return {"model": "nonlinear", "method": "design_wave", **{k: float(v) for k, v in self.totals.items()}, "converged": bool(self.converged)}
+        return {
+            "model": "nonlinear",
+            "method": "design_wave",
+            **{k: float(v) for k, v in self.totals.items()},
+            "converged": bool(self.converged),
+        }
 
 
 def static_totals(analysis: SpectralAnalysis) -> dict[str, float]:
@@ -328,7 +333,9 @@ def design_wave_extremes(
                     unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
                     cache[(wave.frequency_index, H)] = wave_operators(analysis.model, unit, opts, mm)
                 usable = previous is not None and previous.converged and previous.harmonics == H
-                sol = solve_wave(cache[(wave.frequency_index, H)], wave.amplitude_m, opts, previous.compression_harmonics_m if usable else None)  # type: ignore[union-attr]
+                sol = solve_wave(
+                    cache[(wave.frequency_index, H)], wave.amplitude_m, opts, previous.compression_harmonics_m if usable else None
+                )  # type: ignore[union-attr]
                 if sol.converged:
                     break
             solved[key] = sol

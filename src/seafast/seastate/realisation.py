@@ -285,9 +285,7 @@ def realisation_plan(
     ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
     grid = synthesis_grid((lo, hi), density, ss.duration_s, dt_c_max)
     transfer = interpolate_transfer(omega_i, channels, grid.omega_rad_s)
-    system = modal_correction(
-        model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model)
-    )
+    system = modal_correction(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))
     beam = model.cargo
     recover = lambda q: bending_moment_line(  # noqa: E731 - moment line of displacement rows (..., n_c)
         beam.node_x_m, q, beam.element_bending_stiffness_Nm2, None, None, MOMENT_POINTS_PER_ELEMENT
@@ -355,14 +353,17 @@ class RealisationTimeSeries:
 
 def _model_record(F: float, M: float, S: float, us: float, ud: float, lifted: float, events: int) -> dict[str, Any]:
     return {
-        "F_N": float(F), "M_b_Nm": float(M), "sigma_b_Pa": float(S), "u_s_m": float(max(us, 0.0)), "u_d_m": float(max(ud, 0.0)),
-        "time_lifted_fraction": float(lifted), "uplift_events": int(events),
+        "F_N": float(F),
+        "M_b_Nm": float(M),
+        "sigma_b_Pa": float(S),
+        "u_s_m": float(max(us, 0.0)),
+        "u_d_m": float(max(ud, 0.0)),
+        "time_lifted_fraction": float(lifted),
+        "uplift_events": int(events),
     }
 
 
-def evaluate_realisation(
-    plan: RealisationPlan, index: int, capture: bool = False
-) -> tuple[dict[str, Any], RealisationTimeSeries | None]:
+def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = False) -> tuple[dict[str, Any], RealisationTimeSeries | None]:
     """Maxima and uplift statistics of realisation ``index``, linear and nonlinear.
 
     Returns
@@ -384,14 +385,17 @@ def evaluate_realisation(
     g = X[:, n_s:]
     # ------------------------------------------------------------ linear model, per coarse sample
     U = plan.moment_basis
-    per_sample = _linear_samples(
-        np.ascontiguousarray(d_tot), k, np.ascontiguousarray(g), U, plan.moment_static_Nm, plan.section_modulus_m3
-    )
+    per_sample = _linear_samples(np.ascontiguousarray(d_tot), k, np.ascontiguousarray(g), U, plan.moment_static_Nm, plan.section_modulus_m3)
     force_t, comp_t, moment_t, stress_t = per_sample.T
     below = d_tot < 0.0
     lifted_t = below.any(axis=1)
     linear = _model_record(
-        force_t.max(), moment_t.max(), stress_t.max(), comp_t.max(), 0.0, lifted_t.mean(),
+        force_t.max(),
+        moment_t.max(),
+        stress_t.max(),
+        comp_t.max(),
+        0.0,
+        lifted_t.mean(),
         int(np.count_nonzero(~below[:-1] & below[1:])),
     )
     cov = np.cov(g, rowvar=False, bias=True).reshape(g.shape[1], g.shape[1])
@@ -425,13 +429,24 @@ def evaluate_realisation(
         else:
             start, state = (i - 1) * ratio, MarchState.at_rest(plan.system)
         out = march_window(
-            plan.system, coef, ratio, plan.compression_static_m, trigger, start, n_fine - 1, state,
-            tolerance_m=plan.tolerance_m, moments=plan.moments, capture_every=every * ratio,
-            capture_compression=cap_comp, capture_lifted=cap_lift,
+            plan.system,
+            coef,
+            ratio,
+            plan.compression_static_m,
+            trigger,
+            start,
+            n_fine - 1,
+            state,
+            tolerance_m=plan.tolerance_m,
+            moments=plan.moments,
+            capture_every=every * ratio,
+            capture_compression=cap_comp,
+            capture_lifted=cap_lift,
         )
         covered[start // ratio + 1 : out.end // ratio + 1] = True
-        nl = np.maximum(nl, [out.max_saddle_force_N, out.max_bending_moment_Nm, out.max_bending_stress_Pa,
-                             out.max_compression_m, out.max_gap_m])
+        nl = np.maximum(
+            nl, [out.max_saddle_force_N, out.max_bending_moment_Nm, out.max_bending_stress_Pa, out.max_compression_m, out.max_gap_m]
+        )
         lifted_steps += out.lifted_steps
         events += out.uplift_events
         solved = solved and out.solved
@@ -462,6 +477,12 @@ def evaluate_realisation(
         nl_comp = np.where(covered[rows][:, None], cap_comp, d_tot[rows])
         wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size))[rows]
         series = RealisationTimeSeries(
-            int(index), np.asarray(rows * grid.time_step_s, dtype=np.float64), wave, lin_force, k * np.maximum(nl_comp, 0.0), cap_lift, plan.saddle_x_m
+            int(index),
+            np.asarray(rows * grid.time_step_s, dtype=np.float64),
+            wave,
+            lin_force,
+            k * np.maximum(nl_comp, 0.0),
+            cap_lift,
+            plan.saddle_x_m,
         )
     return record, series

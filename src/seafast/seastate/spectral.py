@@ -139,9 +139,7 @@ class SpectralExtremes:
         return {"model": "linear", "method": "spectral", **{k: float(v) for k, v in self.totals.items()}, "converged": True}
 
 
-def spectral_extremes(
-    tf: TransferFunctions, spectrum: WaveSpectrum, still: StillWater, duration_s: float
-) -> SpectralExtremes:
+def spectral_extremes(tf: TransferFunctions, spectrum: WaveSpectrum, still: StillWater, duration_s: float) -> SpectralExtremes:
     """Linear spectral extremes over ``duration_s`` (see the module docstring)."""
     if not np.array_equal(tf.omega_rad_s, spectrum.omega_rad_s):
         raise ValueError("spectral_extremes: the transfer functions must be on the spectrum's grid")

@@ -185,8 +185,10 @@ def wave_operators(
     # the linear solution and the line loads live on the excitation's harmonics only
     n_k = min(excitation.harmonic_count, H + 1)
     moment = np.zeros((H + 1, mm.x_m.size), dtype=complex)
-    moment[:n_k] = (_real_map(mm.displacement_map, ops.linear_cargo_displacement[:n_k].T)
-                    + _real_map(mm.load_map, excitation.cargo_line_load_N_per_m[:n_k].T)).T
+    moment[:n_k] = (
+        _real_map(mm.displacement_map, ops.linear_cargo_displacement[:n_k].T)
+        + _real_map(mm.load_map, excitation.cargo_line_load_N_per_m[:n_k].T)
+    ).T
     moment[0] = moment[0].real + mm.gravity_moment_Nm
     Y = ops.cargo_influence  # (H+1, n_c, n_s)
     influence = _real_map(mm.displacement_map, Y.transpose(1, 0, 2).reshape(Y.shape[1], -1))
@@ -358,9 +360,11 @@ def solve_wave_adaptive(
     """
     mm = moment_map(model) if moments is None else moments
     exc = HarmonicExcitation(
-        unit.omega_rad_s, np.vstack([unit.deck_displacement[:1], amplitude * unit.deck_displacement[1:]]),
+        unit.omega_rad_s,
+        np.vstack([unit.deck_displacement[:1], amplitude * unit.deck_displacement[1:]]),
         np.vstack([unit.cargo_load_N[:1], amplitude * unit.cargo_load_N[1:]]),
-        np.vstack([unit.cargo_line_load_N_per_m[:1], amplitude * unit.cargo_line_load_N_per_m[1:]]), unit.source,
+        np.vstack([unit.cargo_line_load_N_per_m[:1], amplitude * unit.cargo_line_load_N_per_m[1:]]),
+        unit.source,
     )
     opts = HBMOptions() if options is None else options
     r = solve_hbm(model, exc, opts)
@@ -379,8 +383,15 @@ def solve_wave_adaptive(
     law = opts.law
     return WaveSolution(
         amplitude=float(amplitude),
-        maxima=_maxima(complex_to_real_harmonics(C), complex_to_real_harmonics(moment), inverse,
-                       np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float), law, mm.section_modulus_m3, True),
+        maxima=_maxima(
+            complex_to_real_harmonics(C),
+            complex_to_real_harmonics(moment),
+            inverse,
+            np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float),
+            law,
+            mm.section_modulus_m3,
+            True,
+        ),
         linear_maxima=None,
         converged=bool(r.converged),
         residual_norm=float(r.residual_norm),

@@ -323,14 +323,39 @@ def _bspline_row(coef, x):  # pragma: no cover - compiled
     w1 = (3.0 * t**3 - 6.0 * t**2 + 4.0) / 6.0
     w2 = (-3.0 * t**3 + 3.0 * t**2 + 3.0 * t + 1.0) / 6.0
     w3 = t**3 / 6.0
-    return (w0 * coef[(i - 1) % n] + w1 * coef[i % n] + w2 * coef[(i + 1) % n] + w3 * coef[(i + 2) % n])
+    return w0 * coef[(i - 1) % n] + w1 * coef[i % n] + w2 * coef[(i + 1) % n] + w3 * coef[(i + 2) % n]
 
 
 @numba.njit(cache=True)
 def _march(  # pragma: no cover - compiled
-    start, stop, ratio, coef, delta_static, trigger, dt, predictor, force_response, phi_b, G, k, inverses,
-    omega, mode_bound, tol_state, tol_sign, eta, deta, ddeta, c, detached,
-    moment_static, moment_basis, modulus, capture_every, capture_compression, capture_lifted,
+    start,
+    stop,
+    ratio,
+    coef,
+    delta_static,
+    trigger,
+    dt,
+    predictor,
+    force_response,
+    phi_b,
+    G,
+    k,
+    inverses,
+    omega,
+    mode_bound,
+    tol_state,
+    tol_sign,
+    eta,
+    deta,
+    ddeta,
+    c,
+    detached,
+    moment_static,
+    moment_basis,
+    modulus,
+    capture_every,
+    capture_compression,
+    capture_lifted,
 ):
     """March from fine step ``start`` (state given, updated in place) until quiet and untriggered, or ``stop``.
 
@@ -561,11 +586,34 @@ def march_window(
     cl = np.zeros((0, n_s), dtype=bool) if capture_lifted is None else capture_lifted
     tol_sign = 1e-12 * max(float(np.max(np.abs(delta_static_m))), float(np.max(np.abs(coefficients[:, :n_s]))), 1e-9)
     end, maxima, lifted, events, solved = _march(
-        int(start), int(stop), float(ratio), coefficients, np.asarray(delta_static_m, dtype=float), trigger,
-        system.time_step_s, system.predictor, system.force_response, system.saddle_modes, system.receptance_m_per_N,
-        k, system.set_inverses, system.omega_rad_s, system.mode_deflection_bound, float(tolerance_m), tol_sign,
-        state.eta, state.eta_dot, state.eta_ddot, state.force_N, state.detached, ms, mb, mod,
-        int(capture_every), cc, cl,
+        int(start),
+        int(stop),
+        float(ratio),
+        coefficients,
+        np.asarray(delta_static_m, dtype=float),
+        trigger,
+        system.time_step_s,
+        system.predictor,
+        system.force_response,
+        system.saddle_modes,
+        system.receptance_m_per_N,
+        k,
+        system.set_inverses,
+        system.omega_rad_s,
+        system.mode_deflection_bound,
+        float(tolerance_m),
+        tol_sign,
+        state.eta,
+        state.eta_dot,
+        state.eta_ddot,
+        state.force_N,
+        state.detached,
+        ms,
+        mb,
+        mod,
+        int(capture_every),
+        cc,
+        cl,
     )
     F, u_s, u_d, M, sigma = (float(v) for v in maxima)
     return WindowOutcome(int(end), F, u_s, u_d, M, sigma, int(lifted), int(events), bool(solved))
@@ -594,9 +642,7 @@ class TransientRecord:
     solved: bool
 
 
-def integrate_record(
-    system: ModalCorrection, linear_compression_m: NDArray, *, initial: MarchState | None = None
-) -> TransientRecord:
+def integrate_record(system: ModalCorrection, linear_compression_m: NDArray, *, initial: MarchState | None = None) -> TransientRecord:
     """March one record of linear compressions sampled at the integrator's step.
 
     Parameters
@@ -620,10 +666,25 @@ def integrate_record(
     lifted = np.zeros((n_t, n_s), dtype=bool)
     compression[0] = d_lin[0] - system.saddle_displacement_m(state.eta, state.force_N)
     outcome = march_window(
-        system, coef, 1, np.zeros(n_s), np.ones(n_t, dtype=bool), 0, n_t - 1, state,
-        tolerance_m=0.0, capture_every=1, capture_compression=compression, capture_lifted=lifted,
+        system,
+        coef,
+        1,
+        np.zeros(n_s),
+        np.ones(n_t, dtype=bool),
+        0,
+        n_t - 1,
+        state,
+        tolerance_m=0.0,
+        capture_every=1,
+        capture_compression=compression,
+        capture_lifted=lifted,
     )
-    return TransientRecord(np.asarray(np.arange(n_t) * system.time_step_s, dtype=np.float64), compression, system.stiffness_N_per_m * np.maximum(compression, 0.0), outcome.solved)
+    return TransientRecord(
+        np.asarray(np.arange(n_t) * system.time_step_s, dtype=np.float64),
+        compression,
+        system.stiffness_N_per_m * np.maximum(compression, 0.0),
+        outcome.solved,
+    )
 
 
 # ====================================================================== periodic march
@@ -711,7 +772,17 @@ def march_period(system: ModalCorrection, linear_compression_m: NDArray[np.float
     lifted = np.zeros((N + 1, n_s), dtype=bool)
     captured[0] = d_lin[0] - system.saddle_displacement_m(state.eta, state.force_N)
     march_window(
-        system, coef, 1, np.zeros(n_s), np.ones(N, dtype=bool), 0, N, state, tolerance_m=0.0,
-        capture_every=1, capture_compression=captured, capture_lifted=lifted,
+        system,
+        coef,
+        1,
+        np.zeros(n_s),
+        np.ones(N, dtype=bool),
+        0,
+        N,
+        state,
+        tolerance_m=0.0,
+        capture_every=1,
+        capture_compression=captured,
+        capture_lifted=lifted,
     )
     return np.roll(captured[1:], 1, axis=0)  # t_1 .. t_N, and t_N is t_0 of the next period

@@ -163,7 +163,9 @@ def _init_process_worker(coordinator_pid: int) -> None:
     _exit_with_parent(parent)
 
 
-def evaluate_batch(grid: PointSource, indices: Sequence[int], evaluator: Evaluator | str | None = None, pin_threads: bool = True) -> list[PointRecord]:
+def evaluate_batch(
+    grid: PointSource, indices: Sequence[int], evaluator: Evaluator | str | None = None, pin_threads: bool = True
+) -> list[PointRecord]:
     """Evaluate a batch of points (runs in a worker).
 
     Parameters

@@ -172,8 +172,15 @@ def plot_compliance_map(ds: xr.Dataset, path: str | Path, limits: DesignLimits |
     names = ["complies with neither", "linear model only", "nonlinear model only", "both models"]
     fig, ax = plt.subplots(figsize=(7.5, 5.5), constrained_layout=True)
     ax.pcolormesh(
-        _edges(x, _is_log(sliced, xkey)), _edges(y, _is_log(sliced, ykey)), category, shading="flat",
-        cmap=ListedColormap(colors), vmin=-0.5, vmax=3.5, edgecolors="white", linewidth=0.3,
+        _edges(x, _is_log(sliced, xkey)),
+        _edges(y, _is_log(sliced, ykey)),
+        category,
+        shading="flat",
+        cmap=ListedColormap(colors),
+        vmin=-0.5,
+        vmax=3.5,
+        edgecolors="white",
+        linewidth=0.3,
     )
     if "error" in sliced:
         failed = (sliced["error"] != "").broadcast_like(comp["complies"].isel(model=0)).transpose(ykey, xkey).values

@@ -54,9 +54,7 @@ class DesignLimits:
     @staticmethod
     def from_attrs(attrs: Mapping[str, Any]) -> "DesignLimits":
         """The limits recorded in a study dataset's attributes (defaults where absent)."""
-        return DesignLimits(
-            float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6))
-        )
+        return DesignLimits(float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6)))
 
 
 def _axis_keys(ds: xr.Dataset) -> list[str]:

@@ -203,4 +203,6 @@ def run_study(
     }
     failed = sum(1 for r in records.values() if r.error)
     logger.info("study '%s': %d computed, %d failed, %.1f s", grid.spec.name, computed, failed, time.perf_counter() - t0)
-    return StudyRun(dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers)
+    return StudyRun(
+        dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers
+    )

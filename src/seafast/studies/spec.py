@@ -130,9 +130,7 @@ def case_key_kind(key: str) -> Literal["int", "float"]:
         fields = model.model_fields
         if part not in fields:
             where = ".".join(walked) or "(case)"
-            raise StudyError(
-                f"'{key}' is not a case key: '{part}' is not in {where}; allowed: {', '.join(_field_names(model))}"
-            )
+            raise StudyError(f"'{key}' is not a case key: '{part}' is not in {where}; allowed: {', '.join(_field_names(model))}")
         walked.append(part)
         annotation = fields[part].annotation
         if depth < len(parts) - 1:
@@ -145,8 +143,7 @@ def case_key_kind(key: str) -> Literal["int", "float"]:
                 sub = _model_class(annotation)
                 assert sub is not None
                 raise StudyError(
-                    f"'{key}' is a group of keys, not a numeric value; allowed: "
-                    + ", ".join(f"{key}.{f}" for f in _field_names(sub))
+                    f"'{key}' is a group of keys, not a numeric value; allowed: " + ", ".join(f"{key}.{f}" for f in _field_names(sub))
                 )
             kinds = _numeric_kinds(annotation)
             if not kinds:
@@ -231,9 +228,7 @@ def _parse_expression(text: str) -> ast.Expression:
     try:
         tree = ast.parse(str(text), mode="eval")
     except SyntaxError:
-        raise StudyError(
-            f"derived expression {text!r} is not valid; allowed: {_ALLOWED_TEXT}"
-        ) from None
+        raise StudyError(f"derived expression {text!r} is not valid; allowed: {_ALLOWED_TEXT}") from None
     for node in ast.walk(tree):
         if isinstance(node, ast.Call):
             if not (isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS) or node.keywords or not node.args:
@@ -390,9 +385,7 @@ class AxisSpec(_Strict):
         if case_key_kind(self.key) == "int":
             rounded = np.round(raw)
             if not np.allclose(raw, rounded, rtol=0, atol=1e-9):
-                raise StudyError(
-                    f"axes[{self.key}]: values {raw.tolist()} are not whole numbers; allowed: integers for {self.key}"
-                )
+                raise StudyError(f"axes[{self.key}]: values {raw.tolist()} are not whole numbers; allowed: integers for {self.key}")
             if len(set(rounded.tolist())) != len(rounded):
                 raise StudyError(f"axes[{self.key}]: start/stop/num give repeated integers {rounded.tolist()}")
             return rounded.astype(np.int64)
@@ -402,9 +395,7 @@ class AxisSpec(_Strict):
 class LimitsSpec(_Strict):
     """Design limits (the source's: 7 MN saddle force, 20 MPa bending stress)."""
 
-    max_saddle_force_N: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(
-        7.0e6, description="Largest allowed saddle force F [N]"
-    )
+    max_saddle_force_N: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(7.0e6, description="Largest allowed saddle force F [N]")
     max_bending_stress_Pa: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(
         20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]"
     )
@@ -554,8 +545,7 @@ def load_study_spec(name_or_path: str | Path) -> tuple[StudySpec, Path | None]:
         path = Path(text_name)
         if not path.is_file():
             raise StudyError(
-                f"study '{text_name}': no such file, and not a built-in study; allowed: a YAML file or one of "
-                + ", ".join(BUILTIN_STUDIES)
+                f"study '{text_name}': no such file, and not a built-in study; allowed: a YAML file or one of " + ", ".join(BUILTIN_STUDIES)
             )
         try:
             text = path.read_text(encoding="utf-8")

@@ -138,15 +138,23 @@ def _axial_findings(ds: xr.Dataset, lcs: list[str], models: list[str]) -> list[F
         for m in models:
             sel = ds.sel(load_case=lc, model=m)
             if "axial_converged" in sel and not bool(sel["axial_converged"]):
-                out.append(Finding("WARNING", f"{lc} {m}: the axial (friction) solve did NOT converge",
-                                   str(sel["axial_solver_message"].values.item()) if "axial_solver_message" in sel else ""))
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the axial (friction) solve did NOT converge",
+                        str(sel["axial_solver_message"].values.item()) if "axial_solver_message" in sel else "",
+                    )
+                )
             slip = float(sel["slip_m"])
             if slip > 0 and m == "nonlinear":
-                out.append(Finding(
-                    "WARNING", f"{lc} {m}: the cargo slides on its saddles, {slip * 1e3:.1f} mm per period",
-                    f"the friction coefficient is below the critical {float(sel['critical_friction_coefficient']):.4f}; the lashings "
-                    f"and stoppers carry up to {float(sel['axial_force_N']) / 1e3:.1f} kN. Add stoppers or friction.",
-                ))
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the cargo slides on its saddles, {slip * 1e3:.1f} mm per period",
+                        f"the friction coefficient is below the critical {float(sel['critical_friction_coefficient']):.4f}; the lashings "
+                        f"and stoppers carry up to {float(sel['axial_force_N']) / 1e3:.1f} kN. Add stoppers or friction.",
+                    )
+                )
     return out
 
 

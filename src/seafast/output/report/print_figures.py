@@ -85,7 +85,12 @@ def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
         ax.set_ylabel("saddle [-]")
         ax.set_title(f"{m} model" + (" (detached = would need tension)" if m == "linear" else ""), fontsize=10)
     axes[-1, 0].set_xlabel("period fraction t/T [-]")
-    fig.legend(handles=[Patch(color="#1a9850", label="in contact"), Patch(color="#fdae61", label="detached")], loc="upper right", ncol=2, fontsize=8)
+    fig.legend(
+        handles=[Patch(color="#1a9850", label="in contact"), Patch(color="#fdae61", label="detached")],
+        loc="upper right",
+        ncol=2,
+        fontsize=8,
+    )
     fig.suptitle(f"Contact state over one wave period ({lc})", fontsize=11, x=0.02, ha="left")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     fig.savefig(path, dpi=PNG_DPI)
@@ -147,7 +152,13 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
             if study is not None:
                 lines += ["", f"study {study.attrs.get('study', '')}: {study.attrs.get('description', '')}"]
                 lines += [f"{f.level}: {f.title}" for f in study_findings(study)]
-            name = case_mapping(run.attrs.get("case_json")).get("name", "") if run is not None else study.attrs.get("study", "") if study is not None else ""
+            name = (
+                case_mapping(run.attrs.get("case_json")).get("name", "")
+                if run is not None
+                else study.attrs.get("study", "")
+                if study is not None
+                else ""
+            )
             _summary_page(pdf, f"seafast report: {name}", lines)
         with _print_quality(pdf, PNG_DPI):
             for fname, fn in jobs:

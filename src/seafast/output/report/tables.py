@@ -99,8 +99,7 @@ def input_rows(case: Mapping[str, Any]) -> list[dict[str, str]]:
         ``unit`` (SI, from the key's suffix) and ``description`` (from the case schema).
     """
     return [
-        {"key": k, "value": _format_value(v), "unit": display_unit(k), "description": _description_of(k)}
-        for k, v in flatten_case(case)
+        {"key": k, "value": _format_value(v), "unit": display_unit(k), "description": _description_of(k)} for k, v in flatten_case(case)
     ]
 
 
@@ -150,7 +149,16 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     tensile force of the regularised contact law [kN], solver message; after a two-way run
     also the coupling's own residual and tolerance [m] and its steps.
     """
-    header = ["load case", "model", "converged", "residual norm", "iterations", "truncation indicator", "tensile-force error [kN]", "solver message"]
+    header = [
+        "load case",
+        "model",
+        "converged",
+        "residual norm",
+        "iterations",
+        "truncation indicator",
+        "tensile-force error [kN]",
+        "solver message",
+    ]
     coupled = "coupling_residual_m" in ds
     if coupled:
         header[-1:-1] = ["coupling residual [m]", "coupling tolerance [m]", "coupling steps"]
@@ -175,7 +183,11 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
                     str(int(sel["iterations"])) if "iterations" in sel else "-",
                     num("harmonic_truncation_indicator", ".2e"),
                     num("tensile_force_error_N", ".1f", 1e-3),
-                    *([num("coupling_residual_m", ".2e"), num("coupling_tolerance_m", ".2e"), str(int(sel["coupling_iterations"]))] if coupled else []),
+                    *(
+                        [num("coupling_residual_m", ".2e"), num("coupling_tolerance_m", ".2e"), str(int(sel["coupling_iterations"]))]
+                        if coupled
+                        else []
+                    ),
                     str(sel["solver_message"].values.item()) if "solver_message" in sel else "",
                 ]
             )

@@ -231,4 +231,3 @@ def pad_harmonics(U: NDArray[np.float64], harmonics: int) -> NDArray[np.float64]
     m = min(out.shape[0], U.shape[0])
     out[:m] = U[:m]
     return out
-

@@ -10,7 +10,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, high_harmonic_energy_share, real_dft_matrices, real_to_complex_harmonics
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    harmonics_to_time,
+    high_harmonic_energy_share,
+    real_dft_matrices,
+    real_to_complex_harmonics,
+)
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
 from seafast.solvers.hbm.full import FullProblem
@@ -130,7 +136,9 @@ def solve_hbm(
     # the steps from the march (or from the previous H) are near the solution: a few Newton steps, no fallbacks
     quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), _QUICK_ITERATIONS))
     ops = condensed_operators(model, excitation, H)
-    response = _solve_fixed(model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops)
+    response = _solve_fixed(
+        model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops
+    )
     if not response.converged:
         # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (a given
         # start has just failed), then the refinement below from there
@@ -180,7 +188,10 @@ def solve_hbm(
         march_periods=selection.march_periods,
         march_change=selection.march_change,
     )
-    note = response.message + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
+    note = (
+        response.message
+        + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
+    )
     return _with_truncation(replace(response, options=record, message=note), error, options.truncation_tolerance)
 
 
@@ -190,7 +201,9 @@ def _with_truncation(response: PeriodicResponse, error: NDArray, tolerance: floa
     if response.converged and float(np.max(error, initial=0.0)) > tolerance:
         logger.warning(
             "harmonic balance: H = %s leaves an estimated %.2g of a saddle's peak force out (tolerance %.2g)",
-            response.options.get("harmonics"), float(np.max(error)), tolerance,
+            response.options.get("harmonics"),
+            float(np.max(error)),
+            tolerance,
         )
         warnings = warnings + (SolverWarning.TOO_FEW_HARMONICS,)
     return replace(response, truncation_error=error, warnings=warnings)

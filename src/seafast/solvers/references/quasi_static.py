@@ -118,6 +118,17 @@ def solve_quasi_static(
     else:
         logger.debug("quasi-static reference: %s", verdict)
     return exact_law_response(
-        "quasi_static", model, excitation, cargo, delta, SolverOutcome.CONVERGED, 0.0, len(states), N,
-        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options, warnings,
+        "quasi_static",
+        model,
+        excitation,
+        cargo,
+        delta,
+        SolverOutcome.CONVERGED,
+        0.0,
+        len(states),
+        N,
+        f"exact active-set solution at {N} instants; {verdict}",
+        harmonics_for_indicator,
+        options,
+        warnings,
     )

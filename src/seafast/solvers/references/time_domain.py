@@ -169,12 +169,25 @@ def solve_time_domain(
     given = f" ({initial.method})" if initial.kind is TimeDomainStart.GIVEN else ""
     message = f"{run.description}; from the {_START_WORDS[initial.kind]}{given}; " + run.check.describe(run.periods)
     if orbit.distance_from_start is not None:
-        message += f"; distance from the start's orbit {orbit.distance_from_start:.2e} (" + (
-            "the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached"
-        ) + f", tolerance {orbit.orbit_tolerance:g})"
+        message += (
+            f"; distance from the start's orbit {orbit.distance_from_start:.2e} ("
+            + ("the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached")
+            + f", tolerance {orbit.orbit_tolerance:g})"
+        )
     response = exact_law_response(
-        "time_domain", model, excitation, run.cargo_m, run.compression_m, outcome, run.check.change, run.periods, run.steps,
-        message, int(harmonics_for_indicator), options, orbit=orbit,
+        "time_domain",
+        model,
+        excitation,
+        run.cargo_m,
+        run.compression_m,
+        outcome,
+        run.check.change,
+        run.periods,
+        run.steps,
+        message,
+        int(harmonics_for_indicator),
+        options,
+        orbit=orbit,
     )
     logger.log(logging.DEBUG if outcome is SolverOutcome.CONVERGED else logging.INFO, "time-domain reference: %s", response.message)
     return response
@@ -219,8 +232,14 @@ class _PeriodicityCheck:
 
 
 def _time_domain_full(
-    model: StructuralModel, excitation: HarmonicExcitation, initial: StartState, N: int, S: int, max_periods: int,
-    tolerance: float, alpha: float,
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    initial: StartState,
+    N: int,
+    S: int,
+    max_periods: int,
+    tolerance: float,
+    alpha: float,
 ) -> _Run:
     """Full-DOF HHT-alpha with the exact unilateral saddle springs (see :func:`solve_time_domain`).
 
@@ -303,8 +322,14 @@ def _time_domain_full(
 
 
 def _time_domain_condensed(
-    model: StructuralModel, excitation: HarmonicExcitation, initial: StartState, N: int, S: int, max_periods: int,
-    tolerance: float, hht_alpha: float,
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    initial: StartState,
+    N: int,
+    S: int,
+    max_periods: int,
+    tolerance: float,
+    hht_alpha: float,
 ) -> _Run:
     """HHT-alpha with the saddles bilateral in K and each step's contact condensed on the saddles."""
     q = quadratic_matrices(model, True)
