@@ -28,9 +28,9 @@ import pstats
 import time
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
 
+from benchutil import timed
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 

@@ -31,12 +31,11 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from benchutil import timed  # noqa: E402
-
-import seafast  # noqa: E402
-from seafast.operability.allowable import allowable_sea_states  # noqa: E402
-from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation  # noqa: E402
-from seafast.seastate.spectral import spectral_analysis  # noqa: E402
+import seafast
+from benchutil import timed
+from seafast.operability.allowable import allowable_sea_states
+from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation
+from seafast.seastate.spectral import spectral_analysis
 
 RAISED = {"limits.max_saddle_force_N": 11.5e6, "limits.max_bending_stress_Pa": 28.0e6}
 

@@ -20,23 +20,21 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from benchutil import timed  # noqa: E402
-
-import seafast  # noqa: E402
-from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation  # noqa: E402
-from seafast.excitation.hull_girder import deck_harmonics_at, wave_response, wave_transfer_functions  # noqa: E402
-from seafast.excitation.vessel import vessel_excitation  # noqa: E402
-from seafast.pipeline import build_model  # noqa: E402
-from seafast.seastate.spectral import spectral_analysis  # noqa: E402
-from seafast.seastate.transfer import transfer_functions  # noqa: E402
-from seafast.solvers.linear import solve_harmonic  # noqa: E402
+import seafast
+from benchutil import timed
+from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
+from seafast.excitation.hull_girder import deck_harmonics_at, wave_response, wave_transfer_functions
+from seafast.excitation.vessel import vessel_excitation
+from seafast.pipeline import build_model
+from seafast.seastate.spectral import spectral_analysis
+from seafast.seastate.transfer import transfer_functions
+from seafast.solvers.linear import solve_harmonic
 
 
 def _dense_cargo_loop(case, model, tf):

@@ -22,8 +22,9 @@ import time
 from pathlib import Path
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
+
+from benchutil import timed
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -128,8 +129,8 @@ def _table_again(result):
     """The sweep's table (stability, moments, linear model, truncation, range) rebuilt for its branch."""
     from seafast.pipeline import hbm_options
     from seafast.results.sweep import sweep_table
-    from seafast.sweeps import SweepKind, wave_excitation
     from seafast.solvers.hbm import condensed_operators, solve_condensed
+    from seafast.sweeps import SweepKind, wave_excitation
 
     case, model, branch = result.case, result.model, result.branch
     law = hbm_options(case).law

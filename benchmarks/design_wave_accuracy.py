@@ -146,11 +146,11 @@ def main(argv: list[str] | None = None) -> None:
         "| sea state | uplift/h | F MC [MN] (95 %) | dw | dw adaptive | MLER | linear | M_b MC [MN m] (95 %) | dw | dw adaptive | MLER | linear | u_d MC [mm] (95 %) | u_d dw |"
     )
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    worst = {m: 0.0 for m in ("dw", "dw_adaptive", "mler", "linear")}
-    within = {m: 0 for m in worst}
+    worst = dict.fromkeys(("dw", "dw_adaptive", "mler", "linear"), 0.0)
+    within = dict.fromkeys(worst, 0)
     for r in results:
         cells = [r["name"], f"{r['uplift_per_hour']:.1f}"]
-        ok = {m: True for m in worst}
+        ok = dict.fromkeys(worst, True)
         for q, scale in (("F_N", 1e-6), ("M_b_Nm", 1e-6)):
             lo, hi = r["mc_interval"][q]
             cells.append(f"{r['mc'][q] * scale:.2f} ({lo * scale:.2f}-{hi * scale:.2f})")

@@ -17,9 +17,9 @@ import pytest
 import xarray as xr
 
 import seafast.solvers.hbm as hbm_package
-from seafast.solvers.hbm import HBMOptions
 from seafast.cli import main
 from seafast.output.report.findings import run_findings
+from seafast.solvers.hbm import HBMOptions
 
 CASE = [
     "--set",

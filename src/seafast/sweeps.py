@@ -27,9 +27,9 @@ Nothing here prints or writes files (see :mod:`seafast.output.sweep`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
-from typing import Callable
 
 import numpy as np
 from scipy.interpolate import CubicSpline

@@ -258,7 +258,7 @@ def _js_errors(stderr: str) -> list[str]:
     return [
         line
         for line in stderr.splitlines()
-        if "Uncaught" in line or "ERROR:CONSOLE" in line or ":CONSOLE(" in line and "error" in line.lower()
+        if "Uncaught" in line or "ERROR:CONSOLE" in line or (":CONSOLE(" in line and "error" in line.lower())
     ]
 
 

@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from threadpoolctl import threadpool_limits
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
+from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_structural_model, rayleigh_coefficients
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear

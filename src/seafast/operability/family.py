@@ -12,8 +12,9 @@ that a spline rounds off), and a sea state's extremes within 1e-6 of ``seafast s
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray

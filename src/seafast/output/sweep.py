@@ -16,12 +16,12 @@ from typing import Any
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from numpy.typing import NDArray  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from numpy.typing import NDArray
 
-from seafast.results.sweep import BASE_COLUMNS, SweepTable  # noqa: E402
-from seafast.results.sweep_range import RangeLimit  # noqa: E402
+from seafast.results.sweep import BASE_COLUMNS, SweepTable
+from seafast.results.sweep_range import RangeLimit
 
 __all__ = ["COLUMNS", "write_csv", "write_sweep_outputs", "format_sweep_summary", "range_warning"]
 

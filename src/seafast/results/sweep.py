@@ -18,8 +18,8 @@ Units: SI; the unit is in every name. Nothing here prints or writes files.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,8 +29,8 @@ from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_comple
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.results.sweep_range import RangeLimit, RangeLimits, deck_acceleration_m_per_s2, time_extremes
-from seafast.solvers.contact import ContactLaw
 from seafast.solvers.branch import FrequencyResponseBranch
+from seafast.solvers.contact import ContactLaw
 from seafast.solvers.floquet import floquet_multipliers, stability_system
 from seafast.solvers.hbm import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import truncation_error

@@ -27,8 +27,9 @@ rate of first separations is the same; bounces after a re-contact are not counte
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -344,7 +345,7 @@ def design_wave_extremes(
                 warm[wave.frequency_index] = sol
         solutions.append(solved[key])
     totals = static_totals(analysis)
-    governing = {q: -1 for q in RESPONSE_QUANTITIES}
+    governing = dict.fromkeys(RESPONSE_QUANTITIES, -1)
     for i, (wave, sol) in enumerate(zip(waves, solutions)):
         q = wave.quantity
         if governing[q] < 0 or sol.maxima[q] > totals[q]:

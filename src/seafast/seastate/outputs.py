@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import csv
 import io
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -60,7 +61,7 @@ _DESIGN_WAVE_MAXIMA = {
 
 def not_computed_row(model: str, method: str) -> dict[str, Any]:
     """A row of a method that did not run: empty cells."""
-    return {"model": model, "method": method, **{q: None for q in QUANTITIES}, "converged": None}
+    return {"model": model, "method": method, **dict.fromkeys(QUANTITIES), "converged": None}
 
 
 def monte_carlo_row(statistics: Any) -> dict[str, Any]:

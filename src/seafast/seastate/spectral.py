@@ -21,8 +21,9 @@ open: its u_d is 0, as in ``seafast run``; whether that can be trusted is what
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray

@@ -23,8 +23,8 @@ Units SI; the spectral density is one-sided [m^2 s/rad].
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray

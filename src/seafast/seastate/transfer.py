@@ -37,7 +37,6 @@ from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import solve_harmonic, solve_linear
 
-
 __all__ = ["TransferFunctions", "StillWater", "transfer_functions", "still_water", "MOMENT_POINTS_PER_ELEMENT"]
 
 MOMENT_POINTS_PER_ELEMENT = 2

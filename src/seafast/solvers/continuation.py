@@ -24,7 +24,8 @@ the omega component of the unit tangent, whose sign changes at the folds
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray

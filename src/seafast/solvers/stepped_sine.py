@@ -28,8 +28,8 @@ Units: SI (rad/s, s, m, N). Nothing here prints or reads files.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray

@@ -513,12 +513,12 @@ class MarchState:
     detached: NDArray[np.bool_]
 
     @staticmethod
-    def at_rest(system: ModalCorrection) -> "MarchState":
+    def at_rest(system: ModalCorrection) -> MarchState:
         m, n_s = system.mode_count, system.saddle_count
         return MarchState(np.zeros(m), np.zeros(m), np.zeros(m), np.zeros(n_s), np.zeros(n_s, dtype=bool))
 
     @staticmethod
-    def quasi_static(system: ModalCorrection, linear_compression_m: NDArray) -> "MarchState":
+    def quasi_static(system: ModalCorrection, linear_compression_m: NDArray) -> MarchState:
         """At rest in the exact-contact static state of ``linear_compression_m`` (n_s,).
 
         ``c`` from ``delta = delta_lin - G_0 c``, ``G_0 = B^T K^-1 B``, solved exactly by

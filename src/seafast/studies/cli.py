@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 from seafast.config.loader import CaseError, parse_overrides
 
@@ -107,8 +108,15 @@ def _error(message: str) -> int:
 
 def cmd_study(args: argparse.Namespace) -> int:
     """Handler of ``seafast study``; returns the exit code."""
-    from seafast.studies.limits import RANKING_COLUMNS, DesignLimits, compliance_rows, format_table, rank_compliant, write_rows_csv
-    from seafast.studies.limits import COMPLIANCE_COLUMNS
+    from seafast.studies.limits import (
+        COMPLIANCE_COLUMNS,
+        RANKING_COLUMNS,
+        DesignLimits,
+        compliance_rows,
+        format_table,
+        rank_compliant,
+        write_rows_csv,
+    )
     from seafast.studies.runner import ExecutionOptions, run_study
     from seafast.studies.spec import build_grid, load_study_spec, study_spec_from_mapping
 

@@ -18,13 +18,13 @@ from typing import Any
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-from matplotlib.colors import ListedColormap  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+from matplotlib.colors import ListedColormap
+from matplotlib.patches import Patch
 
-from seafast.studies.limits import DesignLimits, compliance  # noqa: E402
+from seafast.studies.limits import DesignLimits, compliance
 
 __all__ = ["plot_study", "plot_surfaces", "plot_compliance_map", "plot_profiles", "study_slice"]
 

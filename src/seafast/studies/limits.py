@@ -14,9 +14,10 @@ from __future__ import annotations
 import csv
 import math
 import os
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -52,7 +53,7 @@ class DesignLimits:
     max_bending_stress_Pa: float = 20.0e6
 
     @staticmethod
-    def from_attrs(attrs: Mapping[str, Any]) -> "DesignLimits":
+    def from_attrs(attrs: Mapping[str, Any]) -> DesignLimits:
         """The limits recorded in a study dataset's attributes (defaults where absent)."""
         return DesignLimits(float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6)))
 

@@ -32,10 +32,11 @@ import math
 import operator
 import types
 import typing
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Any, Literal, Mapping
+from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
@@ -340,7 +341,7 @@ class AxisSpec(_Strict):
         return v
 
     @model_validator(mode="after")
-    def _check(self) -> "AxisSpec":
+    def _check(self) -> AxisSpec:
         ranged = (self.start, self.stop, self.num)
         if self.values is not None:
             if any(x is not None for x in ranged):
@@ -445,7 +446,7 @@ class StudySpec(_Strict):
         return v
 
     @model_validator(mode="after")
-    def _check(self) -> "StudySpec":
+    def _check(self) -> StudySpec:
         axis_keys = {a.key for a in self.axes}
         both = sorted(axis_keys & set(self.derived))
         if both:

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import html
 import math
-from datetime import datetime, timezone
+from collections.abc import Mapping, Sequence
+from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -319,7 +320,7 @@ def build_report_html(
         names.append(f"operability {operability.attrs.get('title', '').removeprefix('seafast operability: ')}")
     sources = [d for d in (run, study, seastate, operability) if d is not None]
     version = sources[0].attrs.get("seafast_version", "") if sources else ""
-    stamp = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    stamp = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     subtitle = f"seafast {version or ''} report, generated {stamp}. SI inputs; results in mm, MN, MN m, MPa."
     page = render_html(title or f"seafast report: {', '.join(names)}", subtitle, sections, len(figures))
     return page, figures, findings

@@ -7,7 +7,8 @@ few varying axes); :func:`study_figures` collects them in report order.
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr

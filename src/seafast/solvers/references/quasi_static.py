@@ -37,7 +37,7 @@ QUASI_STATIC_RATIO_LIMIT = 0.2
 def _effective_harmonic(force: NDArray, omega: float, share: float = 1e-3) -> int:
     """Smallest H whose truncation misses less than ``share`` of the force fluctuation energy."""
     N = force.shape[0]
-    for h in range(0, N // 2 + 1):
+    for h in range(N // 2 + 1):
         if np.all(high_harmonic_energy_share(force, h) < share):
             return max(h, 1)
     return N // 2

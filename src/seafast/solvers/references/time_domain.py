@@ -60,7 +60,7 @@ class _Run:
 
     cargo_m: NDArray[np.float64]
     compression_m: NDArray[np.float64]
-    check: "_PeriodicityCheck"
+    check: _PeriodicityCheck
     periods: int
     steps: int
     description: str
