@@ -62,8 +62,8 @@ def test_calibration_static_linear_base_case(tmp_path):
     # u_c depends on the reference frame (README): the sea-fastening baseline gives 5.33 mm vs the source's 5.9 mm
     assert float(row["u_c_m"]) == pytest.approx(5.33e-3, rel=0.02)
     # sigma_b = M_b (D/2) / I with I = 15.6 m^4
-    I = math.pi / 64 * (8**4 - (8 - 0.16) ** 4)
-    assert float(row["sigma_b_Pa"]) == pytest.approx(float(row["M_b_Nm"]) * 4.0 / I, rel=1e-3)
+    I_m4 = math.pi / 64 * (8**4 - (8 - 0.16) ** 4)
+    assert float(row["sigma_b_Pa"]) == pytest.approx(float(row["M_b_Nm"]) * 4.0 / I_m4, rel=1e-3)
 
 
 def test_init_writes_a_case_that_runs(tmp_path, capsys):

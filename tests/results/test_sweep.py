@@ -58,8 +58,8 @@ def test_folds_keep_real_turns_and_merge_the_zigzags_of_a_sharp_fold():
     b = _branch(omega, span)
     assert b.turning_indices.size == 6  # the raw turns: the real two and four of the zigzag
     folds = significant_folds(b)
-    print(f"\nraw turns at {b.turning_omegas_rad_s}; folds at {b.omega_rad_s[folds]}")
-    assert b.omega_rad_s[folds] == pytest.approx([2.0, 1.4990])  # the fold at the extreme omega of its zigzag
+    figures = f"raw turns at {b.turning_omegas_rad_s}; folds at {b.omega_rad_s[folds]}"
+    assert b.omega_rad_s[folds] == pytest.approx([2.0, 1.4990]), figures  # the fold at the extreme omega of its zigzag
     # a pair of turns as close in omega but with a different response is a real fold pair (grazing), kept
     span2 = list(span)
     for i in range(31, 37):

@@ -177,11 +177,11 @@ def test_a_wave_the_truncated_balance_cannot_solve_falls_back_to_fewer_harmonics
     assert not design_wave_extremes(an, static, DesignWaveSettings(fallback_harmonics=())).converged
     dw = design_wave_extremes(an, static)
     assert dw.converged
-    used = {(w.role, s.harmonics) for w, s in zip(dw.waves, dw.solutions)}
+    used = {(w.role, s.harmonics) for w, s in zip(dw.waves, dw.solutions, strict=True)}
     assert ("band_high", 12) in used and ("peak", 16) in used
     # the fallback's answer is the periodic solution's: within 2 % of the adaptive H there
     wv = next(w for w in dw.waves if w.quantity == "F_N" and w.role == "band_high")
-    sol = next(s for w, s in zip(dw.waves, dw.solutions) if w is wv)
+    sol = next(s for w, s in zip(dw.waves, dw.solutions, strict=True) if w is wv)
     ref = solve_hbm(an.model, _scaled(unit_wave_excitation(static, an.transfer, wv.frequency_index), wv.amplitude_m))
     assert ref.converged and sol.maxima["F_N"] == pytest.approx(float(ref.saddle_force_time_N.max()), rel=0.02)
 

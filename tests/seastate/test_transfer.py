@@ -31,7 +31,7 @@ def base():
 
 @pytest.mark.parametrize("index,amplitude", [(40, 1.0), (128, 2.0), (200, 0.5)])
 def test_transfer_times_amplitude_equals_seafast_run_at_a_grid_frequency(base, index, amplitude):
-    case, _, omega, tf = base
+    _, _, omega, tf = base
     w = float(omega[index])
     regular = seafast.load_case(None, {"wave.length_m": 2 * math.pi * G / w**2, "wave.amplitude_m": amplitude})
     assert regular.wave_frequency_rad_s() == pytest.approx(w, rel=1e-14)
@@ -63,7 +63,7 @@ def test_transfer_times_amplitude_equals_seafast_run_at_a_grid_frequency(base, i
 
 
 def test_still_water_equals_the_static_linear_row_of_seafast_run(base):
-    case, model, _, tf = base
+    case, model, _, _ = base
     ds = run_case(case).dataset.sel(load_case="static", model="linear")
     sw = still_water(case, model)
     assert np.allclose(sw.saddle_force_N, ds["saddle_force_N"].values[0], rtol=1e-9)

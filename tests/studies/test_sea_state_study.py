@@ -37,7 +37,7 @@ def test_a_sea_state_axis_makes_the_study_a_sea_state_study_and_regular_wave_ref
 
 def test_a_sea_state_study_needs_hs_and_tp():
     spec = study_spec_from_mapping({**HS_STUDY, "axes": HS_STUDY["axes"][1:], "response": "sea_state"})
-    with pytest.raises(StudyError, match="sea_state.peak_period_s = null"):
+    with pytest.raises(StudyError, match=r"sea_state\.peak_period_s = null"):
         build_grid(spec, overrides={"sea_state.peak_period_s": None})
 
 
