@@ -97,7 +97,8 @@ def main() -> None:
             print(
                 f"{name}: {n} points in {total:.2f} s ({per_point_ms:.1f} ms a point; the table {1e3 * table_s / n:.1f} ms of it); "
                 f"one warm-started HBM solve {hbm_ms:.2f} ms; a point costs {per_point_ms / hbm_ms:.1f} solves; "
-                f"folds at {np.round(result.table.fold_omegas_rad_s, 4).tolist()} rad/s; {int((~result.table.stable).sum())} unstable points"
+                f"folds at {np.round(result.table.fold_omegas_rad_s, 4).tolist()} rad/s; "
+                f"{int((~result.table.stable).sum())} unstable points"
             )
             figures.update(
                 {

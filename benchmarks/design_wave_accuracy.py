@@ -143,7 +143,8 @@ def main(argv: list[str] | None = None) -> None:
     results = [evaluate(n, store) for n in names]
     (store / "design_wave_accuracy.json").write_text(json.dumps(results, indent=1))
     print(
-        "| sea state | uplift/h | F MC [MN] (95 %) | dw | dw adaptive | MLER | linear | M_b MC [MN m] (95 %) | dw | dw adaptive | MLER | linear | u_d MC [mm] (95 %) | u_d dw |"
+        "| sea state | uplift/h | F MC [MN] (95 %) | dw | dw adaptive | MLER | linear "
+        "| M_b MC [MN m] (95 %) | dw | dw adaptive | MLER | linear | u_d MC [mm] (95 %) | u_d dw |"
     )
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     worst = dict.fromkeys(("dw", "dw_adaptive", "mler", "linear"), 0.0)
