@@ -136,7 +136,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument(
         "--wave",
         action="store_true",
-        help="wave sweep: at each frequency a wave of the case's amplitude (its hull deflection and RAOs) instead of the case's motions held",
+        help=(
+            "wave sweep: at each frequency a wave of the case's amplitude (its hull deflection and RAOs) instead of the case's motions held"
+        ),
     )
     sweep.add_argument(
         "--max-gap-m",
@@ -148,7 +150,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument(
         "--follow-beyond-range",
         action="store_true",
-        help="structural sweep: go on past the frequency where the held deck motion accelerates the deck faster than g (default: stop there)",
+        help=(
+            "structural sweep: go on past the frequency where the held deck motion accelerates the deck faster than g (default: stop there)"
+        ),
     )
     sweep.add_argument("--no-plots", action="store_true", help="skip frequency_response.png")
     _add_set(sweep)

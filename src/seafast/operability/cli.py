@@ -56,7 +56,7 @@ def parse_peak_periods(text: str) -> list[float]:
         raise ValueError(f"--tp {text!r}: allowed: {allowed}") from None
     if not all(math.isfinite(v) for v in (start, stop, step)) or start <= 0 or stop < start or step <= 0:
         raise ValueError(f"--tp {text!r}: allowed: {allowed}")
-    n = int(math.floor((stop - start) / step + 1e-9)) + 1
+    n = math.floor((stop - start) / step + 1e-9) + 1
     if n > MAX_PEAK_PERIODS:
         raise ValueError(f"--tp {text!r} gives {n} peak periods; allowed: at most {MAX_PEAK_PERIODS}")
     return [round(start + i * step, 10) for i in range(n)]

@@ -116,7 +116,7 @@ def sea_state_family(case: Case, peak_periods_s: Sequence[float], master_step_ra
     _check_parametric(case)
     grids = [sea_state_spectrum(case_at(case, tp, 1.0)).omega_rad_s for tp in peak_periods_s]
     lo, hi = min(float(g[0]) for g in grids), max(float(g[-1]) for g in grids)
-    n = max(int(math.ceil((hi - lo) / master_step_rad_s)) + 1, 8)
+    n = max(math.ceil((hi - lo) / master_step_rad_s) + 1, 8)
     master = np.linspace(lo, hi, n)
     model = build_model(case)
     tf = transfer_functions(case, model, master)

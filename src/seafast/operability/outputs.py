@@ -14,6 +14,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -118,13 +119,15 @@ def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | 
         "hs_force_nonlinear_m": _var(
             d,
             [p.hs_force_nonlinear_m for p in P],
-            "Hs at which the nonlinear design-wave saddle force reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)",
+            "Hs at which the nonlinear design-wave saddle force reaches its limit "
+            "(inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)",
             "m",
         ),
         "hs_stress_nonlinear_m": _var(
             d,
             [p.hs_stress_nonlinear_m for p in P],
-            "Hs at which the nonlinear design-wave bending stress reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)",
+            "Hs at which the nonlinear design-wave bending stress reaches its limit "
+            "(inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)",
             "m",
         ),
         "converged": _var(
@@ -196,7 +199,10 @@ def format_operability_table(result: OperabilityResult) -> str:
             ]
         )
     widths = [max(len(h), *(len(r[i]) for r in lines)) for i, h in enumerate(head)]
-    fmt = lambda cells: "  ".join(c.rjust(w) if i < 4 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))  # noqa: E731
+
+    def fmt(cells: Sequence[str]) -> str:
+        return "  ".join(c.rjust(w) if i < 4 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
+
     return "\n".join([fmt(head), fmt(["-" * w for w in widths])] + [fmt(r) for r in lines])
 
 

@@ -46,7 +46,7 @@ def write_csv(table: SweepTable, path: Path) -> Path:
     with path.open("w", newline="") as f:
         w = csv.writer(f)
         w.writerow(names)
-        for row in zip(*columns):
+        for row in zip(*columns, strict=True):
             w.writerow([_cell(v) for v in row])
     return path
 
@@ -190,8 +190,10 @@ def format_sweep_summary(result: Any) -> list[str]:
     """Lines for people: how the branch ended, its folds and stability, the deck-acceleration limit, the peak RAO."""
     t, b = result.table, result.branch
     lines = [
-        f"{result.kind.value} sweep {result.omega_start_rad_s:g} -> {result.omega_end_rad_s:g} rad/s: {b.message}; "
-        f"{t.omega_rad_s.size} points ({int(np.count_nonzero(~t.stable))} unstable), H = {b.options.get('harmonics')}"
+        (
+            f"{result.kind.value} sweep {result.omega_start_rad_s:g} -> {result.omega_end_rad_s:g} rad/s: {b.message}; "
+            f"{t.omega_rad_s.size} points ({int(np.count_nonzero(~t.stable))} unstable), H = {b.options.get('harmonics')}"
+        )
     ]
     if t.fold_omegas_rad_s.size:
         lines.append("folds at " + ", ".join(f"{w:.4g}" for w in t.fold_omegas_rad_s) + " rad/s (unstable between a pair)")

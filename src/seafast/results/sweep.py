@@ -214,7 +214,7 @@ def significant_folds(
     if not turns:
         return np.zeros(0, dtype=np.intp)
     upper = {i: bool(branch.tangent_omega[i - 1] > 0) for i in turns}  # a maximum of omega
-    value = {i: float(v) for i, v in zip(turns, branch.turning_omegas_rad_s)}
+    value = {i: float(v) for i, v in zip(turns, branch.turning_omegas_rad_s, strict=True)}
     U = branch.compression_harmonics_m
     span = np.ptp(np.einsum("th,nhs->nts", real_dft_matrices(U.shape[1] // 2, 128)[0], U), axis=1).max(axis=1)
 

@@ -89,7 +89,8 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     else:
         ss = case.sea_state
         say(
-            f"Monte Carlo reference: {ss.realisations} realisations of {ss.duration_s:g} s, linear and nonlinear (resumable in {args.output})"
+            f"Monte Carlo reference: {ss.realisations} realisations of {ss.duration_s:g} s, linear and nonlinear "
+            f"(resumable in {args.output})"
         )
         try:
             monte_carlo = engine(case, Path(args.output), workers=args.workers, scheduler=args.scheduler, progress=not args.quiet)

@@ -346,7 +346,7 @@ def design_wave_extremes(
         solutions.append(solved[key])
     totals = static_totals(analysis)
     governing = dict.fromkeys(RESPONSE_QUANTITIES, -1)
-    for i, (wave, sol) in enumerate(zip(waves, solutions)):
+    for i, (wave, sol) in enumerate(zip(waves, solutions, strict=True)):
         q = wave.quantity
         if governing[q] < 0 or sol.maxima[q] > totals[q]:
             totals[q], governing[q] = sol.maxima[q], i

@@ -267,7 +267,10 @@ class MonteCarloResult:
             "mc_seed": self.seed,
             "mc_realisations": n_r,
             "mc_confidence_level": self.linear.confidence_level,
-            "mc_mpm_estimator": "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); percentile bootstrap interval",
+            "mc_mpm_estimator": (
+                "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); "
+                "percentile bootstrap interval"
+            ),
             "mc_example_realisation": -1 if ex is None else ex.index,
             "mc_settings_json": json.dumps(dict(self.settings)),
         }

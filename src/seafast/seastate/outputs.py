@@ -108,7 +108,7 @@ def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") ->
     widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
 
     def fmt(cells: Sequence[str]) -> str:
-        return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))
+        return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
 
     out = [title] if title else []
     return "\n".join(out + [fmt(head), fmt(["-" * w for w in widths])] + [fmt(line) for line in lines])

@@ -32,7 +32,8 @@ Why a coarse and a fine grid: a 3-hour record at the integrator's step is ~10^6 
 channel; the linear parts vary at wave frequencies (< 4 rad/s) and are exact on the coarse grid.
 (Slightly over the house's ~400 lines: the plan and the realisation that reads it stay together.)
 
-Size: over 400 lines because one realisation's synthesis, linear maxima, windowed nonlinear march and statistics share one plan and one time grid; they are pure functions of it.
+Size: over 400 lines because one realisation's synthesis, linear maxima, windowed nonlinear march and
+statistics share one plan and one time grid; they are pure functions of it.
 """
 
 from __future__ import annotations
@@ -197,7 +198,6 @@ def _linear_samples(d_tot, k, g, U, moment_static, modulus):  # pragma: no cover
     n_t, n_s = d_tot.shape
     n_x, n_r = U.shape
     out = np.empty((n_t, 4))
-    M = np.empty(n_x)
     for t in range(n_t):
         f = -np.inf
         d = -np.inf
@@ -410,7 +410,7 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
     nl = np.zeros(5)
     lifted_steps = events = windows = window_steps = 0
     solved = True
-    every = max(int(round(plan.settings.capture_step_s / grid.time_step_s)), 1) if capture else 0
+    every = max(round(plan.settings.capture_step_s / grid.time_step_s), 1) if capture else 0
     n_b = n_tc // every if capture else 0
     cap_comp = np.zeros((n_b, n_s))
     cap_lift = np.zeros((n_b, n_s), dtype=bool)

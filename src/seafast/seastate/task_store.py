@@ -54,7 +54,7 @@ class TaskStore:
         self.directory.mkdir(parents=True, exist_ok=True)
         self._check_manifest(manifest)
         self.completed: dict[int, dict[str, Any]] = self._read()
-        self._handle = open(self.path, "ab")
+        self._handle = open(self.path, "ab")  # noqa: SIM115 - appended to until close() / __exit__
 
     @property
     def path(self) -> Path:

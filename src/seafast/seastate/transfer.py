@@ -160,7 +160,7 @@ def _harmonic_solves(
     n, u = K.shape[0], _HALF_BANDWIDTH
     full = K + M + D
     if np.any(np.triu(full, u + 1)) or np.any(np.tril(full, -u - 1)):  # pragma: no cover - a new element type
-        return np.stack([solve_harmonic(model, float(om), f, xo) for om, f, xo in zip(omega_rad_s, cargo_load, deck)])
+        return np.stack([solve_harmonic(model, float(om), f, xo) for om, f, xo in zip(omega_rad_s, cargo_load, deck, strict=True)])
 
     def band(A: NDArray[np.float64]) -> NDArray[np.float64]:
         ab = np.zeros((2 * u + 1, n))

@@ -239,7 +239,7 @@ def frequency_response(
         residual = np.inf
         try:
             F, (state, p, uk, wk) = augmented(yk, y_pred, t)
-            for its in range(1, corrector_iterations + 1):
+            for its in range(1, corrector_iterations + 1):  # noqa: B007 - the count sets the next step length below
                 residual = float(np.max(np.abs(F[:-1])))
                 if residual <= tol_corrector and abs(F[-1]) <= 1e-8:
                     ok = True
@@ -311,7 +311,7 @@ def frequency_response(
 def _finish(
     pts: list, extra: list[tuple[NDArray, float, float]], message: str, steps: int, options: HBMOptions, end: BranchEnd
 ) -> FrequencyResponseBranch:
-    a: list[Any] = list(zip(*pts)) if pts else [[]] * 6
+    a: list[Any] = list(zip(*pts, strict=True)) if pts else [[]] * 6
     return FrequencyResponseBranch(
         omega_rad_s=np.asarray(a[0], dtype=float),
         max_saddle_force_N=np.asarray(a[1], dtype=float),

@@ -730,7 +730,7 @@ def march_periodic(
         largest linear compression, or after ``max_periods``.
     """
     d_lin = np.ascontiguousarray(linear_compression_m, dtype=float)
-    N, n_s = d_lin.shape
+    n_s = d_lin.shape[1]
     if n_s != system.saddle_count:
         raise ValueError(f"linear_compression_m has {n_s} columns; the model has {system.saddle_count} saddles")
     scale = max(float(np.max(np.abs(d_lin))), 1e-12)
@@ -739,7 +739,7 @@ def march_periodic(
     change = np.inf
     periods = 0
     delta = d_lin
-    for periods in range(1, int(max_periods) + 1):
+    for periods in range(1, int(max_periods) + 1):  # noqa: B007 - the count is returned
         delta = march_period(system, d_lin, state)
         if previous is not None:
             change = float(np.max(np.abs(delta - previous))) / scale

@@ -130,7 +130,7 @@ def plot_surfaces(ds: xr.Dataset, path: str | Path, model: str = "nonlinear", li
     contact = total["contact_preserved"].sel(model="nonlinear" if "nonlinear" in total["model"] else model).values.astype(float)
     limit_of = {"F_N": limits.max_saddle_force_N, "sigma_b_Pa": limits.max_bending_stress_Pa}
     fig, axes = plt.subplots(1, 3, figsize=(17, 4.8), constrained_layout=True)
-    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES):
+    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES, strict=True):
         z = total[name].sel(model=model).values * scale
         mesh = ax.pcolormesh(xe, ye, np.ma.masked_invalid(z), shading="flat", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=f"{title} [{unit}]")
@@ -191,7 +191,7 @@ def plot_compliance_map(ds: xr.Dataset, path: str | Path, limits: DesignLimits |
         ax.plot(x[xx], y[yy], "kx", linestyle="none", label="evaluation failed")
     _setup_axes(ax, sliced, xkey, ykey)
     _mark_base(ax, sliced, xkey, ykey)
-    handles = [Patch(color=c, label=n) for c, n in zip(colors, names)]
+    handles = [Patch(color=c, label=n) for c, n in zip(colors, names, strict=True)]
     handles += ax.get_legend_handles_labels()[0]
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     ax.set_title(
@@ -216,7 +216,7 @@ def plot_profiles(ds: xr.Dataset, path: str | Path, limits: DesignLimits | None 
     limit_of = {"F_N": limits.max_saddle_force_N, "sigma_b_Pa": limits.max_bending_stress_Pa}
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.5), constrained_layout=True)
     xe = _edges(x, _is_log(sliced, key))
-    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES):
+    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES, strict=True):
         for model, style in (("linear", "--"), ("nonlinear", "-")):
             if model in total["model"]:
                 ax.plot(x, total[name].sel(model=model).values * scale, style, marker="o", markersize=3, label=model)

@@ -356,7 +356,7 @@ class AxisSpec(_Strict):
                 raise ValueError(f"values {list(self.values)} must be positive for scale: log")
         else:
             if any(x is None for x in ranged):
-                missing = [n for n, x in zip(("start", "stop", "num"), ranged) if x is None]
+                missing = [n for n, x in zip(("start", "stop", "num"), ranged, strict=True) if x is None]
                 raise ValueError(f"missing {', '.join(missing)}; give values, or all of start, stop, num")
             assert self.start is not None and self.stop is not None
             if not (math.isfinite(self.start) and math.isfinite(self.stop)):
@@ -606,7 +606,7 @@ class StudyGrid:
     def point_values(self, index: int) -> dict[str, Any]:
         """Axis values (Python scalars) of the point with flat (C-order) ``index``."""
         multi = np.unravel_index(index, self.shape)
-        return {key: coords[i].item() for key, coords, i in zip(self.keys, self.coordinates, multi)}
+        return {key: coords[i].item() for key, coords, i in zip(self.keys, self.coordinates, multi, strict=True)}
 
     def point_overrides(self, index: int) -> dict[str, Any]:
         """Dotted overrides (axes then derived keys) that turn the base case into point ``index``."""
@@ -620,7 +620,7 @@ class StudyGrid:
         for key, expr in self.spec.derived.items():
             value = evaluate_expression(expr, lookup)
             if case_key_kind(key) == "int":
-                value = int(round(value))
+                value = round(value)
             overrides[key] = value
         return overrides
 
@@ -640,7 +640,7 @@ class StudyGrid:
             "name": self.spec.name,
             "fingerprint": self.fingerprint(),
             "shape": list(self.shape),
-            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
+            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates, strict=True)},
             "spec": self.spec.model_dump(mode="json"),
         }
 
@@ -648,7 +648,7 @@ class StudyGrid:
         """SHA-256 (hex, 16 chars) of everything that determines the points' results."""
         payload: dict[str, Any] = {
             "base": self.base,
-            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
+            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates, strict=True)},
             "derived": self.spec.derived,
         }
         if self.spec.evaluates_sea_state:  # regular-wave studies keep their fingerprint (stores made before resume)

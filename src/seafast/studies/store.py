@@ -112,7 +112,7 @@ class PointStore:
         self.directory.mkdir(parents=True, exist_ok=True)
         self._check_manifest(grid.manifest())
         self.completed: dict[int, PointRecord] = self._read_points()
-        self._handle = open(self.path, "ab")
+        self._handle = open(self.path, "ab")  # noqa: SIM115 - appended to until close() / __exit__
         self._last_sync = time.monotonic()
         self._unsynced = False
 

@@ -402,7 +402,7 @@ def deflection_moment_figure(ds: xr.Dataset) -> Any:
                 col=1,
             )
     if "saddle_x_m" in ds:
-        for j, x in enumerate(ds["saddle_x_m"].values):
+        for x in ds["saddle_x_m"].values:
             fig.add_vline(x=float(x), line=dict(color="#2ca02c", dash="dot", width=1))
         fig.add_trace(
             go.Scatter(
@@ -546,15 +546,19 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
             "fig-hull-girder",
             "Hull girder",
             hull_girder_figure,
-            "Still-water deflection and bending moment of the hull, with the wave's hog and sag extremes; the cargo span is shaded. "
-            "After a two-way run, dashed: the hull under the coupled cargo.",
+            (
+                "Still-water deflection and bending moment of the hull, with the wave's hog and sag extremes; the cargo span is shaded. "
+                "After a two-way run, dashed: the hull under the coupled cargo."
+            ),
         ),
         (
             "fig-raos",
             "Rigid-body RAOs",
             rao_figure,
-            "Amplitude and phase of the rigid-body RAOs (surge when the hydrodynamic data hold it, "
-            "heave, pitch); the case's wave frequency is the dotted line.",
+            (
+                "Amplitude and phase of the rigid-body RAOs (surge when the hydrodynamic data hold it, "
+                "heave, pitch); the case's wave frequency is the dotted line."
+            ),
         ),
         (
             "fig-deck-motion",
@@ -566,8 +570,10 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
             "fig-saddle-histories",
             "Saddle force and gap over the period",
             saddle_time_history_figure,
-            "Total (static + wave) response. Negative compression is a gap: the nonlinear saddle lifts off and carries no force; "
-            "the linear saddle would pull (negative force).",
+            (
+                "Total (static + wave) response. Negative compression is a gap: the nonlinear saddle lifts off and carries no force; "
+                "the linear saddle would pull (negative force)."
+            ),
         ),
         (
             "fig-deflection-moment",
@@ -580,8 +586,10 @@ def run_figures(ds: xr.Dataset) -> list[ReportFigure]:
             "fig-stick-slip",
             "Axial stick-slip",
             stick_slip_figure,
-            "Axial displacement of the cargo relative to the deck, and the friction force against the friction available "
-            "(sum of mu N over the saddles, from each model's own contact forces); where the friction reaches it, the cargo slides.",
+            (
+                "Axial displacement of the cargo relative to the deck, and the friction force against the friction available "
+                "(sum of mu N over the saddles, from each model's own contact forces); where the friction reaches it, the cargo slides."
+            ),
         ),
     ):
         try:

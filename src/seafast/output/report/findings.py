@@ -53,9 +53,11 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
                     Finding(
                         "WARNING",
                         f"{lc} {m}: the two-way hull-cargo coupling did NOT converge ({sel['coupling_outcome'].values.item()})",
-                        f"coupling residual {float(sel['coupling_residual_m']):.2e} m > tolerance {float(sel['coupling_tolerance_m']):.2e} m "
-                        f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): the deck under the saddles and the hull "
-                        "under the cargo's forces disagree, so this row's numbers and the coupled hull must not be trusted.",
+                        f"coupling residual {float(sel['coupling_residual_m']):.2e} m > "
+                        f"tolerance {float(sel['coupling_tolerance_m']):.2e} m "
+                        f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): "
+                        "the deck under the saddles and the hull under the cargo's forces disagree, "
+                        "so this row's numbers and the coupled hull must not be trusted.",
                     )
                 )
             elif "converged" in sel and not bool(sel["converged"]):

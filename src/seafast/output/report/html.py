@@ -34,7 +34,8 @@ header{background:#12355b;color:#fff;padding:18px 32px}header h1{margin:0;font-s
 nav{background:#e8eef5;padding:8px 32px;font-size:14px;position:sticky;top:0;z-index:10;border-bottom:1px solid #c9d6e3}
 nav a{margin-right:16px;color:#12355b;text-decoration:none}nav a:hover{text-decoration:underline}
 main{padding:8px 32px 40px;max-width:1500px}section{margin-top:26px}h2{border-bottom:2px solid #12355b;padding-bottom:4px;color:#12355b}
-table{border-collapse:collapse;font-size:13px;margin:8px 0;background:#fff}th,td{border:1px solid #ccd;padding:4px 8px;text-align:left;vertical-align:top}
+table{border-collapse:collapse;font-size:13px;margin:8px 0;background:#fff}
+th,td{border:1px solid #ccd;padding:4px 8px;text-align:left;vertical-align:top}
 th{background:#eef2f7}td.num{text-align:right;font-variant-numeric:tabular-nums}
 .finding{border-left:8px solid;padding:10px 14px;margin:10px 0;border-radius:4px}
 .finding.WARNING{background:#fdecea;border-color:#c62828}.finding.WARNING .lvl{color:#c62828}
@@ -144,7 +145,8 @@ def _run_sections(
         )
     summary_html = (
         _findings_html([f for f in findings if f.level == "WARNING"])
-        + "<p>Maxima over the cargo, the saddles and one wave period; cargo deflection u_c relative to the sea-fastening baseline (deck line through the outermost saddles), rigid-body heave and pitch removed; "
+        + "<p>Maxima over the cargo, the saddles and one wave period; cargo deflection u_c relative to the sea-fastening baseline "
+        "(deck line through the outermost saddles), rigid-body heave and pitch removed; "
         "<i>dynamic</i> = total response (still water included).</p>" + _table(header, rows) + files_note
     )
     sections = [

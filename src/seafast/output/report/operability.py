@@ -55,8 +55,8 @@ def operability_findings(ds: xr.Dataset) -> list[Finding]:
     """WARNING / NOTE / OK statements on an operability result."""
     out: list[Finding] = []
     tp = ds["peak_period_s"].values
-    lin, nl, onset = (ds[n].values.astype(float) for n in ("hs_allowable_linear_m", "hs_allowable_nonlinear_m", "hs_uplift_onset_m"))
-    failed = [float(t) for t, g in zip(tp, ds["governing_nonlinear"].values) if str(g) == "not_converged"]
+    lin, onset = (ds[n].values.astype(float) for n in ("hs_allowable_linear_m", "hs_uplift_onset_m"))
+    failed = [float(t) for t, g in zip(tp, ds["governing_nonlinear"].values, strict=True) if str(g) == "not_converged"]
     if failed:
         out.append(
             Finding(
@@ -65,7 +65,7 @@ def operability_findings(ds: xr.Dataset) -> list[Finding]:
                 "Its allowable Hs is left empty; the linear one stands alone there.",
             )
         )
-    lifted = [float(t) for t, h, u in zip(tp, lin, onset) if math.isfinite(u) and u < h]
+    lifted = [float(t) for t, h, u in zip(tp, lin, onset, strict=True) if math.isfinite(u) and u < h]
     if lifted:
         out.append(
             Finding(

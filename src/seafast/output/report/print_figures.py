@@ -78,7 +78,7 @@ def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
     ds_ = np.diff(s).mean() if s.size > 1 else 1.0
     xe = np.concatenate([s - ds_ / 2, [s[-1] + ds_ / 2]])
     cmap = ListedColormap(["#fdae61", "#1a9850"])
-    for ax, m in zip(axes[:, 0], models):
+    for ax, m in zip(axes[:, 0], models, strict=True):
         z = (ds["saddle_compression_m"].sel(load_case=lc, model=m).values > 0).astype(int).T
         ax.pcolormesh(xe, np.arange(n + 1) - 0.5, z, cmap=cmap, vmin=0, vmax=1, shading="flat")
         ax.set_yticks(range(n))
@@ -147,7 +147,9 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                 widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
                 lines += ["maxima over the cargo, the saddles and one wave period (dynamic = total response)", ""]
                 for r in [header, *rows]:
-                    lines.append("  ".join(str(c).ljust(w) if i < 2 else str(c).rjust(w) for i, (c, w) in enumerate(zip(r, widths))))
+                    lines.append(
+                        "  ".join(str(c).ljust(w) if i < 2 else str(c).rjust(w) for i, (c, w) in enumerate(zip(r, widths, strict=True)))
+                    )
                 lines += ["", f"excitation: {run.attrs.get('excitation_source', '')}"]
                 lines += [f"{f.level}: {f.title}" for f in run_findings(run)]
             if study is not None:

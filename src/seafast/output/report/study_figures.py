@@ -198,7 +198,6 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
     go = plotly_go()
     total = total_response(view)
     x = view[key].values.astype(float)
-    log = _is_log(view, key)
     lim = design_limits(sds)
     fig = subplots(rows=1, cols=3, horizontal_spacing=0.08, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
     contact = (
@@ -206,7 +205,7 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
         if "nonlinear" in coord_labels(total["model"])
         else None
     )
-    for i, (name, title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
+    for i, (name, _title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
         for m in coord_labels(total["model"]):
             fig.add_trace(
                 go.Scatter(

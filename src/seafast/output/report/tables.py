@@ -6,6 +6,7 @@ Every function is pure (dataset or mapping in, rows out); the HTML module render
 from __future__ import annotations
 
 import csv
+import functools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -142,6 +143,15 @@ def summary_table_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
+def _largest_finite_cell(sel: xr.Dataset, name: str, fmt: str, scale: float = 1.0) -> str:
+    """The largest finite value of ``sel[name]`` times ``scale``, formatted; ``-`` if absent or none finite."""
+    if name not in sel:
+        return "-"
+    vals = np.asarray(sel[name].values, dtype=float) * scale
+    vals = vals[np.isfinite(vals)] if vals.ndim else (vals[None] if np.isfinite(vals) else np.array([]))
+    return format(float(vals.max()), fmt) if vals.size else "-"
+
+
 def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     """Convergence diagnostics per (load case, model).
 
@@ -167,14 +177,7 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     for lc in coord_labels(ds["load_case"]):
         for m in coord_labels(ds["model"]):
             sel = ds.sel(load_case=lc, model=m)
-
-            def num(name: str, fmt: str, scale: float = 1.0, reduce: bool = False) -> str:
-                if name not in sel:
-                    return "-"
-                vals = np.asarray(sel[name].values, dtype=float) * scale
-                vals = vals[np.isfinite(vals)] if vals.ndim else (vals[None] if np.isfinite(vals) else np.array([]))
-                return format(float(vals.max()), fmt) if vals.size else "-"
-
+            num = functools.partial(_largest_finite_cell, sel)
             rows.append(
                 [
                     lc,

@@ -159,7 +159,7 @@ def solve_hbm(
         # contact-state modes can be ill-posed, so then 2 H and 3 H (from the march) before giving up
         attempts = [(1.5, "previous"), (1.5, "march"), (2.0, "march"), (3.0, "march")]
         for factor, origin in attempts:
-            H_next = min(max(int(math.ceil(factor * H)), H + 8), int(options.max_harmonics))
+            H_next = min(max(math.ceil(factor * H), H + 8), int(options.max_harmonics))
             ops = condensed_operators(model, excitation, H_next, reuse=ops)
             if origin == "previous":
                 start = pad_harmonics(_compression_harmonics(previous, H), H_next)

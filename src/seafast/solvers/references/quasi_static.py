@@ -99,10 +99,12 @@ def solve_quasi_static(
         w2 = eigh(K, q.mass, eigvals_only=True, subset_by_index=[0, 0])[0]
         w1 = min(w1, float(np.sqrt(max(w2, 0.0))))
     ratio = h_eff * excitation.omega_rad_s / w1 if w1 > 0 else np.inf
+    criterion = f"H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g}"
     verdict = (
-        f"quasi-statics justified: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} <= {QUASI_STATIC_RATIO_LIMIT}"
+        f"quasi-statics justified: {criterion} <= {QUASI_STATIC_RATIO_LIMIT}"
         if ratio <= QUASI_STATIC_RATIO_LIMIT
-        else f"quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
+        else f"quasi-statics questionable: {criterion} > {QUASI_STATIC_RATIO_LIMIT} "
+        "(cargo dynamics matter; use HBM or the time-domain reference)"
     )
     options = {
         "time_samples": N,

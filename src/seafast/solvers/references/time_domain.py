@@ -293,7 +293,7 @@ def _time_domain_full(
     check = _PeriodicityCheck(k_u, delta0, tolerance)
     cargo_out = np.empty((N, n_c))
     delta_out = np.empty((N, n_s))
-    for periods in range(1, max_periods + 1):
+    for periods in range(1, max_periods + 1):  # noqa: B007 - the count is returned
         for n in range(S):
             if n % stride == 0:
                 j = n // stride
@@ -373,7 +373,7 @@ def _time_domain_condensed(
     check = _PeriodicityCheck(k_u, delta_n, tolerance)
     cargo_out = np.empty((N, n_c))
     delta_out = np.empty((N, model.saddle_count))
-    for periods in range(1, int(max_periods) + 1):
+    for periods in range(1, int(max_periods) + 1):  # noqa: B007 - the count is returned
         for n in range(S):
             if n % stride == 0:
                 j = n // stride
