@@ -263,12 +263,16 @@ def _grid(girder: HullGirder, breakpoints: tuple[float, ...], n_points: int) -> 
 
 def _weight_element_ends(girder: HullGirder, loading: WeightSource, x: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Weight per metre at the start and end of each element (one-sided limits) [N/m]."""
+    fun: Callable[[FloatArray], FloatArray]
     if isinstance(loading, VesselLoading):
+        vessel_loading = loading
 
-        def fun(xx: FloatArray) -> FloatArray:
-            return weight_distribution_N_per_m(xx, loading, girder.gravity_m_per_s2)
+        def from_loading(xx: FloatArray) -> FloatArray:
+            return weight_distribution_N_per_m(xx, vessel_loading, girder.gravity_m_per_s2)
+
+        fun = from_loading
     elif callable(loading):
-        fun = loading  # type: ignore[assignment]
+        fun = loading
     else:
         raise TypeError("hull girder: loading must be a VesselLoading or a callable x_m -> weight_N_per_m")
     h = np.diff(x)

@@ -322,21 +322,21 @@ def design_wave_extremes(
         if key not in solved and settings.harmonics is None:
             unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
             solved[key] = solve_wave_adaptive(analysis.model, unit, wave.amplitude_m, mm, options)
-        if key not in solved:
+        elif key not in solved and settings.harmonics is not None:
             # start from this frequency's previous solution (an amplitude search), else from the last wave solved:
             # the quantities' design waves lie close together (neighbouring frequencies, amplitudes within a few
             # per cent), and a start that fails falls back on the solver's own (solve_wave)
             previous = None if warm is None else warm.get(wave.frequency_index)
             previous = previous if previous is not None else last
-            for H in (int(settings.harmonics), *settings.fallback_harmonics):  # type: ignore[arg-type]
+            for H in (int(settings.harmonics), *settings.fallback_harmonics):
                 opts = settings.hbm_options(H)
                 if (wave.frequency_index, H) not in cache:
                     unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
                     cache[(wave.frequency_index, H)] = wave_operators(analysis.model, unit, opts, mm)
-                usable = previous is not None and previous.converged and previous.harmonics == H
-                sol = solve_wave(
-                    cache[(wave.frequency_index, H)], wave.amplitude_m, opts, previous.compression_harmonics_m if usable else None
-                )  # type: ignore[union-attr]
+                start = (
+                    previous.compression_harmonics_m if previous is not None and previous.converged and previous.harmonics == H else None
+                )
+                sol = solve_wave(cache[(wave.frequency_index, H)], wave.amplitude_m, opts, start)
                 if sol.converged:
                     break
             solved[key] = sol

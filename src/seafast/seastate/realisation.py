@@ -39,6 +39,7 @@ statistics share one plan and one time grid; they are pure functions of it.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -193,7 +194,9 @@ class RealisationPlan:
 
 
 @numba.njit(cache=True)
-def _linear_samples(d_tot, k, g, U, moment_static, modulus):  # pragma: no cover - compiled
+def _linear_samples(  # pragma: no cover - compiled
+    d_tot: NDArray, k: NDArray, g: NDArray, U: NDArray, moment_static: NDArray, modulus: NDArray
+) -> NDArray:
     """Per coarse sample: max_s k d, max_s d, max_x |M|, max_x |M| / Z (M = M_0 + U g)."""
     n_t, n_s = d_tot.shape
     n_x, n_r = U.shape
@@ -234,12 +237,14 @@ def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: 
     return top if top > 0 else float(omega[-1])
 
 
-def _density(case: Case, spectrum: WaveSpectrum):  # type: ignore[no-untyped-def]
+def _density(case: Case, spectrum: WaveSpectrum) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """S(omega) of the case's spectrum anywhere (parametric formulas; tables interpolated as the spectrum does)."""
     ss = case.sea_state
     if ss.spectrum in ("jonswap", "pierson_moskowitz"):
         gamma = 1.0 if ss.spectrum == "pierson_moskowitz" else float(ss.peak_enhancement)
-        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)  # type: ignore[arg-type]
+        # set: the spectrum passed here was built from this case, which refuses a parametric sea without them
+        assert ss.significant_height_m is not None and ss.peak_period_s is not None
+        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)
         return lambda w: jonswap_density(w, hs, tp, gamma)
     # a table is linear between its rows, which the spectrum's grid keeps: interpolating the grid is exact
     return lambda w: np.interp(w, spectrum.omega_rad_s, spectrum.density_m2_s_per_rad, left=0.0, right=0.0)

@@ -241,10 +241,10 @@ def sea_state_spectrum(case: Case, n_points: int = DEFAULT_GRID_POINTS) -> WaveS
     """
     ss = case.sea_state
     if ss.spectrum in ("jonswap", "pierson_moskowitz"):
-        for key in ("significant_height_m", "peak_period_s"):
-            if getattr(ss, key) is None:
-                raise CaseError(f"sea_state.{key} = null: required for the {ss.spectrum} spectrum; give a value > 0")
-        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)  # type: ignore[arg-type]
+        if ss.significant_height_m is None or ss.peak_period_s is None:
+            key = "significant_height_m" if ss.significant_height_m is None else "peak_period_s"
+            raise CaseError(f"sea_state.{key} = null: required for the {ss.spectrum} spectrum; give a value > 0")
+        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)
         gamma = 1.0 if ss.spectrum == "pierson_moskowitz" else float(ss.peak_enhancement)
         wp = 2.0 * math.pi / tp
         above = _parametric_share_above(OMEGA_MAX_RAD_S / wp, gamma)

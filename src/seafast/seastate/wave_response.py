@@ -179,7 +179,7 @@ def wave_operators(
     if options.harmonics is None:
         raise ValueError("wave_operators: options.harmonics must be set (a fixed H; the amplitude search reuses the operators)")
     fixed = options.with_harmonics(int(options.harmonics))
-    H, N = int(fixed.harmonics), int(fixed.time_samples)  # type: ignore[arg-type]
+    H, N = fixed.fixed_grid()
     ops = condensed_operators(model, excitation, H)
     mm = moment_map(model) if moments is None else moments
     # the linear solution and the line loads live on the excitation's harmonics only

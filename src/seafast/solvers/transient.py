@@ -265,7 +265,9 @@ def modal_correction(
 
 # ====================================================================== compiled kernels
 @numba.njit(cache=True)
-def _solve_contact(d_pred, G, k, inverses, detached, tol):  # pragma: no cover - compiled
+def _solve_contact(  # pragma: no cover - compiled
+    d_pred: NDArray, G: NDArray, k: NDArray, inverses: NDArray, detached: NDArray, tol: float
+) -> tuple[NDArray, bool]:
     """Exact contact of one step; returns (delta, ok), updates ``detached`` in place."""
     n = d_pred.size
     delta = np.empty(n)
@@ -314,7 +316,7 @@ def _solve_contact(d_pred, G, k, inverses, detached, tol):  # pragma: no cover -
 
 
 @numba.njit(cache=True)
-def _bspline_row(coef, x):  # pragma: no cover - compiled
+def _bspline_row(coef: NDArray, x: float) -> NDArray:  # pragma: no cover - compiled
     """Cubic B-spline value of every channel at coarse position x (periodic coefficients (n, ch))."""
     n = coef.shape[0]
     i = int(np.floor(x))
@@ -328,35 +330,35 @@ def _bspline_row(coef, x):  # pragma: no cover - compiled
 
 @numba.njit(cache=True)
 def _march(  # pragma: no cover - compiled
-    start,
-    stop,
-    ratio,
-    coef,
-    delta_static,
-    trigger,
-    dt,
-    predictor,
-    force_response,
-    phi_b,
-    G,
-    k,
-    inverses,
-    omega,
-    mode_bound,
-    tol_state,
-    tol_sign,
-    eta,
-    deta,
-    ddeta,
-    c,
-    detached,
-    moment_static,
-    moment_basis,
-    modulus,
-    capture_every,
-    capture_compression,
-    capture_lifted,
-):
+    start: int,
+    stop: int,
+    ratio: float,
+    coef: NDArray,
+    delta_static: NDArray,
+    trigger: NDArray,
+    dt: float,
+    predictor: NDArray,
+    force_response: NDArray,
+    phi_b: NDArray,
+    G: NDArray,
+    k: NDArray,
+    inverses: NDArray,
+    omega: NDArray,
+    mode_bound: NDArray,
+    tol_state: float,
+    tol_sign: float,
+    eta: NDArray,
+    deta: NDArray,
+    ddeta: NDArray,
+    c: NDArray,
+    detached: NDArray,
+    moment_static: NDArray,
+    moment_basis: NDArray,
+    modulus: NDArray,
+    capture_every: int,
+    capture_compression: NDArray,
+    capture_lifted: NDArray,
+) -> tuple[int, NDArray, int, int, bool]:
     """March from fine step ``start`` (state given, updated in place) until quiet and untriggered, or ``stop``.
 
     Fine step p is at coarse position p / ratio of the B-spline coefficients ``coef`` (n_tc,

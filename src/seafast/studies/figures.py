@@ -21,6 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
+from matplotlib.artist import Artist
 from matplotlib.colors import ListedColormap
 from matplotlib.patches import Patch
 
@@ -36,7 +37,7 @@ _QUANTITIES: tuple[tuple[str, str, float, str], ...] = (
 
 
 def _axis_keys(ds: xr.Dataset) -> list[str]:
-    return [d for d in ds["F_N"].dims if d not in ("load_case", "model")]
+    return [str(d) for d in ds["F_N"].dims if d not in ("load_case", "model")]
 
 
 def _total(ds: xr.Dataset) -> xr.Dataset:
@@ -191,7 +192,7 @@ def plot_compliance_map(ds: xr.Dataset, path: str | Path, limits: DesignLimits |
         ax.plot(x[xx], y[yy], "kx", linestyle="none", label="evaluation failed")
     _setup_axes(ax, sliced, xkey, ykey)
     _mark_base(ax, sliced, xkey, ykey)
-    handles = [Patch(color=c, label=n) for c, n in zip(colors, names, strict=True)]
+    handles: list[Artist] = [Patch(color=c, label=n) for c, n in zip(colors, names, strict=True)]
     handles += ax.get_legend_handles_labels()[0]
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     ax.set_title(

@@ -59,7 +59,7 @@ class DesignLimits:
 
 
 def _axis_keys(ds: xr.Dataset) -> list[str]:
-    return [d for d in ds["F_N"].dims if d not in ("load_case", "model")]
+    return [str(d) for d in ds["F_N"].dims if d not in ("load_case", "model")]
 
 
 def _total_response(ds: xr.Dataset) -> xr.Dataset:

@@ -130,7 +130,7 @@ class StudyRun:
 def _progress_bar(total: int, initial: int, enabled: bool, label: str) -> Any:
     from tqdm import tqdm
 
-    class _Bar(tqdm):  # type: ignore[type-arg,misc]
+    class _Bar(tqdm):
         # no monitor thread: the bar is updated per batch, and local workers may be forked
         # from this process, which is only safe while it runs a single thread
         monitor_interval = 0

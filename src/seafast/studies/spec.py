@@ -304,7 +304,7 @@ def evaluate_expression(text: str, lookup: typing.Callable[[str], float]) -> flo
         name = _dotted_name(node)
         if name is not None:
             return float(lookup(name))
-        if isinstance(node, ast.Constant):
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):  # the only constants parsing admits
             return float(node.value)
         if isinstance(node, ast.BinOp):
             return _BINARY_OPS[type(node.op)](ev(node.left), ev(node.right))

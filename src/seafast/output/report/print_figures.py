@@ -54,11 +54,11 @@ def _print_quality(pdf: Any | None, min_dpi: int) -> Iterator[list[str]]:
                 busy[0] = False
         return result
 
-    Figure.savefig = savefig  # type: ignore[method-assign]
+    Figure.savefig = savefig  # type: ignore[method-assign]  # patched on purpose, for the with-block only
     try:
         yield saved
     finally:
-        Figure.savefig = original  # type: ignore[method-assign]
+        Figure.savefig = original  # type: ignore[method-assign]  # restored
 
 
 def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:

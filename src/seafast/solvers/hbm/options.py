@@ -126,6 +126,21 @@ class HBMOptions:
         """Whether H is chosen by the solver."""
         return self.harmonics is None
 
+    def fixed_grid(self) -> tuple[int, int]:
+        """(H, N) of options whose harmonics and time samples are both set (e.g. by :meth:`with_harmonics`).
+
+        Raises
+        ------
+        ValueError
+            If either is None (adaptive H, or N left to the solver).
+        """
+        if self.harmonics is None or self.time_samples is None:
+            raise ValueError(
+                f"HBMOptions.harmonics = {self.harmonics!r}, time_samples = {self.time_samples!r}; "
+                "allowed here: both set (a fixed grid: HBMOptions.with_harmonics(H))"
+            )
+        return int(self.harmonics), int(self.time_samples)
+
     def with_harmonics(self, harmonics: int, time_samples: int | None = None) -> HBMOptions:
         """The same settings at a given H (and N: the given one, else this one's if it fits, else the default)."""
         N = time_samples if time_samples is not None else self.time_samples

@@ -65,7 +65,7 @@ def solve_condensed(
     """Solve the condensed HBM system for given operators (used by :func:`solve_hbm` and continuation)."""
     if options.time_samples is None or options.harmonics != ops.harmonics:
         options = options.with_harmonics(ops.harmonics)
-    problem = CondensedProblem(ops, int(options.time_samples))  # type: ignore[arg-type]
+    problem = CondensedProblem(ops, options.fixed_grid()[1])
     u0 = None if initial_compression is None else np.asarray(initial_compression, dtype=float).ravel()
     a = solve_with_fallback(problem, options.law, options, u0)
     U = a.u.reshape(problem.n_h, problem.n_s)
@@ -118,8 +118,8 @@ def solve_hbm(
         given = np.asarray(initial_compression_m, dtype=float)
         if given.ndim != 2 or given.shape[1] != model.saddle_count or given.shape[0] < 2:
             raise ValueError(f"initial_compression_m: shape {given.shape}; must be (samples, n_saddles = {model.saddle_count})")
-    if not options.adaptive:
-        H = int(options.harmonics)  # type: ignore[arg-type]
+    if options.harmonics is not None:  # a fixed H (not options.adaptive)
+        H = int(options.harmonics)
         fixed = options.with_harmonics(H)
         start = None if given is None else _project(given, H)
         response = _solve_fixed(model, excitation, fixed, start)
@@ -233,7 +233,7 @@ def _solve_fixed(
 ) -> PeriodicResponse:
     """One harmonic-balance solve at the options' H and N (start: real-layout compression harmonics; ``ops``:
     operators to extend to H)."""
-    H, N = int(options.harmonics), int(options.time_samples)  # type: ignore[arg-type]
+    H, N = options.fixed_grid()
     law = options.law
     ops = condensed_operators(model, excitation, H, reuse=ops)
     if options.formulation == "condensed":
