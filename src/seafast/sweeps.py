@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
 from seafast.config.schema import Case
@@ -219,7 +220,7 @@ def frequency_sweep(
     if opts.harmonics is None:
         opts = opts.with_harmonics(SWEEP_HARMONICS)
     w_lo, w_hi = sorted((float(omega_start_rad_s), float(omega_end_rad_s)))
-    stop_when = None
+    stop_when: Callable[[float, NDArray[np.float64]], bool] | None = None
     limit_rad_s: float | None = None
     if kind is SweepKind.WAVE:
         excitation_at, rao_at = wave_excitation(case, model, w_lo, w_hi)
@@ -235,7 +236,11 @@ def frequency_sweep(
                     "sweep the waves of these frequencies (--wave), or follow anyway (--follow-beyond-range)"
                 )
             bound = limit_rad_s
-            stop_when = lambda omega, _u: omega > bound  # noqa: E731 - the held acceleration grows as omega^2
+
+            def beyond_limit(omega: float, _u: NDArray[np.float64]) -> bool:  # the held acceleration grows as omega^2
+                return omega > bound
+
+            stop_when = beyond_limit
     branch = frequency_response(model, excitation_at, omega_start_rad_s, omega_end_rad_s, opts, max_points=max_points, stop_when=stop_when)
     still = None
     if kind is SweepKind.WAVE:

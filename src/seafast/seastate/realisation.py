@@ -292,9 +292,11 @@ def realisation_plan(
     transfer = interpolate_transfer(omega_i, channels, grid.omega_rad_s)
     system = modal_correction(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))
     beam = model.cargo
-    recover = lambda q: bending_moment_line(  # noqa: E731 - moment line of displacement rows (..., n_c)
-        beam.node_x_m, q, beam.element_bending_stiffness_Nm2, None, None, MOMENT_POINTS_PER_ELEMENT
-    )[1]
+
+    def recover(q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The bending-moment line [N m] of displacement rows (..., n_c)."""
+        return bending_moment_line(beam.node_x_m, q, beam.element_bending_stiffness_Nm2, None, None, MOMENT_POINTS_PER_ELEMENT)[1]
+
     moment_modes = recover(system.modes.T).T
     moment_residual = recover(system.residual_displacement.T).T
     modulus = tf.bending_section_modulus_m3

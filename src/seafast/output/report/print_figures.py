@@ -174,7 +174,7 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                     from seafast.studies.figures import plot_study
 
                     paths += list(plot_study(study, fig_dir))
-                except Exception as exc:  # noqa: BLE001
+                except Exception as exc:  # noqa: BLE001 - one bad figure must not lose the report
                     logger.warning("study print figures skipped (%s: %s)", type(exc).__name__, exc)
     finally:
         if pdf is not None:

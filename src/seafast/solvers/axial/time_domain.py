@@ -105,8 +105,11 @@ def _advance(sys_: _System, t: float, h: float, state: list) -> float:
     if sign == 0:
         if abs(sys_.demand(t + h, u)) <= sys_.capacity(t + h):
             return t + h
-        g = lambda tt: abs(sys_.demand(tt, u)) - sys_.capacity(tt)  # noqa: E731
-        t_go = brentq(g, t, t + h, xtol=1e-14 * sys_.T) if g(t) < 0 else t
+
+        def excess(tt: float) -> float:  # demand beyond the friction capacity: > 0 once it slides
+            return abs(sys_.demand(tt, u)) - sys_.capacity(tt)
+
+        t_go = brentq(excess, t, t + h, xtol=1e-14 * sys_.T) if excess(t) < 0 else t
         state[0] = 1 if sys_.demand(t_go, u) > 0 else -1
         state[2] = 0.0
         return t_go
