@@ -28,9 +28,9 @@ import pstats
 import time
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
 
+from benchutil import timed
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 
@@ -152,25 +152,31 @@ def main() -> None:
         _, t_ops = timed(lambda: condensed_operators(model, ex, cond.harmonics), 100)
         # the converged transient analysis: fine step, fine output grid, and the check of its step
         ref, t_ref = timed(lambda: solve_time_domain(model, ex, REFERENCE_SAMPLES, steps_per_period=REFERENCE_STEPS), 1)
-        ref2, t_ref2 = timed(lambda: solve_time_domain(model, ex, REFERENCE_SAMPLES, steps_per_period=2 * REFERENCE_STEPS), 1)
+        ref2, _ = timed(lambda: solve_time_domain(model, ex, REFERENCE_SAMPLES, steps_per_period=2 * REFERENCE_STEPS), 1)
     print(f"case: {ex.source}; {model.cargo_dof_count} cargo DOFs, {model.saddle_count} saddles, omega {ex.omega_rad_s:.4g} rad/s")
     H_d, N_d = r_d.options["harmonics"], r_d.options["time_samples"]
     verdict = "met" if t_d <= TARGET_MS else ("NOT met in wall time, met in CPU time (machine shared)" if cpu_d <= TARGET_MS else "NOT met")
-    print(f"\ndefault nonlinear solve (exact law, adaptive H = {H_d}, N = {N_d}, path {r_d.options.get('harmonics_path')}): "
-          f"median {t_d:.1f} ms wall, {cpu_d:.1f} ms CPU (H = 16: {t_c:.2f} ms wall, {cpu_c:.2f} ms CPU); "
-          f"target <= {TARGET_MS:g} ms: {verdict}")
+    print(
+        f"\ndefault nonlinear solve (exact law, adaptive H = {H_d}, N = {N_d}, path {r_d.options.get('harmonics_path')}): "
+        f"median {t_d:.1f} ms wall, {cpu_d:.1f} ms CPU (H = 16: {t_c:.2f} ms wall, {cpu_c:.2f} ms CPU); "
+        f"target <= {TARGET_MS:g} ms: {verdict}"
+    )
     print("where its time goes (cProfile, cumulative share of solve_hbm):")
     for label, share in shares:
         print(f"  {share:6.1%}  {label}")
 
     M_ref, M_ref2 = peak_moment_Nm(model, ex, ref), peak_moment_Nm(model, ex, ref2)
     own_step = float(np.max(np.abs(np.max(ref.saddle_force_time_N, axis=0) / np.max(ref2.saddle_force_time_N, axis=0) - 1.0)))
-    print(f"\nreference: full-DOF time domain, {REFERENCE_STEPS} steps/period, {REFERENCE_SAMPLES} output samples, "
-          f"{ref.iterations} periods ({t_ref / 1e3:.1f} s): F = {ref.max_saddle_force_N / 1e6:.4f} MN, M_b = {M_ref / 1e6:.3f} MN m, "
-          f"saddle peaks {', '.join(f'{v / 1e6:.4f}' for v in np.max(ref.saddle_force_time_N, axis=0))} MN")
+    print(
+        f"\nreference: full-DOF time domain, {REFERENCE_STEPS} steps/period, {REFERENCE_SAMPLES} output samples, "
+        f"{ref.iterations} periods ({t_ref / 1e3:.1f} s): F = {ref.max_saddle_force_N / 1e6:.4f} MN, M_b = {M_ref / 1e6:.3f} MN m, "
+        f"saddle peaks {', '.join(f'{v / 1e6:.4f}' for v in np.max(ref.saddle_force_time_N, axis=0))} MN"
+    )
     step_f, step_m = peak_diff(ref, ref2), abs(M_ref / M_ref2 - 1.0)
-    print(f"converged in its step: at {2 * REFERENCE_STEPS} steps/period F moves {step_f:.1e}, M_b {step_m:.1e}, "
-          f"a saddle's own peak at most {own_step:.1e}")
+    print(
+        f"converged in its step: at {2 * REFERENCE_STEPS} steps/period F moves {step_f:.1e}, M_b {step_m:.1e}, "
+        f"a saddle's own peak at most {own_step:.1e}"
+    )
 
     rows = [("H = 5, tanh (source preset)", r_sh, t_sh)]
     rows += [(f"H = {H}, exact", *table[H]) for H in TABLE_HARMONICS]
@@ -181,7 +187,9 @@ def main() -> None:
         e_f, e_m, e_own = errors_against(model, ex, r, ref, M_ref)
         errors[name] = (e_f, e_m, e_own)
         estimate = float(np.max(r.truncation_error)) if r.truncation_error is not None else float("nan")
-        print(f"{name:34s} {r.options['time_samples']:5d} {t:10.2f} {e_f:+9.2%} {e_m:+10.2%} {e_own:9.2%} {estimate:9.1e}  {r.outcome.value}")
+        print(
+            f"{name:34s} {r.options['time_samples']:5d} {t:10.2f} {e_f:+9.2%} {e_m:+10.2%} {e_own:9.2%} {estimate:9.1e}  {r.outcome.value}"
+        )
     e_f, e_m, e_own = errors[rows[-1][0]]
     meets = abs(e_f) <= 0.005 and abs(e_m) <= 0.005 and e_own <= 0.01
     print(f"issue target (default: F and M_b within 0.5 %, each saddle's own peak within 1 %): {'met' if meets else 'NOT met'}")
@@ -201,11 +209,15 @@ def main() -> None:
     print(f"quasi-static reference (N=128)              median {t_q:9.2f} ms")
     print(f"time-domain reference, full-DOF (2048 steps/T)  median {t_t:9.2f} ms  {r_t.message}")
     print(f"time-domain reference, condensed (2048 steps/T) median {t_tc:9.2f} ms  {r_tc.message}")
-    print(f"exact condensation alone (H={cond.harmonics}, receptances + linear solution) median {t_ops:9.3f} ms: "
-          f"the ceiling of any condensed HBM's speed-up over the time-domain reference is {t_t / t_ops:.0f}x on this mesh")
-    print(f"speed-up of condensed vs full {t_f / t_c:.0f}x, vs time domain (full-DOF) {t_t / t_c:.0f}x, "
-          f"vs time domain (condensed) {t_tc / t_c:.0f}x, vs quasi-static {t_q / t_c:.1f}x; "
-          f"the default solve vs the time domain (full-DOF, 2048 steps/T) {t_t / t_d:.1f}x")
+    print(
+        f"exact condensation alone (H={cond.harmonics}, receptances + linear solution) median {t_ops:9.3f} ms: "
+        f"the ceiling of any condensed HBM's speed-up over the time-domain reference is {t_t / t_ops:.0f}x on this mesh"
+    )
+    print(
+        f"speed-up of condensed vs full {t_f / t_c:.0f}x, vs time domain (full-DOF) {t_t / t_c:.0f}x, "
+        f"vs time domain (condensed) {t_tc / t_c:.0f}x, vs quasi-static {t_q / t_c:.1f}x; "
+        f"the default solve vs the time domain (full-DOF, 2048 steps/T) {t_t / t_d:.1f}x"
+    )
     pairs = {
         "condensed vs full": rel_diff(r_c, r_f),
         "condensed vs time domain": rel_diff(r_c, r_t),
@@ -217,17 +229,24 @@ def main() -> None:
     }
     for name, v in pairs.items():
         print(f"max saddle-force difference {name:34s} {v:.2e} (worst sample, of the max force)")
-    peaks = {name: (r.max_saddle_force_N, peak_moment_Nm(model, ex, r)) for name, r in
-             (("condensed", r_c), ("full", r_f), ("time domain", r_t), ("quasi-static", r_q))}
+    peaks = {
+        name: (r.max_saddle_force_N, peak_moment_Nm(model, ex, r))
+        for name, r in (("condensed", r_c), ("full", r_f), ("time domain", r_t), ("quasi-static", r_q))
+    }
     peak_rel = max(abs(a[i] / b[i] - 1.0) for a in peaks.values() for b in peaks.values() for i in (0, 1))
     speedup_full_source = t_fs / t_sh
-    print(f"source-style full HBM (hybr, dense Jacobian, H=5 tanh) vs condensed with the same method and settings: {speedup_full_source:.0f}x")
+    print(
+        f"source-style full HBM (hybr, dense Jacobian, H=5 tanh) vs condensed with the same method and settings: {speedup_full_source:.0f}x"
+    )
     print(f"largest mutual difference of the reported peaks (F, M_b) over condensed H=16/full/time domain/quasi-static: {peak_rel:.1e}")
     print(f"benchmark wall time {time.perf_counter() - t_start:.1f} s")
-    max_rel = max(pairs[k] for k in ("condensed vs full", "condensed vs time domain", "condensed vs quasi-static", "time domain vs quasi-static"))
+    max_rel = max(
+        pairs[k] for k in ("condensed vs full", "condensed vs time domain", "condensed vs quasi-static", "time domain vs quasi-static")
+    )
     print(
-        f"median_ms={t_d:.3g} cpu_ms={cpu_d:.3g} target_ms={TARGET_MS:g} default_harmonics={H_d} default_error_F={e_f:.1e} default_error_M_b={e_m:.1e} "
-        f"default_error_own_peak={e_own:.1e} h16_ms={t_c:.3g} speedup_vs_full={speedup_full_source:.0f} "
+        f"median_ms={t_d:.3g} cpu_ms={cpu_d:.3g} target_ms={TARGET_MS:g} default_harmonics={H_d} "
+        f"default_error_F={e_f:.1e} default_error_M_b={e_m:.1e} default_error_own_peak={e_own:.1e} "
+        f"h16_ms={t_c:.3g} speedup_vs_full={speedup_full_source:.0f} "
         f"speedup_vs_full_sparse_newton={t_f / t_c:.0f} speedup_vs_time_domain={t_t / t_c:.0f} "
         f"speedup_vs_time_domain_condensed={t_tc / t_c:.0f} speedup_ceiling_vs_time_domain={t_t / t_ops:.0f} "
         f"max_rel_diff={peak_rel:.1e} max_rel_diff_worst_sample={max_rel:.1e}"

@@ -43,8 +43,16 @@ def _full_march_s(plan, index: int) -> tuple[float, int]:
     d0 = plan.compression_static_m + X[0, : plan.saddle_count]
     t0 = time.perf_counter()
     march_window(
-        plan.system, coef, plan.ratio, plan.compression_static_m, np.ones(grid.samples, dtype=bool), 0, n_fine - 1,
-        MarchState.quasi_static(plan.system, d0), tolerance_m=plan.tolerance_m, moments=plan.moments,
+        plan.system,
+        coef,
+        plan.ratio,
+        plan.compression_static_m,
+        np.ones(grid.samples, dtype=bool),
+        0,
+        n_fine - 1,
+        MarchState.quasi_static(plan.system, d0),
+        tolerance_m=plan.tolerance_m,
+        moments=plan.moments,
     )
     return time.perf_counter() - t0, n_fine - 1
 
@@ -59,9 +67,11 @@ def main() -> None:
         total_s = time.perf_counter() - t0
         full_s, steps = _full_march_s(plan, 1)
         window_share = record["window_steps"] / steps
-        print(f"base case, Hs 3 m, Tp 10 s, 3 h: realisation {realisation_s:.2f} s (again {total_s:.2f} s), "
-              f"{record['windows']} windows, {window_share:.2%} of {steps} steps marched, "
-              f"{record['nonlinear']['uplift_events']} uplift events")
+        print(
+            f"base case, Hs 3 m, Tp 10 s, 3 h: realisation {realisation_s:.2f} s (again {total_s:.2f} s), "
+            f"{record['windows']} windows, {window_share:.2%} of {steps} steps marched, "
+            f"{record['nonlinear']['uplift_events']} uplift events"
+        )
         print(f"  baseline: marching all {steps} steps {full_s:.2f} s ({1e6 * full_s / steps:.2f} us/step)")
 
         heavy = seafast.load_case(None, {**BENCHMARK_SEA_STATE, "sea_state.significant_height_m": 6.0})
@@ -73,9 +83,11 @@ def main() -> None:
         fine, _ = evaluate_realisation(build_plan(heavy, replace(MonteCarloSettings(), steps_per_period=32)), 1)
         dF = fine["nonlinear"]["F_N"] / ref["nonlinear"]["F_N"] - 1.0
         dM = fine["nonlinear"]["M_b_Nm"] / ref["nonlinear"]["M_b_Nm"] - 1.0
-        print(f"Hs 6 m, Tp 10 s, 3 h: realisation {heavy_s:.2f} s, {ref['windows']} windows, "
-              f"{ref['window_steps'] / (heavy_plan.grid.samples * heavy_plan.ratio):.1%} of the record marched, "
-              f"{ref['nonlinear']['uplift_events']} uplift events")
+        print(
+            f"Hs 6 m, Tp 10 s, 3 h: realisation {heavy_s:.2f} s, {ref['windows']} windows, "
+            f"{ref['window_steps'] / (heavy_plan.grid.samples * heavy_plan.ratio):.1%} of the record marched, "
+            f"{ref['nonlinear']['uplift_events']} uplift events"
+        )
         print(f"  step halved (32 steps per period): F {dF:+.2e}, M_b {dM:+.2e}")
     print(
         f"realisation_3h_s={realisation_s:.3f} full_march_3h_s={full_s:.3f} speedup_vs_full_march={full_s / realisation_s:.1f} "

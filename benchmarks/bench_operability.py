@@ -31,12 +31,11 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from benchutil import timed  # noqa: E402
-
-import seafast  # noqa: E402
-from seafast.operability.allowable import allowable_sea_states  # noqa: E402
-from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation  # noqa: E402
-from seafast.seastate.spectral import spectral_analysis  # noqa: E402
+import seafast
+from benchutil import timed
+from seafast.operability.allowable import allowable_sea_states
+from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation
+from seafast.seastate.spectral import spectral_analysis
 
 RAISED = {"limits.max_saddle_force_N": 11.5e6, "limits.max_bending_stress_Pa": 28.0e6}
 
@@ -63,15 +62,19 @@ def main() -> None:
         case = seafast.load_case(None)
         analysis = spectral_analysis(case)
         dw = sea_state_design_waves(analysis)  # warm: vessel, moment map, numba
-        distinct = len({(s.amplitude, w.frequency_index) for w, s in zip(dw.waves, dw.solutions)})
+        distinct = len({(s.amplitude, w.frequency_index) for w, s in zip(dw.waves, dw.solutions, strict=True)})
         _, dw_ms, dw_cpu_ms = timed_cpu(lambda: sea_state_design_waves(analysis), 15)
         static = still_water_excitation(analysis)
         _, adaptive_ms = timed(lambda: design_wave_extremes(analysis, static, DesignWaveSettings(harmonics=None)), 3)
         t = dw.totals
-        print(f"design waves, base case Hs = 3 m, Tp = 10 s: {len(dw.waves)} waves ({distinct} distinct), {dw_ms:.1f} ms wall, "
-              f"{dw_cpu_ms:.1f} ms CPU (H = 16); adaptive H {adaptive_ms:.0f} ms")
-        print(f"  nonlinear MPM F = {t['F_N'] / 1e6:.3f} MN, M_b = {t['M_b_Nm'] / 1e6:.2f} MN m, u_d = {t['u_d_m'] * 1e3:.2f} mm "
-              f"(linear spectral {analysis.extremes.totals['F_N'] / 1e6:.3f} MN, {analysis.extremes.totals['M_b_Nm'] / 1e6:.2f} MN m)")
+        print(
+            f"design waves, base case Hs = 3 m, Tp = 10 s: {len(dw.waves)} waves ({distinct} distinct), {dw_ms:.1f} ms wall, "
+            f"{dw_cpu_ms:.1f} ms CPU (H = 16); adaptive H {adaptive_ms:.0f} ms"
+        )
+        print(
+            f"  nonlinear MPM F = {t['F_N'] / 1e6:.3f} MN, M_b = {t['M_b_Nm'] / 1e6:.2f} MN m, u_d = {t['u_d_m'] * 1e3:.2f} mm "
+            f"(linear spectral {analysis.extremes.totals['F_N'] / 1e6:.3f} MN, {analysis.extremes.totals['M_b_Nm'] / 1e6:.2f} MN m)"
+        )
 
         tps = np.arange(5.0, 16.0 + 1e-9, 0.5)
         raised = seafast.load_case(None, RAISED)
@@ -83,11 +86,20 @@ def main() -> None:
         t0 = time.perf_counter()
         allowable_sea_states(case, tps)
         base_s = time.perf_counter() - t0
-        print(f"operability over {tps.size} peak periods: {op_s:.2f} s wall, {op_cpu_s:.2f} s CPU with limits 11.5 MN / 28 MPa ({evaluations} design-wave "
-              f"evaluations, nonlinear differs from linear at {lifted} peak periods); {base_s:.2f} s with the base limits")
+        print(
+            f"operability over {tps.size} peak periods: {op_s:.2f} s wall, {op_cpu_s:.2f} s CPU with limits 11.5 MN / 28 MPa "
+            f"({evaluations} design-wave evaluations, nonlinear differs from linear at {lifted} peak periods); "
+            f"{base_s:.2f} s with the base limits"
+        )
 
         mc_s, speedup = float("nan"), float("nan")
-        full_s = timed(lambda: sea_state_design_waves(spectral_analysis(seafast.load_case(None, {"wave.amplitude_m": 3.0 + 1e-9 * time.time()}))), 3)[1] / 1e3
+        full_s = (
+            timed(
+                lambda: sea_state_design_waves(spectral_analysis(seafast.load_case(None, {"wave.amplitude_m": 3.0 + 1e-9 * time.time()}))),
+                3,
+            )[1]
+            / 1e3
+        )
         if not skip_mc:
             from seafast.seastate.monte_carlo import run_monte_carlo
 
@@ -96,12 +108,16 @@ def main() -> None:
                 mc = run_monte_carlo(case, Path(d), workers=1, progress=False)
                 mc_s = time.perf_counter() - t0
             speedup = mc_s / full_s
-            print(f"Monte Carlo reference (20 x 3 h, one process): {mc_s:.1f} s, F = {mc.nonlinear.mpm['F_N'] / 1e6:.3f} MN; "
-                  f"spectral analysis + design waves from the case {full_s * 1e3:.0f} ms: {speedup:.0f}x "
-                  f"({mc_s / (dw_ms / 1e3):.0f}x against the design waves alone)")
-    print(f"design_wave_ms={dw_ms:.2f} design_wave_cpu_ms={dw_cpu_ms:.2f} design_wave_adaptive_ms={adaptive_ms:.0f} operability_s={op_s:.2f} "
-          f"operability_cpu_s={op_cpu_s:.2f} operability_base_s={base_s:.2f} "
-          f"design_wave_full_s={full_s:.3f} monte_carlo_s={mc_s:.1f} speedup_vs_monte_carlo={speedup:.0f}")
+            print(
+                f"Monte Carlo reference (20 x 3 h, one process): {mc_s:.1f} s, F = {mc.nonlinear.mpm['F_N'] / 1e6:.3f} MN; "
+                f"spectral analysis + design waves from the case {full_s * 1e3:.0f} ms: {speedup:.0f}x "
+                f"({mc_s / (dw_ms / 1e3):.0f}x against the design waves alone)"
+            )
+    print(
+        f"design_wave_ms={dw_ms:.2f} design_wave_cpu_ms={dw_cpu_ms:.2f} design_wave_adaptive_ms={adaptive_ms:.0f} operability_s={op_s:.2f} "
+        f"operability_cpu_s={op_cpu_s:.2f} operability_base_s={base_s:.2f} "
+        f"design_wave_full_s={full_s:.3f} monte_carlo_s={mc_s:.1f} speedup_vs_monte_carlo={speedup:.0f}"
+    )
 
 
 if __name__ == "__main__":

@@ -129,10 +129,16 @@ def main(argv: list[str] | None = None) -> int:
         time_all(mesh_cases + saddle_cases, rounds)
     mesh = [c.row() for c in mesh_cases]
     saddles = [c.row() for c in saddle_cases]
-    for length, row in zip(ELEMENT_LENGTHS_M, mesh):
-        print(f"element {length:5.3f} m: {row['nodes']:5.0f} nodes  new model {row['fresh_ms']:8.2f} ms  solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)")
+    for length, row in zip(ELEMENT_LENGTHS_M, mesh, strict=True):
+        print(
+            f"element {length:5.3f} m: {row['nodes']:5.0f} nodes  new model {row['fresh_ms']:8.2f} ms  "
+            f"solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)"
+        )
     for row in saddles:
-        print(f"{row['saddles']:2.0f} saddles: new model {row['fresh_ms']:8.2f} ms  solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)")
+        print(
+            f"{row['saddles']:2.0f} saddles: new model {row['fresh_ms']:8.2f} ms  "
+            f"solved before {row['solve_ms']:8.2f} ms  ({row['iterations']:.0f} iterations)"
+        )
     fits = {
         "mesh_exponent": exponent([r["nodes"] for r in mesh], [r["fresh_ms"] for r in mesh]),
         "mesh_exponent_warm": exponent([r["nodes"] for r in mesh], [r["solve_ms"] for r in mesh]),
@@ -140,12 +146,19 @@ def main(argv: list[str] | None = None) -> int:
         "saddle_exponent_warm": exponent([r["saddles"] for r in saddles], [r["solve_ms"] for r in saddles]),
     }
     figure = plot(mesh, saddles, fits, args.figure)
-    print(f"fitted t ~ nodes^p: new model p = {fits['mesh_exponent']:.2f} (target <= 1.2), model solved before p = {fits['mesh_exponent_warm']:.2f}")
-    print(f"fitted t ~ saddles^p: new model p = {fits['saddle_exponent']:.2f}, model solved before p = {fits['saddle_exponent_warm']:.2f}; figure {figure}")
+    print(
+        f"fitted t ~ nodes^p: new model p = {fits['mesh_exponent']:.2f} (target <= 1.2), "
+        f"model solved before p = {fits['mesh_exponent_warm']:.2f}"
+    )
+    print(
+        f"fitted t ~ saddles^p: new model p = {fits['saddle_exponent']:.2f}, "
+        f"model solved before p = {fits['saddle_exponent_warm']:.2f}; figure {figure}"
+    )
     print(
         " ".join(f"{k}={v:.3g}" for k, v in fits.items())
-        + f" nodes_max={mesh[-1]['nodes']:.0f} fresh_ms_77_nodes={mesh[0]['fresh_ms']:.3g} fresh_ms_max_nodes={mesh[-1]['fresh_ms']:.3g}"
-        f" warm_ms_max_nodes={mesh[-1]['solve_ms']:.3g} fresh_ms_2_saddles={saddles[0]['fresh_ms']:.3g} fresh_ms_12_saddles={saddles[-1]['fresh_ms']:.3g}"
+        + f" nodes_max={mesh[-1]['nodes']:.0f} fresh_ms_77_nodes={mesh[0]['fresh_ms']:.3g}"
+        f" fresh_ms_max_nodes={mesh[-1]['fresh_ms']:.3g} warm_ms_max_nodes={mesh[-1]['solve_ms']:.3g}"
+        f" fresh_ms_2_saddles={saddles[0]['fresh_ms']:.3g} fresh_ms_12_saddles={saddles[-1]['fresh_ms']:.3g}"
     )
     return 0
 

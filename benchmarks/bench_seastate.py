@@ -20,23 +20,21 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from benchutil import timed  # noqa: E402
-
-import seafast  # noqa: E402
-from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation  # noqa: E402
-from seafast.excitation.hull_girder import deck_harmonics_at, wave_response, wave_transfer_functions  # noqa: E402
-from seafast.excitation.vessel import vessel_excitation  # noqa: E402
-from seafast.pipeline import build_model  # noqa: E402
-from seafast.seastate.spectral import spectral_analysis  # noqa: E402
-from seafast.seastate.transfer import transfer_functions  # noqa: E402
-from seafast.solvers.linear import solve_harmonic  # noqa: E402
+import seafast
+from benchutil import timed
+from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
+from seafast.excitation.hull_girder import deck_harmonics_at, wave_response, wave_transfer_functions
+from seafast.excitation.vessel import vessel_excitation
+from seafast.pipeline import build_model
+from seafast.seastate.spectral import spectral_analysis
+from seafast.seastate.transfer import transfer_functions
+from seafast.solvers.linear import solve_harmonic
 
 
 def _dense_cargo_loop(case, model, tf):
@@ -45,7 +43,11 @@ def _dense_cargo_loop(case, model, tf):
     out = []
     for i, w in enumerate(tf.omega_rad_s):
         exc = assemble_excitation(
-            model, aft, float(w), None, lambda _x, i=i: (tf.deck_displacement[i, 0::2], tf.deck_displacement[i, 1::2]),
+            model,
+            aft,
+            float(w),
+            None,
+            lambda _x, i=i: (tf.deck_displacement[i, 0::2], tf.deck_displacement[i, 1::2]),
             RigidBodyAmplitudes(complex(tf.heave_m[i]), complex(tf.pitch_rad[i]), tf.pitch_reference_x_m),
         )
         out.append(solve_harmonic(model, float(w), exc.cargo_load_N[1], exc.deck_displacement[1]))
@@ -67,8 +69,10 @@ def main() -> None:
     e = analysis.extremes.totals
     print(f"linear spectral extremes, base case, Hs = 3 m, Tp = 10 s, {analysis.spectrum.omega_rad_s.size} frequencies:")
     print(f"  fresh vessel (BEM from disk cache): {cold_ms:.0f} ms   vessel in memory: {warm_ms:.0f} ms")
-    print(f"  F = {e['F_N'] / 1e6:.2f} MN, M_b = {e['M_b_Nm'] / 1e6:.1f} MN m, sigma_b = {e['sigma_b_Pa'] / 1e6:.1f} MPa, "
-          f"u_s = {e['u_s_m'] * 1e3:.2f} mm, uplift {e['uplift_per_hour']:.2f} per hour")
+    print(
+        f"  F = {e['F_N'] / 1e6:.2f} MN, M_b = {e['M_b_Nm'] / 1e6:.1f} MN m, sigma_b = {e['sigma_b_Pa'] / 1e6:.1f} MPa, "
+        f"u_s = {e['u_s_m'] * 1e3:.2f} mm, uplift {e['uplift_per_hour']:.2f} per hour"
+    )
 
     model = build_model(base)
     omega = analysis.spectrum.omega_rad_s
@@ -78,8 +82,10 @@ def main() -> None:
     dense, loop_ms = timed(lambda: _dense_cargo_loop(base, model, tf), 2)
     dense_ms = hull_all_ms + loop_ms
     diff = float(np.max(np.abs(dense - tf.cargo_displacement)) / np.max(np.abs(dense)))
-    print(f"transfer functions at {omega.size} frequencies: {tf_ms:.0f} ms (hull {hull_all_ms:.0f} ms); with one assembly and a "
-          f"dense LU per frequency {dense_ms:.0f} ms (max rel. difference {diff:.1e})")
+    print(
+        f"transfer functions at {omega.size} frequencies: {tf_ms:.0f} ms (hull {hull_all_ms:.0f} ms); with one assembly and a "
+        f"dense LU per frequency {dense_ms:.0f} ms (max rel. difference {diff:.1e})"
+    )
 
     subset = omega[::8]
     hull_tf, hull_ms = timed(lambda: wave_transfer_functions(v.girder, v.loading, subset), 5)
@@ -90,8 +96,10 @@ def main() -> None:
 
     z64, crest_ms = timed(crests, 2)
     hdiff = float(np.max(np.abs(z64 - hull_tf.deck_at(x)[0])) / np.max(np.abs(z64)))
-    print(f"hull transfer functions at {subset.size} frequencies: two load cases {hull_ms:.1f} ms, 64 crest positions "
-          f"{crest_ms:.0f} ms (max rel. difference {hdiff:.1e})")
+    print(
+        f"hull transfer functions at {subset.size} frequencies: two load cases {hull_ms:.1f} ms, 64 crest positions "
+        f"{crest_ms:.0f} ms (max rel. difference {hdiff:.1e})"
+    )
 
     realisation = float("nan")
     try:

@@ -51,8 +51,20 @@ def fake_evaluator(case):
     for load_case in ("static", "dynamic"):
         for model in ("linear", "nonlinear"):
             rows.append(
-                dict(load_case=load_case, model=model, u_c_m=0.0, u_s_m=0.0, u_d_m=0.0, F_N=float(case.seafastening.saddle_count),
-                     M_b_Nm=1.0, sigma_b_Pa=1.0, converged=True, contact_preserved=True, residual_norm=0.0, iterations=0)
+                dict(
+                    load_case=load_case,
+                    model=model,
+                    u_c_m=0.0,
+                    u_s_m=0.0,
+                    u_d_m=0.0,
+                    F_N=float(case.seafastening.saddle_count),
+                    M_b_Nm=1.0,
+                    sigma_b_Pa=1.0,
+                    converged=True,
+                    contact_preserved=True,
+                    residual_norm=0.0,
+                    iterations=0,
+                )
             )
     return rows
 
@@ -157,7 +169,8 @@ def main(argv: list[str] | None = None) -> int:
     source = tuple(names) == SOURCE_STUDIES
     per_study = " ".join(f"cost_{n.replace('-', '_')}={figures[n]:.3g}" for n in names)
     print(
-        f"cost_per_point_vs_hbm={together if source else math.nan:.3g} cpu_cost_per_point_vs_hbm={together_cpu if source else math.nan:.3g} "
+        f"cost_per_point_vs_hbm={together if source else math.nan:.3g} "
+        f"cpu_cost_per_point_vs_hbm={together_cpu if source else math.nan:.3g} "
         f"hbm_median_ms={hbm_ms:.3g} {per_study} "
         f"points_per_s_serial={grid.size / t_serial:.3g} points_per_s_processes={grid.size / t_proc:.3g} "
         f"points_per_s_dask={grid.size / t_dask:.3g} full_three_studies_s={t_full if source else math.nan:.3g} "

@@ -22,8 +22,9 @@ import time
 from pathlib import Path
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
+
+from benchutil import timed
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -40,7 +41,9 @@ def deck_case(directory: Path):
             out.append(f"{x},{still},{0.3 * float(amplitude):.6e},{phase}")
     table = directory / "deck.csv"
     table.write_text("\n".join(out) + "\n")
-    return load_case(None, {"seafastening.saddle_stiffness_N_per_m": 1.1e7, "vessel.motions": "none", "vessel.deck_deflection_table": str(table)})
+    return load_case(
+        None, {"seafastening.saddle_stiffness_N_per_m": 1.1e7, "vessel.motions": "none", "vessel.deck_deflection_table": str(table)}
+    )
 
 
 def hbm_median_ms(result, omega: float) -> float:
@@ -91,11 +94,21 @@ def main() -> None:
             table_s = time.perf_counter() - t0
             hbm_ms = hbm_median_ms(result, float(np.median(result.branch.omega_rad_s)))
             per_point_ms = 1e3 * total / n
-            print(f"{name}: {n} points in {total:.2f} s ({per_point_ms:.1f} ms a point; the table {1e3 * table_s / n:.1f} ms of it); "
-                  f"one warm-started HBM solve {hbm_ms:.2f} ms; a point costs {per_point_ms / hbm_ms:.1f} solves; "
-                  f"folds at {np.round(result.table.fold_omegas_rad_s, 4).tolist()} rad/s; {int((~result.table.stable).sum())} unstable points")
-            figures.update({f"{name}_points": n, f"{name}_s": round(total, 2), f"{name}_table_s": round(table_s, 2),
-                            f"{name}_point_vs_hbm": round(per_point_ms / hbm_ms, 1), f"{name}_hbm_ms": round(hbm_ms, 3)})
+            print(
+                f"{name}: {n} points in {total:.2f} s ({per_point_ms:.1f} ms a point; the table {1e3 * table_s / n:.1f} ms of it); "
+                f"one warm-started HBM solve {hbm_ms:.2f} ms; a point costs {per_point_ms / hbm_ms:.1f} solves; "
+                f"folds at {np.round(result.table.fold_omegas_rad_s, 4).tolist()} rad/s; "
+                f"{int((~result.table.stable).sum())} unstable points"
+            )
+            figures.update(
+                {
+                    f"{name}_points": n,
+                    f"{name}_s": round(total, 2),
+                    f"{name}_table_s": round(table_s, 2),
+                    f"{name}_point_vs_hbm": round(per_point_ms / hbm_ms, 1),
+                    f"{name}_hbm_ms": round(hbm_ms, 3),
+                }
+            )
             if name == "deck":
                 excitation_at = vessel_excitation(case).cargo_excitation(result.model, case).at_frequency
                 t0 = time.perf_counter()
@@ -105,8 +118,10 @@ def main() -> None:
                 jumps = [max(s.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m)).omega_rad_s for s in (up, down)]
                 folds = result.table.fold_omegas_rad_s
                 error = max(abs(jumps[0] / folds[0] - 1.0), abs(jumps[1] / folds[1] - 1.0))
-                print(f"deck: time-domain stepped-sine up- and down-sweeps {td_s:.2f} s ({up.periods.sum() + down.periods.sum()} periods); "
-                      f"jumps at {jumps[0]:.4f} / {jumps[1]:.4f} rad/s; largest fold difference {100 * error:.3f} %")
+                print(
+                    f"deck: time-domain stepped-sine up- and down-sweeps {td_s:.2f} s ({up.periods.sum() + down.periods.sum()} periods); "
+                    f"jumps at {jumps[0]:.4f} / {jumps[1]:.4f} rad/s; largest fold difference {100 * error:.3f} %"
+                )
                 figures.update({"td_sweeps_s": round(td_s, 2), "fold_vs_td_max_rel": float(f"{error:.2e}")})
     print(" ".join(f"{k}={v}" for k, v in figures.items()))
 
@@ -115,17 +130,27 @@ def _table_again(result):
     """The sweep's table (stability, moments, linear model, truncation, range) rebuilt for its branch."""
     from seafast.pipeline import hbm_options
     from seafast.results.sweep import sweep_table
-    from seafast.sweeps import SweepKind, wave_excitation
     from seafast.solvers.hbm import condensed_operators, solve_condensed
+    from seafast.sweeps import SweepKind, wave_excitation
 
     case, model, branch = result.case, result.model, result.branch
     law = hbm_options(case).law
     if result.kind is SweepKind.WAVE:
         excitation_at, rao_at = wave_excitation(case, model, result.omega_start_rad_s, result.omega_end_rad_s)
         options = hbm_options(case, harmonics=0, time_samples=2)
-        still = solve_condensed(condensed_operators(model, excitation_at(result.omega_start_rad_s).static_part(), 0), options).saddle_compression
-        return sweep_table(model, branch, excitation_at, law, result.table.limits, wave_amplitude_m=float(case.wave.amplitude_m),
-                           rao_at=rao_at, still_water_compression_m=still)
+        still = solve_condensed(
+            condensed_operators(model, excitation_at(result.omega_start_rad_s).static_part(), 0), options
+        ).saddle_compression
+        return sweep_table(
+            model,
+            branch,
+            excitation_at,
+            law,
+            result.table.limits,
+            wave_amplitude_m=float(case.wave.amplitude_m),
+            rao_at=rao_at,
+            still_water_compression_m=still,
+        )
     from seafast.excitation.vessel import vessel_excitation
 
     return sweep_table(model, branch, vessel_excitation(case).cargo_excitation(model, case).at_frequency, law, result.table.limits)

@@ -15,8 +15,9 @@ import tempfile
 import time
 
 import numpy as np
-from benchutil import timed
 from threadpoolctl import threadpool_limits
+
+from benchutil import timed
 
 
 def main() -> None:
@@ -44,8 +45,10 @@ def main() -> None:
         r2, t_two = timed(lambda: run_case(two_way), 5)
     print(f"still-water hull girder (343 nodes, balance + Timoshenko beam)      median {t_still:8.2f} ms")
     print(f"quasi-static wave response (64 crest positions, vectorised)          median {t_wave:8.2f} ms")
-    print(f"hull compliance at the saddles for loads on all {model.cargo.node_count} cargo nodes      median {t_comp:8.2f} ms "
-          f"({t_comp / t_still:.1f}x one still-water solve)")
+    print(
+        f"hull compliance at the saddles for loads on all {model.cargo.node_count} cargo nodes      median {t_comp:8.2f} ms "
+        f"({t_comp / t_still:.1f}x one still-water solve)"
+    )
     print(f"base case run_case, one-way (4 solves; vessel from the in-memory cache) median {t_one:8.2f} ms")
     print(f"base case run_case, two-way (4 rows coupled)                          median {t_two:8.2f} ms ({t_two / t_one:.1f}x one-way)")
     for status in r2.coupling.values():
@@ -53,21 +56,34 @@ def main() -> None:
     v2 = r2.vessel
     with threadpool_limits(1):
         hull, t_hull = timed(
-            lambda: coupled_hull(v2.girder, v2.loading, r2.compliance, v2.still_water, r2.deck_couplings[("static", "nonlinear")],
-                                 v2.wave, r2.deck_couplings[("dynamic", "nonlinear")]),
+            lambda: coupled_hull(
+                v2.girder,
+                v2.loading,
+                r2.compliance,
+                v2.still_water,
+                r2.deck_couplings[("static", "nonlinear")],
+                v2.wave,
+                r2.deck_couplings[("dynamic", "nonlinear")],
+            ),
             10,
         )
     mid = int(np.argmin(np.abs(hull.x_m - v2.girder.midship_x_m)))
-    print(f"coupled hull girder (still water + wave, the lines along the ship)   median {t_hull:8.2f} ms "
-          f"({t_hull / t_two:.2f}x a two-way run_case; computed when the dataset is built)")
-    print(f"  midship still water: moment {v2.still_water.bending_moment_Nm[mid] / 1e6:.1f} -> "
-          f"{hull.still_water_bending_moment_Nm[mid] / 1e6:.1f} MN m, deflection {1e3 * v2.still_water.deflection_m[mid]:.1f} -> "
-          f"{1e3 * hull.still_water_deflection_m[mid]:.1f} mm (one-way -> two-way)")
+    print(
+        f"coupled hull girder (still water + wave, the lines along the ship)   median {t_hull:8.2f} ms "
+        f"({t_hull / t_two:.2f}x a two-way run_case; computed when the dataset is built)"
+    )
+    print(
+        f"  midship still water: moment {v2.still_water.bending_moment_Nm[mid] / 1e6:.1f} -> "
+        f"{hull.still_water_bending_moment_Nm[mid] / 1e6:.1f} MN m, deflection {1e3 * v2.still_water.deflection_m[mid]:.1f} -> "
+        f"{1e3 * hull.still_water_deflection_m[mid]:.1f} mm (one-way -> two-way)"
+    )
     f1 = {(r["load_case"], r["model"]): r["F_N"] for r in r1.summary}
     f2 = {(r["load_case"], r["model"]): r["F_N"] for r in r2.summary}
     for key in f1:
-        print(f"  peak saddle force {key[0]:7s} {key[1]:9s}: one-way {f1[key] / 1e6:7.3f} MN, two-way {f2[key] / 1e6:7.3f} MN "
-              f"({f2[key] / f1[key] - 1.0:+.1%})")
+        print(
+            f"  peak saddle force {key[0]:7s} {key[1]:9s}: one-way {f1[key] / 1e6:7.3f} MN, two-way {f2[key] / 1e6:7.3f} MN "
+            f"({f2[key] / f1[key] - 1.0:+.1%})"
+        )
 
     t_bem = math.nan
     if not args.no_bem:
@@ -85,9 +101,11 @@ def main() -> None:
                 else:
                     os.environ["SEAFAST_CACHE_DIR"] = previous
         heave, pitch = m.rao_at(vessel.omega_rad_s)
-        print(f"BEM (capytaine, {np.asarray(m.omega_rad_s).size} frequencies, empty cache) {t_bem:6.1f} s "
-              f"(target 60 s: {60.0 / t_bem:.1f}x margin); RAOs at {vessel.omega_rad_s:.3f} rad/s: "
-              f"heave {abs(heave):.3f} m/m, pitch {np.degrees(abs(pitch)):.3f} deg/m")
+        print(
+            f"BEM (capytaine, {np.asarray(m.omega_rad_s).size} frequencies, empty cache) {t_bem:6.1f} s "
+            f"(target 60 s: {60.0 / t_bem:.1f}x margin); RAOs at {vessel.omega_rad_s:.3f} rad/s: "
+            f"heave {abs(heave):.3f} m/m, pitch {np.degrees(abs(pitch)):.3f} deg/m"
+        )
     print(
         f"still_water_ms={t_still:.3g} wave_ms={t_wave:.3g} compliance_ms={t_comp:.3g} run_one_way_ms={t_one:.3g} "
         f"run_two_way_ms={t_two:.3g} two_way_vs_one_way={t_two / t_one:.2f} coupled_hull_ms={t_hull:.3g} bem_s={t_bem:.3g}"

@@ -51,15 +51,19 @@ def compare_table(old: Path, new: Path, rtol: float) -> tuple[bool, dict[str, fl
         a = [row[j] for row in r_old]
         b = [row[j] for row in r_new]
         xa, xb = [_number(v) for v in a], [_number(v) for v in b]
-        numeric = all(v is not None or t == "" for v, t in zip(xa, a)) and any(v is not None for v in xa) and not all(t in ("true", "false") for t in a)
+        numeric = (
+            all(v is not None or t == "" for v, t in zip(xa, a, strict=True))
+            and any(v is not None for v in xa)
+            and not all(t in ("true", "false") for t in a)
+        )
         if not numeric:
-            mismatches = sum(1 for u, v in zip(a, b) if u != v)
+            mismatches = sum(1 for u, v in zip(a, b, strict=True) if u != v)
             if mismatches and name not in DIAGNOSTICS:
                 problems.append(f"{new.name}: column {name}: {mismatches} of {len(a)} cells differ")
             continue
         scale = max((abs(v) for v in xa if v is not None and math.isfinite(v)), default=0.0) or 1.0
         diff = 0.0
-        for u, v, tu, tv in zip(xa, xb, a, b):
+        for u, v, tu, tv in zip(xa, xb, a, b, strict=True):
             if (u is None) != (v is None) or (tu == "") != (tv == ""):
                 diff = math.inf
                 break

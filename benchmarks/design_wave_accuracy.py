@@ -47,12 +47,36 @@ SEA_STATES: dict[str, dict[str, object]] = {
     "base_hs5_tp10": {"sea_state.significant_height_m": 5.0, "sea_state.peak_period_s": 10.0},
     "base_hs6_tp10": {"sea_state.significant_height_m": 6.0, "sea_state.peak_period_s": 10.0},
     "base_hs6_tp16": {"sea_state.significant_height_m": 6.0, "sea_state.peak_period_s": 16.0},
-    "soft1e8_hs6_tp10": {"seafastening.saddle_stiffness_N_per_m": 1.1e8, "sea_state.significant_height_m": 6.0, "sea_state.peak_period_s": 10.0},
-    "soft1e7_hs6_tp10": {"seafastening.saddle_stiffness_N_per_m": 1.1e7, "sea_state.significant_height_m": 6.0, "sea_state.peak_period_s": 10.0},
-    "softouter1e8_hs3_tp10": {"seafastening.saddle_stiffness_N_per_m": SOFT_OUTER, "sea_state.significant_height_m": 3.0, "sea_state.peak_period_s": 10.0},
-    "softouter1e8_hs5_tp10": {"seafastening.saddle_stiffness_N_per_m": SOFT_OUTER, "sea_state.significant_height_m": 5.0, "sea_state.peak_period_s": 10.0},
-    "softouter1e7_hs3_tp10": {"seafastening.saddle_stiffness_N_per_m": [1.1e7, 1.1e9, 1.1e7], "sea_state.significant_height_m": 3.0, "sea_state.peak_period_s": 10.0},
-    "softmid1e8_hs5_tp10": {"seafastening.saddle_stiffness_N_per_m": [1.1e9, 1.1e8, 1.1e9], "sea_state.significant_height_m": 5.0, "sea_state.peak_period_s": 10.0},
+    "soft1e8_hs6_tp10": {
+        "seafastening.saddle_stiffness_N_per_m": 1.1e8,
+        "sea_state.significant_height_m": 6.0,
+        "sea_state.peak_period_s": 10.0,
+    },
+    "soft1e7_hs6_tp10": {
+        "seafastening.saddle_stiffness_N_per_m": 1.1e7,
+        "sea_state.significant_height_m": 6.0,
+        "sea_state.peak_period_s": 10.0,
+    },
+    "softouter1e8_hs3_tp10": {
+        "seafastening.saddle_stiffness_N_per_m": SOFT_OUTER,
+        "sea_state.significant_height_m": 3.0,
+        "sea_state.peak_period_s": 10.0,
+    },
+    "softouter1e8_hs5_tp10": {
+        "seafastening.saddle_stiffness_N_per_m": SOFT_OUTER,
+        "sea_state.significant_height_m": 5.0,
+        "sea_state.peak_period_s": 10.0,
+    },
+    "softouter1e7_hs3_tp10": {
+        "seafastening.saddle_stiffness_N_per_m": [1.1e7, 1.1e9, 1.1e7],
+        "sea_state.significant_height_m": 3.0,
+        "sea_state.peak_period_s": 10.0,
+    },
+    "softmid1e8_hs5_tp10": {
+        "seafastening.saddle_stiffness_N_per_m": [1.1e9, 1.1e8, 1.1e9],
+        "sea_state.significant_height_m": 5.0,
+        "sea_state.peak_period_s": 10.0,
+    },
     "four_hs2_tp10": {"seafastening.saddle_count": 4, "sea_state.significant_height_m": 2.0, "sea_state.peak_period_s": 10.0},
     "four_hs3_tp10": {"seafastening.saddle_count": 4, "sea_state.significant_height_m": 3.0, "sea_state.peak_period_s": 10.0},
     "four_hs5_tp12": {"seafastening.saddle_count": 4, "sea_state.significant_height_m": 5.0, "sea_state.peak_period_s": 12.0},
@@ -118,13 +142,16 @@ def main(argv: list[str] | None = None) -> None:
     names = args.only or list(SEA_STATES)
     results = [evaluate(n, store) for n in names]
     (store / "design_wave_accuracy.json").write_text(json.dumps(results, indent=1))
-    print("| sea state | uplift/h | F MC [MN] (95 %) | dw | dw adaptive | MLER | linear | M_b MC [MN m] (95 %) | dw | dw adaptive | MLER | linear | u_d MC [mm] (95 %) | u_d dw |")
+    print(
+        "| sea state | uplift/h | F MC [MN] (95 %) | dw | dw adaptive | MLER | linear "
+        "| M_b MC [MN m] (95 %) | dw | dw adaptive | MLER | linear | u_d MC [mm] (95 %) | u_d dw |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    worst = {m: 0.0 for m in ("dw", "dw_adaptive", "mler", "linear")}
-    within = {m: 0 for m in worst}
+    worst = dict.fromkeys(("dw", "dw_adaptive", "mler", "linear"), 0.0)
+    within = dict.fromkeys(worst, 0)
     for r in results:
         cells = [r["name"], f"{r['uplift_per_hour']:.1f}"]
-        ok = {m: True for m in worst}
+        ok = dict.fromkeys(worst, True)
         for q, scale in (("F_N", 1e-6), ("M_b_Nm", 1e-6)):
             lo, hi = r["mc_interval"][q]
             cells.append(f"{r['mc'][q] * scale:.2f} ({lo * scale:.2f}-{hi * scale:.2f})")
@@ -141,8 +168,12 @@ def main(argv: list[str] | None = None) -> None:
         sys.stdout.flush()
     cost = {m: float(np.median([r["ms"][m] for r in results])) for m in ("dw", "dw_adaptive", "mler")}
     print(f"median cost: dw {cost['dw']:.0f} ms, dw adaptive {cost['dw_adaptive']:.0f} ms, MLER {cost['mler']:.0f} ms")
-    print(" ".join(f"worst_{m}={worst[m]:.4f}" for m in worst) + " " + " ".join(f"within10_{m}={within[m]}" for m in within)
-          + f" sea_states={len(results)}")
+    print(
+        " ".join(f"worst_{m}={worst[m]:.4f}" for m in worst)
+        + " "
+        + " ".join(f"within10_{m}={within[m]}" for m in within)
+        + f" sea_states={len(results)}"
+    )
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ def main() -> Path:
         "# wave deflection = wave_amplitude_m * cos(omega t + wave_phase_rad), t = 0 at period fraction 0.",
         "x_m,still_water_m,wave_amplitude_m,wave_phase_rad",
     ]
-    for xi, s, c in zip(x, still, w1_x):
+    for xi, s, c in zip(x, still, w1_x, strict=True):
         lines.append(f"{xi:.2f},{s:.6e},{abs(c):.6e},{np.angle(c):.6f}")
     path = HERE / "deck_deflection.csv"
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")

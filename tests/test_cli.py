@@ -37,8 +37,16 @@ def test_run_base_case_writes_interface_outputs(tmp_path):
         assert r["converged"] == "true"
         if r["model"] == "linear":
             assert float(r["u_d_m"]) == 0.0
-    for name in ("results.nc", "case.yaml", "deflection.png", "forces_moments.png", "saddle_time_histories.png",
-                 "saddle_surfaces.png", "aft_most_loaded_saddle.png", "hull_girder.png"):
+    for name in (
+        "results.nc",
+        "case.yaml",
+        "deflection.png",
+        "forces_moments.png",
+        "saddle_time_histories.png",
+        "saddle_surfaces.png",
+        "aft_most_loaded_saddle.png",
+        "hull_girder.png",
+    ):
         assert (out / name).stat().st_size > 1000, name
 
 
@@ -54,8 +62,8 @@ def test_calibration_static_linear_base_case(tmp_path):
     # u_c depends on the reference frame (README): the sea-fastening baseline gives 5.33 mm vs the source's 5.9 mm
     assert float(row["u_c_m"]) == pytest.approx(5.33e-3, rel=0.02)
     # sigma_b = M_b (D/2) / I with I = 15.6 m^4
-    I = math.pi / 64 * (8**4 - (8 - 0.16) ** 4)
-    assert float(row["sigma_b_Pa"]) == pytest.approx(float(row["M_b_Nm"]) * 4.0 / I, rel=1e-3)
+    I_m4 = math.pi / 64 * (8**4 - (8 - 0.16) ** 4)
+    assert float(row["sigma_b_Pa"]) == pytest.approx(float(row["M_b_Nm"]) * 4.0 / I_m4, rel=1e-3)
 
 
 def test_init_writes_a_case_that_runs(tmp_path, capsys):
@@ -110,11 +118,25 @@ def test_missing_and_malformed_case_files(tmp_path, capsys):
 
 _keys = st.sampled_from(
     [
-        "cargo.length_m", "cargo.diameter_m", "cargo.wall_thickness_m", "cargo.position_m",
-        "seafastening.saddle_count", "seafastening.saddle_positions_m", "seafastening.saddle_stiffness_N_per_m",
-        "seafastening.lashing.stiffness_N_per_m", "seafastening.lashing.pretension_N", "wave.length_m",
-        "wave.amplitude_m", "solver.harmonics", "solver.time_samples", "solver.contact_law", "model.element_length_m",
-        "cargo", "solver", "nonsense.key", "cargo.sections",
+        "cargo.length_m",
+        "cargo.diameter_m",
+        "cargo.wall_thickness_m",
+        "cargo.position_m",
+        "seafastening.saddle_count",
+        "seafastening.saddle_positions_m",
+        "seafastening.saddle_stiffness_N_per_m",
+        "seafastening.lashing.stiffness_N_per_m",
+        "seafastening.lashing.pretension_N",
+        "wave.length_m",
+        "wave.amplitude_m",
+        "solver.harmonics",
+        "solver.time_samples",
+        "solver.contact_law",
+        "model.element_length_m",
+        "cargo",
+        "solver",
+        "nonsense.key",
+        "cargo.sections",
     ]
 )
 _values = st.one_of(
@@ -166,7 +188,7 @@ def test_scripting_entry_points():
     result = seafast.run_case(seafast.load_case(overrides={"vessel.motions": "none"}))
     assert result.summary[0]["F_N"] == pytest.approx(6.3e6, rel=0.05)
     with pytest.raises(AttributeError):
-        seafast.no_such_thing  # noqa: B018
+        seafast.no_such_thing  # noqa: B018 - the attribute access is what must raise
 
 
 def test_sweep_says_it_cannot_couple(capsys):
@@ -195,7 +217,10 @@ def test_a_coupling_that_does_not_converge_is_named_in_the_warning(tmp_path, cap
     import seafast.pipeline as pipeline
 
     original = coupling.couple_deck
-    stopped = lambda *a, **k: original(*a, **{**k, "max_iterations": 0})  # noqa: E731
+
+    def stopped(*a, **k):
+        return original(*a, **{**k, "max_iterations": 0})
+
     monkeypatch.setattr(coupling, "couple_deck", stopped)
     monkeypatch.setattr(pipeline, "couple_deck", stopped, raising=False)  # where the pipeline imports it at module level
     assert main(["run", "-o", str(tmp_path / "run"), *FAST, "--set", "vessel.coupling=two_way"]) == 3

@@ -17,19 +17,27 @@ import pytest
 import xarray as xr
 
 import seafast.solvers.hbm as hbm_package
-from seafast.solvers.hbm import HBMOptions
 from seafast.cli import main
 from seafast.output.report.findings import run_findings
+from seafast.solvers.hbm import HBMOptions
 
 CASE = [
-    "--set", "seafastening.saddle_stiffness_N_per_m=1.1e7",
-    "--set", "vessel.motions=none",
-    "--set", "wave.amplitude_m=9.0",
-    "--set", "wave.frequency_rad_s=3.8",
-    "--set", "model.element_length_m=4.0",
-    "--set", "solver.method=time_domain",
-    "--set", "solver.time_samples=32",
-    "--no-plots", "-q",
+    "--set",
+    "seafastening.saddle_stiffness_N_per_m=1.1e7",
+    "--set",
+    "vessel.motions=none",
+    "--set",
+    "wave.amplitude_m=9.0",
+    "--set",
+    "wave.frequency_rad_s=3.8",
+    "--set",
+    "model.element_length_m=4.0",
+    "--set",
+    "solver.method=time_domain",
+    "--set",
+    "solver.time_samples=32",
+    "--no-plots",
+    "-q",
 ]
 
 

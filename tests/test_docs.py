@@ -169,7 +169,7 @@ def test_every_output_column_is_documented_exactly():
     assert ",".join(SUMMARY_COLUMNS) in INTERFACE
     assert ",".join(SWEEP_COLUMNS) in INTERFACE
     assert ",".join(STRUCTURAL_COLUMNS) in INTERFACE
-    assert ",".join(WAVE_COLUMNS[len(STRUCTURAL_COLUMNS):]) in INTERFACE
+    assert ",".join(WAVE_COLUMNS[len(STRUCTURAL_COLUMNS) :]) in INTERFACE
     assert ",".join(CORE_COLUMNS) in INTERFACE
     assert ",".join(COMPLIANCE_COLUMNS) in INTERFACE
     assert ",".join(RANKING_COLUMNS[2:]) in INTERFACE
@@ -189,7 +189,7 @@ def test_every_results_variable_is_documented():
 def test_every_command_is_documented():
     from seafast.cli import build_parser
 
-    commands = build_parser()._subparsers._group_actions[0].choices  # noqa: SLF001 - argparse has no public accessor
+    commands = build_parser()._subparsers._group_actions[0].choices  # argparse has no public accessor
     assert {"run", "init", "schema", "study", "sweep", "report"} <= set(commands)
     for name in commands:
         assert f"seafast {name}" in INTERFACE, f"`seafast {name}` is not in docs/interface.md#4-commands"

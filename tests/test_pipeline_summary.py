@@ -25,12 +25,19 @@ CASES = {
     "two soft saddles (large lift-off)": {"seafastening.saddle_count": 2, "seafastening.saddle_stiffness_N_per_m": 1.1e7},
     "seven stiff saddles": {"seafastening.saddle_count": 7, "seafastening.saddle_stiffness_N_per_m": 1.1e10},
     "three saddles where the H=5 system has a second solution": {
-        "seafastening.saddle_count": 3, "seafastening.saddle_stiffness_N_per_m": 1786154413.1075907,
+        "seafastening.saddle_count": 3,
+        "seafastening.saddle_stiffness_N_per_m": 1786154413.1075907,
     },
     "stiff, pretensioned lashing": {"seafastening.lashing.stiffness_N_per_m": 1e7, "seafastening.lashing.pretension_N": 1e8},
-    "one saddle, stiff lashing (baseline from the deck slope)": {"seafastening.saddle_count": 1, "seafastening.lashing.stiffness_N_per_m": 1e6},
+    "one saddle, stiff lashing (baseline from the deck slope)": {
+        "seafastening.saddle_count": 1,
+        "seafastening.lashing.stiffness_N_per_m": 1e6,
+    },
     "115 m x 12 m cargo, three abreast": {
-        "cargo.length_m": 115.0, "cargo.diameter_m": 12.0, "cargo.wall_thickness_m": 12.0 / 110, "cargo.units_abreast": 3,
+        "cargo.length_m": 115.0,
+        "cargo.diameter_m": 12.0,
+        "cargo.wall_thickness_m": 12.0 / 110,
+        "cargo.units_abreast": 3,
     },
     "exact law, H = 16": {"solver.contact_law": "exact", "solver.harmonics": 16},
     "no rigid-body motion, steep wave": {"vessel.motions": "none", "wave.amplitude_m": 5.0},
@@ -55,7 +62,7 @@ def test_short_path_rows_equal_the_full_pipeline(name):
     full = run_case(case).summary
     assert [(r["load_case"], r["model"]) for r in fast] == [(r["load_case"], r["model"]) for r in full]
     assert [list(r) for r in fast] == [list(r) for r in full]  # same columns, same order
-    for f, r in zip(fast, full):
+    for f, r in zip(fast, full, strict=True):
         label = f"{f['load_case']}/{f['model']}"
         for key, scale in (("u_c_m", 1e-3), ("u_s_m", 1e-3), ("u_d_m", 1e-3), ("F_N", 1e6), ("M_b_Nm", 1e7), ("sigma_b_Pa", 1e6)):
             assert f[key] == pytest.approx(r[key], rel=rel, abs=1e-10 * scale), f"{label} {key}"

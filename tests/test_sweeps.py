@@ -68,8 +68,7 @@ def test_the_deck_table_sweep_passes_both_folds_and_returns_to_the_linear_branch
     b, t = r.branch, r.table
     assert b.end is BranchEnd.REACHED_END and b.omega_rad_s[-1] == pytest.approx(8.0, rel=1e-9) and b.converged.all()
     folds = np.nonzero(t.fold)[0]
-    print(f"\n{b.omega_rad_s.size} points; folds at {t.omega_rad_s[folds]} rad/s; turns {b.turning_omegas_rad_s.round(4)}")
-    assert folds.size == 2
+    assert folds.size == 2, f"{b.omega_rad_s.size} points; folds at {t.omega_rad_s[folds]} rad/s; turns {b.turning_omegas_rad_s.round(4)}"
     i_up, i_down = folds  # the lower branch ends at a maximum of omega; the upper starts at a minimum
     w_up, w_down = t.omega_rad_s[i_up], t.omega_rad_s[i_down]
     assert 4.4 < w_down < w_up < 5.3  # softening: the resonance leans to lower frequencies
@@ -89,7 +88,7 @@ def test_the_deck_table_sweep_passes_both_folds_and_returns_to_the_linear_branch
     assert not t.contact_preserved[i_up : i_down + 1].any()
     # the upper branch lifts the cargo by up to half a metre: flagged beyond the meaningful range
     assert not t.valid.all()
-    assert all((RangeLimit.GAP in reasons) == (gap > t.limits.max_gap_m) for reasons, gap in zip(t.beyond_range, t.max_gap_m))
+    assert all((RangeLimit.GAP in reasons) == (gap > t.limits.max_gap_m) for reasons, gap in zip(t.beyond_range, t.max_gap_m, strict=True))
 
 
 def test_the_folds_are_where_time_domain_up_and_down_sweeps_jump(deck_sweep):
@@ -101,12 +100,14 @@ def test_the_folds_are_where_time_domain_up_and_down_sweeps_jump(deck_sweep):
     i_up, i_down = np.nonzero(t.fold)[0]
     jump_up = max(up.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m))
     jump_down = max(down.jumps, key=lambda j: abs(j.range_after_m - j.range_before_m))
-    print(f"\nfolds {t.omega_rad_s[i_up]:.4f} / {t.omega_rad_s[i_down]:.4f} rad/s; time-domain up-sweep jumps at "
-          f"{jump_up.omega_rad_s:.4f}, down-sweep at {jump_down.omega_rad_s:.4f} rad/s")
+    figures = (
+        f"folds {t.omega_rad_s[i_up]:.4f} / {t.omega_rad_s[i_down]:.4f} rad/s; time-domain up-sweep jumps at "
+        f"{jump_up.omega_rad_s:.4f}, down-sweep at {jump_down.omega_rad_s:.4f} rad/s"
+    )
     assert up.settled.all() and down.settled.all()
-    assert jump_up.range_after_m > 1.2 * jump_up.range_before_m and jump_down.range_after_m < 0.8 * jump_down.range_before_m
-    assert jump_up.omega_rad_s == pytest.approx(t.omega_rad_s[i_up], rel=0.02)
-    assert jump_down.omega_rad_s == pytest.approx(t.omega_rad_s[i_down], rel=0.02)
+    assert jump_up.range_after_m > 1.2 * jump_up.range_before_m and jump_down.range_after_m < 0.8 * jump_down.range_before_m, figures
+    assert jump_up.omega_rad_s == pytest.approx(t.omega_rad_s[i_up], rel=0.02), figures
+    assert jump_down.omega_rad_s == pytest.approx(t.omega_rad_s[i_down], rel=0.02), figures
     # between the folds the sweeps settle on the stable branches, never on the unstable one
     s = spans(b)
     lower, middle, upper = (slice(0, i_up + 1), slice(i_up, i_down + 1), slice(i_down, None))
@@ -120,11 +121,13 @@ def test_the_folds_are_where_time_domain_up_and_down_sweeps_jump(deck_sweep):
     lo, hi = 1.03 * t.omega_rad_s[i_down], 0.97 * t.omega_rad_s[i_up]
     checked = 0
     for sweep, stable_part in ((up, lower), (down, upper)):
-        for w, span in zip(sweep.omega_rad_s, sweep.compression_range_m):
+        for w, span in zip(sweep.omega_rad_s, sweep.compression_range_m, strict=True):
             if lo < w < hi:
-                print(f"  {w:.4f} rad/s: time domain {span:.4f} m, stable branch {on(stable_part, w):.4f} m, unstable {on(middle, w):.4f} m")
+                figures = (
+                    f"{w:.4f} rad/s: time domain {span:.4f} m, stable branch {on(stable_part, w):.4f} m, unstable {on(middle, w):.4f} m"
+                )
                 miss = abs(span - on(stable_part, w))
-                assert miss < 0.01 * span and abs(span - on(middle, w)) > max(10 * miss, 0.03 * span)
+                assert miss < 0.01 * span and abs(span - on(middle, w)) > max(10 * miss, 0.03 * span), figures
                 checked += 1
     assert checked >= 10
 
@@ -134,10 +137,10 @@ def test_the_structural_sweep_stops_where_the_held_deck_motion_passes_g():
     result = frequency_sweep(case, 1.0, 3.0)
     limit = result.acceleration_limit_rad_s
     excitation = vessel_excitation(case).cargo_excitation(result.model, case)
-    print(f"\nomega_g = {limit:.4f} rad/s; stopped at {result.branch.omega_rad_s[-1]:.4f} rad/s")
+    figures = f"omega_g = {limit:.4f} rad/s; stopped at {result.branch.omega_rad_s[-1]:.4f} rad/s"
     # the held motion's deck acceleration grows as omega^2: it is g at omega_g
     assert deck_acceleration_m_per_s2(result.model, excitation.at_frequency(limit)) == pytest.approx(9.81, rel=1e-9)
-    assert result.stopped_beyond_range and limit < result.branch.omega_rad_s[-1] < 1.05 * limit
+    assert result.stopped_beyond_range and limit < result.branch.omega_rad_s[-1] < 1.05 * limit, figures
     t = result.table
     assert t.valid[:-1].all() and t.beyond_range[-1] == (RangeLimit.DECK_ACCELERATION,)
     assert (t.max_deck_acceleration_m_per_s2[:-1] < 9.81).all() and t.stable.all()
@@ -146,7 +149,7 @@ def test_the_structural_sweep_stops_where_the_held_deck_motion_passes_g():
     followed = frequency_sweep(case, 1.0, 3.0, follow_beyond_range=True)
     beyond = followed.table.omega_rad_s > limit
     assert followed.table.omega_rad_s.max() > 1.03 * limit
-    assert all((RangeLimit.DECK_ACCELERATION in why) == out for why, out in zip(followed.table.beyond_range, beyond))
+    assert all((RangeLimit.DECK_ACCELERATION in why) == out for why, out in zip(followed.table.beyond_range, beyond, strict=True))
     with pytest.raises(ValueError, match="omega_g"):
         frequency_sweep(case, 2.5, 3.0)
 
@@ -199,14 +202,20 @@ def test_the_wave_sweep_at_the_case_s_wave_is_seafast_run(wave_sweep):
     t = r.table
     case, model = r.case, r.model
     assert t.omega_rad_s[-1] == case.wave_frequency_rad_s()  # the continuation lands on omega_end
-    run = solve_hbm(model, vessel_excitation(case).cargo_excitation(model, case), hbm_options(case, harmonics=r.branch.options["harmonics"]))
+    run = solve_hbm(
+        model, vessel_excitation(case).cargo_excitation(model, case), hbm_options(case, harmonics=r.branch.options["harmonics"])
+    )
     force = float(np.max(run.saddle_force_time_N))
-    print(f"\nmax saddle force: wave sweep {t.max_saddle_force_N[-1] / 1e6:.6f} MN, seafast run's HBM {force / 1e6:.6f} MN; "
-          f"RAO {t.wave.saddle_force_rao_N_per_m[-1] / 1e6:.4f} MN/m (linear {t.wave.linear_saddle_force_rao_N_per_m[-1] / 1e6:.4f})")
-    assert t.max_saddle_force_N[-1] == pytest.approx(force, rel=1e-7)
+    figures = (
+        f"max saddle force: wave sweep {t.max_saddle_force_N[-1] / 1e6:.6f} MN, seafast run's HBM {force / 1e6:.6f} MN; "
+        f"RAO {t.wave.saddle_force_rao_N_per_m[-1] / 1e6:.4f} MN/m (linear {t.wave.linear_saddle_force_rao_N_per_m[-1] / 1e6:.4f})"
+    )
+    assert t.max_saddle_force_N[-1] == pytest.approx(force, rel=1e-7), figures
     # the fore saddle lifts off: the nonlinear RAO lies below the linear one, which lets the saddles pull
-    assert not t.contact_preserved[-1] and t.wave.saddle_force_rao_N_per_m[-1] < 0.97 * t.wave.linear_saddle_force_rao_N_per_m[-1]
-    assert t.contact_preserved[0] and t.wave.saddle_force_rao_N_per_m[0] == pytest.approx(t.wave.linear_saddle_force_rao_N_per_m[0], rel=1e-3)
+    assert not t.contact_preserved[-1] and t.wave.saddle_force_rao_N_per_m[-1] < 0.97 * t.wave.linear_saddle_force_rao_N_per_m[-1], figures
+    assert t.contact_preserved[0] and t.wave.saddle_force_rao_N_per_m[0] == pytest.approx(
+        t.wave.linear_saddle_force_rao_N_per_m[0], rel=1e-3
+    )
     assert (t.wave.wave_length_m[-1]) == pytest.approx(case.wave.length_m, rel=1e-12)
     assert t.valid.all() and t.stable.all() and not t.fold.any()
 

@@ -15,13 +15,17 @@ from mkdocs.structure.files import File, Files
 PENDING: dict[str, tuple[str, str]] = {
     "seastate.md": (
         "Irregular seas",
-        "short-term extremes in an irregular head sea (`seafast seastate`, `seafast operability`, "
-        "the `sea_state.*` and `limits.*` case keys)",
+        (
+            "short-term extremes in an irregular head sea (`seafast seastate`, `seafast operability`, "
+            "the `sea_state.*` and `limits.*` case keys)"
+        ),
     ),
     "axial.md": (
         "Axial sliding and friction",
-        "saddle friction, lashing angle and stoppers (`seafastening.friction_coefficient`, "
-        "`seafastening.lashing.angle_deg`, `seafastening.stopper.*`)",
+        (
+            "saddle friction, lashing angle and stoppers (`seafastening.friction_coefficient`, "
+            "`seafastening.lashing.angle_deg`, `seafastening.stopper.*`)"
+        ),
     ),
 }
 

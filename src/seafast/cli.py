@@ -18,8 +18,8 @@ import math
 import os
 import sys
 import time
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 # Small dense solves are fastest on one BLAS thread on few cores; OpenBLAS reads this when it is
 # loaded, so set it before numpy/scipy load (study worker processes inherit it). An explicit
@@ -27,9 +27,8 @@ from typing import Sequence
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-import numpy as np  # noqa: E402
 
-import seafast
+import seafast  # noqa: E402 - after the thread settings above, like numpy
 
 __all__ = ["main", "build_parser"]
 
@@ -51,7 +50,9 @@ RUN_EXAMPLES = """examples:
 class _PresetAction(argparse.Action):
     """``--preset NAME`` is ``--set solver.preset=NAME``."""
 
-    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: object, option_string: str | None = None) -> None:
+    def __call__(
+        self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: object, option_string: str | None = None
+    ) -> None:
         overrides = list(getattr(namespace, "overrides", None) or [])
         overrides.append(f"solver.preset={values}")
         namespace.overrides = overrides
@@ -85,14 +86,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"seafast {seafast.__version__}")
     verbosity = parser.add_mutually_exclusive_group()
-    verbosity.add_argument(
-        "-v", "--verbose", action="store_true", help="also print debug messages (solver paths, fallbacks, cache hits)"
-    )
+    verbosity.add_argument("-v", "--verbose", action="store_true", help="also print debug messages (solver paths, fallbacks, cache hits)")
     verbosity.add_argument("-q", "--quiet", dest="global_quiet", action="store_true", help="print only warnings and errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     run = sub.add_parser(
-        "run", help="run a case (default: the built-in base case)", epilog=RUN_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter
+        "run",
+        help="run a case (default: the built-in base case)",
+        epilog=RUN_EXAMPLES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     run.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
     run.add_argument("-o", "--output", default="seafast-output", help="output directory (default: %(default)s)")
@@ -132,42 +134,40 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--omega-min", type=float, default=0.2, help="start frequency [rad/s] (default: %(default)s)")
     sweep.add_argument("--omega-max", type=float, default=2.0, help="end frequency [rad/s] (default: %(default)s)")
     sweep.add_argument(
-        "--wave", action="store_true",
-        help="wave sweep: at each frequency a wave of the case's amplitude (its hull deflection and RAOs) instead of the case's motions held",
+        "--wave",
+        action="store_true",
+        help=(
+            "wave sweep: at each frequency a wave of the case's amplitude (its hull deflection and RAOs) instead of the case's motions held"
+        ),
     )
     sweep.add_argument(
-        "--max-gap-m", type=float, default=None, metavar="GAP",
+        "--max-gap-m",
+        type=float,
+        default=None,
+        metavar="GAP",
         help="largest detachment gap inside the physically meaningful range [m] (default: 0.1); points beyond are flagged valid=false",
     )
     sweep.add_argument(
-        "--follow-beyond-range", action="store_true",
-        help="structural sweep: go on past the frequency where the held deck motion accelerates the deck faster than g (default: stop there)",
+        "--follow-beyond-range",
+        action="store_true",
+        help=(
+            "structural sweep: go on past the frequency where the held deck motion accelerates the deck faster than g (default: stop there)"
+        ),
     )
     sweep.add_argument("--no-plots", action="store_true", help="skip frequency_response.png")
     _add_set(sweep)
     sweep.set_defaults(handler=_cmd_sweep)
 
-    try:
-        from seafast.studies.cli import add_study_subcommand
-    except ImportError:  # pragma: no cover - studies are part of the package
-        add_study_subcommand = None
-    if add_study_subcommand is not None:
-        add_study_subcommand(sub)
-    try:
-        from seafast.seastate.cli import add_seastate_subcommand
-    except ImportError:  # pragma: no cover - part of the package
-        add_seastate_subcommand = None
-    if add_seastate_subcommand is not None:
-        add_seastate_subcommand(sub)
+    # the study, sea-state, operability and report commands are defined in their own packages
     from seafast.operability.cli import add_operability_subcommand
+    from seafast.output.report import add_report_subcommand
+    from seafast.seastate.cli import add_seastate_subcommand
+    from seafast.studies.cli import add_study_subcommand
 
+    add_study_subcommand(sub)
+    add_seastate_subcommand(sub)
     add_operability_subcommand(sub)
-    try:
-        from seafast.output.report import add_report_subcommand
-    except ImportError:  # pragma: no cover
-        add_report_subcommand = None
-    if add_report_subcommand is not None:
-        add_report_subcommand(sub)
+    add_report_subcommand(sub)
     return parser
 
 

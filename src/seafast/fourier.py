@@ -125,7 +125,7 @@ def high_harmonic_energy_share(signal: NDArray, harmonics: int) -> NDArray[np.fl
         energy[-1] *= 0.5  # the Nyquist bin is not doubled
     energy = energy[1:]
     total = energy.sum(axis=0)
-    above = energy[int(harmonics):].sum(axis=0)
+    above = energy[int(harmonics) :].sum(axis=0)
     scale = np.max(np.abs(s), axis=0) ** 2 if s.size else 0.0
     with np.errstate(invalid="ignore", divide="ignore"):
         share = np.where(total > 1e-24 * np.maximum(scale, 1e-300), above / total, 0.0)

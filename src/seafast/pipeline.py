@@ -3,15 +3,17 @@
 This is the only place that knows the order of the stages; each stage is a pure function of
 the previous one's output. Nothing here prints or writes files (see :mod:`seafast.output`).
 
-Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a study point's short path and the two-way coupling; each is a short function of the stages below (frequency sweeps: :mod:`seafast.sweeps`).
+Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a
+study point's short path and the two-way coupling; each is a short function of the stages below
+(frequency sweeps: :mod:`seafast.sweeps`).
 """
 
 from __future__ import annotations
 
 import functools
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -33,10 +35,18 @@ from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
-from seafast.results.dataset import LOAD_CASES, MODELS, SUMMARY_COLUMNS, CaseArrays, build_case_dataset, case_arrays, summary_rows_from_arrays
+from seafast.results.dataset import (
+    LOAD_CASES,
+    MODELS,
+    SUMMARY_COLUMNS,
+    CaseArrays,
+    build_case_dataset,
+    case_arrays,
+    summary_rows_from_arrays,
+)
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
-from seafast.solvers.periodic import harmonics_to_time
 from seafast.solvers.linear import solve_linear
+from seafast.solvers.periodic import harmonics_to_time
 
 __all__ = [
     "CaseResult",
@@ -87,7 +97,7 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
     from seafast.solvers.hbm import HBMOptions
 
     s = case.solver
-    settings = dict(
+    settings: dict[str, Any] = dict(
         harmonics=s.harmonics,
         time_samples=s.time_samples,
         contact_law=s.contact_law,
@@ -102,9 +112,7 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
     return HBMOptions(**settings)
 
 
-def solve_nonlinear(
-    model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: Any = None
-) -> Any:
+def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: Any = None) -> Any:
     """Nonlinear (unilateral-saddle) response by the case's method; returns a PeriodicResponse.
 
     ``static=True`` solves the still-water state alone (harmonic balance with H = 0).
@@ -170,8 +178,13 @@ class CaseResult:
             return None
         v = self.vessel
         return coupled_hull(
-            v.girder, v.loading, self.compliance, v.still_water, self.deck_couplings[("static", "nonlinear")],
-            v.wave, self.deck_couplings[("dynamic", "nonlinear")] if v.wave is not None else None,
+            v.girder,
+            v.loading,
+            self.compliance,
+            v.still_water,
+            self.deck_couplings[("static", "nonlinear")],
+            v.wave,
+            self.deck_couplings[("dynamic", "nonlinear")] if v.wave is not None else None,
         )
 
     @property
@@ -351,21 +364,44 @@ def couple_hull_and_cargo(
 
     out = {
         ("static", "linear"): couple_deck(
-            model, static, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, 1), 1,
-            jacobian0=jac[1], label="static, linear",
+            model,
+            static,
+            compliance,
+            linear,
+            lambda e, r: deck_forces_N(model, e, r, False, 1),
+            1,
+            jacobian0=jac[1],
+            label="static, linear",
         ),
         ("static", "nonlinear"): couple_deck(
-            model, static, compliance, lambda e: solve_nonlinear(model, e, case, static=True),
-            lambda e, r: deck_forces_N(model, e, r, True, 1), 1, jacobian0=jac[1], label="static, nonlinear",
+            model,
+            static,
+            compliance,
+            lambda e: solve_nonlinear(model, e, case, static=True),
+            lambda e, r: deck_forces_N(model, e, r, True, 1),
+            1,
+            jacobian0=jac[1],
+            label="static, nonlinear",
         ),
         ("dynamic", "linear"): couple_deck(
-            model, excitation, compliance, linear, lambda e, r: deck_forces_N(model, e, r, False, k_linear), k_linear,
-            jacobian0=jac[k_linear], label="dynamic, linear",
+            model,
+            excitation,
+            compliance,
+            linear,
+            lambda e, r: deck_forces_N(model, e, r, False, k_linear),
+            k_linear,
+            jacobian0=jac[k_linear],
+            label="dynamic, linear",
         ),
         ("dynamic", "nonlinear"): couple_deck(
-            model, excitation, compliance, warm_dynamic,
-            lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear), k_nonlinear,
-            jacobian0=jac[k_nonlinear], label="dynamic, nonlinear",
+            model,
+            excitation,
+            compliance,
+            warm_dynamic,
+            lambda e, r: deck_forces_N(model, e, r, True, k_nonlinear),
+            k_nonlinear,
+            jacobian0=jac[k_nonlinear],
+            label="dynamic, nonlinear",
         ),
     }
     return out
@@ -401,7 +437,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 
     model = build_model(case)
     excitation, _ = _excitation(case, model)
-    n_s, n_k = model.saddle_count, excitation.harmonic_count
+    n_k = excitation.harmonic_count
     # the dynamic nonlinear state first: its (possibly adaptive) H sets the time grid N of every row
     dynamic = solve_hbm(model, excitation, _hbm_options(case))
     N = dynamic.time_samples
@@ -435,9 +471,16 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     rows[("static", "nonlinear")] = RowSolution(
         X, delta, static_options.law.force(delta, k_u), static_excitation, True, sol.converged, sol.residual_norm, sol.iterations
     )
+    assert dynamic.cargo_displacement_harmonics is not None  # the harmonic balance's solution has harmonics
     rows[("dynamic", "nonlinear")] = RowSolution(
-        dynamic.cargo_displacement_harmonics, dynamic.saddle_compression_time_m, dynamic.saddle_force_time_N, excitation, True,
-        dynamic.converged, dynamic.residual_norm, dynamic.iterations,
+        dynamic.cargo_displacement_harmonics,
+        dynamic.saddle_compression_time_m,
+        dynamic.saddle_force_time_N,
+        excitation,
+        True,
+        dynamic.converged,
+        dynamic.residual_norm,
+        dynamic.iterations,
     )
     return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 

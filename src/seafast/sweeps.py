@@ -27,11 +27,12 @@ Nothing here prints or writes files (see :mod:`seafast.output.sweep`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
-from typing import Callable
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
 from seafast.config.schema import Case
@@ -219,7 +220,7 @@ def frequency_sweep(
     if opts.harmonics is None:
         opts = opts.with_harmonics(SWEEP_HARMONICS)
     w_lo, w_hi = sorted((float(omega_start_rad_s), float(omega_end_rad_s)))
-    stop_when = None
+    stop_when: Callable[[float, NDArray[np.float64]], bool] | None = None
     limit_rad_s: float | None = None
     if kind is SweepKind.WAVE:
         excitation_at, rao_at = wave_excitation(case, model, w_lo, w_hi)
@@ -235,15 +236,24 @@ def frequency_sweep(
                     "sweep the waves of these frequencies (--wave), or follow anyway (--follow-beyond-range)"
                 )
             bound = limit_rad_s
-            stop_when = lambda omega, _u: omega > bound  # noqa: E731 - the held acceleration grows as omega^2
+
+            def beyond_limit(omega: float, _u: NDArray[np.float64]) -> bool:  # the held acceleration grows as omega^2
+                return omega > bound
+
+            stop_when = beyond_limit
     branch = frequency_response(model, excitation_at, omega_start_rad_s, omega_end_rad_s, opts, max_points=max_points, stop_when=stop_when)
     still = None
     if kind is SweepKind.WAVE:
         static = excitation_at(float(branch.omega_rad_s[0])).static_part()
         still = solve_condensed(condensed_operators(model, static, 0), opts.with_harmonics(0, 2)).saddle_compression
     table = sweep_table(
-        model, branch, excitation_at, opts.law, limits,
+        model,
+        branch,
+        excitation_at,
+        opts.law,
+        limits,
         wave_amplitude_m=float(case.wave.amplitude_m) if kind is SweepKind.WAVE else None,
-        rao_at=rao_at, still_water_compression_m=still,
+        rao_at=rao_at,
+        still_water_compression_m=still,
     )
     return SweepResult(kind, case, model, branch, table, float(omega_start_rad_s), float(omega_end_rad_s), limit_rad_s)

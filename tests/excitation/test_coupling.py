@@ -70,7 +70,7 @@ def test_coupled_deck_is_the_hull_girder_under_the_cargo_point_loads(coupled):
     # the coupling's saddle patch: the node's tributary length centred on the saddle
     xn = vessel.cargo_aft_end_x_m + model.cargo.node_x_m
     half = [0.5 * (xn[i + 1] - xn[i - 1]) / 2.0 for i in model.saddle_node]
-    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, forces)))
+    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, forces, strict=True)))
     items = tuple(it for it in vessel.loading.items if it.name != "cargo") + patches
     hull = still_water_response(vessel.girder, replace(vessel.loading, items=items))
     z, slope = deck_deflection_at(hull, xs)
@@ -96,7 +96,7 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
     would leave 100-200 % of the inertia resultant."""
     from seafast.excitation.coupling import spread_load_N
 
-    case, model, excitation, rows = coupled_in_waves
+    _, model, excitation, rows = coupled_in_waves
     xn = model.cargo.node_x_m
     xs = model.saddle_x_m
     w = excitation.omega_rad_s
@@ -124,7 +124,7 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
 def test_wave_coupling_reduces_the_wave_induced_deck_motion(coupled_in_waves):
     """The cargo resists the hull's wave bending: the coupled deck's first harmonic differs
     less between the saddles than the one-way one, and the linear model needs one step."""
-    case, model, excitation, rows = coupled_in_waves
+    _, model, excitation, rows = coupled_in_waves
     z = model.saddle_deck_dof
 
     def differential(exc):
@@ -156,8 +156,7 @@ def test_two_way_coupling_unloads_the_middle_saddle_of_the_base_case():
 @pytest.mark.parametrize("method", ["quasi_static", "time_domain"])
 def test_the_reference_methods_couple_to_the_same_still_water_state(method):
     hbm = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.contact_law": "exact"}))
-    ref = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.method": method,
-                                        "wave.amplitude_m": 0.5}))
+    ref = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way", "solver.method": method, "wave.amplitude_m": 0.5}))
     assert _static(ref)["F_N"] == pytest.approx(_static(hbm)["F_N"], rel=1e-6)
     assert all(status.converged for status in ref.coupling.values())
 
@@ -172,7 +171,7 @@ def test_a_stiff_hull_makes_the_coupling_vanish():
 def test_two_way_coupling_needs_the_computed_hull(tmp_path):
     table = tmp_path / "deck.csv"
     table.write_text("x_m,still_water_m,wave_amplitude_m,wave_phase_rad\n0,0,0,0\n171,0,0,0\n")
-    with pytest.raises(CaseError, match="vessel.coupling"):
+    with pytest.raises(CaseError, match=r"vessel\.coupling"):
         load_case(overrides={"vessel.coupling": "two_way", "vessel.deck_deflection_table": str(table)})
     with pytest.raises(CaseError, match="one_way"):
         load_case(overrides={"vessel.coupling": "both"})
@@ -180,8 +179,12 @@ def test_two_way_coupling_needs_the_computed_hull(tmp_path):
 
 def test_wave_coupled_hbm_agrees_with_the_coupled_exact_reference():
     """Two independent cargo solvers, each iterated with the hull to its own coupled state."""
-    common = {"vessel.coupling": "two_way", "solver.contact_law": "exact", "solver.time_samples": 64,
-              "wave.amplitude_m": 5.0}  # a larger wave, so that the cargo lifts off even when coupled
+    common = {
+        "vessel.coupling": "two_way",
+        "solver.contact_law": "exact",
+        "solver.time_samples": 64,
+        "wave.amplitude_m": 5.0,
+    }  # a larger wave, so that the cargo lifts off even when coupled
     hbm = run_case(load_case(overrides={**common, "solver.harmonics": 16}))
     ref = run_case(load_case(overrides={**common, "solver.method": "quasi_static"}))
     dyn = [next(r for r in res.summary if r["load_case"] == "dynamic" and r["model"] == "nonlinear") for res in (hbm, ref)]
@@ -288,10 +291,14 @@ def test_the_coupled_still_water_hull_is_a_fresh_hull_solve_under_the_saddle_loa
     n, g = case.cargo.units_abreast, case.model.gravity_m_per_s2
     row = rows[("static", "nonlinear")]
     P = row.deck_force_N[0].real
-    np.testing.assert_allclose(ds["deck_deflection_m"].sel(load_case="static").values[0],
-                               row.excitation.deck_displacement[0, result.model.saddle_deck_dof].real, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(
+        ds["deck_deflection_m"].sel(load_case="static").values[0],
+        row.excitation.deck_displacement[0, result.model.saddle_deck_dof].real,
+        rtol=1e-13,
+        atol=0,
+    )
     xs, half = _saddle_patches(result)
-    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, P)))
+    patches = tuple(WeightItem(f"saddle {i}", x - h, x + h, n * p / g) for i, (x, h, p) in enumerate(zip(xs, half, P, strict=True)))
     items = tuple(it for it in vessel.loading.items if it.name != "cargo") + patches
     fresh = still_water_response(vessel.girder, replace(vessel.loading, items=items))
     x = ds["hull_x_m"].values
@@ -333,8 +340,9 @@ def test_the_coupled_midship_moment_is_the_statics_of_the_saddle_reactions(two_w
     aft, length = vessel.cargo_aft_end_x_m, float(model.cargo.node_x_m[-1] - model.cargo.node_x_m[0])
     W = model.cargo.mass_kg * g
     u = np.clip(x, aft, aft + length)
-    statics = m1 + n * (W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u))
-                        - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs)))
+    statics = m1 + n * (
+        W / length * ((u - aft) ** 2 / 2.0 + (u - aft) * (x - u)) - sum(p * np.maximum(x - xp, 0.0) for p, xp in zip(P, xs, strict=True))
+    )
     away = np.all(np.abs(x[:, None] - xs[None, :]) > half[None, :] + 1e-9, axis=1)
     change = np.abs(m2 - m1).max()
     assert change > 1e8
@@ -366,8 +374,12 @@ def test_the_coupled_wave_hull_carries_the_deck_the_cargo_stood_on(two_way_run):
     row = rows[("dynamic", "nonlinear")]
     x = ds["hull_x_m"].values
     xs, _ = _saddle_patches(result)
-    change_lines = (ds["hull_still_water_deflection_coupled_m"].values - ds["hull_still_water_deflection_m"].values
-                    + ds["hull_wave_deflection_coupled_m"].values - ds["hull_wave_deflection_m"].values)  # (n_t, n_x)
+    change_lines = (
+        ds["hull_still_water_deflection_coupled_m"].values
+        - ds["hull_still_water_deflection_m"].values
+        + ds["hull_wave_deflection_coupled_m"].values
+        - ds["hull_wave_deflection_m"].values
+    )  # (n_t, n_x)
     at_saddles = CubicSpline(x, change_lines, axis=1)(xs)  # between the 0.5 m hull nodes
     n_t = at_saddles.shape[0]
     deck_change = row.deck_change[:, 0::2]  # z under each saddle, harmonics 0 .. K-1
@@ -416,8 +428,16 @@ def test_a_fine_cargo_mesh_converges_every_row_to_the_coarse_mesh_results(two_wa
     jac = linear_coupling_jacobian(model, static.omega_rad_s, compliance, 1)
 
     def couple(rtol):
-        return couple_deck(model, static, compliance, lambda e: solve_nonlinear(model, e, case, static=True),
-                           lambda e, r: deck_forces_N(model, e, r, True, 1), 1, jacobian0=jac, relative_tolerance=rtol)
+        return couple_deck(
+            model,
+            static,
+            compliance,
+            lambda e: solve_nonlinear(model, e, case, static=True),
+            lambda e, r: deck_forces_N(model, e, r, True, 1),
+            1,
+            jacobian0=jac,
+            relative_tolerance=rtol,
+        )
 
     ours, floor = couple(1e-6), couple(1e-14)
     assert ours.converged and not floor.converged and floor.status.outcome is not CouplingOutcome.NOT_FINITE

@@ -16,8 +16,8 @@ import pytest
 
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import read_deck_deflection_table
-from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.solvers.linear import solve_linear
 
@@ -62,7 +62,7 @@ def test_pure_heave_gives_total_load_omega2_H_m(model: StructuralModel) -> None:
     m0, m1, _ = _mass_moments(model, 85.5)
     assert m0 == pytest.approx(mass, rel=1e-12)
     F, Mom = _nodal_resultants(model, exc.cargo_load_N[1], 85.5)
-    assert F.real == pytest.approx(+OMEGA**2 * H * mass, rel=1e-12)  # upward
+    assert F.real == pytest.approx(+(OMEGA**2) * H * mass, rel=1e-12)  # upward
     assert F.imag == 0.0
     assert Mom.real == pytest.approx(OMEGA**2 * H * m1, rel=1e-10)
     # the line load (for moment lines) carries the same resultants
@@ -84,7 +84,7 @@ def test_heave_phase_is_carried(model: StructuralModel) -> None:
 def test_pitch_gives_force_and_moment_about_reference(model: StructuralModel) -> None:
     P, x_ref = 0.02, 80.0  # bow up
     exc = assemble_excitation(model, AFT, OMEGA, None, None, RigidBodyAmplitudes(0.0, P, x_ref))
-    m0, m1, m2 = _mass_moments(model, x_ref)
+    _, m1, m2 = _mass_moments(model, x_ref)
     F, Mom = _nodal_resultants(model, exc.cargo_load_N[1], x_ref)
     # -M a: a = -omega^2 P (x - x_ref), so force +omega^2 P int m (x - x_ref)
     assert F.real == pytest.approx(OMEGA**2 * P * m1, rel=1e-10)
@@ -140,7 +140,9 @@ def test_deck_rows_take_deflection_at_ship_positions_of_the_saddles(model: Struc
 def test_deck_table_feeds_the_excitation(model: StructuralModel, tmp_path: Path) -> None:
     x = np.linspace(0.0, 171.0, 19)
     z = 1e-3 * (0.5 + 0.02 * x - 3e-4 * x**2 + 2e-6 * x**3)
-    lines = ["x_m,still_water_m,wave_amplitude_m,wave_phase_rad"] + [f"{a!r},{b!r},0.004,1.0" for a, b in zip(map(float, x), map(float, z))]
+    lines = ["x_m,still_water_m,wave_amplitude_m,wave_phase_rad"] + [
+        f"{a!r},{b!r},0.004,1.0" for a, b in zip(map(float, x), map(float, z), strict=True)
+    ]
     p = tmp_path / "deck.csv"
     p.write_text("\n".join(lines) + "\n")
     tab = read_deck_deflection_table(p)

@@ -27,7 +27,7 @@ def _write(tmp_path: Path, text: str, name: str = "deck.csv") -> Path:
 
 
 def _table_text(x, sw, amp, ph, header: str = HEADER) -> str:
-    lines = [header] + [",".join(repr(float(v)) for v in row) for row in zip(x, sw, amp, ph)]
+    lines = [header] + [",".join(repr(float(v)) for v in row) for row in zip(x, sw, amp, ph, strict=True)]
     return "\n".join(lines) + "\n"
 
 
@@ -138,7 +138,7 @@ GOOD_ROWS = "0,0.001,0.002,0.1\n50,0.002,0.003,0.2\n100,0.003,0.004,0.3\n120,0.0
 )
 def test_bad_tables_raise_value_error_naming_file_and_place(tmp_path: Path, text: str, must_contain: list[str]) -> None:
     p = _write(tmp_path, text, name="bad_deck.csv")
-    with pytest.raises(ValueError) as exc:
+    with pytest.raises(ValueError, match=r"bad_deck\.csv") as exc:
         read_deck_deflection_table(p)
     msg = str(exc.value)
     assert "bad_deck.csv" in msg
@@ -149,14 +149,14 @@ def test_bad_tables_raise_value_error_naming_file_and_place(tmp_path: Path, text
 
 def test_missing_file_raises_value_error_naming_it(tmp_path: Path) -> None:
     p = tmp_path / "nowhere.csv"
-    with pytest.raises(ValueError, match="nowhere.csv"):
+    with pytest.raises(ValueError, match=r"nowhere\.csv"):
         read_deck_deflection_table(p)
 
 
 def test_non_utf8_file_raises_value_error(tmp_path: Path) -> None:
     p = tmp_path / "binary.csv"
     p.write_bytes(b"\xff\xfe\x00x_m\x00")
-    with pytest.raises(ValueError, match="binary.csv"):
+    with pytest.raises(ValueError, match=r"binary\.csv"):
         read_deck_deflection_table(p)
 
 
@@ -165,11 +165,11 @@ def test_query_outside_the_table_names_file_and_range(tmp_path: Path) -> None:
     tab = read_deck_deflection_table(p)
     tab.still_water_at(np.array([0.0, 120.0]))  # ends are fine
     for q in (np.array([-1.0, 10.0]), np.array([50.0, 120.5])):
-        with pytest.raises(ValueError) as exc:
+        with pytest.raises(ValueError, match=r"short_deck\.csv") as exc:
             tab.still_water_at(q)
         msg = str(exc.value)
         assert "short_deck.csv" in msg and "0.0 .. 120.0" in msg and "extend the table" in msg
-        with pytest.raises(ValueError, match="short_deck.csv"):
+        with pytest.raises(ValueError, match=r"short_deck\.csv"):
             tab.wave_at(q)
 
 
@@ -188,7 +188,7 @@ def test_direct_construction_validates() -> None:
 def test_error_line_numbers_are_physical_lines(tmp_path: Path, bad_row: str, what: str) -> None:
     text = "# exported by hull program\n\n" + HEADER + "\n# stations\n0,0.001,0.002,0.1\n\n" + bad_row + "\n"
     # the bad row is physical line 7 of the file
-    with pytest.raises(ValueError) as exc:
+    with pytest.raises(ValueError, match="line 7") as exc:
         read_deck_deflection_table(_write(tmp_path, text))
     assert what in str(exc.value)
     assert "line 7" in str(exc.value), str(exc.value)

@@ -17,19 +17,25 @@ def _deck(case):
     return vessel_excitation(case).cargo_excitation(model, case).deck_displacement
 
 
+def _middle_rise_m(deck):
+    """Rise of the middle of five deck points over the mean of the outer two [m]."""
+    return deck[2].real - 0.5 * (deck[0].real + deck[4].real)
+
+
 def test_still_water_moment_table_reproduces_the_computed_hull(tmp_path):
     """A loading-computer moment table equal to the hull model's moment gives the same deck."""
     base = load_case(overrides=NO_MOTIONS)
     sw = vessel_excitation(base).still_water
     table = tmp_path / "swbm.csv"
-    table.write_text("x_m,bending_moment_Nm\n" + "\n".join(f"{float(x)!r},{float(m)!r}" for x, m in zip(sw.x_m, sw.bending_moment_Nm)))
+    table.write_text(
+        "x_m,bending_moment_Nm\n" + "\n".join(f"{float(x)!r},{float(m)!r}" for x, m in zip(sw.x_m, sw.bending_moment_Nm, strict=True))
+    )
     case = load_case(overrides={**NO_MOTIONS, "vessel.still_water_bending_moment_table": str(table)})
     deck_table, deck_model = _deck(case)[0], _deck(base)[0]
     # spline integration of the tabulated moment (shear deflection from dM/dx) vs the Timoshenko
     # FE: the relative rise of the middle deck point is what loads the cargo (5.75 mm)
-    rise = lambda d: d[2].real - 0.5 * (d[0].real + d[4].real)
-    assert rise(deck_model) == pytest.approx(5.75e-3, rel=0.01)
-    assert rise(deck_table) == pytest.approx(rise(deck_model), rel=1e-4)
+    assert _middle_rise_m(deck_model) == pytest.approx(5.75e-3, rel=0.01)
+    assert _middle_rise_m(deck_table) == pytest.approx(_middle_rise_m(deck_model), rel=1e-4)
     f_table = run_case(case).summary[0]["F_N"]
     f_model = run_case(base).summary[0]["F_N"]
     assert f_table == pytest.approx(f_model, rel=1e-3)
@@ -40,7 +46,9 @@ def test_hull_form_table_equals_the_parametric_hull(tmp_path):
     base = load_case(overrides=NO_MOTIONS)
     hull = hull_form_of(base)
     table = tmp_path / "hull.csv"
-    table.write_text("x_m,breadth_m\n" + "\n".join(f"{float(x)!r},{float(b)!r}" for x, b in zip(hull.station_x_m, hull.waterline_breadth_m)))
+    table.write_text(
+        "x_m,breadth_m\n" + "\n".join(f"{float(x)!r},{float(b)!r}" for x, b in zip(hull.station_x_m, hull.waterline_breadth_m, strict=True))
+    )
     case = load_case(overrides={**NO_MOTIONS, "vessel.hull_form_table": str(table)})
     np.testing.assert_allclose(_deck(case), _deck(base), rtol=1e-9, atol=1e-12)
 
@@ -56,7 +64,13 @@ def test_zero_wave_amplitude_leaves_only_the_static_part():
 
 def test_heavy_cargo_falls_back_to_even_keel_ballast_and_says_so():
     case = load_case(
-        overrides={**NO_MOTIONS, "cargo.length_m": 115, "cargo.diameter_m": 12, "cargo.wall_thickness_m": 12 / 110, "cargo.units_abreast": 3}
+        overrides={
+            **NO_MOTIONS,
+            "cargo.length_m": 115,
+            "cargo.diameter_m": 12,
+            "cargo.wall_thickness_m": 12 / 110,
+            "cargo.units_abreast": 3,
+        }
     )
     assert "even keel only" in vessel_excitation(case).source
 

@@ -27,9 +27,17 @@ def test_restraint_from_the_base_case_and_overrides():
     assert r.lashing_axial_stiffness_N_per_m == pytest.approx(2 * 37.5e3 * 0.5)  # 45 deg, two lashed saddles
     assert r.stick_stiffness_N_per_m == pytest.approx(3 * DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M)
     assert not r.has_stoppers
-    given = axial_restraint(load_case(None, {"seafastening.friction_coefficient": 0.2,
-                                            "seafastening.lashing.axial_stiffness_N_per_m": 1e5,
-                                            "seafastening.stopper.gap_m": 0.05, "seafastening.stopper.stiffness_N_per_m": 1e8}))
+    given = axial_restraint(
+        load_case(
+            None,
+            {
+                "seafastening.friction_coefficient": 0.2,
+                "seafastening.lashing.axial_stiffness_N_per_m": 1e5,
+                "seafastening.stopper.gap_m": 0.05,
+                "seafastening.stopper.stiffness_N_per_m": 1e8,
+            },
+        )
+    )
     assert given.lashing_axial_stiffness_N_per_m == 1e5 and given.stopper_gap_m == 0.05
     with pytest.raises(ValueError, match="friction_coefficient is not set"):
         axial_restraint(load_case(None))

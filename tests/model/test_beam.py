@@ -181,21 +181,35 @@ def test_consistent_mass_rigid_body_integrals(gas: float | None) -> None:
 
 def test_element_mass_classical_hermite_entries() -> None:
     Le, m = 2.0, 300.0
-    ref = m * Le / 420 * np.array(
-        [
-            [156, 22 * Le, 54, -13 * Le],
-            [22 * Le, 4 * Le**2, 13 * Le, -3 * Le**2],
-            [54, 13 * Le, 156, -22 * Le],
-            [-13 * Le, -3 * Le**2, -22 * Le, 4 * Le**2],
-        ]
+    ref = (
+        m
+        * Le
+        / 420
+        * np.array(
+            [
+                [156, 22 * Le, 54, -13 * Le],
+                [22 * Le, 4 * Le**2, 13 * Le, -3 * Le**2],
+                [54, 13 * Le, 156, -22 * Le],
+                [-13 * Le, -3 * Le**2, -22 * Le, 4 * Le**2],
+            ]
+        )
     )
     np.testing.assert_allclose(beam_element_mass(Le, m), ref, rtol=1e-12)
 
 
 def test_element_stiffness_classical_entries() -> None:
     Le = 2.0
-    ref = EI / Le**3 * np.array(
-        [[12, 6 * Le, -12, 6 * Le], [6 * Le, 4 * Le**2, -6 * Le, 2 * Le**2], [-12, -6 * Le, 12, -6 * Le], [6 * Le, 2 * Le**2, -6 * Le, 4 * Le**2]]
+    ref = (
+        EI
+        / Le**3
+        * np.array(
+            [
+                [12, 6 * Le, -12, 6 * Le],
+                [6 * Le, 4 * Le**2, -6 * Le, 2 * Le**2],
+                [-12, -6 * Le, 12, -6 * Le],
+                [6 * Le, 2 * Le**2, -6 * Le, 4 * Le**2],
+            ]
+        )
     )
     np.testing.assert_allclose(beam_element_stiffness(Le, EI), ref, rtol=1e-12)
 
@@ -203,15 +217,15 @@ def test_element_stiffness_classical_entries() -> None:
 def test_pinned_pinned_frequency_of_base_monopile() -> None:
     Lm, D, t, E, rho = 74.0, 8.0, 0.08, 210e9, 7850.0
     A = float(tube_area_m2(D, t))
-    I = float(tube_second_moment_m4(D, t))
-    assert I == pytest.approx(15.6, rel=0.01)  # docs/theory.md#21-cargo-beam
+    I_m4 = float(tube_second_moment_m4(D, t))
+    assert I_m4 == pytest.approx(15.6, rel=0.01)  # docs/theory.md#21-cargo-beam
     n_el = 74
     x = np.linspace(0.0, Lm, n_el + 1)
-    K, M, _ = assemble_beam(x, np.full(n_el, E * I), np.full(n_el, rho * A))
+    K, M, _ = assemble_beam(x, np.full(n_el, E * I_m4), np.full(n_el, rho * A))
     free = np.setdiff1d(np.arange(K.shape[0]), [0, 2 * n_el])
     w2 = eigh(K[np.ix_(free, free)], M[np.ix_(free, free)], eigvals_only=True, subset_by_index=[0, 2])
     w = np.sqrt(w2)
-    exact = (np.pi / Lm) ** 2 * np.sqrt(E * I / (rho * A))
+    exact = (np.pi / Lm) ** 2 * np.sqrt(E * I_m4 / (rho * A))
     assert 25.0 < exact < 26.5
     assert w[0] == pytest.approx(exact, rel=5e-3)
     # higher modes follow n^2

@@ -16,8 +16,8 @@ def test_fixed_points_are_nodes_and_elements_respect_the_target():
 
 
 def test_an_absurd_mesh_is_refused_with_the_fields_named():
-    with pytest.raises(ValueError, match="cargo.length_m") as info:
+    with pytest.raises(ValueError, match=r"cargo\.length_m") as info:
         mesh_cargo(8.8e11, np.array([1.0]), 1.0)
     assert f"at most {MAX_CARGO_ELEMENTS}" in str(info.value)
-    with pytest.raises(ValueError, match="model.element_length_m"):
+    with pytest.raises(ValueError, match=r"model\.element_length_m"):
         mesh_cargo(74.0, np.array([37.0]), 1e-6)

@@ -50,8 +50,13 @@ def test_interpolated_transfer_functions_equal_direct_ones(raised):
     for tp in (7.0, 10.0, 12.0):
         an = analysis_at(family, tp, 1.0)
         direct = transfer_functions(case, family.model, an.spectrum.omega_rad_s)
-        for name, tol in (("saddle_force_N", 2e-4), ("bending_moment_Nm", 1e-4), ("saddle_compression_m", 2e-4),
-                          ("deck_displacement", 1e-6), ("cargo_load_N", 4e-3)):
+        for name, tol in (
+            ("saddle_force_N", 2e-4),
+            ("bending_moment_Nm", 1e-4),
+            ("saddle_compression_m", 2e-4),
+            ("deck_displacement", 1e-6),
+            ("cargo_load_N", 4e-3),
+        ):
             a, b = getattr(an.transfer, name), getattr(direct, name)
             assert np.max(np.abs(a - b)) <= tol * np.max(np.abs(b)), (tp, name)
         fresh = spectral_extremes(direct, an.spectrum, family.still, case.sea_state.duration_s)
@@ -79,8 +84,9 @@ def test_linear_allowable_reaches_the_limit_in_seafast_seastate(base):
     case, result = base
     for p in result.points:
         assert p.governing_linear == "saddle_force" and p.hs_allowable_linear_m > 0
-        an = spectral_analysis(seafast.load_case(None, {"sea_state.significant_height_m": p.hs_allowable_linear_m,
-                                                        "sea_state.peak_period_s": p.peak_period_s}))
+        an = spectral_analysis(
+            seafast.load_case(None, {"sea_state.significant_height_m": p.hs_allowable_linear_m, "sea_state.peak_period_s": p.peak_period_s})
+        )
         assert an.extremes.totals["F_N"] == pytest.approx(case.limits.max_saddle_force_N, rel=1e-4)
         assert an.extremes.totals["sigma_b_Pa"] < case.limits.max_bending_stress_Pa
 
@@ -117,8 +123,14 @@ def test_nonlinear_allowable_gives_the_limit_in_seafast_seastate_within_one_perc
     for p in result.points:
         if p.governing_nonlinear not in ("saddle_force", "bending_stress"):
             continue
-        _, dw = _seastate({**RAISED, "sea_state.significant_height_m": p.hs_allowable_nonlinear_m, "sea_state.peak_period_s": p.peak_period_s})
-        q, limit = ("F_N", case.limits.max_saddle_force_N) if p.governing_nonlinear == "saddle_force" else ("sigma_b_Pa", case.limits.max_bending_stress_Pa)
+        _, dw = _seastate(
+            {**RAISED, "sea_state.significant_height_m": p.hs_allowable_nonlinear_m, "sea_state.peak_period_s": p.peak_period_s}
+        )
+        q, limit = (
+            ("F_N", case.limits.max_saddle_force_N)
+            if p.governing_nonlinear == "saddle_force"
+            else ("sigma_b_Pa", case.limits.max_bending_stress_Pa)
+        )
         assert dw.totals[q] == pytest.approx(limit, rel=0.01), p.peak_period_s
         checked += 1
     assert checked >= 2

@@ -27,8 +27,11 @@ def _rows(path):
 def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("operability")
     scatter = out / "scatter_in.csv"
-    scatter.write_text("# Hs x Tp occurrences (counts)\nsignificant_height_m,peak_period_s,occurrence\n"
-                       "1.0,10,40\n2.5,10,30\n3.5,10,20\n5.0,10,10\n2.0,13,0\n", encoding="utf-8")
+    scatter.write_text(
+        "# Hs x Tp occurrences (counts)\nsignificant_height_m,peak_period_s,occurrence\n"
+        "1.0,10,40\n2.5,10,30\n3.5,10,20\n5.0,10,10\n2.0,13,0\n",
+        encoding="utf-8",
+    )
     code = main(["operability", "--tp", "9:10:1", "-o", str(out), "--scatter", str(scatter), "-q", *RAISED])
     return out, code
 
@@ -37,8 +40,11 @@ def test_operability_csv_has_the_contract_columns_one_row_per_peak_period(run):
     out, code = run
     assert code == 0
     with open(out / "operability.csv") as f:
-        assert f.readline().strip() == ",".join(OPERABILITY_COLUMNS) == (
-            "peak_period_s,hs_allowable_linear_m,hs_allowable_nonlinear_m,hs_uplift_onset_m,governing_linear,governing_nonlinear")
+        assert (
+            f.readline().strip()
+            == ",".join(OPERABILITY_COLUMNS)
+            == ("peak_period_s,hs_allowable_linear_m,hs_allowable_nonlinear_m,hs_uplift_onset_m,governing_linear,governing_nonlinear")
+        )
     rows = _rows(out / "operability.csv")
     assert [float(r["peak_period_s"]) for r in rows] == [9.0, 10.0]
     for r in rows:
@@ -58,8 +64,24 @@ def test_seafast_seastate_at_the_reported_allowable_hs_gives_the_limit_within_on
     row = _rows(out / "operability.csv")[1]
     for column, method in (("hs_allowable_nonlinear_m", "design_wave"), ("hs_allowable_linear_m", "spectral")):
         d = tmp_path / method
-        assert main(["seastate", "-o", str(d), "--no-monte-carlo", "--no-plots", "-q", *RAISED,
-                     "--set", f"sea_state.significant_height_m={row[column]}", "--set", f"sea_state.peak_period_s={row['peak_period_s']}"]) == 0
+        assert (
+            main(
+                [
+                    "seastate",
+                    "-o",
+                    str(d),
+                    "--no-monte-carlo",
+                    "--no-plots",
+                    "-q",
+                    *RAISED,
+                    "--set",
+                    f"sea_state.significant_height_m={row[column]}",
+                    "--set",
+                    f"sea_state.peak_period_s={row['peak_period_s']}",
+                ]
+            )
+            == 0
+        )
         got = next(r for r in _rows(d / "seastate.csv") if r["method"] == method)
         assert float(got["F_N"]) == pytest.approx(11.5e6, rel=0.01), method
         assert float(got["sigma_b_Pa"]) < 28e6
@@ -123,8 +145,11 @@ def test_the_scatter_input_is_never_overwritten_by_the_output(tmp_path, capsys):
 
 
 def test_bad_scatter_files_are_refused_naming_the_line(tmp_path, capsys):
-    for text, needle in (("hs,tp,occ\n1,8,1\n", "expected columns"), ("significant_height_m,peak_period_s,occurrence\n1,8,-1\n", "line 2"),
-                         ("significant_height_m,peak_period_s,occurrence\n1,8,0\n", "no sea state")):
+    for text, needle in (
+        ("hs,tp,occ\n1,8,1\n", "expected columns"),
+        ("significant_height_m,peak_period_s,occurrence\n1,8,-1\n", "line 2"),
+        ("significant_height_m,peak_period_s,occurrence\n1,8,0\n", "no sea state"),
+    ):
         f = tmp_path / "bad.csv"
         f.write_text(text, encoding="utf-8")
         assert main(["operability", "--tp", "8:9:1", "-o", str(tmp_path / "o"), "--scatter", str(f), "-q"]) == 2
@@ -137,8 +162,12 @@ def test_report_of_an_operability_directory(run, tmp_path):
     page_path = tmp_path / "report.html"
     assert main(["report", str(out), "-o", str(page_path), "--no-figures"]) == 0
     page = page_path.read_text()
-    for needle in ('id="operability"', 'data-figure="fig-operability"', "Saddles lift off below the linear allowable Hs",
-                   "70.0% (nonlinear)"):
+    for needle in (
+        'id="operability"',
+        'data-figure="fig-operability"',
+        "Saddles lift off below the linear allowable Hs",
+        "70.0% (nonlinear)",
+    ):
         assert needle in page, needle
     rows = _rows(out / "operability.csv")
     assert f"{float(rows[0]['hs_allowable_nonlinear_m']):.2f}" in page

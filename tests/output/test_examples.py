@@ -11,8 +11,14 @@ from seafast.cli import main
 from seafast.config import load_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-CASE_FILES = ("base_case.yaml", "four_saddles_soft.yaml", "lashing_variation.yaml", "monopile_115m_12m.yaml", "user_deck_table.yaml",
-              "two_way_coupling.yaml")
+CASE_FILES = (
+    "base_case.yaml",
+    "four_saddles_soft.yaml",
+    "lashing_variation.yaml",
+    "monopile_115m_12m.yaml",
+    "user_deck_table.yaml",
+    "two_way_coupling.yaml",
+)
 
 
 @pytest.mark.parametrize("name", CASE_FILES)
@@ -43,15 +49,25 @@ def test_deck_table_covers_the_ship() -> None:
     assert table.x_m[0] == 0.0 and table.x_m[-1] == pytest.approx(171.0)
     lines = (EXAMPLES / "deck_deflection.csv").read_text(encoding="utf-8").splitlines()
     assert lines[0].startswith("#")  # says it is generated
-    header = next(csv.reader([next(l for l in lines if not l.startswith("#"))]))
+    header = next(csv.reader([next(line for line in lines if not line.startswith("#"))]))
     assert tuple(header) == DECK_TABLE_COLUMNS
 
 
 def test_deck_table_example_runs(tmp_path: Path) -> None:
     out = tmp_path / "deck"
     code = main(
-        ["run", str(EXAMPLES / "user_deck_table.yaml"), "-o", str(out), "-q", "--no-plots",
-         "--set", "solver.time_samples=32", "--set", "model.element_length_m=2.0"]
+        [
+            "run",
+            str(EXAMPLES / "user_deck_table.yaml"),
+            "-o",
+            str(out),
+            "-q",
+            "--no-plots",
+            "--set",
+            "solver.time_samples=32",
+            "--set",
+            "model.element_length_m=2.0",
+        ]
     )
     assert code == 0
     rows = list(csv.DictReader((out / "summary.csv").open(encoding="utf-8")))

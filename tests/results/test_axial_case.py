@@ -8,8 +8,6 @@ import re
 from dataclasses import replace
 
 import numpy as np
-
-from seafast.solvers.axial.harmonic_balance import axial_time_samples
 import pytest
 import xarray as xr
 
@@ -21,6 +19,7 @@ from seafast.pipeline import run_case, solve_nonlinear
 from seafast.results.axial import AXIAL_SUMMARY_COLUMNS
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.solvers.axial import solve_axial_time_domain
+from seafast.solvers.axial.harmonic_balance import axial_time_samples
 
 FAST = {"solver.time_samples": 64, "model.element_length_m": 2.0}
 
@@ -44,7 +43,7 @@ def test_without_friction_the_source_results_bit_for_bit(plain, cases):
     assert not any(k in plain.dataset for k in ("slip_m", "friction_force_N"))
     with_axial = cases[0.3]
     assert with_axial.summary_columns == SUMMARY_COLUMNS + ("slip_m", "friction_utilisation", "axial_force_N")
-    for a, b in zip(plain.summary, with_axial.summary):
+    for a, b in zip(plain.summary, with_axial.summary, strict=True):
         for key in SUMMARY_COLUMNS:
             assert a[key] == b[key], key  # the axial analysis is one way: the vertical numbers are identical
     np.testing.assert_array_equal(plain.dataset["saddle_force_N"].values, with_axial.dataset["saddle_force_N"].values)
@@ -57,7 +56,9 @@ def test_base_case_hbm_against_the_time_domain_reference(cases):
     restraint, load = axial_restraint(case), axial_load_of(case, res.vessel)
     for j, model in enumerate(("linear", "nonlinear")):
         normal = np.maximum(res.arrays.saddle_force_N[1, j], 0.0)
-        td = solve_axial_time_domain(restraint, load, normal, time_samples=axial_time_samples(res.case.solver.axial_harmonics, normal.shape[0]))
+        td = solve_axial_time_domain(
+            restraint, load, normal, time_samples=axial_time_samples(res.case.solver.axial_harmonics, normal.shape[0])
+        )
         row = _row(res, model=model)
         assert td.converged and row["axial_converged"]
         assert "axial HBM" in str(res.axial.messages[1, j]) and "time-domain" not in str(res.axial.messages[1, j])
@@ -92,7 +93,12 @@ def test_near_critical_coefficient_is_solved_by_the_reference(cases):
     assert row["axial_converged"] and row["converged"]
     assert ("did not converge" in message) == ("time-domain reference" in message)
     normal = np.maximum(res.arrays.saddle_force_N[1, 1], 0.0)
-    td = solve_axial_time_domain(axial_restraint(res.case), axial_load_of(res.case, res.vessel), normal, time_samples=axial_time_samples(res.case.solver.axial_harmonics, normal.shape[0]))
+    td = solve_axial_time_domain(
+        axial_restraint(res.case),
+        axial_load_of(res.case, res.vessel),
+        normal,
+        time_samples=axial_time_samples(res.case.solver.axial_harmonics, normal.shape[0]),
+    )
     assert 0.05 < row["slip_m"] < 1.0 and row["friction_utilisation"] == 1.0
     assert row["slip_m"] == pytest.approx(td.slip_m, rel=0.01)
     assert row["critical_friction_coefficient"] > 0.05
@@ -138,17 +144,41 @@ def test_one_way_coupling_friction_moment_is_small(cases):
 
 def test_results_netcdf_and_summary_csv(cases, tmp_path):
     res = cases[0.02]
-    code = main(["run", "-o", str(tmp_path), "-q", "--no-plots", "--set", "seafastening.friction_coefficient=0.02",
-                 "--set", "solver.time_samples=64", "--set", "model.element_length_m=2.0"])
+    code = main(
+        [
+            "run",
+            "-o",
+            str(tmp_path),
+            "-q",
+            "--no-plots",
+            "--set",
+            "seafastening.friction_coefficient=0.02",
+            "--set",
+            "solver.time_samples=64",
+            "--set",
+            "model.element_length_m=2.0",
+        ]
+    )
     assert code == 0
     header = (tmp_path / "summary.csv").read_text(encoding="utf-8").splitlines()[0]
     assert header == ",".join(SUMMARY_COLUMNS + AXIAL_SUMMARY_COLUMNS)
     rows = list(csv.DictReader((tmp_path / "summary.csv").open(encoding="utf-8")))
     assert float(rows[3]["slip_m"]) == pytest.approx(_row(res)["slip_m"], rel=1e-12)
     with xr.open_dataset(tmp_path / "results.nc") as ds:
-        for name in ("axial_displacement_m", "friction_force_N", "friction_capacity_N", "lashing_axial_force_N", "stopper_force_N",
-                     "axial_load_N", "friction_force_per_saddle_N", "sliding", "slip_m", "friction_utilisation",
-                     "critical_friction_coefficient", "surge_rao_real"):
+        for name in (
+            "axial_displacement_m",
+            "friction_force_N",
+            "friction_capacity_N",
+            "lashing_axial_force_N",
+            "stopper_force_N",
+            "axial_load_N",
+            "friction_force_per_saddle_N",
+            "sliding",
+            "slip_m",
+            "friction_utilisation",
+            "critical_friction_coefficient",
+            "surge_rao_real",
+        ):
             assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
         assert ds["sliding"].sel(load_case="dynamic", model="nonlinear").values.any()
 
@@ -168,12 +198,20 @@ def test_imported_motions_without_surge(tmp_path, capsys, plain):
     ds = hd._read_capytaine_netcdf(hd.default_cache_dir() / f"motions_{key}.nc")
     path = tmp_path / "heave_pitch.nc"
     cpt.export_dataset(path, ds.sel(influenced_dof=["Heave", "Pitch"], radiating_dof=["Heave", "Pitch"]))
-    common = ["-q", "--no-plots", "--set", f"vessel.motions={path}", "--set", "solver.time_samples=64",
-              "--set", "model.element_length_m=2.0"]
+    common = [
+        "-q",
+        "--no-plots",
+        "--set",
+        f"vessel.motions={path}",
+        "--set",
+        "solver.time_samples=64",
+        "--set",
+        "model.element_length_m=2.0",
+    ]
     assert main(["run", "-o", str(tmp_path / "v"), *common]) == 0
     # the surge problems of the BEM changed nothing of the vertical analysis: same numbers bit for bit
     rows = list(csv.DictReader((tmp_path / "v" / "summary.csv").open(encoding="utf-8")))
-    for row, ref in zip(rows, plain.summary):
+    for row, ref in zip(rows, plain.summary, strict=True):
         assert [float(row[k]) for k in SUMMARY_COLUMNS[2:-1]] == [ref[k] for k in SUMMARY_COLUMNS[2:-1]]
     capsys.readouterr()
     assert main(["run", "-o", str(tmp_path / "a"), *common, "--set", "seafastening.friction_coefficient=0.3"]) == 2
@@ -184,11 +222,13 @@ def test_study_over_the_friction_coefficient(tmp_path):
     from seafast.studies.runner import ExecutionOptions, run_study
     from seafast.studies.spec import build_grid, study_spec_from_mapping
 
-    spec = study_spec_from_mapping({
-        "name": "friction",
-        "set": {**FAST, "seafastening.friction_coefficient": [0.3, 0.3, 0.3]},  # a per-saddle list in the base ...
-        "axes": [{"key": "seafastening.friction_coefficient", "values": [0.02, 0.3]}],  # ... replaced by the axis
-    })
+    spec = study_spec_from_mapping(
+        {
+            "name": "friction",
+            "set": {**FAST, "seafastening.friction_coefficient": [0.3, 0.3, 0.3]},  # a per-saddle list in the base ...
+            "axes": [{"key": "seafastening.friction_coefficient", "values": [0.02, 0.3]}],  # ... replaced by the axis
+        }
+    )
     run = run_study(build_grid(spec), tmp_path, execution=ExecutionOptions(workers=1, progress=False))
     ds = run.dataset
     slip = ds["slip_m"].sel(load_case="dynamic", model="nonlinear").values
@@ -201,8 +241,23 @@ def test_study_over_the_friction_coefficient(tmp_path):
 def test_report_has_the_stick_slip_figure_and_axial_section(tmp_path):
     from seafast.output.report import write_report
 
-    assert main(["run", "-o", str(tmp_path), "-q", "--set", "seafastening.friction_coefficient=0.05",
-                 "--set", "solver.time_samples=64", "--set", "model.element_length_m=2.0"]) == 0
+    assert (
+        main(
+            [
+                "run",
+                "-o",
+                str(tmp_path),
+                "-q",
+                "--set",
+                "seafastening.friction_coefficient=0.05",
+                "--set",
+                "solver.time_samples=64",
+                "--set",
+                "model.element_length_m=2.0",
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "stick_slip.png").is_file()
     out = write_report(tmp_path)
     assert "fig-stick-slip" in out.figure_ids
@@ -219,7 +274,7 @@ def test_vertical_motion_coupling_switch(plain):
     rb, rb0 = coupled.vessel.rigid_body, plain.vessel.rigid_body
     assert rb.pitch_rad == rb.coupled_pitch_rad and rb0.pitch_rad != rb0.coupled_pitch_rad
     assert abs(abs(rb.pitch_rad) / abs(rb0.pitch_rad) - 1) < 0.05
-    for a, b in zip(plain.summary, coupled.summary):
+    for a, b in zip(plain.summary, coupled.summary, strict=True):
         if a["load_case"] == "static":
             assert a["F_N"] == b["F_N"]
         else:

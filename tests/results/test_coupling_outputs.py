@@ -41,8 +41,8 @@ def test_results_nc_holds_both_hulls_labelled(runs, tmp_path):
     one, two = runs
     path = tmp_path / "results.nc"
     two.dataset.to_netcdf(path)
-    with xr.open_dataset(path) as ds:
-        ds = ds.load()
+    with xr.open_dataset(path) as stored:
+        ds = stored.load()
     for coupled, one_way in COUPLED_HULL_VARIABLES.items():
         # the one-way hull keeps its name, grid and values, labelled one-way
         assert ds[one_way].attrs["hull_coupling"] == "one_way" and "one-way" in ds[one_way].attrs["long_name"]
@@ -100,8 +100,8 @@ def test_a_flagged_row_shows_the_couplings_own_residual(never_converging, tmp_pa
     captured = capsys.readouterr()
     warnings = [line for line in captured.err.splitlines() if line.startswith("seafast: warning") and "did NOT converge" in line]
     assert len(warnings) == 4
-    with xr.open_dataset(out / "results.nc") as ds:
-        ds = ds.load()
+    with xr.open_dataset(out / "results.nc") as stored:
+        ds = stored.load()
     for line in warnings:
         lc, model = line.split()[2:4]
         residual = float(ds["coupling_residual_m"].sel(load_case=lc, model=model))

@@ -119,11 +119,13 @@ def test_sea_fastening_frame_deflection_is_fixed_by_the_saddle_reactions(tmp_pat
         table = tmp_path / f"swbm_{-moment_Nm:.0f}.csv"
         x = np.linspace(0.0, 171.0, 19)
         np.savetxt(table, np.c_[x, np.full_like(x, moment_Nm)], delimiter=",", header="x_m,bending_moment_Nm", comments="")
-        case = load_case(overrides={
-            "vessel.still_water_bending_moment_table": str(table),
-            "vessel.motions": "none",
-            "solver.time_samples": 32,
-        })
+        case = load_case(
+            overrides={
+                "vessel.still_water_bending_moment_table": str(table),
+                "vessel.motions": "none",
+                "solver.time_samples": 32,
+            }
+        )
         rows.append(next(r for r in run_case(case).summary if r["load_case"] == "static" and r["model"] == "linear"))
     force_change = rows[1]["F_N"] / rows[0]["F_N"] - 1.0
     deflection_change = rows[1]["u_c_m"] / rows[0]["u_c_m"] - 1.0

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2, tube_second_moment_m4
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2, tube_second_moment_m4
 from seafast.model.structure import build_structural_model
 from seafast.results.summary import RowSolution, summary_row
 from seafast.solvers.linear import solve_linear
@@ -18,7 +18,13 @@ K_SADDLE = 1e14  # rigid supports for the closed forms
 
 def _model(xs, damping_ratio=0.02):
     geometry = CargoGeometry((TubeSegment(0.0, L, D, D, T),), youngs_modulus_Pa=210e9, density_kg_per_m3=RHO)
-    sf = SeaFastening(np.asarray(xs, float), np.full(len(xs), K_SADDLE), np.zeros(len(xs), bool), lashing_wire_stiffness_N_per_m=0.0, lashing_pretension_N=0.0)
+    sf = SeaFastening(
+        np.asarray(xs, float),
+        np.full(len(xs), K_SADDLE),
+        np.zeros(len(xs), bool),
+        lashing_wire_stiffness_N_per_m=0.0,
+        lashing_pretension_N=0.0,
+    )
     # 0.37 m elements put nodes at the supports (14.8 m = 40 elements) and midspan (44.4 m = 120)
     return build_structural_model(geometry, sf, target_element_length_m=0.3700001, damping_ratio=damping_ratio)
 
@@ -35,7 +41,9 @@ def _linear_row(model, excitation):
 def test_static_beam_on_two_supports_with_overhangs():
     a = 0.2 * L
     model = _model([a, L - a])
-    exc = HarmonicExcitation(0.6, np.zeros((1, 4), complex), np.zeros((1, model.cargo_dof_count), complex), np.zeros((1, model.cargo.element_count), complex))
+    exc = HarmonicExcitation(
+        0.6, np.zeros((1, 4), complex), np.zeros((1, model.cargo_dof_count), complex), np.zeros((1, model.cargo.element_count), complex)
+    )
     row = summary_row(model, "static", "linear", _linear_row(model, exc), 64)
     w = RHO * float(tube_area_m2(D, T)) * G  # weight per metre [N/m]
     span = L - 2 * a

@@ -29,8 +29,17 @@ def _branch(omega: list[float], span: list[float]) -> FrequencyResponseBranch:
     U[:, 0, 0] = 1.0
     U[:, 1, 0] = 0.5 * np.asarray(span)  # cosine amplitude: peak-to-peak = span
     n = w.size
-    return FrequencyResponseBranch(w, np.zeros(n), np.zeros(n), np.zeros(n), np.ones(n, bool), np.ones(n, bool),
-                                   compression_harmonics_m=U, tangent_omega=tangent, residual_norm=np.zeros(n))
+    return FrequencyResponseBranch(
+        w,
+        np.zeros(n),
+        np.zeros(n),
+        np.zeros(n),
+        np.ones(n, bool),
+        np.ones(n, bool),
+        compression_harmonics_m=U,
+        tangent_omega=tangent,
+        residual_norm=np.zeros(n),
+    )
 
 
 def test_folds_keep_real_turns_and_merge_the_zigzags_of_a_sharp_fold():
@@ -40,12 +49,17 @@ def test_folds_keep_real_turns_and_merge_the_zigzags_of_a_sharp_fold():
     zigzag = [1.5, 1.5015, 1.4995, 1.501, 1.4990, 1.5005]
     again = list(np.linspace(1.51, 3.0, 20))
     omega = up + back + zigzag + again
-    span = list(np.linspace(0.5, 1.0, 21)) + list(np.linspace(1.05, 1.5, 10)) + [1.5, 1.501, 1.502, 1.503, 1.504, 1.505] + list(np.linspace(1.45, 0.5, 20))
+    span = (
+        list(np.linspace(0.5, 1.0, 21))
+        + list(np.linspace(1.05, 1.5, 10))
+        + [1.5, 1.501, 1.502, 1.503, 1.504, 1.505]
+        + list(np.linspace(1.45, 0.5, 20))
+    )
     b = _branch(omega, span)
     assert b.turning_indices.size == 6  # the raw turns: the real two and four of the zigzag
     folds = significant_folds(b)
-    print(f"\nraw turns at {b.turning_omegas_rad_s}; folds at {b.omega_rad_s[folds]}")
-    assert b.omega_rad_s[folds] == pytest.approx([2.0, 1.4990])  # the fold at the extreme omega of its zigzag
+    figures = f"raw turns at {b.turning_omegas_rad_s}; folds at {b.omega_rad_s[folds]}"
+    assert b.omega_rad_s[folds] == pytest.approx([2.0, 1.4990]), figures  # the fold at the extreme omega of its zigzag
     # a pair of turns as close in omega but with a different response is a real fold pair (grazing), kept
     span2 = list(span)
     for i in range(31, 37):

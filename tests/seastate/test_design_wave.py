@@ -49,8 +49,13 @@ def test_the_rule_picks_the_response_spectrum_peak_and_its_half_peak_band(base):
     waves = select_design_waves(an)
     assert {wv.quantity for wv in waves} == set(QUANTITIES)
     for wv in waves:
-        stats = {"F_N": e.saddle_force, "u_s_m": e.saddle_compression, "u_d_m": e.saddle_compression,
-                 "M_b_Nm": e.bending_moment, "sigma_b_Pa": e.bending_stress}[wv.quantity]
+        stats = {
+            "F_N": e.saddle_force,
+            "u_s_m": e.saddle_compression,
+            "u_d_m": e.saddle_compression,
+            "M_b_Nm": e.bending_moment,
+            "sigma_b_Pa": e.bending_stress,
+        }[wv.quantity]
         s_r = stats.spectrum[:, wv.location]
         if wv.role == "peak":
             assert wv.frequency_index == int(np.argmax(s_r))
@@ -77,7 +82,9 @@ def test_each_design_wave_makes_the_linear_response_equal_the_linear_mpm(base):
     for wv in select_design_waves(an):
         if wv.quantity == "u_d_m":
             continue
-        sol = solve_wave(wave_operators(an.model, unit_wave_excitation(static, an.transfer, wv.frequency_index), opts), wv.amplitude_m, opts, linear=True)
+        sol = solve_wave(
+            wave_operators(an.model, unit_wave_excitation(static, an.transfer, wv.frequency_index), opts), wv.amplitude_m, opts, linear=True
+        )
         assert sol.linear_maxima[wv.quantity] == pytest.approx(tot[wv.quantity], rel=1e-7), (wv.quantity, wv.role)
         assert sol.linear_maxima["u_d_m"] == 0.0
 
@@ -95,7 +102,11 @@ def test_wave_solution_equals_solve_hbm_and_the_run_summary(base):
         X = ref.cargo_displacement_harmonics
         fine = 4096
         comp = np.real(np.fft.irfft(np.fft.rfft(ref.saddle_compression_time_m, axis=0), n=fine, axis=0)) * fine / ref.time_samples
-        row = summary_rows(an.model, [("dynamic", "nonlinear", RowSolution(X, comp, opts.law.force(comp, an.model.saddle_unilateral_stiffness_N_per_m), exc, True))], fine)[0]
+        row = summary_rows(
+            an.model,
+            [("dynamic", "nonlinear", RowSolution(X, comp, opts.law.force(comp, an.model.saddle_unilateral_stiffness_N_per_m), exc, True))],
+            fine,
+        )[0]
         sol = solve_wave(ops, amplitude, opts)
         assert sol.converged and sol.lifted_off == (amplitude > 1.0)
         for q in QUANTITIES:
@@ -166,11 +177,11 @@ def test_a_wave_the_truncated_balance_cannot_solve_falls_back_to_fewer_harmonics
     assert not design_wave_extremes(an, static, DesignWaveSettings(fallback_harmonics=())).converged
     dw = design_wave_extremes(an, static)
     assert dw.converged
-    used = {(w.role, s.harmonics) for w, s in zip(dw.waves, dw.solutions)}
+    used = {(w.role, s.harmonics) for w, s in zip(dw.waves, dw.solutions, strict=True)}
     assert ("band_high", 12) in used and ("peak", 16) in used
     # the fallback's answer is the periodic solution's: within 2 % of the adaptive H there
     wv = next(w for w in dw.waves if w.quantity == "F_N" and w.role == "band_high")
-    sol = next(s for w, s in zip(dw.waves, dw.solutions) if w is wv)
+    sol = next(s for w, s in zip(dw.waves, dw.solutions, strict=True) if w is wv)
     ref = solve_hbm(an.model, _scaled(unit_wave_excitation(static, an.transfer, wv.frequency_index), wv.amplitude_m))
     assert ref.converged and sol.maxima["F_N"] == pytest.approx(float(ref.saddle_force_time_N.max()), rel=0.02)
 
@@ -184,7 +195,8 @@ def test_the_conditioned_wave_reaches_its_target_at_t0_and_equals_the_linear_mpm
     cw = conditioned_wave(an, static, an.transfer.saddle_force_N[:, s], target)
     # the linear response of the conditioned wave at t = 0 is the target (components all in phase)
     H = np.interp(cw.omega_rad_s, an.transfer.omega_rad_s, an.transfer.saddle_force_N[:, s].real) + 1j * np.interp(
-        cw.omega_rad_s, an.transfer.omega_rad_s, an.transfer.saddle_force_N[:, s].imag)
+        cw.omega_rad_s, an.transfer.omega_rad_s, an.transfer.saddle_force_N[:, s].imag
+    )
     response = H * cw.wave_amplitude_m
     assert np.allclose(response.imag / target, 0.0, atol=2e-3) and np.all(response.real >= -1e-9 * target)
     sol = solve_conditioned_wave(an, cw)

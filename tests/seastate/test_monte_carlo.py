@@ -235,8 +235,9 @@ def test_store_resumes_refuses_another_run_and_drops_a_torn_line(tmp_path):
 def test_more_realisations_extend_the_store(tmp_path):
     case = case_of(significant_height_m=2.0, duration_s=600.0, realisations=3)
     first = run_monte_carlo(case, tmp_path, workers=1, progress=False)
-    more = run_monte_carlo(case.model_copy(update={"sea_state": case.sea_state.model_copy(update={"realisations": 5})}),
-                           tmp_path, workers=1, progress=False)
+    more = run_monte_carlo(
+        case.model_copy(update={"sea_state": case.sea_state.model_copy(update={"realisations": 5})}), tmp_path, workers=1, progress=False
+    )
     assert more.reused == 3
     assert np.array_equal(more.linear.maxima["F_N"][:3], first.linear.maxima["F_N"])
     other = case_of(significant_height_m=2.5, duration_s=600.0, realisations=3)

@@ -27,7 +27,11 @@ def test_seastate_csv_has_the_contract_columns_and_rows(spectral_run):
         rows = list(csv.DictReader(f))
     assert header == ",".join(SEASTATE_COLUMNS) == "model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged"
     assert [(r["model"], r["method"]) for r in rows] == [
-        ("linear", "spectral"), ("linear", "monte_carlo"), ("nonlinear", "monte_carlo"), ("nonlinear", "design_wave")]
+        ("linear", "spectral"),
+        ("linear", "monte_carlo"),
+        ("nonlinear", "monte_carlo"),
+        ("nonlinear", "design_wave"),
+    ]
     analysis = spectral_analysis(seafast.load_case(None))
     spectral, design = analysis.extremes.totals, sea_state_design_waves(analysis).totals
     for q in ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m", "uplift_per_hour"):
@@ -90,8 +94,13 @@ def test_report_of_a_seastate_directory_has_the_sea_state_section(spectral_run, 
     out = tmp_path / "report.html"
     assert main(["report", str(spectral_run), "-o", str(out), "--no-figures"]) == 0
     page = out.read_text()
-    for needle in ('id="seastate-summary"', 'data-figure="fig-seastate-spectrum"', 'data-figure="fig-seastate-transfer"',
-                   "uplift events in 3 h", "not computed"):
+    for needle in (
+        'id="seastate-summary"',
+        'data-figure="fig-seastate-spectrum"',
+        'data-figure="fig-seastate-transfer"',
+        "uplift events in 3 h",
+        "not computed",
+    ):
         assert needle in page, needle
     # the table shows the csv's numbers in engineering units
     with open(spectral_run / "seastate.csv", newline="") as f:
@@ -104,7 +113,10 @@ def _fake_statistics(model, converged):
 
     import numpy as np
 
-    maxima = {q: np.array([1.0, 1.1, 1.2]) * v for q, v in (("F_N", 9e6), ("M_b_Nm", 9e7), ("sigma_b_Pa", 2.3e7), ("u_s_m", 9e-3), ("u_d_m", 1e-3))}
+    maxima = {
+        q: np.array([1.0, 1.1, 1.2]) * v
+        for q, v in (("F_N", 9e6), ("M_b_Nm", 9e7), ("sigma_b_Pa", 2.3e7), ("u_s_m", 9e-3), ("u_d_m", 1e-3))
+    }
     mpm = {q: float(np.median(m)) for q, m in maxima.items()}
     return SimpleNamespace(model=model, maxima=maxima, mpm=mpm, uplift_per_hour=1.5, converged=converged)
 
@@ -122,6 +134,7 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
 
     def engine(case, directory, *, workers=None, scheduler=None, progress=True):
         calls.update(case=case, directory=directory, workers=workers, scheduler=scheduler)
+
         def var(dims, data, units):
             return xr.Variable(dims, np.asarray(data), {"units": units, "long_name": "stand-in"})
 
@@ -133,11 +146,14 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
                 "mc_M_b_Nm": var(("model", "realisation"), [[9e7, 9.9e7, 1.08e8], [8e7, 9e7, 1e8]], "N m"),
                 "mc_mpm_M_b_Nm": var(("model",), [9.9e7, 9e7], "N m"),
             },
-            coords={"realisation": xr.Variable(("realisation",), np.arange(3), {"units": "1", "long_name": "realisation index"}),
-                    "model": xr.Variable(("model",), ["linear", "nonlinear"], {"units": "1", "long_name": "model"})},
+            coords={
+                "realisation": xr.Variable(("realisation",), np.arange(3), {"units": "1", "long_name": "realisation index"}),
+                "model": xr.Variable(("model",), ["linear", "nonlinear"], {"units": "1", "long_name": "model"}),
+            },
         )
-        return SimpleNamespace(linear=_fake_statistics("linear", True), nonlinear=_fake_statistics("nonlinear", False),
-                               example=None, to_dataset=lambda: ds)
+        return SimpleNamespace(
+            linear=_fake_statistics("linear", True), nonlinear=_fake_statistics("nonlinear", False), example=None, to_dataset=lambda: ds
+        )
 
     monkeypatch.setattr(seastate_cli, "_monte_carlo_engine", lambda: (engine, ""))
     out = tmp_path / "mc"
@@ -160,17 +176,32 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
 
 
 _SEA_KEYS = [
-    "sea_state.significant_height_m", "sea_state.peak_period_s", "sea_state.spectrum", "sea_state.peak_enhancement",
-    "sea_state.duration_s", "sea_state.realisations", "sea_state.seed", "sea_state", "limits.max_saddle_force_N",
-    "limits.max_bending_stress_Pa", "limits",
+    "sea_state.significant_height_m",
+    "sea_state.peak_period_s",
+    "sea_state.spectrum",
+    "sea_state.peak_enhancement",
+    "sea_state.duration_s",
+    "sea_state.realisations",
+    "sea_state.seed",
+    "sea_state",
+    "limits.max_saddle_force_N",
+    "limits.max_bending_stress_Pa",
+    "limits",
 ]
 
 
 def _fuzz_values():
     from hypothesis import strategies as st
 
-    return st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.floats(0.1, 20.0), st.integers(-5, 200),
-                     st.text(max_size=8), st.none(), st.booleans(), st.sampled_from(["jonswap", "pierson_moskowitz", "x.csv"]))
+    return st.one_of(
+        st.floats(allow_nan=True, allow_infinity=True),
+        st.floats(0.1, 20.0),
+        st.integers(-5, 200),
+        st.text(max_size=8),
+        st.none(),
+        st.booleans(),
+        st.sampled_from(["jonswap", "pierson_moskowitz", "x.csv"]),
+    )
 
 
 def test_seastate_never_tracebacks_on_random_sea_state_overrides(tmp_path):

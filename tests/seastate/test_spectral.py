@@ -90,8 +90,12 @@ def test_grid_convergence_of_the_response_moments(base):
     from seafast.seastate.transfer import still_water, transfer_functions
 
     fine_sp = sea_state_spectrum(base.case, n_points=2048)
-    fine = spectral_extremes(transfer_functions(base.case, base.model, fine_sp.omega_rad_s), fine_sp,
-                             still_water(base.case, base.model), base.case.sea_state.duration_s)
+    fine = spectral_extremes(
+        transfer_functions(base.case, base.model, fine_sp.omega_rad_s),
+        fine_sp,
+        still_water(base.case, base.model),
+        base.case.sea_state.duration_s,
+    )
     for name in ("saddle_force", "bending_moment"):
         coarse_stats, fine_stats = getattr(base.extremes, name), getattr(fine, name)
         assert np.allclose(coarse_stats.m0, fine_stats.m0, rtol=5e-3), name

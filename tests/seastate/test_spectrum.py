@@ -56,8 +56,13 @@ def test_jonswap_widths_are_sigma_007_below_and_009_above_the_peak():
 
 @pytest.mark.parametrize(
     "spectrum,hs,tp,gamma",
-    [("jonswap", 3.0, 10.0, 3.3), ("jonswap", 1.0, 6.0, 3.3), ("jonswap", 6.0, 16.0, 5.0), ("pierson_moskowitz", 3.0, 10.0, 3.3),
-     ("jonswap", 0.5, 25.0, 1.5)],
+    [
+        ("jonswap", 3.0, 10.0, 3.3),
+        ("jonswap", 1.0, 6.0, 3.3),
+        ("jonswap", 6.0, 16.0, 5.0),
+        ("pierson_moskowitz", 3.0, 10.0, 3.3),
+        ("jonswap", 0.5, 25.0, 1.5),
+    ],
 )
 def test_spectrum_on_its_grid_integrates_to_hs2_over_16_within_1_percent(spectrum, hs, tp, gamma):
     sp = sea_state_spectrum(_case(spectrum=spectrum, significant_height_m=hs, peak_period_s=tp, peak_enhancement=gamma))

@@ -31,7 +31,7 @@ def base():
 
 @pytest.mark.parametrize("index,amplitude", [(40, 1.0), (128, 2.0), (200, 0.5)])
 def test_transfer_times_amplitude_equals_seafast_run_at_a_grid_frequency(base, index, amplitude):
-    case, _, omega, tf = base
+    _, _, omega, tf = base
     w = float(omega[index])
     regular = seafast.load_case(None, {"wave.length_m": 2 * math.pi * G / w**2, "wave.amplitude_m": amplitude})
     assert regular.wave_frequency_rad_s() == pytest.approx(w, rel=1e-14)
@@ -63,7 +63,7 @@ def test_transfer_times_amplitude_equals_seafast_run_at_a_grid_frequency(base, i
 
 
 def test_still_water_equals_the_static_linear_row_of_seafast_run(base):
-    case, model, _, tf = base
+    case, model, _, _ = base
     ds = run_case(case).dataset.sel(load_case="static", model="linear")
     sw = still_water(case, model)
     assert np.allclose(sw.saddle_force_N, ds["saddle_force_N"].values[0], rtol=1e-9)
@@ -95,7 +95,9 @@ def test_hull_wave_response_is_linear_until_a_section_emerges():
             assert err > 1e-5 and second > 1e-5, a
     # moments too, and a crest amidships hogs (negative moment amidships at t = 0)
     r = wave_response(v.girder, v.loading, lam, 1.0)
-    assert np.max(np.abs(r.bending_moment_harmonics_Nm[1] - tf.bending_moment_Nm_per_m[0])) < 1e-9 * np.max(np.abs(r.bending_moment_harmonics_Nm[1]))
+    assert np.max(np.abs(r.bending_moment_harmonics_Nm[1] - tf.bending_moment_Nm_per_m[0])) < 1e-9 * np.max(
+        np.abs(r.bending_moment_harmonics_Nm[1])
+    )
     mid = np.argmin(np.abs(tf.x_m - 85.5))
     assert tf.bending_moment_Nm_per_m[0, mid].real < 0
 
@@ -151,8 +153,10 @@ def test_transfer_functions_vanish_in_very_long_and_very_short_waves(base):
 def test_vessel_setups_without_a_per_frequency_hull_are_refused(tmp_path):
     table = tmp_path / "deck.csv"
     table.write_text("x_m,still_water_m,wave_amplitude_m,wave_phase_rad\n0,0,0,0\n85,0.01,0.02,0\n171,0,0,0\n")
-    for overrides, key in (({"vessel.deck_deflection_table": str(table)}, "vessel.deck_deflection_table"),
-                           ({"vessel.coupling": "two_way"}, "vessel.coupling")):
+    for overrides, key in (
+        ({"vessel.deck_deflection_table": str(table)}, "vessel.deck_deflection_table"),
+        ({"vessel.coupling": "two_way"}, "vessel.coupling"),
+    ):
         case = seafast.load_case(None, overrides)
         with pytest.raises(CaseError, match=key):
             transfer_functions(case, build_model(case), np.array([0.5, 0.6]))

@@ -17,8 +17,8 @@ import numpy as np
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.beam import bending_moment_line
-from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import StructuralModel, build_structural_model
 
 

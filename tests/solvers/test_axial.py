@@ -45,7 +45,7 @@ def _march_loop(u, cap, k, w0=0.0):
     w = w0
     for _ in range(2):
         out = []
-        for un, cn in zip(u, cap):
+        for un, cn in zip(u, cap, strict=True):
             w = min(max(w, un - cn / k), un + cn / k)
             out.append(w)
     return np.array(out)
@@ -68,8 +68,9 @@ def test_prefix_scan_equals_the_sample_loop(n, seed):
 
 
 def test_jacobian_equals_finite_differences():
-    r = AxialRestraint(M, np.array([0.2, 0.1]), np.array([1e9, 1e9]), lashing_axial_stiffness_N_per_m=K,
-                       stopper_gap_m=0.3, stopper_stiffness_N_per_m=5e7)
+    r = AxialRestraint(
+        M, np.array([0.2, 0.1]), np.array([1e9, 1e9]), lashing_axial_stiffness_N_per_m=K, stopper_gap_m=0.3, stopper_stiffness_N_per_m=5e7
+    )
     load = AxialLoad(0.8, np.array([0.0, 1.2 * P0 - 0.4j * P0]))
     cap = r.capacity_N(np.column_stack([np.full(256, 1e6), 1e6 * (1 + 0.5 * np.sin(2 * np.pi * np.arange(256) / 256))]))
     p = _Problem(r, load, cap, 7, 256)
@@ -129,8 +130,10 @@ def test_large_coefficient_sticks_with_the_statics_utilisation():
     f = np.real(load.force_N[1] * np.exp(2j * np.pi * t))
     statics = float(np.max(np.abs(f) / (mu * normal.sum(axis=1))))
     assert statics < 1.0
-    for res in (solve_axial_hbm(r, load, normal, AxialHBMOptions(harmonics=15, time_samples=256)),
-                solve_axial_time_domain(r, load, normal, time_samples=128)):
+    for res in (
+        solve_axial_hbm(r, load, normal, AxialHBMOptions(harmonics=15, time_samples=256)),
+        solve_axial_time_domain(r, load, normal, time_samples=128),
+    ):
         assert res.converged and res.slip_m == 0.0 and not res.sliding.any()
         assert res.friction_utilisation == pytest.approx(statics, rel=1e-4)
         assert res.axial_force_N < 1e-6 * P0
@@ -140,8 +143,9 @@ def test_large_coefficient_sticks_with_the_statics_utilisation():
 def test_stoppers_against_the_time_domain():
     """Sliding into stiff end stoppers: HBM and the time-domain reference agree within 1 %."""
     w = 0.6
-    r = AxialRestraint(M, np.array([0.1]), np.array([KT]), lashing_axial_stiffness_N_per_m=K,
-                       stopper_gap_m=0.3, stopper_stiffness_N_per_m=5e6)
+    r = AxialRestraint(
+        M, np.array([0.1]), np.array([KT]), lashing_axial_stiffness_N_per_m=K, stopper_gap_m=0.3, stopper_stiffness_N_per_m=5e6
+    )
     load = AxialLoad(w, np.array([0.0, P0], dtype=complex))
     n = np.full((128, 1), 1e6)
     hbm = solve_axial_hbm(r, load, n, AxialHBMOptions(harmonics=25, time_samples=512))
@@ -165,8 +169,12 @@ def test_tangential_stiffness_does_not_change_the_sliding_solution():
 
 def test_failure_is_reported_not_raised():
     r = _oscillator(0.3)
-    res = solve_axial_hbm(r, AxialLoad(1.5, np.array([0.0, P0], dtype=complex)), np.full((64, 1), 1e6),
-                          AxialHBMOptions(harmonics=25, time_samples=512, max_iterations=1))
+    res = solve_axial_hbm(
+        r,
+        AxialLoad(1.5, np.array([0.0, P0], dtype=complex)),
+        np.full((64, 1), 1e6),
+        AxialHBMOptions(harmonics=25, time_samples=512, max_iterations=1),
+    )
     assert not res.converged and "did not converge" in res.message and res.residual_norm > 1e-9
 
 

@@ -37,12 +37,15 @@ def test_wave_frequencies_are_quasi_static():
     assert branch.end is BranchEnd.REACHED_END
     assert not branch.contact_preserved.any()  # the middle saddle lifts off throughout
     qs = solve_quasi_static(model, excitation_at(0.2), time_samples=64)
-    print(f"\nomega 0.2..2 rad/s: max force {branch.max_saddle_force_N.min() / 1e6:.4f}..{branch.max_saddle_force_N.max() / 1e6:.4f} MN, quasi-static {qs.max_saddle_force_N / 1e6:.4f} MN; {len(branch.omega_rad_s)} points")
+    figures = (
+        f"omega 0.2..2 rad/s: max force {branch.max_saddle_force_N.min() / 1e6:.4f}..{branch.max_saddle_force_N.max() / 1e6:.4f} MN, "
+        f"quasi-static {qs.max_saddle_force_N / 1e6:.4f} MN; {len(branch.omega_rad_s)} points"
+    )
     # within the H = 10 truncation error (~0.5 % on the peak force here)
-    assert branch.max_saddle_force_N[0] == pytest.approx(qs.max_saddle_force_N, rel=0.01)
-    assert branch.max_gap_m[0] == pytest.approx(qs.max_gap_m, rel=0.05)
+    assert branch.max_saddle_force_N[0] == pytest.approx(qs.max_saddle_force_N, rel=0.01), figures
+    assert branch.max_gap_m[0] == pytest.approx(qs.max_gap_m, rel=0.05), figures
     # over the whole wave band the response changes by well under 1 %
-    assert np.ptp(branch.max_saddle_force_N) / qs.max_saddle_force_N < 0.01
+    assert np.ptp(branch.max_saddle_force_N) / qs.max_saddle_force_N < 0.01, figures
 
 
 def linear_peak(model, excitation_at, omegas, N):
@@ -58,10 +61,12 @@ def test_linear_resonance_peak_matches_linear_frf():
     branch = frequency_response(model, excitation_at, 1.0, 10.0, opts)
     assert branch.converged.all() and branch.contact_preserved.all()
     w_lin, z_lin = linear_peak(model, excitation_at, np.linspace(1.0, 10.0, 3601), 16)
-    print(f"\ncontinuation peak {branch.peak_omega_rad_s:.4f} rad/s vs linear FRF {w_lin:.4f} rad/s "
-          f"(first natural frequency {model.natural_frequencies_rad_s(True, 2)[1]:.4f}); {len(branch.omega_rad_s)} points")
-    assert branch.peak_omega_rad_s == pytest.approx(w_lin, rel=0.02)
-    assert branch.max_cargo_deflection_m.max() == pytest.approx(z_lin, rel=0.02)
+    figures = (
+        f"continuation peak {branch.peak_omega_rad_s:.4f} rad/s vs linear FRF {w_lin:.4f} rad/s "
+        f"(first natural frequency {model.natural_frequencies_rad_s(True, 2)[1]:.4f}); {len(branch.omega_rad_s)} points"
+    )
+    assert branch.peak_omega_rad_s == pytest.approx(w_lin, rel=0.02), figures
+    assert branch.max_cargo_deflection_m.max() == pytest.approx(z_lin, rel=0.02), figures
 
 
 def test_nonlinear_resonance_is_passed_with_lift_off():

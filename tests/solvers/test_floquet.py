@@ -52,8 +52,13 @@ def uniform_heave(model, amplitude_m):
     def at(omega):
         deck = np.zeros((2, model.deck_dof_count), complex)
         deck[1, 0::2] = amplitude_m
-        return HarmonicExcitation(omega, deck, np.zeros((2, model.cargo_dof_count), complex),
-                                  np.zeros((2, model.cargo.element_count), complex), "uniform deck heave")
+        return HarmonicExcitation(
+            omega,
+            deck,
+            np.zeros((2, model.cargo_dof_count), complex),
+            np.zeros((2, model.cargo.element_count), complex),
+            "uniform deck heave",
+        )
 
     return at
 
@@ -66,8 +71,8 @@ def test_contact_kept_all_period_gives_the_linear_multipliers(soft_model):
     floquet = floquet_multipliers(model, w, U, EXACT)
     lam = _spectrum(model, model.dynamic_stiffness(0.0, True)[0])
     expected = np.exp(lam[0].real * 2 * np.pi / w)  # the least damped mode
-    print(f"\nlargest |multiplier| {floquet.max_modulus:.10f}, exp(Re(lambda_1) T) = {expected:.10f}")
-    assert floquet.max_modulus == pytest.approx(expected, rel=1e-6)
+    figures = f"largest |multiplier| {floquet.max_modulus:.10f}, exp(Re(lambda_1) T) = {expected:.10f}"
+    assert floquet.max_modulus == pytest.approx(expected, rel=1e-6), figures
     assert floquet.stable and floquet.switching_times_s.size == 0
     # the four leading moduli are the two lowest modes' (complex pairs)
     top = np.sort(np.abs(np.exp(lam * 2 * np.pi / w)))[::-1][:4]
@@ -84,12 +89,13 @@ def test_a_saddle_detached_all_period_gives_the_model_without_it(soft_model):
     K[i, i] -= model.saddle_unilateral_stiffness_N_per_m[0]
     lam = _spectrum(model, K)
     expected = np.exp(lam[0] * 2 * np.pi / w)
-    print(f"\nleading multiplier {floquet.leading_multiplier:.6f}, without the saddle {expected:.6f}")
+    figures = f"leading multiplier {floquet.leading_multiplier:.6f}, without the saddle {expected:.6f}"
+
     def distance(mu: complex) -> float:  # to the expected multiplier or its conjugate (a pair)
         return min(abs(mu - expected), abs(np.conj(mu) - expected))
 
     # the modes above the cutoff enter through their static flexibility only: 1e-4
-    assert distance(floquet.leading_multiplier) < 1e-4 * abs(expected)
+    assert distance(floquet.leading_multiplier) < 1e-4 * abs(expected), figures
     with_saddle = floquet_multipliers(model, w, np.abs(U), EXACT)
     assert distance(with_saddle.leading_multiplier) > 0.1  # the check tells the two models apart
 
@@ -115,8 +121,15 @@ def test_a_perturbation_of_an_unstable_orbit_grows_by_the_leading_multiplier(sof
     C[1:] *= 2.0
     kw = np.arange(C.shape[0]) * w
     m = system.mode_count
-    eta = np.stack([np.linalg.solve(np.diag(system.natural_frequency_rad_s**2) - k**2 * np.eye(m) + 1j * k * system.modal_damping,
-                                    system.saddle_mode_shape.T @ C[j]) for j, k in enumerate(kw)])
+    eta = np.stack(
+        [
+            np.linalg.solve(
+                np.diag(system.natural_frequency_rad_s**2) - k**2 * np.eye(m) + 1j * k * system.modal_damping,
+                system.saddle_mode_shape.T @ C[j],
+            )
+            for j, k in enumerate(kw)
+        ]
+    )
     state = MarchState(eta.sum(0).real, (1j * kw[:, None] * eta).sum(0).real, (-(kw[:, None] ** 2) * eta).sum(0).real, c[0], c[0] > 0.0)
     linear = harmonics_to_time(real_to_complex_harmonics(condensed_operators(model, excitation_at(w), H).linear_compression_m), N)
     marcher = modal_correction(model, 2 * np.pi / w / N, system.cutoff_rad_s, minimum_modes=0)  # the same modes
@@ -129,8 +142,8 @@ def test_a_perturbation_of_an_unstable_orbit_grows_by_the_leading_multiplier(sof
     grow = np.nonzero((d > 30 * d[0]) & (d < 0.05 * np.ptp(delta)))[0]  # the leading mode dominates, still small
     assert grow.size >= 4
     rate = float(np.exp(np.polyfit(grow, np.log(d[grow]), 1)[0]))
-    print(f"\nomega {w:.4f} rad/s: leading multiplier {floquet.max_modulus:.4f}, marched growth per period {rate:.4f}")
-    assert rate == pytest.approx(floquet.max_modulus, rel=0.02)
+    figures = f"omega {w:.4f} rad/s: leading multiplier {floquet.max_modulus:.4f}, marched growth per period {rate:.4f}"
+    assert rate == pytest.approx(floquet.max_modulus, rel=0.02), figures
     assert d[-1] > 0.2 * np.ptp(delta)  # it left the orbit for good
 
 

@@ -127,7 +127,10 @@ def test_fallback_continuation_reaches_the_solution(model):
 def test_dropped_harmonics_are_reported(model):
     r = solve_hbm(model, wave_excitation(model), HBMOptions(harmonics=1, time_samples=8))
     assert r.converged and SolverWarning.HARMONICS_ABOVE_H_IGNORED in r.warnings and "ignored" in r.message
-    assert SolverWarning.HARMONICS_ABOVE_H_IGNORED not in solve_hbm(model, wave_excitation(model), HBMOptions(harmonics=2, time_samples=8)).warnings
+    assert (
+        SolverWarning.HARMONICS_ABOVE_H_IGNORED
+        not in solve_hbm(model, wave_excitation(model), HBMOptions(harmonics=2, time_samples=8)).warnings
+    )
 
 
 def test_a_warm_start_from_the_solution_returns_it(model):

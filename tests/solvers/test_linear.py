@@ -14,8 +14,8 @@ import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.beam import bending_moment_line
-from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.structure import StructuralModel, build_structural_model
 from seafast.solvers.linear import solve_harmonic, solve_linear
 
@@ -96,7 +96,7 @@ def test_partitioned_equations_hold() -> None:
     xo = rng.normal(size=model.deck_dof_count) * 1e-3 + 1j * rng.normal(size=model.deck_dof_count) * 1e-3
     f = rng.normal(size=model.cargo_dof_count) * 1e4
     xc = solve_harmonic(model, omega, f, xo)
-    Kcc, Kco, Koc, Koo = model.dynamic_stiffness(omega, True)
+    Kcc, Kco, Koc, _ = model.dynamic_stiffness(omega, True)
     np.testing.assert_allclose(Kcc @ xc + Kco @ xo, f, rtol=0, atol=1e-6 * np.abs(f).max())
     np.testing.assert_allclose(Koc, Kco.T)
     # multiple right-hand sides at once equal the columns solved one by one
@@ -122,7 +122,7 @@ def test_static_calibration_raised_middle_saddle() -> None:
     assert resp.saddle_compression_m[0].real.max() == pytest.approx(5.7e-3, rel=0.03)
     # equilibrium still holds with the prescribed deck
     kz = model.seafastening.lashing_vertical_stiffness_N_per_m
-    spring = (F + kz * resp.saddle_compression_m[0].real)
+    spring = F + kz * resp.saddle_compression_m[0].real
     assert spring.sum() == pytest.approx(_weight(model) + T_L, rel=1e-9)
 
 
@@ -224,9 +224,13 @@ def test_harmonic_inertia_load_matches_dynamic_stiffness_solution() -> None:
     F[0::2] = 1e3 * (1 + 0.5j)
     resp = solve_linear(model, _excitation(model, omega, [np.zeros(model.deck_dof_count)] * 2, [np.zeros(model.cargo_dof_count), F]))
     Kd = model.dynamic_stiffness(omega, True)[0]
-    np.testing.assert_allclose(resp.cargo_displacement[1], np.linalg.solve(Kd, F), rtol=0, atol=1e-9 * np.abs(resp.cargo_displacement[1]).max())
+    np.testing.assert_allclose(
+        resp.cargo_displacement[1], np.linalg.solve(Kd, F), rtol=0, atol=1e-9 * np.abs(resp.cargo_displacement[1]).max()
+    )
     resp2 = solve_linear(model, _excitation(model, omega, [np.zeros(model.deck_dof_count)] * 2, [np.zeros(model.cargo_dof_count), 3 * F]))
-    np.testing.assert_allclose(resp2.cargo_displacement[1], 3 * resp.cargo_displacement[1], rtol=0, atol=1e-10 * np.abs(resp2.cargo_displacement[1]).max())
+    np.testing.assert_allclose(
+        resp2.cargo_displacement[1], 3 * resp.cargo_displacement[1], rtol=0, atol=1e-10 * np.abs(resp2.cargo_displacement[1]).max()
+    )
 
 
 # --------------------------------------------------------------------------- mesh convergence

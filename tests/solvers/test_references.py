@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from threadpoolctl import threadpool_limits
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
+from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_structural_model, rayleigh_coefficients
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
@@ -48,14 +48,13 @@ def base():
 
 
 def test_references_agree_with_each_other(base):
-    model, ex, qs, td = base
+    model, _, qs, td = base
     assert qs.converged and td.converged
     assert qs.outcome is SolverOutcome.CONVERGED and qs.warnings == ()
     assert "justified" in qs.message
     assert not qs.contact_preserved and qs.max_gap_m > 1e-3
     e_f, e_m = force_error(td, qs), moment_error(model, td, qs)
-    print(f"\ntime domain vs quasi-static: force {e_f:.2%}, moment {e_m:.2%} ({td.message})")
-    assert e_f < 0.01 and e_m < 0.01
+    assert e_f < 0.01 and e_m < 0.01, f"time domain vs quasi-static: force {e_f:.2%}, moment {e_m:.2%} ({td.message})"
     assert td.saddle_force_time_N.min() >= 0 and qs.saddle_force_time_N.min() >= 0
 
 
@@ -65,8 +64,7 @@ def test_hbm_exact_law_matches_references(base):
     assert r.converged
     rows = {name: (force_error(r, ref), moment_error(model, r, ref)) for name, ref in (("quasi-static", qs), ("time domain", td))}
     for name, (e_f, e_m) in rows.items():
-        print(f"\nHBM exact H=20 vs {name}: saddle force {e_f:.3%}, bending moment {e_m:.3%}")
-        assert e_f < 0.01 and e_m < 0.01
+        assert e_f < 0.01 and e_m < 0.01, f"HBM exact H=20 vs {name}: saddle force {e_f:.3%}, bending moment {e_m:.3%}"
     # the peaks (design values) agree much better than the worst sample near a contact switch
     assert r.max_saddle_force_N == pytest.approx(td.max_saddle_force_N, rel=2e-3)
     assert np.abs(moments(model, r)).max() == pytest.approx(np.abs(moments(model, td)).max(), rel=2e-3)
@@ -81,7 +79,7 @@ def test_regularised_law_error_against_exact_reference(base):
     The exact law converges to the reference instead. Softplus overestimates the force near
     zero compression (k ln2 / kappa = 0.76 MN at delta = 0).
     """
-    model, ex, qs, td = base
+    model, ex, _, td = base
     lines = []
     errors = {}
     for law in ("tanh", "softplus", "exact"):
@@ -89,12 +87,15 @@ def test_regularised_law_error_against_exact_reference(base):
             r = solve_hbm(model, ex, HBMOptions(harmonics=H, time_samples=128, contact_law=law))
             assert r.converged
             errors[law, H] = (force_error(r, td), moment_error(model, r, td), r.tensile_force_error_N)
-            lines.append(f"{law:9s} H={H:2d}: force {errors[law, H][0]:.3%}  moment {errors[law, H][1]:.3%}  tension {r.tensile_force_error_N / 1e3:.0f} kN")
-    print("\nerror vs exact time-domain reference (kappa = 1000 1/m):\n" + "\n".join(lines))
+            lines.append(
+                f"{law:9s} H={H:2d}: force {errors[law, H][0]:.3%}  moment {errors[law, H][1]:.3%}  "
+                f"tension {r.tensile_force_error_N / 1e3:.0f} kN"
+            )
+    figures = "error vs exact time-domain reference (kappa = 1000 1/m):\n" + "\n".join(lines)
     tanh_err = errors["tanh", 20][0]
-    assert 0.005 < tanh_err < 0.03  # the documented ~1.4 %
-    assert errors["exact", 20][0] < tanh_err
-    assert errors["tanh", 20][2] == pytest.approx(0.1392 * 1.1e9 / 1000, rel=0.02)
+    assert 0.005 < tanh_err < 0.03, figures  # the documented ~1.4 %
+    assert errors["exact", 20][0] < tanh_err, figures
+    assert errors["tanh", 20][2] == pytest.approx(0.1392 * 1.1e9 / 1000, rel=0.02), figures
 
 
 def test_harmonic_convergence_exact_law(base):
@@ -104,16 +105,17 @@ def test_harmonic_convergence_exact_law(base):
         r = solve_hbm(model, ex, HBMOptions(harmonics=H, time_samples=128, contact_law="exact"))
         assert r.converged, (H, r.message)
         table.append((H, force_error(r, qs), force_error(r, td), moment_error(model, r, td), float(r.harmonic_truncation_indicator.max())))
-    print("\n H  force vs QS  force vs TD  moment vs TD  energy above H")
-    for H, a, b, c, d in table:
-        print(f"{H:2d}  {a:10.3%}  {b:10.3%}  {c:11.3%}  {d:12.2e}")
+    figures = "\n".join(
+        [" H  force vs QS  force vs TD  moment vs TD  energy above H"]
+        + [f"{H:2d}  {a:10.3%}  {b:10.3%}  {c:11.3%}  {d:12.2e}" for H, a, b, c, d in table]
+    )
     err = np.array([row[2] for row in table])
-    assert err[-1] < 0.01
-    assert err[-1] < err[4] < err[0]
+    assert err[-1] < 0.01, figures
+    assert err[-1] < err[4] < err[0], figures
     # error decreasing: every H >= 8 beats every H <= 3
-    assert err[7:].max() < err[:3].min()
+    assert err[7:].max() < err[:3].min(), figures
     indicator = np.array([row[4] for row in table])
-    assert indicator[-1] < indicator[0]
+    assert indicator[-1] < indicator[0], figures
 
 
 def test_quasi_static_warns_for_a_seesaw(base):
@@ -341,8 +343,7 @@ def test_time_domain_full_equals_condensed(base):
     tc = solve_time_domain(model, ex, formulation="condensed")
     assert tc.converged and tc.options["formulation"] == "condensed" and "condensed" in tc.message
     e_f, e_x = force_error(td, tc), displacement_error(td, tc)
-    print(f"\nfull-DOF vs condensed time domain: force {e_f:.1e}, displacement {e_x:.1e}")
-    assert e_f < 1e-6 and e_x < 1e-6
+    assert e_f < 1e-6 and e_x < 1e-6, f"full-DOF vs condensed time domain: force {e_f:.1e}, displacement {e_x:.1e}"
     assert np.array_equal(td.contact_state, tc.contact_state)
     # full-DOF reference vs quasi-static: design value (peak saddle force)
     assert td.max_saddle_force_N == pytest.approx(qs.max_saddle_force_N, rel=0.01)
@@ -396,9 +397,11 @@ def test_time_domain_full_real_case(real_case):
     assert tf.options["formulation"] == "full"
     e_f, e_x = force_error(tf, tc), displacement_error(tf, tc)
     e_peak = abs(tf.max_saddle_force_N / qs.max_saddle_force_N - 1.0)
-    print(f"\nreal case: full vs condensed TD force {e_f:.1e}, displacement {e_x:.1e}; full TD vs QS peak force {e_peak:.3%} ({tf.message})")
-    assert e_f < 1e-6 and e_x < 1e-6
-    assert e_peak < 0.01
+    figures = (
+        f"real case: full vs condensed TD force {e_f:.1e}, displacement {e_x:.1e}; full TD vs QS peak force {e_peak:.3%} ({tf.message})"
+    )
+    assert e_f < 1e-6 and e_x < 1e-6, figures
+    assert e_peak < 0.01, figures
     assert not tf.contact_preserved and tf.saddle_force_time_N.min() >= 0.0
 
 
@@ -413,7 +416,7 @@ def test_time_domain_non_convergence_is_reported(base, formulation):
 
 def test_time_domain_rejects_bad_formulation(base):
     model, ex = base[0], base[1]
-    with pytest.raises(ValueError, match="formulation.*'full', 'condensed'"):
+    with pytest.raises(ValueError, match=r"formulation.*'full', 'condensed'"):
         solve_time_domain(model, ex, formulation="dense")
 
 

@@ -85,7 +85,7 @@ def test_the_case_has_the_frequencies_and_the_deck_motion_described(case):
 
 
 def test_both_formulations_and_the_hbm_reach_the_same_orbit_from_the_linear_solution(case, from_linear):
-    model, ex, hbm = case
+    model, _, hbm = case
     assert hbm.converged and not hbm.contact_preserved
     assert hbm.max_saddle_force_N == pytest.approx(8.152e6, rel=1e-3)
     assert hbm.max_gap_m == pytest.approx(0.041, rel=0.01)

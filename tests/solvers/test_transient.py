@@ -99,7 +99,7 @@ def test_time_step_convergence(wave):
     assert w_ref == pytest.approx(72.11, rel=1e-3)
     peaks = {}
     for spp in (4, 8, 16, 64):
-        steps = int(round(T / (2 * np.pi / w_ref / spp)))
+        steps = round(T / (2 * np.pi / w_ref / spp))
         delta, _ = steady_period(model, ex, compression, steps, periods=6)
         peaks[spp] = (np.max(model.saddle_unilateral_stiffness_N_per_m * np.maximum(delta, 0.0)), np.max(-delta))
     F64, gap64 = peaks[64]

@@ -24,7 +24,7 @@ axes:
 """
 
 
-@pytest.fixture()
+@pytest.fixture
 def small_study_file(tmp_path: Path) -> Path:
     """A 4 x 4 saddle study file."""
     path = tmp_path / "small.yaml"
@@ -32,7 +32,7 @@ def small_study_file(tmp_path: Path) -> Path:
     return path
 
 
-@pytest.fixture()
+@pytest.fixture
 def small_grid(small_study_file: Path):
     from seafast.studies.spec import build_grid, load_study_spec
 

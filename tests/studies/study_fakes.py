@@ -36,7 +36,7 @@ def fake_evaluate(case: Case) -> list[dict]:
         for model, fac in (("linear", 1.0), ("nonlinear", 1.15)):
             F = amp * fac * 2.0e7 / n * (k / 1.1e9) ** 0.25 * (L / 74.0) * (1 + tl / 1e8)
             M = amp * fac * 5.0e7 * (L / 74.0) ** 2 / math.sqrt(n) * (1 + kl / 1e8)
-            I = math.pi / 64 * (D**4 - (D - 2 * t) ** 4)
+            I_m4 = math.pi / 64 * (D**4 - (D - 2 * t) ** 4)
             rows.append(
                 {
                     "load_case": load_case,
@@ -46,7 +46,7 @@ def fake_evaluate(case: Case) -> list[dict]:
                     "u_d_m": 0.0 if model == "linear" else 1e-4 * amp * (n - 2),
                     "F_N": F,
                     "M_b_Nm": M,
-                    "sigma_b_Pa": M * (D / 2) / I,
+                    "sigma_b_Pa": M * (D / 2) / I_m4,
                     "converged": True,
                     "contact_preserved": n <= 4,
                     "residual_norm": 1e-12 * n,

@@ -37,7 +37,7 @@ def test_a_sea_state_axis_makes_the_study_a_sea_state_study_and_regular_wave_ref
 
 def test_a_sea_state_study_needs_hs_and_tp():
     spec = study_spec_from_mapping({**HS_STUDY, "axes": HS_STUDY["axes"][1:], "response": "sea_state"})
-    with pytest.raises(StudyError, match="sea_state.peak_period_s = null"):
+    with pytest.raises(StudyError, match=r"sea_state\.peak_period_s = null"):
         build_grid(spec, overrides={"sea_state.peak_period_s": None})
 
 
@@ -68,10 +68,15 @@ def test_sea_state_study_rows_equal_seafast_seastate_and_rank_by_the_nonlinear_m
 
 def test_study_command_response_option(tmp_path, capsys):
     study = tmp_path / "s.yaml"
-    study.write_text("name: two\naxes:\n  - {key: seafastening.saddle_count, values: [3, 4]}\n"
-                     "limits: {max_saddle_force_N: 11.5e+6, max_bending_stress_Pa: 28.0e+6}\n", encoding="utf-8")
+    study.write_text(
+        "name: two\naxes:\n  - {key: seafastening.saddle_count, values: [3, 4]}\n"
+        "limits: {max_saddle_force_N: 11.5e+6, max_bending_stress_Pa: 28.0e+6}\n",
+        encoding="utf-8",
+    )
     out = tmp_path / "o"
-    assert main(["study", str(study), "-o", str(out), "--workers", "1", "--no-progress", "--no-figures", "-q", "--response", "sea_state"]) == 0
+    assert (
+        main(["study", str(study), "-o", str(out), "--workers", "1", "--no-progress", "--no-figures", "-q", "--response", "sea_state"]) == 0
+    )
     with open(out / "study.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     assert {r["load_case"] for r in rows} == {"sea_state"} and len(rows) == 4

@@ -51,7 +51,9 @@ def test_serial_processes_and_dask_agree(small_grid, tmp_path: Path):
     assert texts[0] == texts[1] == texts[2]
     for method in ("spawn", "forkserver"):
         other = run_study(
-            small_grid, tmp_path / method, evaluator=FAKE,
+            small_grid,
+            tmp_path / method,
+            evaluator=FAKE,
             execution=ExecutionOptions(workers=2, batch_size=5, progress=False, start_method=method),
         )
         xr.testing.assert_identical(_results(serial.dataset), _results(other.dataset))
@@ -235,13 +237,15 @@ def test_real_points_do_not_depend_on_the_back_end_or_the_evaluation_order(tmp_p
     # partial run give the same bytes in study.csv
     from seafast.studies.spec import study_spec_from_mapping
 
-    spec = study_spec_from_mapping({
-        "name": "order",
-        "axes": [
-            {"key": "seafastening.saddle_count", "values": [2, 3]},
-            {"key": "seafastening.saddle_stiffness_N_per_m", "values": [1.1e7, 1.786154413e9, 1.1e10]},
-        ],
-    })
+    spec = study_spec_from_mapping(
+        {
+            "name": "order",
+            "axes": [
+                {"key": "seafastening.saddle_count", "values": [2, 3]},
+                {"key": "seafastening.saddle_stiffness_N_per_m", "values": [1.1e7, 1.786154413e9, 1.1e10]},
+            ],
+        }
+    )
     grid = build_grid(spec)
     serial = run_study(grid, tmp_path / "serial", execution=ExecutionOptions(workers=1, progress=False))
     assert serial.failed == 0

@@ -64,6 +64,7 @@ def test_linear_axis_and_derived_wall_thickness():
         assert case.cargo.units_abreast == min(4, int(case.vessel.breadth_m // case.cargo.diameter_m))
     assert grid.point_case(grid.size - 1).cargo.units_abreast == 3  # D = 12 m
 
+
 def test_cargo_saddle_studies_fix_the_heaviest_cargo():
     for name, diameter in (("cargo-saddles-8m", 8.0), ("cargo-saddles-12m", 12.0)):
         grid = build_grid(*load_study_spec(name))

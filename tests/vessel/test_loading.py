@@ -63,9 +63,9 @@ def test_prohaska_rejects_unreachable_lcg():
 
 
 def test_weight_item_validation_and_distribution():
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"x_end_m = 5\.0 must be > x_start_m = 10\.0"):
         WeightItem("bad", 10.0, 5.0, 1.0)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match=r"mass_kg = -1\.0; must be finite and >= 0"):
         WeightItem("bad", 0.0, 5.0, -1.0)
     it = WeightItem("cargo", 48.5, 122.5, 4.0e6)
     loading = VesselLoading(None, (it,))
@@ -73,9 +73,7 @@ def test_weight_item_validation_and_distribution():
     assert total == pytest.approx(4.0e6, rel=1e-4)
     assert lcg == pytest.approx(85.5, abs=1e-3)
     x = np.array([48.0, 50.0, 122.0, 123.0])
-    np.testing.assert_allclose(
-        weight_distribution_N_per_m(x, loading, 9.81), 9.81 * np.array([0, 4e6 / 74, 4e6 / 74, 0]), rtol=1e-12
-    )
+    np.testing.assert_allclose(weight_distribution_N_per_m(x, loading, 9.81), 9.81 * np.array([0, 4e6 / 74, 4e6 / 74, 0]), rtol=1e-12)
 
 
 def test_base_vessel_loading_is_balanced_and_documented():

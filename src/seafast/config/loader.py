@@ -7,16 +7,26 @@ dotted key, the value given and what is allowed.
 from __future__ import annotations
 
 import copy
+from collections.abc import Iterable, Mapping
 from importlib import resources
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 import yaml
 from pydantic import ValidationError
 
 from seafast.config.schema import Case
 
-__all__ = ["CaseError", "load_case", "parse_yaml", "case_from_mapping", "parse_overrides", "apply_overrides", "base_case_text", "case_json_schema"]
+__all__ = [
+    "CaseError",
+    "load_case",
+    "parse_yaml",
+    "case_from_mapping",
+    "parse_overrides",
+    "apply_overrides",
+    "base_case_text",
+    "case_json_schema",
+]
 
 
 class CaseError(ValueError):
@@ -103,7 +113,9 @@ def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:
             vessel[key] = str((base_dir / v).resolve())
 
 
-def case_from_mapping(data: Any, source: str = "(mapping)", overrides: Mapping[str, Any] | None = None, base_dir: Path | None = None) -> Case:
+def case_from_mapping(
+    data: Any, source: str = "(mapping)", overrides: Mapping[str, Any] | None = None, base_dir: Path | None = None
+) -> Case:
     """Validate a raw mapping (parsed YAML) into a :class:`Case`."""
     if data is None:
         data = {}

@@ -5,12 +5,15 @@ keys, so a misspelt key is an error rather than silently ignored. The dotted key
 docs/interface.md#2-case-keys (``cargo.length_m``, ``solver.harmonics``, ...) are the attribute paths of
 :class:`Case`.
 
-Size: over 400 lines because every case key is declared here, with its unit, default, limits and description (one place for users to read the case format and for `seafast schema` to export it); the sections are small classes.
+Size: over 400 lines because every case key is declared here, with its unit, default, limits and
+description (one place for users to read the case format and for `seafast schema` to export it); the
+sections are small classes.
 """
 
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 from pathlib import Path
 from typing import Annotated, Literal
 
@@ -38,6 +41,7 @@ __all__ = [
 ]
 
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
+
 
 def _not_bool(value: object) -> object:
     # pydantic's lax mode reads YAML true/yes/on as 1; a boolean is never a valid number here
@@ -69,14 +73,12 @@ class CargoSectionConfig(_Strict):
     wall_thickness_m: Positive
 
     @model_validator(mode="after")
-    def _check(self) -> "CargoSectionConfig":
+    def _check(self) -> CargoSectionConfig:
         if self.x_end_m <= self.x_start_m:
             raise ValueError(f"x_end_m = {self.x_end_m} must be greater than x_start_m = {self.x_start_m}")
         d_min = min(self.diameter_start_m, self.diameter_end_m)
         if self.wall_thickness_m >= d_min / 2:
-            raise ValueError(
-                f"wall_thickness_m = {self.wall_thickness_m} must be less than half the smallest diameter ({d_min / 2})"
-            )
+            raise ValueError(f"wall_thickness_m = {self.wall_thickness_m} must be less than half the smallest diameter ({d_min / 2})")
         return self
 
 
@@ -100,12 +102,10 @@ class CargoConfig(_Strict):
     )
 
     @model_validator(mode="after")
-    def _check(self) -> "CargoConfig":
+    def _check(self) -> CargoConfig:
         if self.sections is None:
             if self.wall_thickness_m >= self.diameter_m / 2:
-                raise ValueError(
-                    f"wall_thickness_m = {self.wall_thickness_m} must be less than diameter_m / 2 = {self.diameter_m / 2}"
-                )
+                raise ValueError(f"wall_thickness_m = {self.wall_thickness_m} must be less than diameter_m / 2 = {self.diameter_m / 2}")
         else:
             if len(self.sections) == 0:
                 raise ValueError("sections must list at least one segment (or be null for the uniform tube)")
@@ -135,18 +135,21 @@ class LashingConfig(_Strict):
         "axial stiffness k_l cos^2(angle) per lashed saddle, axial pretension components cancel (axial analysis only, docs/axial.md)",
     )
     axial_stiffness_N_per_m: NonNegative | None = Field(
-        None, description="Total axial stiffness of the lashings [N/m], given directly; replaces the one from angle_deg (axial analysis only)"
+        None,
+        description="Total axial stiffness of the lashings [N/m], given directly; replaces the one from angle_deg (axial analysis only)",
     )
 
 
 class StopperConfig(_Strict):
     """Optional end stoppers fore and aft of the cargo: unilateral axial springs with a gap (axial analysis)."""
 
-    gap_m: NonNegative | None = Field(None, description="Axial gap between the cargo and each stopper, fore and aft [m]; null = no stoppers")
+    gap_m: NonNegative | None = Field(
+        None, description="Axial gap between the cargo and each stopper, fore and aft [m]; null = no stoppers"
+    )
     stiffness_N_per_m: Positive | None = Field(None, description="Axial stiffness of each stopper [N/m] (needed with gap_m)")
 
     @model_validator(mode="after")
-    def _check(self) -> "StopperConfig":
+    def _check(self) -> StopperConfig:
         if (self.gap_m is None) != (self.stiffness_N_per_m is None):
             given, missing = ("gap_m", "stiffness_N_per_m") if self.stiffness_N_per_m is None else ("stiffness_N_per_m", "gap_m")
             raise ValueError(f"{given} is set but {missing} is not; give both (stoppers) or neither (no stoppers)")
@@ -193,10 +196,12 @@ class SeaFasteningConfig(_Strict):
         values = list(v) if isinstance(v, (list, tuple)) else [v]
         if not values:
             raise ValueError("must list at least one value, or be null (no axial analysis)")
+        numbers: list[float] = []
         for x in values:
             if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or x < 0:
                 raise ValueError(f"{x!r} is not allowed; a friction coefficient is a finite number >= 0 (one value, or one per saddle)")
-        return tuple(float(x) for x in values) if isinstance(v, (list, tuple)) else float(values[0])
+            numbers.append(float(x))
+        return tuple(numbers) if isinstance(v, (list, tuple)) else numbers[0]
 
     @field_validator("saddle_positions_m")
     @classmethod
@@ -205,7 +210,7 @@ class SeaFasteningConfig(_Strict):
             return v
         if len(v) == 0:
             raise ValueError("must list at least one position, or be null to use saddle_count")
-        if any(b <= a for a, b in zip(v, v[1:])):
+        if any(b <= a for a, b in pairwise(v)):
             raise ValueError(f"{list(v)}: positions must be strictly increasing (no coincident saddles)")
         return v
 
@@ -232,9 +237,7 @@ class VesselConfig(_Strict):
     deck_deflection_table: Path | None = Field(
         None, description="CSV x_m, still_water_m, wave_amplitude_m, wave_phase_rad; replaces the computed hull deflection"
     )
-    motions: str = Field(
-        "bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output"
-    )
+    motions: str = Field("bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output")
     bem_panel_size_m: Positive = Field(3.0, description="Target panel size of the BEM mesh [m]")
     motion_coupling: Literal["heave_pitch", "surge_heave_pitch"] = Field(
         "heave_pitch",
@@ -252,7 +255,7 @@ class VesselConfig(_Strict):
     )
 
     @model_validator(mode="after")
-    def _check_coupling(self) -> "VesselConfig":
+    def _check_coupling(self) -> VesselConfig:
         if self.coupling == "two_way":
             for key in ("deck_deflection_table", "still_water_bending_moment_table"):
                 if getattr(self, key) is not None:
@@ -293,17 +296,19 @@ class SolverConfig(_Strict):
     method: Literal["hbm", "quasi_static", "time_domain"] = "hbm"
     formulation: Literal["condensed", "full"] = "condensed"
     time_domain_start: Literal["linear", "hbm"] = Field(
-        "linear", description="State the time-domain reference (solver.method: time_domain) starts from: 'linear' (the "
+        "linear",
+        description="State the time-domain reference (solver.method: time_domain) starts from: 'linear' (the "
         "linear periodic solution at t = 0) or 'hbm' (the harmonic balance's solution with the case's settings: the "
-        "reference then reports whether it stays on that orbit, solver outcome 'other_orbit' when it does not)"
+        "reference then reports whether it stays on that orbit, solver outcome 'other_orbit' when it does not)",
     )
     contact_law: Literal["tanh", "softplus", "exact"] = Field(
         "exact", description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
     )
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
     harmonics: Annotated[Count, Field(ge=1, le=1024)] | None = Field(
-        None, description="Number of harmonics H; default (null): chosen adaptively until the saddle-force peaks settle to "
-        "solver.truncation_tolerance"
+        None,
+        description="Number of harmonics H; default (null): chosen adaptively until the saddle-force peaks settle to "
+        "solver.truncation_tolerance",
     )
     time_samples: Annotated[Count, Field(ge=4, le=16384)] | None = Field(
         None, description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references)"
@@ -316,8 +321,9 @@ class SolverConfig(_Strict):
         100, description="Number of harmonics of the axial (friction) harmonic balance (axial analysis only)"
     )
     truncation_tolerance: Annotated[float, NotBool, Field(gt=0, lt=1)] = Field(
-        1e-3, description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "
-        "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few"
+        1e-3,
+        description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "
+        "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few",
     )
     max_harmonics: Annotated[Count, Field(ge=1, le=1024)] = Field(512, description="Upper bound of the adaptive H")
 
@@ -329,11 +335,9 @@ class SolverConfig(_Strict):
         return data
 
     @model_validator(mode="after")
-    def _check(self) -> "SolverConfig":
+    def _check(self) -> SolverConfig:
         if self.harmonics is not None and self.time_samples is not None and self.time_samples < 2 * self.harmonics + 2:
-            raise ValueError(
-                f"time_samples = {self.time_samples} must be at least 2 * harmonics + 2 = {2 * self.harmonics + 2} (aliasing)"
-            )
+            raise ValueError(f"time_samples = {self.time_samples} must be at least 2 * harmonics + 2 = {2 * self.harmonics + 2} (aliasing)")
         return self
 
     @property
@@ -374,8 +378,9 @@ class SeaStateConfig(_Strict):
     """Irregular head sea for ``seafast seastate`` (not used by ``seafast run``)."""
 
     significant_height_m: Positive | None = Field(
-        None, description="Significant wave height Hs = 4 sqrt(m0) [m]; required for jonswap/pierson_moskowitz; "
-        "with a spectrum table: null uses the table as given, a value rescales it to this Hs"
+        None,
+        description="Significant wave height Hs = 4 sqrt(m0) [m]; required for jonswap/pierson_moskowitz; "
+        "with a spectrum table: null uses the table as given, a value rescales it to this Hs",
     )
     peak_period_s: Positive | None = Field(
         None, description="Spectral peak period Tp [s]; required for jonswap/pierson_moskowitz; must be null with a spectrum table"
@@ -395,7 +400,7 @@ class SeaStateConfig(_Strict):
     seed: Annotated[Count, Field(ge=0)] = Field(0, description="Seed of the random phases (reproducible realisations)")
 
     @model_validator(mode="after")
-    def _check(self) -> "SeaStateConfig":
+    def _check(self) -> SeaStateConfig:
         parametric = self.spectrum in ("jonswap", "pierson_moskowitz")
         if not parametric:
             if not self.spectrum.strip() or "\0" in self.spectrum:
@@ -437,7 +442,7 @@ class Case(_Strict):
     limits: LimitsConfig = LimitsConfig()
 
     @model_validator(mode="after")
-    def _check(self) -> "Case":
+    def _check(self) -> Case:
         L = self.cargo.length_m
         sf = self.seafastening
         positions = self.saddle_positions_m()
@@ -454,8 +459,7 @@ class Case(_Strict):
         mu = sf.friction_coefficient
         if isinstance(mu, tuple) and len(mu) not in (1, len(positions)):
             raise ValueError(
-                f"seafastening.friction_coefficient has {len(mu)} values for {len(positions)} saddles; "
-                "give one value, or one per saddle"
+                f"seafastening.friction_coefficient has {len(mu)} values for {len(positions)} saddles; give one value, or one per saddle"
             )
         if sf.lashed_saddles is not None:
             bad = [i for i in sf.lashed_saddles if i >= len(positions)]
@@ -463,8 +467,10 @@ class Case(_Strict):
                 raise ValueError(
                     f"seafastening.lashed_saddles = {list(sf.lashed_saddles)} names saddle(s) {bad}; allowed 0..{len(positions) - 1}"
                 )
-        d_max = self.cargo.diameter_m if self.cargo.sections is None else max(
-            max(s.diameter_start_m, s.diameter_end_m) for s in self.cargo.sections
+        d_max = (
+            self.cargo.diameter_m
+            if self.cargo.sections is None
+            else max(max(s.diameter_start_m, s.diameter_end_m) for s in self.cargo.sections)
         )
         if self.cargo.units_abreast * d_max > self.vessel.breadth_m:
             raise ValueError(

@@ -54,7 +54,7 @@ class AxialLoad:
     lever_m: float = float("nan")
     source: str = ""
 
-    def static_part(self) -> "AxialLoad":
+    def static_part(self) -> AxialLoad:
         """Only the still-water (k = 0) part."""
         return AxialLoad(self.omega_rad_s, self.force_N[:1], lever_m=self.lever_m, source=self.source + " (still water)")
 
@@ -126,6 +126,12 @@ def axial_load_of(case: Case, vessel: object, cargo_mass_kg: float | None = None
     mass = cargo_mass_kg if cargo_mass_kg is not None else cargo_geometry(case).mass_kg()
     load = axial_load(mass, omega, rigid, cargo_axis_height_m(case), case.model.gravity_m_per_s2)
     if rigid is None:
-        why = "vessel.motions = none" if case.vessel.motions == "none" else "no wave (wave.amplitude_m = 0)" if case.wave.amplitude_m == 0 else "no rigid-body motion"
+        why = (
+            "vessel.motions = none"
+            if case.vessel.motions == "none"
+            else "no wave (wave.amplitude_m = 0)"
+            if case.wave.amplitude_m == 0
+            else "no rigid-body motion"
+        )
         return AxialLoad(load.omega_rad_s, load.force_N, source=f"{why}: no axial load")
     return load

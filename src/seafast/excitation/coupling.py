@@ -175,7 +175,9 @@ def spread_load_N(model: StructuralModel, excitation: HarmonicExcitation, harmon
     return Q
 
 
-def deck_forces_N(model: StructuralModel, excitation: HarmonicExcitation, response, nonlinear: bool, harmonic_count: int = 1) -> NDArray:
+def deck_forces_N(
+    model: StructuralModel, excitation: HarmonicExcitation, response: Any, nonlinear: bool, harmonic_count: int = 1
+) -> NDArray:
     """``P_k``: downward force of one cargo unit on the deck at each sea-fastening point [N].
 
     Parameters

@@ -12,8 +12,8 @@ as the inertial load ``-M a_rb`` (docs/theory.md#37-excitation-of-the-cargo-mode
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -93,7 +93,9 @@ def assemble_excitation(
         # Hermite shape functions interpolate this linear field exactly: -M a is the consistent load.
         load[1] = -model.cargo.mass @ accel
         mid_ship_x = cargo_aft_end_x_m + model.cargo.element_mid_x_m
-        line[1] = model.cargo.element_mass_per_length_kg_per_m * w2 * (
-            rigid_body.heave_m + rigid_body.pitch_rad * (mid_ship_x - rigid_body.reference_x_m)
+        line[1] = (
+            model.cargo.element_mass_per_length_kg_per_m
+            * w2
+            * (rigid_body.heave_m + rigid_body.pitch_rad * (mid_ship_x - rigid_body.reference_x_m))
         )
     return HarmonicExcitation(omega_rad_s, deck, load, line, source)

@@ -48,7 +48,7 @@ class HarmonicExcitation:
         """Number of harmonics including k = 0."""
         return int(self.deck_displacement.shape[0])
 
-    def static_part(self) -> "HarmonicExcitation":
+    def static_part(self) -> HarmonicExcitation:
         """Only the k = 0 (still-water) part: the static load case."""
         return HarmonicExcitation(
             self.omega_rad_s,
@@ -58,8 +58,9 @@ class HarmonicExcitation:
             self.source,
         )
 
-    def padded(self, harmonic_count: int) -> "HarmonicExcitation":
+    def padded(self, harmonic_count: int) -> HarmonicExcitation:
         """The same excitation with zero rows appended (or truncated) to ``harmonic_count`` rows."""
+
         def fit(a: NDArray) -> NDArray:
             out = np.zeros((harmonic_count,) + a.shape[1:], dtype=complex)
             n = min(harmonic_count, a.shape[0])
@@ -70,7 +71,7 @@ class HarmonicExcitation:
             self.omega_rad_s, fit(self.deck_displacement), fit(self.cargo_load_N), fit(self.cargo_line_load_N_per_m), self.source
         )
 
-    def at_frequency(self, omega_rad_s: float) -> "HarmonicExcitation":
+    def at_frequency(self, omega_rad_s: float) -> HarmonicExcitation:
         """The same deck-motion amplitudes and rigid-body displacement amplitudes at another frequency.
 
         The vessel-induced cargo loads are rigid-body inertia (proportional to the square of
@@ -86,4 +87,3 @@ class HarmonicExcitation:
             np.concatenate([self.cargo_line_load_N_per_m[:1], scale * self.cargo_line_load_N_per_m[1:]]),
             self.source + f" (shape swept to {omega_rad_s:.4g} rad/s)",
         )
-

@@ -118,8 +118,14 @@ class HullGirder:
     def __post_init__(self) -> None:
         if self.shear_modulus_Pa is None:
             object.__setattr__(self, "shear_modulus_Pa", self.youngs_modulus_Pa / 2.6)
-        for name in ("second_moment_m4", "shear_area_m2", "youngs_modulus_Pa", "shear_modulus_Pa",
-                     "water_density_kg_per_m3", "gravity_m_per_s2"):
+        for name in (
+            "second_moment_m4",
+            "shear_area_m2",
+            "youngs_modulus_Pa",
+            "shear_modulus_Pa",
+            "water_density_kg_per_m3",
+            "gravity_m_per_s2",
+        ):
             v = getattr(self, name)
             if not (v > 0):  # inf shear area is allowed (Euler-Bernoulli)
                 raise ValueError(f"hull girder: {name} = {v!r}; must be > 0")
@@ -142,7 +148,9 @@ class HullGirder:
     @property
     def shear_stiffness_N(self) -> float:
         """G A_s [N] (``inf`` for an Euler-Bernoulli hull)."""
-        return float(self.shear_modulus_Pa * self.shear_area_m2)
+        shear_modulus_Pa = self.shear_modulus_Pa
+        assert shear_modulus_Pa is not None  # __post_init__ sets the default E / 2.6
+        return float(shear_modulus_Pa * self.shear_area_m2)
 
     @property
     def buoyancy_per_draught_N_per_m2(self) -> float:
@@ -241,7 +249,7 @@ def _grid(girder: HullGirder, breakpoints: tuple[float, ...], n_points: int) -> 
     base = np.linspace(x0, x1, n_points)
     h = (x1 - x0) / (n_points - 1)
     tol = 1e-9 * (x1 - x0)
-    bp = np.array(sorted(set([x0, x1, *girder.hull.station_x_m, *breakpoints])))
+    bp = np.array(sorted({x0, x1, *girder.hull.station_x_m, *breakpoints}))
     bp = bp[(bp >= x0 - tol) & (bp <= x1 + tol)]
     bp = np.clip(bp, x0, x1)
     keep = np.ones(base.size, bool)
@@ -253,15 +261,18 @@ def _grid(girder: HullGirder, breakpoints: tuple[float, ...], n_points: int) -> 
     return x
 
 
-def _weight_element_ends(
-    girder: HullGirder, loading: WeightSource, x: FloatArray
-) -> tuple[FloatArray, FloatArray]:
+def _weight_element_ends(girder: HullGirder, loading: WeightSource, x: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Weight per metre at the start and end of each element (one-sided limits) [N/m]."""
+    fun: Callable[[FloatArray], FloatArray]
     if isinstance(loading, VesselLoading):
-        def fun(xx: FloatArray) -> FloatArray:
-            return weight_distribution_N_per_m(xx, loading, girder.gravity_m_per_s2)
+        vessel_loading = loading
+
+        def from_loading(xx: FloatArray) -> FloatArray:
+            return weight_distribution_N_per_m(xx, vessel_loading, girder.gravity_m_per_s2)
+
+        fun = from_loading
     elif callable(loading):
-        fun = loading  # type: ignore[assignment]
+        fun = loading
     else:
         raise TypeError("hull girder: loading must be a VesselLoading or a callable x_m -> weight_N_per_m")
     h = np.diff(x)
@@ -331,7 +342,7 @@ class _Beam:
     factor: tuple
 
     @classmethod
-    def build(cls, x: FloatArray, girder: HullGirder) -> "_Beam":
+    def build(cls, x: FloatArray, girder: HullGirder) -> _Beam:
         n_el = x.size - 1
         EI = girder.bending_stiffness_Nm2
         GA = girder.shear_stiffness_N
@@ -432,9 +443,7 @@ def _nodal_weight(wa: FloatArray, wb: FloatArray) -> FloatArray:
 
 
 # ============================================================================ public API
-def still_water_response(
-    girder: HullGirder, loading: WeightSource, n_points: int = 343
-) -> HullGirderResponse:
+def still_water_response(girder: HullGirder, loading: WeightSource, n_points: int = 343) -> HullGirderResponse:
     """Still-water equilibrium, shear force, bending moment and deflection of the hull girder.
 
     Parameters
@@ -899,9 +908,7 @@ def iacs_wave_coefficient(length_m: float) -> float:
     return 10.75 - ((L - 350.0) / 150.0) ** 1.5
 
 
-def iacs_wave_bending_moments_Nm(
-    length_m: float, breadth_m: float, block_coefficient: float
-) -> tuple[float, float]:
+def iacs_wave_bending_moments_Nm(length_m: float, breadth_m: float, block_coefficient: float) -> tuple[float, float]:
     """IACS UR S11 rule vertical wave bending moments amidships [N m].
 
     ``M_wh = +190 C_w L^2 B C_b 1e-3`` kN m (hogging) and
@@ -923,9 +930,7 @@ def iacs_wave_bending_moments_Nm(
     return hog_kNm * 1e3, sag_kNm * 1e3
 
 
-def deck_deflection_at(
-    response: HullGirderResponse | WaveHullResponse, x_m: FloatArray | float
-) -> tuple[NDArray, NDArray]:
+def deck_deflection_at(response: HullGirderResponse | WaveHullResponse, x_m: FloatArray | float) -> tuple[NDArray, NDArray]:
     """Deck deflection [m] and slope dz/dx [rad] at ``x_m`` by cubic Hermite interpolation.
 
     The interpolant uses the nodal deflections and the nodal slopes of the Timoshenko
@@ -944,9 +949,7 @@ def deck_deflection_at(
     return np.asarray(spl(xq)), np.asarray(spl(xq, 1))
 
 
-def deck_harmonics_at(
-    response: WaveHullResponse, x_m: FloatArray | float
-) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+def deck_harmonics_at(response: WaveHullResponse, x_m: FloatArray | float) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
     """Complex harmonics of the wave-induced deck deflection [m] and slope [rad] at ``x_m``.
 
     Returns arrays of shape (n_harmonics + 1,) + shape(x_m) in the convention

@@ -52,9 +52,10 @@ import logging
 import math
 import os
 import tempfile
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Literal, Sequence
+from typing import Any, Literal, TypeAlias
 
 import numpy as np
 import xarray as xr
@@ -85,6 +86,9 @@ logger = logging.getLogger(__name__)
 
 #: Bump when the mesher or the post-processing changes, to invalidate cached BEM results.
 MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
+
+# an RAO at one frequency (a scalar omega) or at several (an array)
+ComplexValue: TypeAlias = complex | NDArray[np.complexfloating[Any, Any]]
 
 _T = np.diag([1.0, -1.0])  # capytaine/WAMIT (heave, eta5) -> seafast (heave, theta)
 _T3 = np.diag([1.0, 1.0, -1.0])  # capytaine/WAMIT (surge, heave, eta5) -> seafast (surge, heave, theta)
@@ -165,7 +169,7 @@ class RigidBodyMotions:
         }
         object.__setattr__(self, "omega_rad_s", w)
         for name, (dtype, shape) in arrays.items():
-            a = np.asarray(getattr(self, name), dtype=dtype)
+            a: NDArray[np.generic] = np.asarray(getattr(self, name), dtype=dtype)
             if a.shape != shape:
                 raise ValueError(f"RigidBodyMotions: {name} has shape {a.shape}, expected {shape}")
             a.setflags(write=False)
@@ -189,7 +193,7 @@ class RigidBodyMotions:
         """Whether the hydrodynamic data held surge (``surge_rao_m_per_m`` is not ``None``)."""
         return self.surge_rao_m_per_m is not None
 
-    def surge_at(self, omega: ArrayLike):
+    def surge_at(self, omega: ArrayLike) -> ComplexValue:
         """Surge RAO at ``omega`` [rad/s] (forward +, of the reference point) [m/m], interpolated.
 
         Raises
@@ -201,7 +205,7 @@ class RigidBodyMotions:
             raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
         return self._interp(omega, self.surge_rao_m_per_m)
 
-    def coupled_at(self, omega: ArrayLike):
+    def coupled_at(self, omega: ArrayLike) -> tuple[ComplexValue, ComplexValue, ComplexValue]:
         """Surge [m/m], heave [m/m] and pitch [rad/m] of the coupled 3-DOF solution at ``omega``, interpolated.
 
         Raises
@@ -211,27 +215,27 @@ class RigidBodyMotions:
         """
         if self.coupled_heave_rao_m_per_m is None or self.coupled_pitch_rao_rad_per_m is None:
             raise ValueError(f"RigidBodyMotions: no surge in the hydrodynamic data ({self.source})")
-        return (self.surge_at(omega), self._interp(omega, self.coupled_heave_rao_m_per_m),
-                self._interp(omega, self.coupled_pitch_rao_rad_per_m))
+        return (
+            self.surge_at(omega),
+            self._interp(omega, self.coupled_heave_rao_m_per_m),
+            self._interp(omega, self.coupled_pitch_rao_rad_per_m),
+        )
 
     # ---------------------------------------------------------------- interpolation
     def _check_range(self, omega: NDArray[np.float64]) -> None:
         lo, hi = self.omega_rad_s[0], self.omega_rad_s[-1]
         bad = omega[(omega < lo * (1 - 1e-12)) | (omega > hi * (1 + 1e-12)) | ~np.isfinite(omega)]
         if bad.size:
-            raise ValueError(
-                f"RigidBodyMotions: omega = {float(bad[0])!r} rad/s is outside the computed range "
-                f"[{lo:.6g}, {hi:.6g}] rad/s"
-            )
+            raise ValueError(f"RigidBodyMotions: omega = {float(bad[0])!r} rad/s is outside the computed range [{lo:.6g}, {hi:.6g}] rad/s")
 
-    def _interp(self, omega: ArrayLike, values: NDArray[np.complex128]):
+    def _interp(self, omega: ArrayLike, values: NDArray[np.complex128]) -> ComplexValue:
         w = np.asarray(omega, dtype=float)
         self._check_range(np.atleast_1d(w))
         wc = np.clip(w, self.omega_rad_s[0], self.omega_rad_s[-1])
         out = np.interp(wc, self.omega_rad_s, values.real) + 1j * np.interp(wc, self.omega_rad_s, values.imag)
         return complex(out) if np.ndim(w) == 0 else out
 
-    def rao_at(self, omega: ArrayLike):
+    def rao_at(self, omega: ArrayLike) -> tuple[ComplexValue, ComplexValue]:
         """Heave and pitch RAOs at ``omega`` [rad/s], linearly interpolated (real and imaginary parts).
 
         Returns
@@ -246,7 +250,7 @@ class RigidBodyMotions:
         """
         return self._interp(omega, self.heave_rao_m_per_m), self._interp(omega, self.pitch_rao_rad_per_m)
 
-    def vertical_displacement_rao(self, x_m: ArrayLike, omega: ArrayLike | None = None):
+    def vertical_displacement_rao(self, x_m: ArrayLike, omega: ArrayLike | None = None) -> ComplexValue:
         """Rigid-body vertical displacement ``w + theta (x - reference_x_m)`` per metre of wave [m/m].
 
         Parameters
@@ -261,10 +265,11 @@ class RigidBodyMotions:
         if omega is None:
             h, p = self.heave_rao_m_per_m, self.pitch_rao_rad_per_m
             return h.reshape((-1,) + (1,) * x.ndim) + p.reshape((-1,) + (1,) * x.ndim) * (x - self.reference_x_m)
-        h, p = self.rao_at(omega)
+        h_w, p_w = self.rao_at(omega)
         if np.ndim(omega) == 0:
-            return h + p * (x - self.reference_x_m)
-        return np.asarray(h)[(...,) + (None,) * x.ndim] + np.asarray(p)[(...,) + (None,) * x.ndim] * (x - self.reference_x_m)
+            return h_w + p_w * (x - self.reference_x_m)
+        h_a, p_a = np.asarray(h_w, dtype=np.complex128), np.asarray(p_w, dtype=np.complex128)
+        return h_a[(...,) + (None,) * x.ndim] + p_a[(...,) + (None,) * x.ndim] * (x - self.reference_x_m)
 
     # ---------------------------------------------------------------- export
     def to_dataset(self) -> xr.Dataset:
@@ -282,7 +287,7 @@ class RigidBodyMotions:
         }
         ds = xr.Dataset(coords={k: xr.Variable(*v) for k, v in coords.items()})
 
-        def add_complex(name, data, dims, units, long_name):
+        def add_complex(name: str, data: NDArray[np.complex128], dims: tuple[str, ...], units: str, long_name: str) -> None:
             for part, fn, u in (
                 ("real", np.real, units),
                 ("imag", np.imag, units),
@@ -297,20 +302,30 @@ class RigidBodyMotions:
             add_complex("surge_rao", self.surge_rao_m_per_m, ("omega",), "m/m", "surge RAO (forward +) at the reference point")
         if self.coupled_heave_rao_m_per_m is not None and self.coupled_pitch_rao_rad_per_m is not None:
             add_complex("coupled_heave_rao", self.coupled_heave_rao_m_per_m, ("omega",), "m/m", "heave RAO, coupled with surge")
-            add_complex("coupled_pitch_rao", self.coupled_pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO (bow up), coupled with surge")
-        add_complex("excitation_force", self.excitation_force, ("omega", "dof"), "N/m (heave), N m/m (pitch)",
-                    "wave excitation per metre of wave amplitude")
-        ds["added_mass"] = xr.Variable(("omega", "dof", "radiating_dof"), self.added_mass,
-                                       {"units": "kg, kg m, kg m^2", "long_name": "added mass (heave, pitch)"})
-        ds["radiation_damping"] = xr.Variable(("omega", "dof", "radiating_dof"), self.radiation_damping,
-                                              {"units": "kg/s, kg m/s, kg m^2/s", "long_name": "radiation damping"})
-        ds["mass_matrix"] = xr.Variable(("dof", "radiating_dof"), self.mass_matrix,
-                                        {"units": "kg, kg m^2", "long_name": "rigid-body mass matrix"})
-        ds["hydrostatic_stiffness"] = xr.Variable(("dof", "radiating_dof"), self.hydrostatic_stiffness,
-                                                  {"units": "N/m, N/rad, N m/rad", "long_name": "hydrostatic stiffness"})
+            add_complex(
+                "coupled_pitch_rao", self.coupled_pitch_rao_rad_per_m, ("omega",), "rad/m", "pitch RAO (bow up), coupled with surge"
+            )
+        add_complex(
+            "excitation_force",
+            self.excitation_force,
+            ("omega", "dof"),
+            "N/m (heave), N m/m (pitch)",
+            "wave excitation per metre of wave amplitude",
+        )
+        ds["added_mass"] = xr.Variable(
+            ("omega", "dof", "radiating_dof"), self.added_mass, {"units": "kg, kg m, kg m^2", "long_name": "added mass (heave, pitch)"}
+        )
+        ds["radiation_damping"] = xr.Variable(
+            ("omega", "dof", "radiating_dof"), self.radiation_damping, {"units": "kg/s, kg m/s, kg m^2/s", "long_name": "radiation damping"}
+        )
+        ds["mass_matrix"] = xr.Variable(
+            ("dof", "radiating_dof"), self.mass_matrix, {"units": "kg, kg m^2", "long_name": "rigid-body mass matrix"}
+        )
+        ds["hydrostatic_stiffness"] = xr.Variable(
+            ("dof", "radiating_dof"), self.hydrostatic_stiffness, {"units": "N/m, N/rad, N m/rad", "long_name": "hydrostatic stiffness"}
+        )
         if self.wavenumber_rad_per_m is not None:
-            ds["wavenumber"] = xr.Variable(("omega",), self.wavenumber_rad_per_m,
-                                           {"units": "rad/m", "long_name": "wave number"})
+            ds["wavenumber"] = xr.Variable(("omega",), self.wavenumber_rad_per_m, {"units": "rad/m", "long_name": "wave number"})
         ds.attrs.update(
             reference_x_m=float(self.reference_x_m),
             wave_phase_reference_x_m=float(self.wave_phase_reference_x_m),
@@ -325,7 +340,7 @@ class RigidBodyMotions:
 
 
 # ---------------------------------------------------------------------------------- physics helpers
-def wavenumber_rad_per_m(omega_rad_s: ArrayLike, water_depth_m: float = math.inf, gravity_m_per_s2: float = 9.81):
+def wavenumber_rad_per_m(omega_rad_s: ArrayLike, water_depth_m: float = math.inf, gravity_m_per_s2: float = 9.81) -> NDArray[np.float64]:
     """Wave number from the linear dispersion relation ``omega^2 = g k tanh(k h)`` [rad/m]."""
     w = np.asarray(omega_rad_s, dtype=float)
     k = w**2 / gravity_m_per_s2
@@ -437,8 +452,11 @@ def solve_rigid_body(
         Complex amplitudes per metre of wave amplitude, in the DOF order of the inputs.
     """
     w = np.asarray(omega_rad_s, dtype=float)
-    z = (-(w[:, None, None] ** 2) * (np.asarray(mass_matrix_, dtype=float)[None] + np.asarray(added_mass, dtype=float))
-         + 1j * w[:, None, None] * np.asarray(radiation_damping, dtype=float) + np.asarray(hydrostatic_stiffness, dtype=float)[None])
+    z = (
+        -(w[:, None, None] ** 2) * (np.asarray(mass_matrix_, dtype=float)[None] + np.asarray(added_mass, dtype=float))
+        + 1j * w[:, None, None] * np.asarray(radiation_damping, dtype=float)
+        + np.asarray(hydrostatic_stiffness, dtype=float)[None]
+    )
     return np.linalg.solve(z, np.asarray(excitation_force, dtype=complex)[..., None])[..., 0]
 
 
@@ -614,13 +632,12 @@ def compute_motions(
         try:
             ds = _read_capytaine_netcdf(path)
             logger.debug("BEM cache hit: %s", path)
-        except Exception:  # corrupt or foreign file: recompute
+        except Exception:  # noqa: BLE001 - a corrupt or foreign cache file, whatever the error: recompute it
             logger.warning("BEM cache file %s is unreadable; recomputing it", path)
             ds = None
     if ds is None:
         logger.info("computing the vessel's hydrodynamics with capytaine (BEM, tens of seconds); cache: %s", path if use_cache else "off")
-        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3),
-                      float(gravity_m_per_s2), depth)
+        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), depth)
         if use_cache:
             cdir.mkdir(parents=True, exist_ok=True)
             ds.attrs["seafast_cache_key"] = key
@@ -642,10 +659,20 @@ def compute_motions(
         _CAPYTAINE_COEFFICIENTS[key] = held
     omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = held[1]
     return _motions_from_rigid_coefficients(
-        omega_c, k_c, a_c, b_c, f_c, hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=x_mid, coeff_reference_z_wl_m=z_rot_wl,
-        mass_kg=mass_kg, centre_of_gravity_m=cog, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+        omega_c,
+        k_c,
+        a_c,
+        b_c,
+        f_c,
+        hull,
+        coeff_reference_x_m=x_rot,
+        wave_phase_origin_x_m=x_mid,
+        coeff_reference_z_wl_m=z_rot_wl,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=cog,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
         source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
     )
 
@@ -671,14 +698,15 @@ def _read_capytaine_netcdf_cached(path: str, mtime_ns: int, size: int) -> xr.Dat
     return ds
 
 
-def _has_dof(values, name: str) -> bool:
+def _has_dof(values: Iterable[object], name: str) -> bool:
     return name.lower() in [str(v).lower() for v in values]
 
 
-def _dof_index(values, name: str) -> int:
-    names = [str(v).lower() for v in values]
+def _dof_index(values: Iterable[object], name: str) -> int:
+    found = list(values)
+    names = [str(v).lower() for v in found]
     if name.lower() not in names:
-        raise ValueError(f"capytaine dataset: dof {name!r} missing (found {list(values)})")
+        raise ValueError(f"capytaine dataset: dof {name!r} missing (found {found})")
     return names.index(name.lower())
 
 
@@ -700,11 +728,21 @@ def _motions_from_capytaine(
         origin_x_m = float(ds.attrs.get("seafast_origin_x_m", x_mid))
     omega, k, a_c, b_c, f_conj, x_rot, z_rot_wl = _capytaine_rigid_coefficients(ds, origin_x_m, gravity_m_per_s2)
     return _motions_from_rigid_coefficients(
-        omega, k, a_c, b_c, f_conj, hull,
-        coeff_reference_x_m=x_rot, wave_phase_origin_x_m=origin_x_m, coeff_reference_z_wl_m=z_rot_wl,
-        mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
+        omega,
+        k,
+        a_c,
+        b_c,
+        f_conj,
+        hull,
+        coeff_reference_x_m=x_rot,
+        wave_phase_origin_x_m=origin_x_m,
+        coeff_reference_z_wl_m=z_rot_wl,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
         pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+        source=source,
     )
 
 
@@ -752,8 +790,8 @@ def _capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_p
         da = ds[v]
         for d in [d for d in da.dims if d not in ("omega", "influenced_dof", "radiating_dof")]:
             da = da.isel({d: 0})
-        da = da.transpose("omega", "influenced_dof", "radiating_dof").values
-        return np.real(da[:, rows][:, :, cols])
+        values = da.transpose("omega", "influenced_dof", "radiating_dof").values
+        return np.real(values[:, rows][:, :, cols])
 
     a_c, b_c = mat("added_mass"), mat("radiation_damping")
     f_c = exc.transpose("omega", "influenced_dof").values[:, rows]
@@ -775,9 +813,22 @@ def _capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_p
 
 
 def _motions_from_rigid_coefficients(
-    omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, wave_phase_origin_x_m,
-    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2, source,
-    coeff_reference_z_wl_m=0.0,
+    omega: NDArray[np.float64],
+    k: NDArray[np.float64],
+    a_eta: NDArray[np.float64],
+    b_eta: NDArray[np.float64],
+    f_eta_plus: NDArray[np.complex128],
+    hull: HullForm,
+    *,
+    coeff_reference_x_m: float,
+    wave_phase_origin_x_m: float,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    source: str,
+    coeff_reference_z_wl_m: float = 0.0,
 ) -> RigidBodyMotions:
     """Common back end of the importers.
 
@@ -790,16 +841,36 @@ def _motions_from_rigid_coefficients(
     if np.shape(a_eta)[-1] == 3:
         # heave and pitch by the 2-DOF solve of their block (unchanged), plus the coupled solution
         two = _motions_from_rigid_coefficients(
-            omega, k, np.asarray(a_eta)[:, 1:, 1:], np.asarray(b_eta)[:, 1:, 1:], np.asarray(f_eta_plus)[:, 1:], hull,
-            coeff_reference_x_m=coeff_reference_x_m, wave_phase_origin_x_m=wave_phase_origin_x_m, mass_kg=mass_kg,
-            centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2, source=source,
+            omega,
+            k,
+            np.asarray(a_eta)[:, 1:, 1:],
+            np.asarray(b_eta)[:, 1:, 1:],
+            np.asarray(f_eta_plus)[:, 1:],
+            hull,
+            coeff_reference_x_m=coeff_reference_x_m,
+            wave_phase_origin_x_m=wave_phase_origin_x_m,
+            mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m,
+            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
+            source=source,
         )
         x3 = _coupled_surge_motions(
-            omega, k, a_eta, b_eta, f_eta_plus, hull, coeff_reference_x_m=coeff_reference_x_m,
-            coeff_reference_z_wl_m=coeff_reference_z_wl_m, wave_phase_origin_x_m=wave_phase_origin_x_m,
-            mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m, pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+            omega,
+            k,
+            a_eta,
+            b_eta,
+            f_eta_plus,
+            hull,
+            coeff_reference_x_m=coeff_reference_x_m,
+            coeff_reference_z_wl_m=coeff_reference_z_wl_m,
+            wave_phase_origin_x_m=wave_phase_origin_x_m,
+            mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m,
+            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
         )
         return replace(two, surge_rao_m_per_m=x3[:, 0], coupled_heave_rao_m_per_m=x3[:, 1], coupled_pitch_rao_rad_per_m=x3[:, 2])
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
@@ -816,14 +887,27 @@ def _motions_from_rigid_coefficients(
     b = p.T @ b @ p
     f = f @ p
     m = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                     water_density_kg_per_m3=water_density_kg_per_m3,
-                                     gravity_m_per_s2=gravity_m_per_s2)
+    c = hydrostatic_stiffness_matrix(
+        hull,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+    )
     heave, pitch = solve_heave_pitch(omega, a, b, f, m, c)
     return RigidBodyMotions(
-        omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a,
-        radiation_damping=b, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
-        wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source=source,
+        omega_rad_s=omega,
+        heave_rao_m_per_m=heave,
+        pitch_rao_rad_per_m=pitch,
+        added_mass=a,
+        radiation_damping=b,
+        excitation_force=f,
+        reference_x_m=x_g,
+        mass_matrix=m,
+        hydrostatic_stiffness=c,
+        wave_phase_reference_x_m=x_mid,
+        wavenumber_rad_per_m=k,
+        source=source,
         reference_z_m=float(centre_of_gravity_m[2]),
     )
 
@@ -839,8 +923,21 @@ def _shift_reference_3(dx_new_minus_old: float, dz_new_minus_old: float) -> NDAr
 
 
 def _coupled_surge_motions(
-    omega, k, a_eta, b_eta, f_eta_plus, hull, *, coeff_reference_x_m, coeff_reference_z_wl_m, wave_phase_origin_x_m,
-    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2,
+    omega: NDArray[np.float64],
+    k: NDArray[np.float64],
+    a_eta: NDArray[np.float64],
+    b_eta: NDArray[np.float64],
+    f_eta_plus: NDArray[np.complex128],
+    hull: HullForm,
+    *,
+    coeff_reference_x_m: float,
+    coeff_reference_z_wl_m: float,
+    wave_phase_origin_x_m: float,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
 ) -> NDArray[np.complex128]:
     """Surge, heave and pitch solved together about the CoG (x_G, z_G), from (surge, heave, eta5) data.
 
@@ -866,14 +963,25 @@ def _coupled_surge_motions(
     c3 = np.zeros((3, 3))
     m3[0, 0] = float(mass_kg)
     m3[1:, 1:] = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c3[1:, 1:] = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                              water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
+    c3[1:, 1:] = hydrostatic_stiffness_matrix(
+        hull,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+    )
     return solve_rigid_body(omega, a, b, f, m3, c3)
 
 
 # ---------------------------------------------------------------------------------- WAMIT
-def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
-                 frequency_column: Literal["period", "omega"] = "period", modes: tuple[int, ...] = (3, 5)):
+def read_wamit_1(
+    path: str | os.PathLike,
+    *,
+    ulen_m: float,
+    water_density_kg_per_m3: float,
+    frequency_column: Literal["period", "omega"] = "period",
+    modes: tuple[int, ...] = (3, 5),
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Read heave/pitch (``modes``: also surge, mode 1) added mass and damping from a WAMIT ``.1`` file.
 
     Lines ``PER I J Abar Bbar``; ``Abar = A / (rho L^k)``, ``Bbar = B / (rho L^k omega)`` with
@@ -913,9 +1021,16 @@ def read_wamit_1(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
     return omega, a, b
 
 
-def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per_m3: float,
-                 gravity_m_per_s2: float, heading_deg: float = 180.0,
-                 frequency_column: Literal["period", "omega"] = "period", modes: tuple[int, ...] = (3, 5)):
+def read_wamit_3(
+    path: str | os.PathLike,
+    *,
+    ulen_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    heading_deg: float = 180.0,
+    frequency_column: Literal["period", "omega"] = "period",
+    modes: tuple[int, ...] = (3, 5),
+) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
     """Read heave/pitch (``modes``: also surge, mode 1) wave excitation from a WAMIT ``.3`` file, one heading.
 
     Lines ``PER BETA I |X| phase Re Im``; ``Xbar = X / (rho g A L^m)``, ``m = 2`` for forces,
@@ -943,8 +1058,7 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
         )
     if not rows:
         raise ValueError(
-            f"WAMIT .3 file {path}: no excitation of modes {modes} for heading {heading_deg} deg "
-            f"(headings found: {sorted(headings)})"
+            f"WAMIT .3 file {path}: no excitation of modes {modes} for heading {heading_deg} deg (headings found: {sorted(headings)})"
         )
     omega = np.array(sorted(rows))
     x = np.zeros((omega.size, len(modes)), dtype=complex)
@@ -957,7 +1071,8 @@ def read_wamit_3(path: str | os.PathLike, *, ulen_m: float, water_density_kg_per
 
 def _wamit_has_surge(f1: Path, f3: Path) -> bool:
     """Whether both WAMIT files hold mode 1 (surge): the .1 file its diagonal term, the .3 file its force."""
-    def has(path: Path, test) -> bool:
+
+    def has(path: Path, test: Callable[[list[str]], bool]) -> bool:
         for line in path.read_text().splitlines():
             parts = line.split()
             try:
@@ -979,7 +1094,7 @@ def load_motions(
     mass_kg: float,
     centre_of_gravity_m: Sequence[float],
     pitch_radius_of_gyration_m: float,
-    format: Literal["auto", "capytaine", "wamit"] = "auto",
+    format: Literal["auto", "capytaine", "wamit"] = "auto",  # noqa: A002 - the public keyword users' scripts pass
     origin_x_m: float | None = None,
     ulen_m: float = 1.0,
     water_density_kg_per_m3: float = 1025.0,
@@ -1031,12 +1146,19 @@ def load_motions(
     if fmt == "auto":
         fmt = "capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit"
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
-    common = dict(mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                  pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-                  water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2)
     if fmt == "capytaine":
         ds = _read_capytaine_netcdf(p)
-        return _motions_from_capytaine(ds, hull, origin_x_m=origin_x_m, source=f"capytaine file {p}", **common)
+        return _motions_from_capytaine(
+            ds,
+            hull,
+            origin_x_m=origin_x_m,
+            source=f"capytaine file {p}",
+            mass_kg=mass_kg,
+            centre_of_gravity_m=centre_of_gravity_m,
+            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
+        )
     if fmt != "wamit":
         raise ValueError(f"load_motions: unknown format {format!r}")
     stem = p.with_suffix("") if p.suffix in (".1", ".3") else p
@@ -1045,10 +1167,17 @@ def load_motions(
         if not f.is_file():
             raise FileNotFoundError(f"load_motions: WAMIT file {f} not found")
     modes = (1, 3, 5) if _wamit_has_surge(f1, f3) else (3, 5)
-    w1, a, b = read_wamit_1(f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
-                            frequency_column=frequency_column, modes=modes)
-    w3, x = read_wamit_3(f3, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3,
-                         gravity_m_per_s2=gravity_m_per_s2, frequency_column=frequency_column, modes=modes)
+    w1, a, b = read_wamit_1(
+        f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3, frequency_column=frequency_column, modes=modes
+    )
+    w3, x = read_wamit_3(
+        f3,
+        ulen_m=ulen_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+        frequency_column=frequency_column,
+        modes=modes,
+    )
     if w1.shape != w3.shape or not np.allclose(w1, w3, rtol=1e-6):
         common_w = np.intersect1d(np.round(w1, 9), np.round(w3, 9))
         if common_w.size == 0:
@@ -1059,8 +1188,20 @@ def load_motions(
     origin = x_mid if origin_x_m is None else float(origin_x_m)
     k = wavenumber_rad_per_m(w1, water_depth_m, gravity_m_per_s2)
     return _motions_from_rigid_coefficients(
-        w1, k, a, b, x, hull, coeff_reference_x_m=origin, wave_phase_origin_x_m=origin,
-        source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)", **common,
+        w1,
+        k,
+        a,
+        b,
+        x,
+        hull,
+        coeff_reference_x_m=origin,
+        wave_phase_origin_x_m=origin,
+        source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)",
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
     )
 
 
@@ -1095,8 +1236,7 @@ def strip_theory_estimate(
     rho, g = float(water_density_kg_per_m3), float(gravity_m_per_s2)
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     x_g = float(centre_of_gravity_m[0])
-    x = np.unique(np.concatenate([np.linspace(hull.station_x_m[0], hull.station_x_m[-1], n_sections + 1),
-                                  hull.station_x_m]))
+    x = np.unique(np.concatenate([np.linspace(hull.station_x_m[0], hull.station_x_m[-1], n_sections + 1), hull.station_x_m]))
     b = hull.breadth_at(x)
     t_mean = hull.section_area_coefficient * hull.draft_m
     k = wavenumber_rad_per_m(omega, math.inf, g)
@@ -1107,7 +1247,7 @@ def strip_theory_estimate(
     a_mat = np.zeros((omega.size, 2, 2))
     b_mat = np.zeros((omega.size, 2, 2))
     f = np.zeros((omega.size, 2), dtype=complex)
-    for n, (w, kk) in enumerate(zip(omega, k)):
+    for n, (w, kk) in enumerate(zip(omega, k, strict=True)):
         abar = 2.0 * np.sin(kk * b / 2.0) * np.exp(-kk * hull.draft_m)
         d_sec = rho * g**2 * abar**2 / w**3
         a_mat[n] = np.trapezoid(a_sec * wts[:, None, :] * wts[None, :, :], x, axis=-1)
@@ -1115,11 +1255,21 @@ def strip_theory_estimate(
         zeta_star = np.exp(-kk * t_mean) * np.exp(1j * kk * (x - x_mid))
         f[n] = np.trapezoid((c_sec - w**2 * a_sec + 1j * w * d_sec) * zeta_star * wts, x, axis=-1)
     m = mass_matrix(mass_kg, pitch_radius_of_gyration_m)
-    c = hydrostatic_stiffness_matrix(hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m,
-                                     water_density_kg_per_m3=rho, gravity_m_per_s2=g)
+    c = hydrostatic_stiffness_matrix(
+        hull, mass_kg=mass_kg, centre_of_gravity_m=centre_of_gravity_m, water_density_kg_per_m3=rho, gravity_m_per_s2=g
+    )
     heave, pitch = solve_heave_pitch(omega, a_mat, b_mat, f, m, c)
     return RigidBodyMotions(
-        omega_rad_s=omega, heave_rao_m_per_m=heave, pitch_rao_rad_per_m=pitch, added_mass=a_mat,
-        radiation_damping=b_mat, excitation_force=f, reference_x_m=x_g, mass_matrix=m, hydrostatic_stiffness=c,
-        wave_phase_reference_x_m=x_mid, wavenumber_rad_per_m=k, source="strip theory estimate",
+        omega_rad_s=omega,
+        heave_rao_m_per_m=heave,
+        pitch_rao_rad_per_m=pitch,
+        added_mass=a_mat,
+        radiation_damping=b_mat,
+        excitation_force=f,
+        reference_x_m=x_g,
+        mass_matrix=m,
+        hydrostatic_stiffness=c,
+        wave_phase_reference_x_m=x_mid,
+        wavenumber_rad_per_m=k,
+        source="strip theory estimate",
     )

@@ -97,5 +97,6 @@ def extended_rao(
         heave[high] = motions.heave_rao_m_per_m[-1] * decay
         pitch[high] = motions.pitch_rao_rad_per_m[-1] * decay
     if w_in.ndim == 0:
+        # a scalar omega gives two Python complex numbers (the docstring says so); callers pass arrays
         return complex(heave[0]), complex(pitch[0])  # type: ignore[return-value]
     return heave.reshape(w_in.shape), pitch.reshape(w_in.shape)

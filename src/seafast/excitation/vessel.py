@@ -17,7 +17,9 @@ path to capytaine NetCDF / WAMIT output.
 Everything here depends only on the vessel, cargo-mass and wave parts of the case, so it is
 memoised per process: a parametric study over saddles computes it once.
 
-Size: over 400 lines because it is the one place that turns the case's vessel keys into the deck excitation (hull form, loading, girder, tables, motions, their labelled dataset); each source is a short function.
+Size: over 400 lines because it is the one place that turns the case's vessel keys into the deck
+excitation (hull form, loading, girder, tables, motions, their labelled dataset); each source is a
+short function.
 """
 
 from __future__ import annotations
@@ -27,9 +29,10 @@ import functools
 import json
 import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -37,11 +40,9 @@ from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
 from seafast.config.schema import Case
-from seafast.model.from_case import cargo_geometry
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.hull_girder import (
     DEFAULT_SHEAR_AREA_M2,
     HullGirder,
@@ -51,6 +52,8 @@ from seafast.excitation.hull_girder import (
     still_water_response,
     wave_response,
 )
+from seafast.excitation.rao_extension import extended_rao
+from seafast.model.from_case import cargo_geometry
 from seafast.model.structure import StructuralModel
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_distribution_kg_per_m
@@ -75,7 +78,12 @@ def _hull_coupling_attr(name: str) -> dict[str, str]:
     return {"hull_coupling": "one_way"} if name in _ONE_WAY_LINES else {}
 
 
-_ONE_WAY_LINES = ("hull_still_water_deflection_m", "hull_still_water_bending_moment_Nm", "hull_still_water_shear_force_N", "hull_weight_N_per_m")
+_ONE_WAY_LINES = (
+    "hull_still_water_deflection_m",
+    "hull_still_water_bending_moment_Nm",
+    "hull_still_water_shear_force_N",
+    "hull_weight_N_per_m",
+)
 
 
 @dataclass(frozen=True)
@@ -177,55 +185,108 @@ class VesselExcitation:
         if isinstance(sw, HullGirderResponse):
             coords["hull_x_m"] = ("hull_x_m", sw.x_m, {"long_name": "x along the ship from the aft perpendicular", "units": "m"})
             for name, values, long_name, units in (
-                ("hull_still_water_deflection_m", sw.deflection_m, f"still-water hull deflection (chord through AP and FP, up +), {_ONE_WAY}", "m"),
-                ("hull_still_water_bending_moment_Nm", sw.bending_moment_Nm, f"still-water hull bending moment (sagging +), {_ONE_WAY}", "N m"),
+                (
+                    "hull_still_water_deflection_m",
+                    sw.deflection_m,
+                    f"still-water hull deflection (chord through AP and FP, up +), {_ONE_WAY}",
+                    "m",
+                ),
+                (
+                    "hull_still_water_bending_moment_Nm",
+                    sw.bending_moment_Nm,
+                    f"still-water hull bending moment (sagging +), {_ONE_WAY}",
+                    "N m",
+                ),
                 ("hull_still_water_shear_force_N", sw.shear_force_N, f"still-water hull shear force, {_ONE_WAY}", "N"),
-                ("hull_weight_N_per_m", sw.weight_N_per_m, "ship weight per metre, the cargo spread over its length (one-way loading)", "N/m"),
+                (
+                    "hull_weight_N_per_m",
+                    sw.weight_N_per_m,
+                    "ship weight per metre, the cargo spread over its length (one-way loading)",
+                    "N/m",
+                ),
                 ("hull_buoyancy_N_per_m", sw.buoyancy_N_per_m, "still-water buoyancy per metre", "N/m"),
             ):
                 data[name] = ("hull_x_m", values, {"long_name": long_name, "units": units, **_hull_coupling_attr(name)})
         elif self.still_water_curve is not None:
             c = self.still_water_curve
             coords["hull_x_m"] = ("hull_x_m", c.x_m, {"long_name": "x along the ship from the aft perpendicular", "units": "m"})
-            data["hull_still_water_deflection_m"] = ("hull_x_m", c.deflection_m, {"long_name": "still-water hull deflection from the moment table", "units": "m"})
+            data["hull_still_water_deflection_m"] = (
+                "hull_x_m",
+                c.deflection_m,
+                {"long_name": "still-water hull deflection from the moment table", "units": "m"},
+            )
         wv = self.wave
         if isinstance(wv, WaveHullResponse) and "hull_x_m" in coords and np.array_equal(wv.x_m, coords["hull_x_m"][1]):
-            coords["hull_period_fraction"] = ("hull_period_fraction", wv.period_fraction, {"long_name": "t/T of the hull wave balance", "units": "1"})
-            data["hull_wave_deflection_m"] = (("hull_period_fraction", "hull_x_m"), wv.deflection_m,
-                                              {"long_name": f"wave-induced hull deflection, {_ONE_WAY}", "units": "m", "hull_coupling": "one_way"})
-            data["hull_wave_bending_moment_Nm"] = (("hull_period_fraction", "hull_x_m"), wv.bending_moment_Nm,
-                                                   {"long_name": f"wave-induced hull bending moment (sagging +), {_ONE_WAY}", "units": "N m",
-                                                    "hull_coupling": "one_way"})
+            coords["hull_period_fraction"] = (
+                "hull_period_fraction",
+                wv.period_fraction,
+                {"long_name": "t/T of the hull wave balance", "units": "1"},
+            )
+            data["hull_wave_deflection_m"] = (
+                ("hull_period_fraction", "hull_x_m"),
+                wv.deflection_m,
+                {"long_name": f"wave-induced hull deflection, {_ONE_WAY}", "units": "m", "hull_coupling": "one_way"},
+            )
+            data["hull_wave_bending_moment_Nm"] = (
+                ("hull_period_fraction", "hull_x_m"),
+                wv.bending_moment_Nm,
+                {"long_name": f"wave-induced hull bending moment (sagging +), {_ONE_WAY}", "units": "N m", "hull_coupling": "one_way"},
+            )
             if "hull_still_water_bending_moment_Nm" not in data:
-                data["hull_still_water_bending_moment_Nm"] = ("hull_x_m", np.zeros_like(wv.x_m), {"long_name": "not computed", "units": "N m"})
+                data["hull_still_water_bending_moment_Nm"] = (
+                    "hull_x_m",
+                    np.zeros_like(wv.x_m),
+                    {"long_name": "not computed", "units": "N m"},
+                )
         ds = xr.Dataset(data, coords=coords, attrs=attrs)
         if self.motions is not None:
             m = self.motions
             rao = xr.Dataset(
                 {
                     "heave_rao_real": ("rao_omega_rad_s", m.heave_rao_m_per_m.real, {"long_name": "heave RAO, real part", "units": "m/m"}),
-                    "heave_rao_imag": ("rao_omega_rad_s", m.heave_rao_m_per_m.imag, {"long_name": "heave RAO, imaginary part", "units": "m/m"}),
-                    "pitch_rao_real": ("rao_omega_rad_s", m.pitch_rao_rad_per_m.real, {"long_name": "pitch RAO (bow up), real part", "units": "rad/m"}),
-                    "pitch_rao_imag": ("rao_omega_rad_s", m.pitch_rao_rad_per_m.imag, {"long_name": "pitch RAO (bow up), imaginary part", "units": "rad/m"}),
+                    "heave_rao_imag": (
+                        "rao_omega_rad_s",
+                        m.heave_rao_m_per_m.imag,
+                        {"long_name": "heave RAO, imaginary part", "units": "m/m"},
+                    ),
+                    "pitch_rao_real": (
+                        "rao_omega_rad_s",
+                        m.pitch_rao_rad_per_m.real,
+                        {"long_name": "pitch RAO (bow up), real part", "units": "rad/m"},
+                    ),
+                    "pitch_rao_imag": (
+                        "rao_omega_rad_s",
+                        m.pitch_rao_rad_per_m.imag,
+                        {"long_name": "pitch RAO (bow up), imaginary part", "units": "rad/m"},
+                    ),
                 },
                 coords={"rao_omega_rad_s": ("rao_omega_rad_s", m.omega_rad_s, {"long_name": "wave frequency", "units": "rad/s"})},
             )
             if getattr(m, "surge_rao_m_per_m", None) is not None:
-                rao["surge_rao_real"] = ("rao_omega_rad_s", m.surge_rao_m_per_m.real,
-                                         {"long_name": "surge RAO (forward +, at the pitch reference), real part", "units": "m/m"})
-                rao["surge_rao_imag"] = ("rao_omega_rad_s", m.surge_rao_m_per_m.imag,
-                                         {"long_name": "surge RAO (forward +, at the pitch reference), imaginary part", "units": "m/m"})
+                rao["surge_rao_real"] = (
+                    "rao_omega_rad_s",
+                    m.surge_rao_m_per_m.real,
+                    {"long_name": "surge RAO (forward +, at the pitch reference), real part", "units": "m/m"},
+                )
+                rao["surge_rao_imag"] = (
+                    "rao_omega_rad_s",
+                    m.surge_rao_m_per_m.imag,
+                    {"long_name": "surge RAO (forward +, at the pitch reference), imaginary part", "units": "m/m"},
+                )
             ds = xr.merge([ds, rao])
             if self.rigid_body is not None:
                 rb = self.rigid_body
                 ds.attrs.update(
-                    heave_amplitude_m=abs(rb.heave_m), heave_phase_rad=float(np.angle(rb.heave_m)),
-                    pitch_amplitude_rad=abs(rb.pitch_rad), pitch_phase_rad=float(np.angle(rb.pitch_rad)),
+                    heave_amplitude_m=abs(rb.heave_m),
+                    heave_phase_rad=float(np.angle(rb.heave_m)),
+                    pitch_amplitude_rad=abs(rb.pitch_rad),
+                    pitch_phase_rad=float(np.angle(rb.pitch_rad)),
                     pitch_reference_x_m=rb.reference_x_m,
                 )
                 if rb.surge_m is not None:
-                    ds.attrs.update(surge_amplitude_m=abs(rb.surge_m), surge_phase_rad=float(np.angle(rb.surge_m)),
-                                    pitch_reference_z_m=rb.reference_z_m)
+                    ds.attrs.update(
+                        surge_amplitude_m=abs(rb.surge_m), surge_phase_rad=float(np.angle(rb.surge_m)), pitch_reference_z_m=rb.reference_z_m
+                    )
         ds.attrs.update(attrs)
         return ds
 
@@ -234,7 +295,7 @@ class VesselExcitation:
 def _read_two_columns(path: str | Path, key: str, columns: tuple[str, str]) -> tuple[NDArray, NDArray]:
     p = Path(path)
     try:
-        rows = [r for r in csv.reader(l for l in p.read_text(encoding="utf-8").splitlines() if l.strip() and not l.startswith("#"))]
+        rows = list(csv.reader(line for line in p.read_text(encoding="utf-8").splitlines() if line.strip() and not line.startswith("#")))
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{key} = '{p}': cannot read it ({getattr(exc, 'strerror', exc)})") from None
     header = [h.strip() for h in rows[0]] if rows else []
@@ -313,27 +374,29 @@ def vessel_loading_of(case: Case, hull: HullForm) -> tuple[VesselLoading, str]:
     -------
     loading, description
     """
-    common = dict(
+    cargo_mass_kg = case.cargo.units_abreast * _cargo_mass_kg(case)
+    default_loading = functools.partial(
+        base_vessel_loading,
         hull=hull,
         cargo_position_m=case.cargo_position_m(),
         cargo_length_m=case.cargo.length_m,
-        cargo_mass_kg=case.cargo.units_abreast * _cargo_mass_kg(case),
+        cargo_mass_kg=cargo_mass_kg,
         lightship_mass_kg=case.vessel.lightship_mass_kg,
         water_density_kg_per_m3=case.vessel.water_density_kg_per_m3,
         gravity_m_per_s2=case.model.gravity_m_per_s2,
     )
     try:
-        return base_vessel_loading(**common), "default loading"
+        return default_loading(), "default loading"
     except ValueError:
         pass
     try:
-        loading = base_vessel_loading(still_water_moment_Nm=None, **common)
+        loading = default_loading(still_water_moment_Nm=None)
         logger.debug("vessel loading: the cargo is too heavy for the default hogging ballast plan; ballast for even keel only")
         return loading, "default loading, ballast for even keel only (cargo too heavy for the default hogging plan)"
     except ValueError as exc:
         raise ValueError(
             f"vessel loading: {exc}; the cargo ({case.cargo.units_abreast} units abreast, "
-            f"{common['cargo_mass_kg'] / 1e3:.0f} t) cannot be ballasted to the design draught - reduce cargo.units_abreast "
+            f"{cargo_mass_kg / 1e3:.0f} t) cannot be ballasted to the design draught - reduce cargo.units_abreast "
             "or give vessel.deck_deflection_table / vessel.still_water_bending_moment_table"
         ) from None
 
@@ -358,7 +421,9 @@ def _motions(case: Case, hull: HullForm, loading: VesselLoading | None) -> Any:
         return hydro.compute_motions(hull, omega_rad_s=BEM_FREQUENCIES_RAD_S, panel_size_m=v.bem_panel_size_m, **common)
     path = Path(v.motions)
     if not path.exists():
-        raise ValueError(f"vessel.motions = '{v.motions}': no such file; allowed: bem, none, or a path to capytaine NetCDF / WAMIT .1 output")
+        raise ValueError(
+            f"vessel.motions = '{v.motions}': no such file; allowed: bem, none, or a path to capytaine NetCDF / WAMIT .1 output"
+        )
     return hydro.load_motions(path, hull, **common)
 
 
@@ -418,7 +483,9 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
         # the wave response balances the still-water state too (its first row): solved once
         wave = wave_response(girder, loading, case.wave.length_m, amplitude) if amplitude > 0 else None
         if v.still_water_bending_moment_table is not None:
-            x, moment = _read_two_columns(v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm"))
+            x, moment = _read_two_columns(
+                v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm")
+            )
             z, s = deflection_from_bending_moment(girder, x, moment)
             curve = _Curve(x, z, s)
             parts.append(f"still-water moment table '{Path(v.still_water_bending_moment_table).name}'")
@@ -431,7 +498,8 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
     rigid = None
     if motions is not None and amplitude > 0:
         # BEM inside its grid, blended into the long-wave limits below it and decayed above it
-        heave, pitch = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
+        heave_rao, pitch_rao = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
+        heave, pitch = complex(heave_rao), complex(pitch_rao)  # per metre of wave, at the one frequency
         surge = coupled_pitch = None
         inside = bool(motions.omega_rad_s[0] <= omega <= motions.omega_rad_s[-1])
         if motions.has_surge and inside:
@@ -441,9 +509,19 @@ def _compute_vessel_excitation(case: Case) -> VesselExcitation:
         if v.motion_coupling == "surge_heave_pitch" and motions.has_surge and inside:
             heave, pitch = heave_c / amplitude, pitch_c / amplitude
             vertical = "heave/pitch coupled with surge"
-        rigid = RigidBodyAmplitudes(complex(heave) * amplitude, complex(pitch) * amplitude, float(motions.reference_x_m),
-                                    surge_m=surge, reference_z_m=float(motions.reference_z_m), coupled_pitch_rad=coupled_pitch)
-        axial = ("; surge (coupled) for the axial analysis" if inside else "; no surge outside the BEM grid") if motions.has_surge else "; no surge in the data"
+        rigid = RigidBodyAmplitudes(
+            heave * amplitude,
+            pitch * amplitude,
+            float(motions.reference_x_m),
+            surge_m=surge,
+            reference_z_m=float(motions.reference_z_m),
+            coupled_pitch_rad=coupled_pitch,
+        )
+        axial = (
+            ("; surge (coupled) for the axial analysis" if inside else "; no surge outside the BEM grid")
+            if motions.has_surge
+            else "; no surge in the data"
+        )
         parts.append(f"{vertical} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}{axial}")
     elif v.motions == "none":
         parts.append("no rigid-body motion")

@@ -1,7 +1,7 @@
 """Model definition: cargo beam, sections, sea-fastening and the assembled linear system."""
 
-from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
+from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import CargoBeam, MechanismError, StructuralModel, build_structural_model
 
 __all__ = [

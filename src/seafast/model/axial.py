@@ -80,7 +80,11 @@ class AxialRestraint:
             ("cargo_mass_kg", self.cargo_mass_kg > 0 and math.isfinite(self.cargo_mass_kg), "> 0"),
             ("friction_coefficient", bool(np.all(np.isfinite(mu)) and np.all(mu >= 0)), ">= 0"),
             ("tangential_stiffness_N_per_m", bool(np.all(np.isfinite(kt)) and np.all(kt > 0)), "> 0"),
-            ("lashing_axial_stiffness_N_per_m", math.isfinite(self.lashing_axial_stiffness_N_per_m) and self.lashing_axial_stiffness_N_per_m >= 0, ">= 0"),
+            (
+                "lashing_axial_stiffness_N_per_m",
+                math.isfinite(self.lashing_axial_stiffness_N_per_m) and self.lashing_axial_stiffness_N_per_m >= 0,
+                ">= 0",
+            ),
             ("damping_N_s_per_m", math.isfinite(self.damping_N_s_per_m) and self.damping_N_s_per_m >= 0, ">= 0"),
         )
         for name, ok, allowed in checks:

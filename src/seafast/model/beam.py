@@ -34,9 +34,7 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 
 
-def beam_element_stiffness(
-    length_m: float, bending_stiffness_Nm2: float, shear_stiffness_N: float | None = None
-) -> FloatArray:
+def beam_element_stiffness(length_m: float, bending_stiffness_Nm2: float, shear_stiffness_N: float | None = None) -> FloatArray:
     """4x4 element stiffness [N/m, N, N m] in DOF order (z1, theta1, z2, theta2).
 
     Parameters
@@ -65,7 +63,10 @@ def beam_element_mass(
     """
     gas = None if shear_stiffness_N is None else np.array([shear_stiffness_N], dtype=float)
     _, M = _element_matrices(
-        np.array([length_m], dtype=float), np.array([bending_stiffness_Nm2], dtype=float), np.array([mass_per_length_kg_per_m], dtype=float), gas
+        np.array([length_m], dtype=float),
+        np.array([bending_stiffness_Nm2], dtype=float),
+        np.array([mass_per_length_kg_per_m], dtype=float),
+        gas,
     )
     return M[0]
 

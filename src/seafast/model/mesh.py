@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from itertools import pairwise
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -12,9 +14,7 @@ MAX_CARGO_ELEMENTS = 2000
 elements already mean 4000-DOF eigen-solves; a 150 m pile at 0.1 m elements needs 1500."""
 
 
-def mesh_cargo(
-    length_m: float, fixed_points_m: NDArray[np.float64], target_element_length_m: float
-) -> NDArray[np.float64]:
+def mesh_cargo(length_m: float, fixed_points_m: NDArray[np.float64], target_element_length_m: float) -> NDArray[np.float64]:
     """Node positions [m] along a beam of ``length_m``.
 
     Every fixed point (sea-fastening points, section changes) and both ends become nodes; each
@@ -28,7 +28,7 @@ def mesh_cargo(
     # merge points closer than a micrometre (round-off from arithmetic on positions)
     keep = np.concatenate([[True], np.diff(pts) > 1e-6])
     pts = pts[keep]
-    counts = [max(1, int(np.ceil((b - a) / target_element_length_m - 1e-9))) for a, b in zip(pts[:-1], pts[1:])]
+    counts = [max(1, int(np.ceil((b - a) / target_element_length_m - 1e-9))) for a, b in pairwise(pts)]
     if sum(counts) > MAX_CARGO_ELEMENTS:
         raise ValueError(
             f"cargo mesh: length_m = {length_m!r} with target_element_length_m = {target_element_length_m!r} needs "
@@ -36,6 +36,6 @@ def mesh_cargo(
             "model.element_length_m)"
         )
     nodes = [pts[:1]]
-    for a, b, n in zip(pts[:-1], pts[1:], counts):
+    for (a, b), n in zip(pairwise(pts), counts, strict=True):
         nodes.append(np.linspace(a, b, n + 1)[1:])
     return np.concatenate(nodes)

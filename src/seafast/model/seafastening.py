@@ -64,17 +64,13 @@ class SeaFastening:
     @property
     def lashing_vertical_stiffness_N_per_m(self) -> NDArray[np.float64]:
         """k_z at each saddle [N/m] (0 where unlashed)."""
-        kz = self.lashing_wire_stiffness_N_per_m * (
-            BASE_LASHING.vertical_stiffness_N_per_m / BASE_LASHING.wire_stiffness_N_per_m
-        )
+        kz = self.lashing_wire_stiffness_N_per_m * (BASE_LASHING.vertical_stiffness_N_per_m / BASE_LASHING.wire_stiffness_N_per_m)
         return np.where(self.lashed, kz, 0.0)
 
     @property
     def lashing_rotational_stiffness_Nm_per_rad(self) -> NDArray[np.float64]:
         """k_theta at each saddle [N m/rad] (0 where unlashed)."""
-        kt = self.lashing_wire_stiffness_N_per_m * (
-            BASE_LASHING.rotational_stiffness_Nm_per_rad / BASE_LASHING.wire_stiffness_N_per_m
-        )
+        kt = self.lashing_wire_stiffness_N_per_m * (BASE_LASHING.rotational_stiffness_Nm_per_rad / BASE_LASHING.wire_stiffness_N_per_m)
         return np.where(self.lashed, kt, 0.0)
 
     @property

@@ -16,7 +16,9 @@ a bilateral spring with its full stiffness; in the *nonlinear* model the compres
 Harmonic convention: a periodic quantity is ``x(t) = Re(sum_k X_k exp(i k omega t))``; k = 0 is
 the static (mean) part and is real.
 
-Size: over 400 lines because the model's matrices, their banded forms, the mesh and eigen-solve caches a study reuses, and the mechanism test share the model's layout; splitting them would make private layout helpers public.
+Size: over 400 lines because the model's matrices, their banded forms, the mesh and eigen-solve
+caches a study reuses, and the mechanism test share the model's layout; splitting them would make
+private layout helpers public.
 """
 
 from __future__ import annotations
@@ -32,8 +34,8 @@ from numpy.typing import NDArray
 from seafast.model.beam import assemble_beam
 from seafast.model.damping import RayleighFit, fit_rayleigh_to_modes, rayleigh_coefficients
 from seafast.model.mesh import mesh_cargo
-from seafast.model.sections import CargoGeometry, tube_area_m2, tube_second_moment_m4
 from seafast.model.seafastening import SeaFastening
+from seafast.model.sections import CargoGeometry, tube_area_m2, tube_second_moment_m4
 
 logger = logging.getLogger(__name__)
 
@@ -98,9 +100,9 @@ def build_cargo_beam(
     x = mesh_cargo(geometry.length_m, np.concatenate([fixed_points_m, geometry.segment_boundaries_m]), target_element_length_m)
     xm = 0.5 * (x[1:] + x[:-1])
     D, t = geometry.section_at(xm)
-    I = tube_second_moment_m4(D, t)
+    I_m4 = tube_second_moment_m4(D, t)
     A = tube_area_m2(D, t)
-    EI = geometry.youngs_modulus_Pa * I
+    EI = geometry.youngs_modulus_Pa * I_m4
     m = geometry.density_kg_per_m3 * A
     q = -m * gravity_m_per_s2
     K, M, f = assemble_beam(x, EI, m, load_N_per_m=q)
@@ -108,7 +110,7 @@ def build_cargo_beam(
         node_x_m=x,
         element_outer_diameter_m=D,
         element_wall_thickness_m=t,
-        element_second_moment_m4=I,
+        element_second_moment_m4=I_m4,
         element_bending_stiffness_Nm2=EI,
         element_mass_per_length_kg_per_m=m,
         stiffness=K,
@@ -307,17 +309,36 @@ class StructuralModel:
             factor = (scipy.linalg.cholesky_banded(K_band, check_finite=False), False)
             inverse = LinearOperator((n, n), matvec=lambda v: scipy.linalg.cho_solve_banded(factor, v, check_finite=False), dtype=float)
             M_sparse = symmetric(_upper_band(self.cargo.mass, 3))
-            result = eigsh(
-                symmetric(K_band), k=count, M=M_sparse, sigma=0.0, which="LM",
-                OPinv=inverse, v0=np.ones(n), ncv=2 * count + 4, return_eigenvectors=vectors,
-            )
+            K_sparse = symmetric(K_band)
+            # one call per branch: the eigenvectors' flag is a literal for each (the stubs overload on it)
             if vectors:
-                w2, phi = result
+                w2, phi = eigsh(
+                    K_sparse,
+                    k=count,
+                    M=M_sparse,
+                    sigma=0.0,
+                    which="LM",
+                    OPinv=inverse,
+                    v0=np.ones(n),
+                    ncv=2 * count + 4,
+                    return_eigenvectors=True,
+                )
                 order = np.argsort(w2)
                 w2, phi = w2[order], phi[:, order]
                 phi = phi / np.sqrt(np.einsum("ij,ij->j", phi, M_sparse @ phi))
             else:
-                w2, phi = np.sort(result), None
+                w2 = eigsh(
+                    K_sparse,
+                    k=count,
+                    M=M_sparse,
+                    sigma=0.0,
+                    which="LM",
+                    OPinv=inverse,
+                    v0=np.ones(n),
+                    ncv=2 * count + 4,
+                    return_eigenvectors=False,
+                )
+                w2, phi = np.sort(w2), None
         return np.sqrt(np.maximum(w2, 0.0)), phi
 
     def natural_frequencies_rad_s(self, include_saddles: bool = True, count: int = 6) -> NDArray[np.float64]:
@@ -368,7 +389,9 @@ def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
         cache.popitem(last=False)
 
 
-def _cargo_beam(geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float) -> tuple[CargoBeam, tuple]:
+def _cargo_beam(
+    geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float
+) -> tuple[CargoBeam, tuple]:
     """The meshed and assembled cargo beam, memoised on its inputs; returns (beam, key)."""
     key = (geometry, tuple(float(x) for x in fixed_points_m), float(target_element_length_m), float(gravity_m_per_s2))
     beam = _BEAM_CACHE.get(key)
@@ -462,6 +485,9 @@ def build_structural_model(
             logger.warning(
                 "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
                 "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
-                damping_ratio, fit.omega_rad_s[0], fit.omega_rad_s[1], *fit.realised_damping_ratio,
+                damping_ratio,
+                fit.omega_rad_s[0],
+                fit.omega_rad_s[1],
+                *fit.realised_damping_ratio,
             )
     return StructuralModel(beam, seafastening, nodes, fit.alpha_per_s, fit.beta_s, gravity_m_per_s2, rayleigh_fit=fit)

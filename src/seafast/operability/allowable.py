@@ -23,8 +23,9 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -222,12 +223,19 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
     warm: dict[int, WaveSolution] = {}
     evaluations = 0
     converged = True
-    nonlinear = {name: math.nan for name in _LIMIT_QUANTITY}
+    nonlinear = dict.fromkeys(_LIMIT_QUANTITY, math.nan)
 
     def value_of(quantity: str) -> Callable[[float], tuple[float, bool]]:
         def value(hs: float) -> tuple[float, bool]:
-            dw = design_wave_extremes(rescaled(ref, hs), family.static, settings.design_wave, quantities=(quantity,),
-                                      operators=operators, moments=family.moments, warm=warm)
+            dw = design_wave_extremes(
+                rescaled(ref, hs),
+                family.static,
+                settings.design_wave,
+                quantities=(quantity,),
+                operators=operators,
+                moments=family.moments,
+                warm=warm,
+            )
             return float(dw.totals[quantity]), dw.converged
 
         return value

@@ -56,7 +56,7 @@ def parse_peak_periods(text: str) -> list[float]:
         raise ValueError(f"--tp {text!r}: allowed: {allowed}") from None
     if not all(math.isfinite(v) for v in (start, stop, step)) or start <= 0 or stop < start or step <= 0:
         raise ValueError(f"--tp {text!r}: allowed: {allowed}")
-    n = int(math.floor((stop - start) / step + 1e-9)) + 1
+    n = math.floor((stop - start) / step + 1e-9) + 1
     if n > MAX_PEAK_PERIODS:
         raise ValueError(f"--tp {text!r} gives {n} peak periods; allowed: at most {MAX_PEAK_PERIODS}")
     return [round(start + i * step, 10) for i in range(n)]
@@ -74,8 +74,10 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     except ValueError as exc:
         return _error(str(exc))
     if args.scatter and Path(args.scatter).resolve() == (Path(args.output) / "scatter.csv").resolve():
-        return _error(f"--scatter {args.scatter}: it is the output scatter.csv of -o {args.output}; allowed: a file outside it, "
-                      "or another output directory")
+        return _error(
+            f"--scatter {args.scatter}: it is the output scatter.csv of -o {args.output}; allowed: a file outside it, "
+            "or another output directory"
+        )
     try:
         case = load_case(args.case, parse_overrides(args.overrides))
         scatter = read_scatter_diagram(args.scatter) if args.scatter else None
@@ -84,8 +86,10 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     t0 = time.perf_counter()
     scatter_tps = [float(t) for t in scatter.peak_periods_s] if scatter is not None else []
-    say(f"seafast operability: '{case.name}', {len(tps)} peak periods {tps[0]:g}-{tps[-1]:g} s"
-        + (f" and the {len(scatter_tps)} of the scatter diagram" if scatter is not None else ""))
+    say(
+        f"seafast operability: '{case.name}', {len(tps)} peak periods {tps[0]:g}-{tps[-1]:g} s"
+        + (f" and the {len(scatter_tps)} of the scatter diagram" if scatter is not None else "")
+    )
     try:
         family = sea_state_family(case, tps + scatter_tps)
     except CaseError as exc:
@@ -105,24 +109,35 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     assessment = None
     if scatter is not None:
         at = allowable_sea_states(case, scatter_tps, family=family)
-        assessment = assess_scatter(scatter, [p.peak_period_s for p in at.points],
-                                    [p.hs_allowable_linear_m for p in at.points], [p.hs_allowable_nonlinear_m for p in at.points])
+        assessment = assess_scatter(
+            scatter,
+            [p.peak_period_s for p in at.points],
+            [p.hs_allowable_linear_m for p in at.points],
+            [p.hs_allowable_nonlinear_m for p in at.points],
+        )
     paths = write_operability_outputs(result, args.output, scatter=assessment, plots=not args.no_plots)
     if not args.quiet:
         lim = case.limits
-        print(f"{case.name}: allowable Hs per peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
-              f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)")
+        print(
+            f"{case.name}: allowable Hs per peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
+            f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)"
+        )
         print(format_operability_table(result))
         if assessment is not None:
-            print(f"scatter diagram {assessment.diagram.source}: within the limits {assessment.share_within_linear:.1%} of the "
-                  f"time (linear), {assessment.share_within_nonlinear:.1%} (nonlinear)")
+            print(
+                f"scatter diagram {assessment.diagram.source}: within the limits {assessment.share_within_linear:.1%} of the "
+                f"time (linear), {assessment.share_within_nonlinear:.1%} (nonlinear)"
+            )
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     failed = [p.peak_period_s for p in result.points if not p.converged]
     if assessment is not None and bool(assessment.not_assessed.any()):
         failed += sorted(set(assessment.diagram.peak_period_s[assessment.not_assessed].tolist()))
     if failed:
-        print(f"seafast: warning: the nonlinear search did not converge at Tp = {', '.join(f'{t:g}' for t in failed)} s "
-              "(governing_nonlinear = not_converged, empty Hs)", file=sys.stderr)
+        print(
+            f"seafast: warning: the nonlinear search did not converge at Tp = {', '.join(f'{t:g}' for t in failed)} s "
+            "(governing_nonlinear = not_converged, empty Hs)",
+            file=sys.stderr,
+        )
         return EXIT_NOT_CONVERGED
     return EXIT_OK
 
@@ -141,10 +156,17 @@ def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
     p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
     p.add_argument("--tp", required=True, metavar="START:STOP:STEP", help="peak periods [s], STOP included, e.g. 5:16:0.5")
     p.add_argument("-o", "--output", default="seafast-operability", help="output directory (default: %(default)s)")
-    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                   help="override a case key (dotted, e.g. limits.max_saddle_force_N=11.5e6); repeatable")
-    p.add_argument("--scatter", default=None, metavar="FILE",
-                   help="wave scatter diagram, CSV significant_height_m,peak_period_s,occurrence")
+    p.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a case key (dotted, e.g. limits.max_saddle_force_N=11.5e6); repeatable",
+    )
+    p.add_argument(
+        "--scatter", default=None, metavar="FILE", help="wave scatter diagram, CSV significant_height_m,peak_period_s,occurrence"
+    )
     p.add_argument("--no-plots", action="store_true", help="skip the PNG chart")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     p.set_defaults(handler=_cmd_operability)

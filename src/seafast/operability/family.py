@@ -12,8 +12,9 @@ that a spline rounds off), and a sea state's extremes within 1e-6 of ``seafast s
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -76,8 +77,15 @@ class SeaStateFamily:
 
 
 _COMPLEX_FIELDS = (
-    "deck_displacement", "cargo_load_N", "cargo_line_load_N_per_m", "heave_m", "pitch_rad",
-    "cargo_displacement", "saddle_compression_m", "saddle_force_N", "bending_moment_Nm",
+    "deck_displacement",
+    "cargo_load_N",
+    "cargo_line_load_N_per_m",
+    "heave_m",
+    "pitch_rad",
+    "cargo_displacement",
+    "saddle_compression_m",
+    "saddle_force_N",
+    "bending_moment_Nm",
 )
 
 
@@ -108,7 +116,7 @@ def sea_state_family(case: Case, peak_periods_s: Sequence[float], master_step_ra
     _check_parametric(case)
     grids = [sea_state_spectrum(case_at(case, tp, 1.0)).omega_rad_s for tp in peak_periods_s]
     lo, hi = min(float(g[0]) for g in grids), max(float(g[-1]) for g in grids)
-    n = max(int(math.ceil((hi - lo) / master_step_rad_s)) + 1, 8)
+    n = max(math.ceil((hi - lo) / master_step_rad_s) + 1, 8)
     master = np.linspace(lo, hi, n)
     model = build_model(case)
     tf = transfer_functions(case, model, master)
@@ -162,8 +170,9 @@ def analysis_at(family: SeaStateFamily, peak_period_s: float, significant_height
 def _scaled_statistics(stats: ResponseStatistics, k: float) -> ResponseStatistics:
     """Statistics of the response in the same sea scaled in variance by ``k`` (Tz unchanged)."""
     r = math.sqrt(k)
-    return ResponseStatistics(stats.spectrum * k, stats.m0 * k, stats.m2 * k, stats.m4 * k, stats.sigma * r,
-                              stats.zero_crossing_period_s, stats.mpm * r)
+    return ResponseStatistics(
+        stats.spectrum * k, stats.m0 * k, stats.m2 * k, stats.m4 * k, stats.sigma * r, stats.zero_crossing_period_s, stats.mpm * r
+    )
 
 
 def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
@@ -174,10 +183,16 @@ def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
     """
     sp, e = analysis.spectrum, analysis.extremes
     k = (hs / sp.significant_height_m) ** 2
-    spectrum = replace(sp, density_m2_s_per_rad=sp.density_m2_s_per_rad * k, significant_height_m=float(hs),
-                       variance_outside_grid_m2=sp.variance_outside_grid_m2 * k,
-                       description=sp.description.replace(f"Hs = {sp.significant_height_m:g} m", f"Hs = {hs:g} m"))
-    force, comp, moment, stress = (_scaled_statistics(s, k) for s in (e.saddle_force, e.saddle_compression, e.bending_moment, e.bending_stress))
+    spectrum = replace(
+        sp,
+        density_m2_s_per_rad=sp.density_m2_s_per_rad * k,
+        significant_height_m=float(hs),
+        variance_outside_grid_m2=sp.variance_outside_grid_m2 * k,
+        description=sp.description.replace(f"Hs = {sp.significant_height_m:g} m", f"Hs = {hs:g} m"),
+    )
+    force, comp, moment, stress = (
+        _scaled_statistics(s, k) for s in (e.saddle_force, e.saddle_compression, e.bending_moment, e.bending_stress)
+    )
     still = e.still_water
     uplift = 3600.0 * downcrossing_rate_per_s(still.saddle_compression_m, comp.m0, comp.m2)
     totals = {
@@ -191,5 +206,3 @@ def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
     extremes = SpectralExtremes(e.duration_s, force, comp, moment, stress, still, uplift, totals)
     case = case_at(analysis.case, float(analysis.case.sea_state.peak_period_s or sp.peak_period_s), hs)
     return SpectralAnalysis(case, analysis.model, spectrum, analysis.transfer, extremes)
-
-

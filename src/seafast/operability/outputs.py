@@ -14,6 +14,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -81,16 +82,60 @@ def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | 
     case = result.case
     v = {
         "hs_allowable_linear_m": _var(d, [p.hs_allowable_linear_m for p in P], "largest Hs within both limits, linear spectral MPMs", "m"),
-        "hs_allowable_nonlinear_m": _var(d, [p.hs_allowable_nonlinear_m for p in P], "largest Hs within both limits, nonlinear design-wave MPMs (NaN: not converged)", "m"),
-        "hs_uplift_onset_m": _var(d, [p.hs_uplift_onset_m for p in P], "Hs at which the MPM compression of a saddle reaches its still-water compression (NaN: beyond the limiting steepness)", "m"),
-        "governing_linear": xr.Variable(d, np.array([p.governing_linear for p in P], dtype=str), {"long_name": "limit reached first, linear: saddle_force, bending_stress or steepness", "units": "1"}),
-        "governing_nonlinear": xr.Variable(d, np.array([p.governing_nonlinear for p in P], dtype=str), {"long_name": "limit reached first, nonlinear: saddle_force, bending_stress, steepness or not_converged", "units": "1"}),
-        "hs_max_steepness_m": _var(d, [p.hs_max_steepness_m for p in P], "steepest sea state at this Tp (DNV-RP-C205 limiting steepness): the cap of the search", "m"),
-        "hs_force_linear_m": _var(d, [p.hs_force_linear_m for p in P], "Hs at which the linear MPM saddle force reaches its limit (inf: never)", "m"),
-        "hs_stress_linear_m": _var(d, [p.hs_stress_linear_m for p in P], "Hs at which the linear MPM bending stress reaches its limit (inf: never)", "m"),
-        "hs_force_nonlinear_m": _var(d, [p.hs_force_nonlinear_m for p in P], "Hs at which the nonlinear design-wave saddle force reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)", "m"),
-        "hs_stress_nonlinear_m": _var(d, [p.hs_stress_nonlinear_m for p in P], "Hs at which the nonlinear design-wave bending stress reaches its limit (inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)", "m"),
-        "converged": _var(d, np.array([p.converged for p in P], dtype=np.int8), "every harmonic-balance solve of the nonlinear search converged (1) or not (0)", "1"),
+        "hs_allowable_nonlinear_m": _var(
+            d,
+            [p.hs_allowable_nonlinear_m for p in P],
+            "largest Hs within both limits, nonlinear design-wave MPMs (NaN: not converged)",
+            "m",
+        ),
+        "hs_uplift_onset_m": _var(
+            d,
+            [p.hs_uplift_onset_m for p in P],
+            "Hs at which the MPM compression of a saddle reaches its still-water compression (NaN: beyond the limiting steepness)",
+            "m",
+        ),
+        "governing_linear": xr.Variable(
+            d,
+            np.array([p.governing_linear for p in P], dtype=str),
+            {"long_name": "limit reached first, linear: saddle_force, bending_stress or steepness", "units": "1"},
+        ),
+        "governing_nonlinear": xr.Variable(
+            d,
+            np.array([p.governing_nonlinear for p in P], dtype=str),
+            {"long_name": "limit reached first, nonlinear: saddle_force, bending_stress, steepness or not_converged", "units": "1"},
+        ),
+        "hs_max_steepness_m": _var(
+            d,
+            [p.hs_max_steepness_m for p in P],
+            "steepest sea state at this Tp (DNV-RP-C205 limiting steepness): the cap of the search",
+            "m",
+        ),
+        "hs_force_linear_m": _var(
+            d, [p.hs_force_linear_m for p in P], "Hs at which the linear MPM saddle force reaches its limit (inf: never)", "m"
+        ),
+        "hs_stress_linear_m": _var(
+            d, [p.hs_stress_linear_m for p in P], "Hs at which the linear MPM bending stress reaches its limit (inf: never)", "m"
+        ),
+        "hs_force_nonlinear_m": _var(
+            d,
+            [p.hs_force_nonlinear_m for p in P],
+            "Hs at which the nonlinear design-wave saddle force reaches its limit "
+            "(inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)",
+            "m",
+        ),
+        "hs_stress_nonlinear_m": _var(
+            d,
+            [p.hs_stress_nonlinear_m for p in P],
+            "Hs at which the nonlinear design-wave bending stress reaches its limit "
+            "(inf: not below the steepness cap; NaN: the other limit is reached first, or not converged)",
+            "m",
+        ),
+        "converged": _var(
+            d,
+            np.array([p.converged for p in P], dtype=np.int8),
+            "every harmonic-balance solve of the nonlinear search converged (1) or not (0)",
+            "1",
+        ),
         "evaluations": _var(d, [p.evaluations for p in P], "design-wave evaluations of the nonlinear search", "1"),
     }
     coords: dict[str, Any] = {"peak_period_s": _var(d, [p.peak_period_s for p in P], "spectral peak period Tp", "s")}
@@ -112,16 +157,25 @@ def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | 
     if scatter is not None:
         c = ("scatter_cell",)
         dg = scatter.diagram
-        v.update({
-            "scatter_significant_height_m": _var(c, dg.significant_height_m, "scatter cell significant wave height", "m"),
-            "scatter_peak_period_s": _var(c, dg.peak_period_s, "scatter cell peak period", "s"),
-            "scatter_occurrence": _var(c, dg.occurrence, "scatter cell occurrence, normalised to sum 1", "1"),
-            "scatter_within_limits_linear": _var(c, scatter.within_linear.astype(np.int8), "cell within the limits, linear (1) or not (0)", "1"),
-            "scatter_within_limits_nonlinear": _var(c, scatter.within_nonlinear.astype(np.int8), "cell within the limits, nonlinear (1) or not (0)", "1"),
-        })
+        v.update(
+            {
+                "scatter_significant_height_m": _var(c, dg.significant_height_m, "scatter cell significant wave height", "m"),
+                "scatter_peak_period_s": _var(c, dg.peak_period_s, "scatter cell peak period", "s"),
+                "scatter_occurrence": _var(c, dg.occurrence, "scatter cell occurrence, normalised to sum 1", "1"),
+                "scatter_within_limits_linear": _var(
+                    c, scatter.within_linear.astype(np.int8), "cell within the limits, linear (1) or not (0)", "1"
+                ),
+                "scatter_within_limits_nonlinear": _var(
+                    c, scatter.within_nonlinear.astype(np.int8), "cell within the limits, nonlinear (1) or not (0)", "1"
+                ),
+            }
+        )
         coords["scatter_cell"] = _var(c, np.arange(dg.occurrence.size), "scatter diagram cell index", "1")
-        attrs.update(scatter_source=dg.source, share_within_limits_linear=scatter.share_within_linear,
-                     share_within_limits_nonlinear=scatter.share_within_nonlinear)
+        attrs.update(
+            scatter_source=dg.source,
+            share_within_limits_linear=scatter.share_within_linear,
+            share_within_limits_nonlinear=scatter.share_within_nonlinear,
+        )
     return xr.Dataset(v, coords=coords, attrs=attrs)
 
 
@@ -130,12 +184,25 @@ def format_operability_table(result: OperabilityResult) -> str:
     head = ("Tp [s]", "Hs lin [m]", "Hs nonlin [m]", "uplift Hs [m]", "governing (lin)", "governing (nonlin)")
     lines = []
     for p in result.points:
+
         def m(x: float) -> str:
             return "-" if not math.isfinite(x) else f"{x:.2f}"
-        lines.append([f"{p.peak_period_s:g}", m(p.hs_allowable_linear_m), m(p.hs_allowable_nonlinear_m), m(p.hs_uplift_onset_m),
-                      p.governing_linear, p.governing_nonlinear])
+
+        lines.append(
+            [
+                f"{p.peak_period_s:g}",
+                m(p.hs_allowable_linear_m),
+                m(p.hs_allowable_nonlinear_m),
+                m(p.hs_uplift_onset_m),
+                p.governing_linear,
+                p.governing_nonlinear,
+            ]
+        )
     widths = [max(len(h), *(len(r[i]) for r in lines)) for i, h in enumerate(head)]
-    fmt = lambda cells: "  ".join(c.rjust(w) if i < 4 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))  # noqa: E731
+
+    def fmt(cells: Sequence[str]) -> str:
+        return "  ".join(c.rjust(w) if i < 4 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
+
     return "\n".join([fmt(head), fmt(["-" * w for w in widths])] + [fmt(r) for r in lines])
 
 
@@ -150,23 +217,44 @@ def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
     fig, ax = plt.subplots(figsize=(8.0, 5.0))
     ax.plot(tp, ds["hs_max_steepness_m"].values, color="0.6", lw=1.0, ls=":", label="limiting steepness (DNV-RP-C205)")
     ax.plot(tp, ds["hs_allowable_nonlinear_m"].values, color="tab:red", lw=2.5, marker=".", label="allowable Hs, nonlinear (design waves)")
-    ax.plot(tp, ds["hs_allowable_linear_m"].values, color="tab:blue", lw=1.5, ls="--", marker=".", label="allowable Hs, linear (spectral MPM)")
+    ax.plot(
+        tp, ds["hs_allowable_linear_m"].values, color="tab:blue", lw=1.5, ls="--", marker=".", label="allowable Hs, linear (spectral MPM)"
+    )
     ax.plot(tp, ds["hs_uplift_onset_m"].values, color="tab:green", lw=1.5, ls="-.", label="uplift onset (a saddle lifts off)")
     if "scatter_occurrence" in ds:
         occ = ds["scatter_occurrence"].values
         within = ds["scatter_within_limits_nonlinear"].values.astype(bool)
         size = 10.0 + 400.0 * occ / max(float(occ.max()), 1e-300)
-        for sel, colour, label in ((within, "tab:green", "scatter: within limits (nonlinear)"), (~within, "tab:gray", "scatter: not within")):
-            ax.scatter(ds["scatter_peak_period_s"].values[sel], ds["scatter_significant_height_m"].values[sel], s=size[sel],
-                       facecolors="none", edgecolors=colour, label=label)
-    top = np.nanmax(np.concatenate([ds["hs_allowable_linear_m"].values, ds["hs_allowable_nonlinear_m"].values,
-                                    np.nan_to_num(ds["hs_uplift_onset_m"].values, nan=0.0)]))
+        for sel, colour, label in (
+            (within, "tab:green", "scatter: within limits (nonlinear)"),
+            (~within, "tab:gray", "scatter: not within"),
+        ):
+            ax.scatter(
+                ds["scatter_peak_period_s"].values[sel],
+                ds["scatter_significant_height_m"].values[sel],
+                s=size[sel],
+                facecolors="none",
+                edgecolors=colour,
+                label=label,
+            )
+    top = np.nanmax(
+        np.concatenate(
+            [
+                ds["hs_allowable_linear_m"].values,
+                ds["hs_allowable_nonlinear_m"].values,
+                np.nan_to_num(ds["hs_uplift_onset_m"].values, nan=0.0),
+            ]
+        )
+    )
     ax.set_ylim(0.0, 1.15 * max(top, 0.1))
     ax.set_xlabel("peak period Tp [s]")
     ax.set_ylabel("significant wave height Hs [m]")
     f, s = float(ds.attrs["max_saddle_force_N"]), float(ds.attrs["max_bending_stress_Pa"])
-    ax.set_title(f"{ds.attrs.get('title', '').removeprefix('seafast operability: ')}: F <= {f / 1e6:g} MN, "
-                 f"sigma_b <= {s / 1e6:g} MPa, MPM over {float(ds.attrs['duration_s']) / 3600:g} h", fontsize=10)
+    ax.set_title(
+        f"{ds.attrs.get('title', '').removeprefix('seafast operability: ')}: F <= {f / 1e6:g} MN, "
+        f"sigma_b <= {s / 1e6:g} MPa, MPM over {float(ds.attrs['duration_s']) / 3600:g} h",
+        fontsize=10,
+    )
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
@@ -203,8 +291,15 @@ def write_operability_outputs(
         w.writerow(SCATTER_RESULT_COLUMNS)
         dg = scatter.diagram
         for i in range(dg.occurrence.size):
-            w.writerow([_cell(float(dg.significant_height_m[i])), _cell(float(dg.peak_period_s[i])), _cell(float(dg.occurrence[i])),
-                        _cell(bool(scatter.within_linear[i])), _cell(bool(scatter.within_nonlinear[i]))])
+            w.writerow(
+                [
+                    _cell(float(dg.significant_height_m[i])),
+                    _cell(float(dg.peak_period_s[i])),
+                    _cell(float(dg.occurrence[i])),
+                    _cell(bool(scatter.within_linear[i])),
+                    _cell(bool(scatter.within_nonlinear[i])),
+                ]
+            )
         (out / "scatter.csv").write_text(buf.getvalue(), encoding="utf-8")
         paths["scatter_csv"] = out / "scatter.csv"
     if plots:

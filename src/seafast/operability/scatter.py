@@ -65,8 +65,10 @@ def read_scatter_diagram(path: str | Path, option: str = "--scatter") -> Scatter
     try:
         lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     except (OSError, UnicodeDecodeError) as exc:
-        raise CaseError(f"{option} '{p}': cannot read it ({getattr(exc, 'strerror', None) or exc}); allowed: a CSV file with "
-                        f"columns {','.join(SCATTER_COLUMNS)}") from None
+        raise CaseError(
+            f"{option} '{p}': cannot read it ({getattr(exc, 'strerror', None) or exc}); allowed: a CSV file with "
+            f"columns {','.join(SCATTER_COLUMNS)}"
+        ) from None
     rows = list(csv.reader(lines))
     header = [h.strip() for h in rows[0]] if rows else []
     if any(c not in header for c in SCATTER_COLUMNS):
@@ -79,8 +81,10 @@ def read_scatter_diagram(path: str | Path, option: str = "--scatter") -> Scatter
         except (ValueError, IndexError):
             raise CaseError(f"{option} '{p}', line {i}: values must be numbers") from None
         if not all(math.isfinite(v) for v in (hs, tp, occ)) or hs <= 0 or tp <= 0 or occ < 0:
-            raise CaseError(f"{option} '{p}', line {i}: significant_height_m = {hs}, peak_period_s = {tp}, occurrence = {occ}; "
-                            "allowed: Hs > 0, Tp > 0, occurrence >= 0")
+            raise CaseError(
+                f"{option} '{p}', line {i}: significant_height_m = {hs}, peak_period_s = {tp}, occurrence = {occ}; "
+                "allowed: Hs > 0, Tp > 0, occurrence >= 0"
+            )
         values.append((hs, tp, occ))
     a = np.array(values, dtype=float).reshape(-1, 3)
     total = float(a[:, 2].sum()) if a.size else 0.0
@@ -113,7 +117,9 @@ class ScatterAssessment:
     share_within_nonlinear: float
 
 
-def assess_scatter(diagram: ScatterDiagram, peak_periods_s: ArrayLike, hs_linear_m: ArrayLike, hs_nonlinear_m: ArrayLike) -> ScatterAssessment:
+def assess_scatter(
+    diagram: ScatterDiagram, peak_periods_s: ArrayLike, hs_linear_m: ArrayLike, hs_nonlinear_m: ArrayLike
+) -> ScatterAssessment:
     """Cells within the limits, from the allowable Hs at the diagram's peak periods.
 
     Parameters

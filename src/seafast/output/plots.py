@@ -11,9 +11,9 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
 
 __all__ = [
     "plot_deflection",
@@ -57,18 +57,28 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
         xs = aft + ds["saddle_x_m"].values
         ax.plot(xs, np.interp(xs, x, sw), "v", color="tab:green", ms=9, label="saddles")
         if "hull_still_water_deflection_coupled_m" in ds:
-            ax.plot(x, ds["hull_still_water_deflection_coupled_m"].values * 1e3, "--", color="tab:purple",
-                    label="still water, two-way coupled")
+            ax.plot(
+                x, ds["hull_still_water_deflection_coupled_m"].values * 1e3, "--", color="tab:purple", label="still water, two-way coupled"
+            )
         if ds.attrs.get("hull_cargo_coupling") and "deck_deflection_m" in ds:
             # where the coupled deck the cargo stood on sits in still water
             coupled_deck = ds["deck_deflection_m"].sel(load_case="static")  # under the nonlinear model's cargo
-            ax.plot(xs, coupled_deck.isel(period_fraction=0).values * 1e3, "o", mfc="none", color="tab:purple", ms=9,
-                    label="deck under the saddles, two-way coupled (still water)")
+            ax.plot(
+                xs,
+                coupled_deck.isel(period_fraction=0).values * 1e3,
+                "o",
+                mfc="none",
+                color="tab:purple",
+                ms=9,
+                label="deck under the saddles, two-way coupled (still water)",
+            )
         ax.axvspan(aft, aft + float(ds["x_cargo_m"].max()), color="tab:orange", alpha=0.15, label="cargo")
         ax.set_xlabel("x along the ship from the aft perpendicular [m]")
         ax.set_ylabel("hull deflection [mm]")
-        ax.set_title("Hull deflection (relative to the chord through the ship's ends)"
-                     + ("; black and grey: one-way" if ds.attrs.get("hull_cargo_coupling") else ""))
+        ax.set_title(
+            "Hull deflection (relative to the chord through the ship's ends)"
+            + ("; black and grey: one-way" if ds.attrs.get("hull_cargo_coupling") else "")
+        )
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
     xc = ds["x_cargo_m"].values
@@ -99,7 +109,9 @@ def plot_forces_and_moments(ds: xr.Dataset, path: Path) -> Path:
         st = ds["saddle_force_N"].sel(load_case="static", model=mdl).isel(period_fraction=0).values / 1e6
         dyn = ds["saddle_force_N"].sel(load_case="dynamic", model=mdl).values / 1e6
         ax_f.bar(xs + off, st, width=width, color=c, alpha=0.6, label=f"{mdl}, static")
-        ax_f.errorbar(xs + off, st, yerr=[st - dyn.min(axis=0), dyn.max(axis=0) - st], fmt="none", ecolor=c, capsize=4, label=f"{mdl}, dynamic range")
+        ax_f.errorbar(
+            xs + off, st, yerr=[st - dyn.min(axis=0), dyn.max(axis=0) - st], fmt="none", ecolor=c, capsize=4, label=f"{mdl}, dynamic range"
+        )
     ax_f.axhline(0.0, color="k", lw=0.8)
     ax_f.set_xlabel("saddle position along the cargo [m]")
     ax_f.set_ylabel("saddle force [MN]")
@@ -195,8 +207,15 @@ def plot_aft_picture(ds: xr.Dataset, path: Path) -> Path:
 
 def _hull_lines(ds: xr.Dataset, suffix: str) -> dict[str, np.ndarray] | None:
     """Still-water and hog/sag hull lines [mm, MN m] of one coupling (``suffix`` "" or "_coupled")."""
-    names = {k: f"hull_{k}{suffix}_{u}" for k, u in (("still_water_deflection", "m"), ("still_water_bending_moment", "Nm"),
-                                                     ("wave_deflection", "m"), ("wave_bending_moment", "Nm"))}
+    names = {
+        k: f"hull_{k}{suffix}_{u}"
+        for k, u in (
+            ("still_water_deflection", "m"),
+            ("still_water_bending_moment", "Nm"),
+            ("wave_deflection", "m"),
+            ("wave_bending_moment", "Nm"),
+        )
+    }
     if names["still_water_deflection"] not in ds or names["still_water_bending_moment"] not in ds:
         return None
     x = ds["hull_x_m"].values
@@ -206,7 +225,9 @@ def _hull_lines(ds: xr.Dataset, suffix: str) -> dict[str, np.ndarray] | None:
         w, m = ds[names["wave_deflection"]].values, ds[names["wave_bending_moment"]].values
         mid = np.argmin(np.abs(x - 0.5 * x[-1]))
         i_hog, i_sag = int(np.argmin(m[:, mid])), int(np.argmax(m[:, mid]))
-        out.update(hog_mm=(sw + w[i_hog]) * 1e3, sag_mm=(sw + w[i_sag]) * 1e3, hog_MNm=(swm + m[i_hog]) / 1e6, sag_MNm=(swm + m[i_sag]) / 1e6)
+        out.update(
+            hog_mm=(sw + w[i_hog]) * 1e3, sag_mm=(sw + w[i_sag]) * 1e3, hog_MNm=(swm + m[i_hog]) / 1e6, sag_MNm=(swm + m[i_sag]) / 1e6
+        )
     return out
 
 

@@ -16,12 +16,12 @@ from typing import Any
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from numpy.typing import NDArray  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from numpy.typing import NDArray
 
-from seafast.results.sweep import BASE_COLUMNS, SweepTable  # noqa: E402
-from seafast.results.sweep_range import RangeLimit  # noqa: E402
+from seafast.results.sweep import BASE_COLUMNS, SweepTable
+from seafast.results.sweep_range import RangeLimit
 
 __all__ = ["COLUMNS", "write_csv", "write_sweep_outputs", "format_sweep_summary", "range_warning"]
 
@@ -46,7 +46,7 @@ def write_csv(table: SweepTable, path: Path) -> Path:
     with path.open("w", newline="") as f:
         w = csv.writer(f)
         w.writerow(names)
-        for row in zip(*columns):
+        for row in zip(*columns, strict=True):
             w.writerow([_cell(v) for v in row])
     return path
 
@@ -144,7 +144,13 @@ def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
     if np.any(breaking):  # a property of omega alone: shade it
         start = float(omega[breaking].min())
         for ax in axes:
-            ax.axvspan(start, float(omega.max()), color="0.9", zorder=0, label=f"breaking waves (H / lambda > 1/{1 / table.limits.breaking_steepness:.0f})")
+            ax.axvspan(
+                start,
+                float(omega.max()),
+                color="0.9",
+                zorder=0,
+                label=f"breaking waves (H / lambda > 1/{1 / table.limits.breaking_steepness:.0f})",
+            )
     axes[0].legend(fontsize=8)
     axes[2].legend(fontsize=8)
     top = axes[0].secondary_xaxis("top", functions=(lambda w: 2 * np.pi / np.maximum(w, 1e-9), lambda T: 2 * np.pi / np.maximum(T, 1e-9)))
@@ -183,20 +189,28 @@ def write_sweep_outputs(result: Any, out_dir: str | Path, *, plots: bool = True)
 def format_sweep_summary(result: Any) -> list[str]:
     """Lines for people: how the branch ended, its folds and stability, the deck-acceleration limit, the peak RAO."""
     t, b = result.table, result.branch
-    lines = [f"{result.kind.value} sweep {result.omega_start_rad_s:g} -> {result.omega_end_rad_s:g} rad/s: {b.message}; "
-             f"{t.omega_rad_s.size} points ({int(np.count_nonzero(~t.stable))} unstable), H = {b.options.get('harmonics')}"]
+    lines = [
+        (
+            f"{result.kind.value} sweep {result.omega_start_rad_s:g} -> {result.omega_end_rad_s:g} rad/s: {b.message}; "
+            f"{t.omega_rad_s.size} points ({int(np.count_nonzero(~t.stable))} unstable), H = {b.options.get('harmonics')}"
+        )
+    ]
     if t.fold_omegas_rad_s.size:
         lines.append("folds at " + ", ".join(f"{w:.4g}" for w in t.fold_omegas_rad_s) + " rad/s (unstable between a pair)")
     lim = result.acceleration_limit_rad_s
     if lim is not None and lim < max(result.omega_start_rad_s, result.omega_end_rad_s):
         beyond = "the sweep stopped there" if result.stopped_beyond_range else "points beyond it are flagged valid=false"
-        lines.append(f"the held deck motion accelerates the deck faster than g = {t.limits.gravity_m_per_s2:g} m/s^2 above "
-                     f"omega_g = {lim:.4g} rad/s: {beyond} (seafast sweep --wave: the waves of these frequencies)")
+        lines.append(
+            f"the held deck motion accelerates the deck faster than g = {t.limits.gravity_m_per_s2:g} m/s^2 above "
+            f"omega_g = {lim:.4g} rad/s: {beyond} (seafast sweep --wave: the waves of these frequencies)"
+        )
     if t.wave is not None and np.any(t.valid):
         i = int(np.argmax(np.where(t.valid, t.wave.saddle_force_rao_N_per_m, -np.inf)))
-        lines.append(f"largest saddle-force RAO in range: {t.wave.saddle_force_rao_N_per_m[i] / 1e6:.4g} MN/m nonlinear, "
-                     f"{t.wave.linear_saddle_force_rao_N_per_m[i] / 1e6:.4g} MN/m linear, at {t.omega_rad_s[i]:.4g} rad/s "
-                     f"(wave length {t.wave.wave_length_m[i]:.4g} m)")
+        lines.append(
+            f"largest saddle-force RAO in range: {t.wave.saddle_force_rao_N_per_m[i] / 1e6:.4g} MN/m nonlinear, "
+            f"{t.wave.linear_saddle_force_rao_N_per_m[i] / 1e6:.4g} MN/m linear, at {t.omega_rad_s[i]:.4g} rad/s "
+            f"(wave length {t.wave.wave_length_m[i]:.4g} m)"
+        )
     return lines
 
 
@@ -208,6 +222,8 @@ def range_warning(result: Any) -> str | None:
         return None
     reasons = sorted({r.value for rs in t.beyond_range for r in rs})
     w = t.omega_rad_s[out]
-    return (f"{int(out.sum())} of {out.size} branch points, between {w.min():.4g} and {w.max():.4g} rad/s, lie beyond the "
-            f"physically meaningful range ({', '.join(reasons)}; gap limit {t.limits.max_gap_m:g} m): flagged valid=false "
-            "in frequency_response.csv, faded in the figure")
+    return (
+        f"{int(out.sum())} of {out.size} branch points, between {w.min():.4g} and {w.max():.4g} rad/s, lie beyond the "
+        f"physically meaningful range ({', '.join(reasons)}; gap limit {t.limits.max_gap_m:g} m): flagged valid=false "
+        "in frequency_response.csv, faded in the figure"
+    )

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import csv
 import io
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any
 
 from seafast.results.dataset import SUMMARY_COLUMNS
 
@@ -49,15 +50,25 @@ def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
     head = ("load case", "model", "slip [mm]", "friction utilisation", "axial force [kN]", "mu_crit [-]", "converged")
     lines = [
         (
-            r["load_case"], r["model"], f"{r['slip_m'] * 1e3:.2f}", f"{r['friction_utilisation']:.3f}",
-            f"{r['axial_force_N'] / 1e3:.1f}", f"{r['critical_friction_coefficient']:.4f}",
+            r["load_case"],
+            r["model"],
+            f"{r['slip_m'] * 1e3:.2f}",
+            f"{r['friction_utilisation']:.3f}",
+            f"{r['axial_force_N'] / 1e3:.1f}",
+            f"{r['critical_friction_coefficient']:.4f}",
             "yes" if r.get("axial_converged", True) else "NO",
         )
         for r in rows
     ]
-    widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
-    fmt = lambda cells: "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))  # noqa: E731
-    return "\n".join(["axial sliding (per period; slides where utilisation = 1)", fmt(head), fmt(["-" * w for w in widths])] + [fmt(l) for l in lines])
+    widths = _column_widths(head, lines)
+    return "\n".join(
+        [
+            "axial sliding (per period; slides where utilisation = 1)",
+            _format_row(head, widths),
+            _format_row(["-" * w for w in widths], widths),
+        ]
+        + [_format_row(line, widths) for line in lines]
+    )
 
 
 def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:
@@ -79,8 +90,17 @@ def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str
                 "yes" if r["converged"] else _not_converged(r),
             )
         )
-    widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
-    fmt = lambda cells: "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))
+    widths = _column_widths(head, lines)
     out = [title] if title else []
-    out += [fmt(head), fmt(["-" * w for w in widths])] + [fmt(l) for l in lines]
+    out += [_format_row(head, widths), _format_row(["-" * w for w in widths], widths)] + [_format_row(line, widths) for line in lines]
     return "\n".join(out)
+
+
+def _column_widths(head: Sequence[str], lines: Sequence[Sequence[str]]) -> list[int]:
+    """Each column's width: its widest cell, heading included."""
+    return [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
+
+
+def _format_row(cells: Sequence[str], widths: Sequence[int]) -> str:
+    """One table row: the two label columns left-aligned, the numbers right-aligned."""
+    return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))

@@ -14,8 +14,9 @@ per row (``friction_moment_saddle_force_change_N``).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -37,8 +38,14 @@ from seafast.solvers.axial import (
     static_response,
 )
 
-__all__ = ["AXIAL_SUMMARY_COLUMNS", "AxialCaseArrays", "run_axial_analysis", "axial_case_arrays", "friction_moment_effect_N",
-           "saddle_moment_flexibility"]
+__all__ = [
+    "AXIAL_SUMMARY_COLUMNS",
+    "AxialCaseArrays",
+    "run_axial_analysis",
+    "axial_case_arrays",
+    "friction_moment_effect_N",
+    "saddle_moment_flexibility",
+]
 
 #: Columns ``summary.csv`` gains (after ``converged``) when the axial analysis runs.
 AXIAL_SUMMARY_COLUMNS = ("slip_m", "friction_utilisation", "axial_force_N")
@@ -61,7 +68,10 @@ _ROW_VARS: dict[str, tuple[str, str]] = {
     "axial_force_N": ("largest axial force of the lashings and stoppers on the cargo", "N"),
     "critical_friction_coefficient": ("uniform friction coefficient below which the cargo starts to slide", "1"),
     "friction_moment_saddle_force_change_N": (
-        "estimated change of the saddle forces by the friction's moment (friction at the contact line, D/2 below the axis; quasi-static, bilateral saddles)",
+        (
+            "estimated change of the saddle forces by the friction's moment "
+            "(friction at the contact line, D/2 below the axis; quasi-static, bilateral saddles)"
+        ),
         "N",
     ),
     "axial_residual_norm": ("axial solver residual (HBM: relative; time domain: last period change)", "1"),
@@ -118,7 +128,8 @@ class AxialCaseArrays:
             name: xr.Variable(dims3, self.time[name], {"long_name": ln, "units": u}) for name, (ln, u) in _TIME_VARS.items()
         }
         data["friction_force_per_saddle_N"] = xr.Variable(
-            dims3 + ("saddle",), self.friction_force_per_saddle_N,
+            dims3 + ("saddle",),
+            self.friction_force_per_saddle_N,
             {"long_name": "friction force of each saddle on the cargo (forward +; shares mu_i N_i / sum mu_j N_j)", "units": "N"},
         )
         data["friction_normal_force_N"] = xr.Variable(
@@ -127,9 +138,15 @@ class AxialCaseArrays:
         data["sliding"] = xr.Variable(dims3, self.sliding.astype(np.int8), {"long_name": "cargo sliding (1) or stuck (0)", "units": "1"})
         for name, (ln, u) in _ROW_VARS.items():
             data[name] = xr.Variable(("load_case", "model"), self.rows[name], {"long_name": ln, "units": u})
-        data["axial_converged"] = xr.Variable(("load_case", "model"), self.converged.astype(np.int8), {"long_name": "axial solver converged", "units": "1"})
-        data["axial_solver_message"] = xr.Variable(("load_case", "model"), self.messages.astype(str), {"long_name": "axial solver message", "units": "1"})
-        data["friction_coefficient"] = xr.Variable(("saddle",), self.friction_coefficient, {"long_name": "Coulomb friction coefficient of each saddle", "units": "1"})
+        data["axial_converged"] = xr.Variable(
+            ("load_case", "model"), self.converged.astype(np.int8), {"long_name": "axial solver converged", "units": "1"}
+        )
+        data["axial_solver_message"] = xr.Variable(
+            ("load_case", "model"), self.messages.astype(str), {"long_name": "axial solver message", "units": "1"}
+        )
+        data["friction_coefficient"] = xr.Variable(
+            ("saddle",), self.friction_coefficient, {"long_name": "Coulomb friction coefficient of each saddle", "units": "1"}
+        )
         return xr.Dataset(data, attrs=self.attrs)
 
 
@@ -152,8 +169,9 @@ def saddle_moment_flexibility(model: StructuralModel) -> np.ndarray:
     return -dq[model.saddle_cargo_dof]
 
 
-def friction_moment_effect_N(model: StructuralModel, friction_per_saddle_N: np.ndarray, lever_m: np.ndarray,
-                             flexibility: np.ndarray | None = None) -> float:
+def friction_moment_effect_N(
+    model: StructuralModel, friction_per_saddle_N: np.ndarray, lever_m: np.ndarray, flexibility: np.ndarray | None = None
+) -> float:
     """Largest change of the saddle forces [N] by the friction's moment, quasi-static, bilateral saddles.
 
     Friction ``f_i`` (forward +) at the contact line ``lever_i`` (D/2) below the cargo's axis
@@ -168,7 +186,13 @@ def friction_moment_effect_N(model: StructuralModel, friction_per_saddle_N: np.n
 
 
 def _row(
-    restraint: AxialRestraint, load: AxialLoad, normal: np.ndarray, static: bool, method: str, options: AxialHBMOptions, N: int,
+    restraint: AxialRestraint,
+    load: AxialLoad,
+    normal: np.ndarray,
+    static: bool,
+    method: str,
+    options: AxialHBMOptions,
+    N: int,
     start: np.ndarray | None = None,
 ) -> AxialResponse:
     if static:
@@ -176,9 +200,23 @@ def _row(
         cap = float(restraint.capacity_N(normal[0]))
         if abs(f0) > cap:
             z = np.zeros(N)
-            return AxialResponse("statics", load.omega_rad_s, z, z.copy(), -np.sign(f0) * cap * np.ones(N), cap * np.ones(N), z.copy(),
-                                 z.copy(), f0 * np.ones(N), np.ones(N, dtype=bool), float("inf"), False, float("nan"), 0,
-                                 "the still-water axial load exceeds the friction: the cargo slides in still water")
+            return AxialResponse(
+                "statics",
+                load.omega_rad_s,
+                z,
+                z.copy(),
+                -np.sign(f0) * cap * np.ones(N),
+                cap * np.ones(N),
+                z.copy(),
+                z.copy(),
+                f0 * np.ones(N),
+                np.ones(N, dtype=bool),
+                float("inf"),
+                False,
+                float("nan"),
+                0,
+                "the still-water axial load exceeds the friction: the cargo slides in still water",
+            )
         return static_response(restraint, f0, cap, load.omega_rad_s, N)
     if method == "time_domain":
         return solve_axial_time_domain(restraint, load, normal, time_samples=options.time_samples).on_grid(N)
@@ -233,10 +271,15 @@ def axial_case_arrays(
             resp = _row(restraint, load, normal, lc == "static", method, options, N, start)
             if resp.harmonics is not None and resp.converged:
                 start = resp.harmonics  # the next row (nonlinear after linear) starts from it
-            for name, attr in (("axial_displacement_m", "displacement_m"), ("axial_velocity_m_per_s", "velocity_m_per_s"),
-                               ("friction_force_N", "friction_force_N"), ("friction_capacity_N", "capacity_N"),
-                               ("lashing_axial_force_N", "lashing_force_N"), ("stopper_force_N", "stopper_force_N"),
-                               ("axial_load_N", "load_N")):
+            for name, attr in (
+                ("axial_displacement_m", "displacement_m"),
+                ("axial_velocity_m_per_s", "velocity_m_per_s"),
+                ("friction_force_N", "friction_force_N"),
+                ("friction_capacity_N", "capacity_N"),
+                ("lashing_axial_force_N", "lashing_force_N"),
+                ("stopper_force_N", "stopper_force_N"),
+                ("axial_load_N", "load_N"),
+            ):
                 time[name][i, j] = getattr(resp, attr)
             per_saddle[i, j] = resp.friction_force_N[:, None] * restraint.saddle_shares(normal)
             normal_all[i, j] = normal
@@ -267,8 +310,16 @@ def axial_case_arrays(
         "axial_load_gravity_amplitude_N": abs(load.gravity_N),
     }
     return AxialCaseArrays(
-        np.arange(N) / N, time, per_saddle, normal_all, sliding, rows, converged, messages.astype(str),
-        np.asarray(restraint.friction_coefficient), attrs,
+        np.arange(N) / N,
+        time,
+        per_saddle,
+        normal_all,
+        sliding,
+        rows,
+        converged,
+        messages.astype(str),
+        np.asarray(restraint.friction_coefficient),
+        attrs,
     )
 
 
@@ -278,7 +329,9 @@ def axial_options(case: Case, vertical_samples: int) -> AxialHBMOptions:
     return AxialHBMOptions(harmonics=H, time_samples=axial_time_samples(H, vertical_samples), tolerance=max(case.solver.tolerance, 1e-12))
 
 
-def run_axial_analysis(case: Case, model: StructuralModel, vessel: Any, series: Mapping[tuple[str, str], PeriodTimeSeries]) -> AxialCaseArrays:
+def run_axial_analysis(
+    case: Case, model: StructuralModel, vessel: Any, series: Mapping[tuple[str, str], PeriodTimeSeries]
+) -> AxialCaseArrays:
     """The axial analysis of ``case`` from its vertical responses (``series``) and vessel motions.
 
     Raises

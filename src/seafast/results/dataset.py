@@ -11,8 +11,9 @@ a row raised one).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -222,32 +223,48 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
             "m",
         ),
         "cargo_deflection_vessel_frame_m": _var(
-            dims4 + ("x_cargo_m",), a.cargo_deflection_vessel_frame_m,
-            "cargo deflection relative to the vessel's rigid-body frame (hull chord AP-FP), up positive", "m",
+            dims4 + ("x_cargo_m",),
+            a.cargo_deflection_vessel_frame_m,
+            "cargo deflection relative to the vessel's rigid-body frame (hull chord AP-FP), up positive",
+            "m",
         ),
-        "saddle_compression_m": _var(dims4 + ("saddle",), a.saddle_compression_m, "saddle compression delta = z_deck - z_cargo (negative = gap)", "m"),
+        "saddle_compression_m": _var(
+            dims4 + ("saddle",), a.saddle_compression_m, "saddle compression delta = z_deck - z_cargo (negative = gap)", "m"
+        ),
         "saddle_gap_m": _var(dims4 + ("saddle",), a.saddle_gap_m, "saddle detachment (gap), nonlinear model", "m"),
         "saddle_force_N": _var(dims4 + ("saddle",), a.saddle_force_N, "saddle normal force on the cargo (up positive)", "N"),
-        "contact_state": _var(dims4 + ("saddle",), (a.saddle_compression_m > 0).astype(np.int8), "saddle in contact (1) or detached (0)", "1"),
+        "contact_state": _var(
+            dims4 + ("saddle",), (a.saddle_compression_m > 0).astype(np.int8), "saddle in contact (1) or detached (0)", "1"
+        ),
         "bending_moment_Nm": _var(dims4 + ("x_moment_m",), a.bending_moment_Nm, "cargo bending moment (sagging positive)", "N m"),
-        "bending_stress_Pa": _var(dims4 + ("x_moment_m",), a.bending_stress_Pa, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"),
+        "bending_stress_Pa": _var(
+            dims4 + ("x_moment_m",), a.bending_stress_Pa, "cargo bending stress at the outer fibre, bottom (tension positive)", "Pa"
+        ),
         # the deck the nonlinear (physical) cargo stands on, in the layout of one-way results;
         # with two-way coupling each model has its own deck: the *_per_model_m variables
         "deck_deflection_m": _var(
-            ("load_case", "period_fraction", "saddle"), a.deck_deflection_m[:, 1],
-            "deck deflection under each saddle (hull elastic deflection, up positive), under the nonlinear model's cargo", "m",
+            ("load_case", "period_fraction", "saddle"),
+            a.deck_deflection_m[:, 1],
+            "deck deflection under each saddle (hull elastic deflection, up positive), under the nonlinear model's cargo",
+            "m",
         ),
         "deck_rise_m": _var(
-            ("load_case", "period_fraction", "saddle"), a.deck_rise_m[:, 1],
-            "deck deflection under each saddle relative to the sea-fastening baseline (up positive), under the nonlinear model's cargo", "m",
+            ("load_case", "period_fraction", "saddle"),
+            a.deck_rise_m[:, 1],
+            "deck deflection under each saddle relative to the sea-fastening baseline (up positive), under the nonlinear model's cargo",
+            "m",
         ),
         "deck_deflection_per_model_m": _var(
-            dims4 + ("saddle",), a.deck_deflection_m,
-            "deck deflection under each saddle per model (differs between models only with two-way coupling), up positive", "m",
+            dims4 + ("saddle",),
+            a.deck_deflection_m,
+            "deck deflection under each saddle per model (differs between models only with two-way coupling), up positive",
+            "m",
         ),
         "deck_rise_per_model_m": _var(
-            dims4 + ("saddle",), a.deck_rise_m,
-            "deck deflection under each saddle relative to the sea-fastening baseline, per model (up positive)", "m",
+            dims4 + ("saddle",),
+            a.deck_rise_m,
+            "deck deflection under each saddle relative to the sea-fastening baseline, per model (up positive)",
+            "m",
         ),
         "saddle_stiffness_N_per_m": _var(("saddle",), model.saddle_stiffness_N_per_m, "saddle compression stiffness", "N/m"),
         "saddle_lashed": _var(("saddle",), np.asarray(model.seafastening.lashed).astype(np.int8), "saddle carries lashings", "1"),
@@ -258,15 +275,20 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
         "harmonic_truncation_indicator": _var(
             ("load_case", "model", "saddle"), a.harmonic_truncation_indicator, "share of the contact-force signal above harmonic H", "1"
         ),
-        "tensile_force_error_N": _var(("load_case", "model"), a.tensile_force_error_N, "largest tensile force of the regularised contact law", "N"),
+        "tensile_force_error_N": _var(
+            ("load_case", "model"), a.tensile_force_error_N, "largest tensile force of the regularised contact law", "N"
+        ),
         "converged": _var(("load_case", "model"), a.converged.astype(np.int8), *_SUMMARY_ATTRS["converged"]),
         "solver_outcome": xr.Variable(
-            ("load_case", "model"), a.solver_outcome,
+            ("load_case", "model"),
+            a.solver_outcome,
             {"long_name": "how the solve ended (" + ", ".join(SOLVER_OUTCOMES) + ")", "units": "1"},
         ),
         "solver_warning_flag": _var(
-            ("load_case", "model", "solver_warning"), a.solver_warning.astype(np.int8),
-            "typed solver warning raised (1) or not (0), one per solver_warning", "1",
+            ("load_case", "model", "solver_warning"),
+            a.solver_warning.astype(np.int8),
+            "typed solver warning raised (1) or not (0), one per solver_warning",
+            "1",
         ),
     }
     for name, values in a.maxima().items():

@@ -24,8 +24,10 @@ sampled once; the results equal the time-domain route to round-off
 from __future__ import annotations
 
 import functools
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from itertools import pairwise
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -111,7 +113,7 @@ def _moment_harmonics(model: StructuralModel, rows: Sequence[RowSolution]) -> li
     moment = m0[..., None] * (1.0 - xi) + m1[..., None] * xi - q[..., None] * (lengths[:, None] ** 2) * (xi * (1.0 - xi)) / 2.0
     moment = moment.reshape(X.shape[0], -1)
     bounds = np.cumsum([0] + [np.asarray(r.cargo_harmonics).shape[0] for r in rows])
-    return [moment[a:b] for a, b in zip(bounds[:-1], bounds[1:])]
+    return [moment[a:b] for a, b in pairwise(bounds)]
 
 
 def summary_rows(model: StructuralModel, rows: Sequence[tuple[str, str, RowSolution]], time_samples: int) -> list[dict[str, Any]]:
@@ -137,7 +139,7 @@ def summary_rows(model: StructuralModel, rows: Sequence[tuple[str, str, RowSolut
     modulus = np.repeat(beam.element_second_moment_m4 / (beam.element_outer_diameter_m / 2.0), MOMENT_POINTS_PER_ELEMENT + 1)
     moments = _moment_harmonics(model, [r for _, _, r in rows])
     out = []
-    for (load_case, model_name, row), moment_harmonics in zip(rows, moments):
+    for (load_case, model_name, row), moment_harmonics in zip(rows, moments, strict=True):
         X = np.asarray(row.cargo_harmonics)
         n_k = X.shape[0]
         n_t = 1 if n_k == 1 else int(time_samples)

@@ -18,8 +18,8 @@ Units: SI; the unit is in every name. Nothing here prints or writes files.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,8 +29,8 @@ from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_comple
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.results.sweep_range import RangeLimit, RangeLimits, deck_acceleration_m_per_s2, time_extremes
-from seafast.solvers.contact import ContactLaw
 from seafast.solvers.branch import FrequencyResponseBranch
+from seafast.solvers.contact import ContactLaw
 from seafast.solvers.floquet import floquet_multipliers, stability_system
 from seafast.solvers.hbm import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import truncation_error
@@ -214,7 +214,7 @@ def significant_folds(
     if not turns:
         return np.zeros(0, dtype=np.intp)
     upper = {i: bool(branch.tangent_omega[i - 1] > 0) for i in turns}  # a maximum of omega
-    value = {i: float(v) for i, v in zip(turns, branch.turning_omegas_rad_s)}
+    value = {i: float(v) for i, v in zip(turns, branch.turning_omegas_rad_s, strict=True)}
     U = branch.compression_harmonics_m
     span = np.ptp(np.einsum("th,nhs->nts", real_dft_matrices(U.shape[1] // 2, 128)[0], U), axis=1).max(axis=1)
 
@@ -260,10 +260,14 @@ def _moment_harmonics(model: StructuralModel, displacement: NDArray, excitation:
     line = np.array(excitation.cargo_line_load_N_per_m, dtype=complex)
     line[0] += beam.gravity_line_load_N_per_m
     n_k = line.shape[0]
-    return bending_moment_line(beam.node_x_m, displacement[:n_k], beam.element_bending_stiffness_Nm2, None, line, _MOMENT_POINTS_PER_ELEMENT)[1]
+    return bending_moment_line(
+        beam.node_x_m, displacement[:n_k], beam.element_bending_stiffness_Nm2, None, line, _MOMENT_POINTS_PER_ELEMENT
+    )[1]
 
 
-def _still_water(model: StructuralModel, excitation: HarmonicExcitation, law: ContactLaw, compression_m: NDArray) -> tuple[NDArray, NDArray]:
+def _still_water(
+    model: StructuralModel, excitation: HarmonicExcitation, law: ContactLaw, compression_m: NDArray
+) -> tuple[NDArray, NDArray]:
     """Nonlinear still-water saddle forces (n_s,) [N] and moment line (n_x,) [N m] (``compression_m``: static compressions (1, n_s))."""
     static = excitation.static_part()
     ops = condensed_operators(model, static, 0)
@@ -312,7 +316,9 @@ def sweep_table(
     inverse, _ = real_dft_matrices(H, N)
     names = ("moment", "lin_force", "lin_moment", "accel", "stable", "mu", "trunc", "f_rao", "lf_rao", "m_rao", "lm_rao")
     cols: dict[str, list[float]] = {name: [] for name in names}
-    sw = _still_water(model, excitation_at(float(branch.omega_rad_s[0])), law, np.asarray(still_water_compression_m)) if wave_sweep else None
+    sw = (
+        _still_water(model, excitation_at(float(branch.omega_rad_s[0])), law, np.asarray(still_water_compression_m)) if wave_sweep else None
+    )
     reasons: list[tuple[RangeLimit, ...]] = []
     for i in range(n):
         w, U = float(branch.omega_rad_s[i]), branch.compression_harmonics_m[i]

@@ -51,8 +51,8 @@ def _monte_carlo_engine() -> tuple[Any, str]:
 
 def _cmd_seastate(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
-    from seafast.seastate.outputs import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
     from seafast.seastate.design_wave import sea_state_design_waves
+    from seafast.seastate.outputs import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
     from seafast.seastate.spectral import spectral_analysis
 
     if args.workers is not None and args.workers < 1:
@@ -69,8 +69,10 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         analysis = spectral_analysis(case)
     except (CaseError, ValueError) as exc:
         return _error(str(exc))
-    say(f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
-        f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)")
+    say(
+        f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
+        f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)"
+    )
     rows = [analysis.extremes.row()]
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)
@@ -86,7 +88,10 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         rows += [not_computed_row(model, method) for model, method in ROWS[1:3]]
     else:
         ss = case.sea_state
-        say(f"Monte Carlo reference: {ss.realisations} realisations of {ss.duration_s:g} s, linear and nonlinear (resumable in {args.output})")
+        say(
+            f"Monte Carlo reference: {ss.realisations} realisations of {ss.duration_s:g} s, linear and nonlinear "
+            f"(resumable in {args.output})"
+        )
         try:
             monte_carlo = engine(case, Path(args.output), workers=args.workers, scheduler=args.scheduler, progress=not args.quiet)
         except (CaseError, ValueError) as exc:
@@ -103,7 +108,10 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     bad = [r for r in rows if r["converged"] is False]
     for r in bad:
         what = "a design wave's harmonic balance did not converge" if r["method"] == "design_wave" else "not every realisation converged"
-        print(f"seafast: warning: {r['model']} {r['method']}: {what}; its numbers are flagged converged=false in seastate.csv", file=sys.stderr)
+        print(
+            f"seafast: warning: {r['model']} {r['method']}: {what}; its numbers are flagged converged=false in seastate.csv",
+            file=sys.stderr,
+        )
     return EXIT_NOT_CONVERGED if bad else EXIT_OK
 
 
@@ -120,8 +128,14 @@ def add_seastate_subcommand(subparsers: Any) -> argparse.ArgumentParser:
     )
     p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
     p.add_argument("-o", "--output", default="seafast-seastate", help="output directory (default: %(default)s)")
-    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                   help="override a case key (dotted, e.g. sea_state.significant_height_m=4); repeatable")
+    p.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a case key (dotted, e.g. sea_state.significant_height_m=4); repeatable",
+    )
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")

@@ -93,7 +93,7 @@ def conditioned_wave(
     if base_period_s is None:
         base_period_s = DEFAULT_BASE_PERIODS * 2.0 * math.pi / float(w_grid[int(np.argmax(s_r))])
     dw = 2.0 * math.pi / base_period_s
-    j = np.arange(max(int(math.ceil(w_grid[0] / dw)), 1), int(math.floor(w_grid[-1] / dw)) + 1)
+    j = np.arange(max(math.ceil(w_grid[0] / dw), 1), math.floor(w_grid[-1] / dw) + 1)
     w = (j * dw).astype(np.float64)
     S = np.interp(w, w_grid, sp.density_m2_s_per_rad, left=0.0, right=0.0)
     H = interpolate_transfer(w_grid, response_transfer, w)
@@ -109,7 +109,9 @@ def conditioned_wave(
     load[j] = Z[:, None] * interpolate_transfer(w_grid, tf.cargo_load_N, w)
     line[j] = Z[:, None] * interpolate_transfer(w_grid, tf.cargo_line_load_N_per_m, w)
     excitation = HarmonicExcitation(dw, deck, load, line, f"conditioned wave (MLER), base period {base_period_s:.1f} s")
-    return ConditionedWave(float(base_period_s), np.asarray(w, dtype=np.float64), np.asarray(Z, dtype=np.complex128), float(target), excitation)
+    return ConditionedWave(
+        float(base_period_s), np.asarray(w, dtype=np.float64), np.asarray(Z, dtype=np.complex128), float(target), excitation
+    )
 
 
 def solve_conditioned_wave(
@@ -126,7 +128,7 @@ def solve_conditioned_wave(
     """
     K = wave.excitation.harmonic_count - 1
     peak = float(wave.omega_rad_s[int(np.argmax(np.abs(wave.wave_amplitude_m)))])
-    H = max(K, int(math.ceil(harmonics_per_wave * peak / wave.excitation.omega_rad_s)))
+    H = max(K, math.ceil(harmonics_per_wave * peak / wave.excitation.omega_rad_s))
     options = HBMOptions(harmonics=H, tolerance=tolerance)
     ops = wave_operators(analysis.model, wave.excitation, options, moments)
     return solve_wave(ops, 1.0, options)

@@ -27,8 +27,9 @@ rate of first separations is the same; bounces after a re-contact are not counte
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -250,7 +251,12 @@ class DesignWaveExtremes:
 
     def row(self) -> dict[str, Any]:
         """The (nonlinear, design_wave) row of seastate.csv."""
-        return {"model": "nonlinear", "method": "design_wave", **{k: float(v) for k, v in self.totals.items()}, "converged": bool(self.converged)}
+        return {
+            "model": "nonlinear",
+            "method": "design_wave",
+            **{k: float(v) for k, v in self.totals.items()},
+            "converged": bool(self.converged),
+        }
 
 
 def static_totals(analysis: SpectralAnalysis) -> dict[str, float]:
@@ -316,19 +322,21 @@ def design_wave_extremes(
         if key not in solved and settings.harmonics is None:
             unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
             solved[key] = solve_wave_adaptive(analysis.model, unit, wave.amplitude_m, mm, options)
-        if key not in solved:
+        elif key not in solved and settings.harmonics is not None:
             # start from this frequency's previous solution (an amplitude search), else from the last wave solved:
             # the quantities' design waves lie close together (neighbouring frequencies, amplitudes within a few
             # per cent), and a start that fails falls back on the solver's own (solve_wave)
             previous = None if warm is None else warm.get(wave.frequency_index)
             previous = previous if previous is not None else last
-            for H in (int(settings.harmonics), *settings.fallback_harmonics):  # type: ignore[arg-type]
+            for H in (int(settings.harmonics), *settings.fallback_harmonics):
                 opts = settings.hbm_options(H)
                 if (wave.frequency_index, H) not in cache:
                     unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
                     cache[(wave.frequency_index, H)] = wave_operators(analysis.model, unit, opts, mm)
-                usable = previous is not None and previous.converged and previous.harmonics == H
-                sol = solve_wave(cache[(wave.frequency_index, H)], wave.amplitude_m, opts, previous.compression_harmonics_m if usable else None)  # type: ignore[union-attr]
+                start = (
+                    previous.compression_harmonics_m if previous is not None and previous.converged and previous.harmonics == H else None
+                )
+                sol = solve_wave(cache[(wave.frequency_index, H)], wave.amplitude_m, opts, start)
                 if sol.converged:
                     break
             solved[key] = sol
@@ -337,8 +345,8 @@ def design_wave_extremes(
                 warm[wave.frequency_index] = sol
         solutions.append(solved[key])
     totals = static_totals(analysis)
-    governing = {q: -1 for q in RESPONSE_QUANTITIES}
-    for i, (wave, sol) in enumerate(zip(waves, solutions)):
+    governing = dict.fromkeys(RESPONSE_QUANTITIES, -1)
+    for i, (wave, sol) in enumerate(zip(waves, solutions, strict=True)):
         q = wave.quantity
         if governing[q] < 0 or sol.maxima[q] > totals[q]:
             totals[q], governing[q] = sol.maxima[q], i

@@ -129,8 +129,13 @@ def most_probable_maximum(maxima: NDArray, seed: int = 0, confidence_level: floa
         statistic, method = _quantile, "empirical_quantile"
         value, scale = float(_quantile(x)), math.nan
     res = stats.bootstrap(
-        (x,), statistic, vectorized=True, n_resamples=BOOTSTRAP_RESAMPLES, confidence_level=confidence_level,
-        method="percentile", rng=np.random.default_rng(seed),
+        (x,),
+        statistic,
+        vectorized=True,
+        n_resamples=BOOTSTRAP_RESAMPLES,
+        confidence_level=confidence_level,
+        method="percentile",
+        rng=np.random.default_rng(seed),
     )
     lo, hi = float(res.confidence_interval.low), float(res.confidence_interval.high)
     return MPMEstimate(value, (lo, hi), method, confidence_level, scale)

@@ -14,6 +14,10 @@ The linear Monte Carlo is the exact frequency-domain synthesis of the linear mod
 integrator with bilateral saddles has no correction to march: q_c = 0); it checks the synthesis
 against the spectral method (same transfer functions), and the nonlinear model differs from it
 only where a saddle lifts off.
+
+Size: over 400 lines as ruff formats it (one keyword argument a line in a call that does not fit on
+one line; about 380 lines before): the plan, the resumable run and its statistics share the run's
+fingerprint and result record.
 """
 
 from __future__ import annotations
@@ -22,9 +26,10 @@ import hashlib
 import json
 import math
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -118,8 +123,13 @@ class MonteCarloStatistics:
 
     def row(self) -> dict[str, Any]:
         """The (model, monte_carlo) row of seastate.csv."""
-        return {"model": self.model, "method": "monte_carlo", **{q: float(self.mpm[q]) for q in QUANTITIES},
-                "uplift_per_hour": float(self.uplift_per_hour), "converged": bool(self.converged)}
+        return {
+            "model": self.model,
+            "method": "monte_carlo",
+            **{q: float(self.mpm[q]) for q in QUANTITIES},
+            "uplift_per_hour": float(self.uplift_per_hour),
+            "converged": bool(self.converged),
+        }
 
 
 @dataclass(frozen=True)
@@ -174,34 +184,97 @@ class MonteCarloResult:
         stats = (self.linear, self.nonlinear)
         for q in QUANTITIES:
             u, ln = _UNITS[q], _LONG[q]
-            dv[f"mc_{q}"] = (("model", "realisation"), np.stack([s.maxima[q] for s in stats]), {"units": u, "long_name": f"{ln}, per realisation"})
-            dv[f"mc_mpm_{q}"] = (("model",), np.array([s.mpm[q] for s in stats]), {"units": u, "long_name": f"most probable maximum: {ln}", "method": ", ".join(s.mpm_method.get(q, "") for s in stats)})
-            dv[f"mc_mpm_low_{q}"] = (("model",), np.array([s.mpm_interval[q][0] for s in stats]), {"units": u, "long_name": f"lower bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}"})
-            dv[f"mc_mpm_high_{q}"] = (("model",), np.array([s.mpm_interval[q][1] for s in stats]), {"units": u, "long_name": f"upper bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}"})
-        dv["mc_time_lifted_fraction"] = (("model", "realisation"), np.stack([s.time_lifted_fraction for s in stats]), {"units": "1", "long_name": "fraction of the duration with at least one saddle detached (linear: compression below zero)"})
-        dv["mc_uplift_events"] = (("model", "realisation"), np.stack([s.uplift_events for s in stats]), {"units": "1", "long_name": "saddle separations (compressed to detached), summed over saddles"})
-        dv["mc_uplift_per_hour"] = (("model",), np.array([s.uplift_per_hour for s in stats]), {"units": "1/h", "long_name": "mean saddle separations per hour, summed over saddles"})
-        dv["mc_std_saddle_force_N"] = (("realisation", "saddle"), self.std_saddle_force_N, {"units": "N", "long_name": "standard deviation of the linear saddle force over the record"})
-        dv["mc_std_bending_moment_Nm"] = (("realisation", "x_moment_m"), self.std_bending_moment_Nm, {"units": "N m", "long_name": "standard deviation of the linear bending moment over the record"})
-        dv["mc_seconds"] = (("realisation",), self.seconds, {"units": "s", "long_name": "wall time of the realisation (NaN: reused from the store)"})
+            dv[f"mc_{q}"] = (
+                ("model", "realisation"),
+                np.stack([s.maxima[q] for s in stats]),
+                {"units": u, "long_name": f"{ln}, per realisation"},
+            )
+            dv[f"mc_mpm_{q}"] = (
+                ("model",),
+                np.array([s.mpm[q] for s in stats]),
+                {"units": u, "long_name": f"most probable maximum: {ln}", "method": ", ".join(s.mpm_method.get(q, "") for s in stats)},
+            )
+            dv[f"mc_mpm_low_{q}"] = (
+                ("model",),
+                np.array([s.mpm_interval[q][0] for s in stats]),
+                {"units": u, "long_name": f"lower bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}"},
+            )
+            dv[f"mc_mpm_high_{q}"] = (
+                ("model",),
+                np.array([s.mpm_interval[q][1] for s in stats]),
+                {"units": u, "long_name": f"upper bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}"},
+            )
+        dv["mc_time_lifted_fraction"] = (
+            ("model", "realisation"),
+            np.stack([s.time_lifted_fraction for s in stats]),
+            {"units": "1", "long_name": "fraction of the duration with at least one saddle detached (linear: compression below zero)"},
+        )
+        dv["mc_uplift_events"] = (
+            ("model", "realisation"),
+            np.stack([s.uplift_events for s in stats]),
+            {"units": "1", "long_name": "saddle separations (compressed to detached), summed over saddles"},
+        )
+        dv["mc_uplift_per_hour"] = (
+            ("model",),
+            np.array([s.uplift_per_hour for s in stats]),
+            {"units": "1/h", "long_name": "mean saddle separations per hour, summed over saddles"},
+        )
+        dv["mc_std_saddle_force_N"] = (
+            ("realisation", "saddle"),
+            self.std_saddle_force_N,
+            {"units": "N", "long_name": "standard deviation of the linear saddle force over the record"},
+        )
+        dv["mc_std_bending_moment_Nm"] = (
+            ("realisation", "x_moment_m"),
+            self.std_bending_moment_Nm,
+            {"units": "N m", "long_name": "standard deviation of the linear bending moment over the record"},
+        )
+        dv["mc_seconds"] = (
+            ("realisation",),
+            self.seconds,
+            {"units": "s", "long_name": "wall time of the realisation (NaN: reused from the store)"},
+        )
         coords: dict[str, Any] = {
             "model": ("model", list(MODELS), {"long_name": "response model (linear: bilateral saddles)"}),
-            "realisation": ("realisation", np.arange(n_r), {"units": "1", "long_name": "realisation index (phases from SeedSequence(seed) child i)"}),
+            "realisation": (
+                "realisation",
+                np.arange(n_r),
+                {"units": "1", "long_name": "realisation index (phases from SeedSequence(seed) child i)"},
+            ),
             "saddle": ("saddle", np.arange(self.saddle_x_m.size), {"units": "1", "long_name": "saddle index, aft to fore"}),
             "x_moment_m": ("x_moment_m", self.moment_x_m, {"units": "m", "long_name": "position along the cargo from its aft end"}),
         }
         ex = self.example
         if ex is not None:
-            coords["mc_example_time_s"] = ("mc_example_time_s", ex.time_s, {"units": "s", "long_name": f"time in example realisation {ex.index}"})
-            dv["mc_example_wave_elevation_m"] = (("mc_example_time_s",), ex.wave_elevation_m, {"units": "m", "long_name": "wave elevation at midship"})
-            dv["mc_example_saddle_force_N"] = (("model", "mc_example_time_s", "saddle"), np.stack([ex.linear_saddle_force_N, ex.nonlinear_saddle_force_N]), {"units": "N", "long_name": "saddle normal force (compression-only part; linear may be negative)"})
-            dv["mc_example_saddle_lifted"] = (("mc_example_time_s", "saddle"), ex.saddle_lifted.astype(np.int8), {"units": "1", "long_name": "saddle detached (nonlinear) within the sample's interval"})
+            coords["mc_example_time_s"] = (
+                "mc_example_time_s",
+                ex.time_s,
+                {"units": "s", "long_name": f"time in example realisation {ex.index}"},
+            )
+            dv["mc_example_wave_elevation_m"] = (
+                ("mc_example_time_s",),
+                ex.wave_elevation_m,
+                {"units": "m", "long_name": "wave elevation at midship"},
+            )
+            dv["mc_example_saddle_force_N"] = (
+                ("model", "mc_example_time_s", "saddle"),
+                np.stack([ex.linear_saddle_force_N, ex.nonlinear_saddle_force_N]),
+                {"units": "N", "long_name": "saddle normal force (compression-only part; linear may be negative)"},
+            )
+            dv["mc_example_saddle_lifted"] = (
+                ("mc_example_time_s", "saddle"),
+                ex.saddle_lifted.astype(np.int8),
+                {"units": "1", "long_name": "saddle detached (nonlinear) within the sample's interval"},
+            )
         attrs = {
             "mc_duration_s": self.duration_s,
             "mc_seed": self.seed,
             "mc_realisations": n_r,
             "mc_confidence_level": self.linear.confidence_level,
-            "mc_mpm_estimator": "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); percentile bootstrap interval",
+            "mc_mpm_estimator": (
+                "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); "
+                "percentile bootstrap interval"
+            ),
             "mc_example_realisation": -1 if ex is None else ex.index,
             "mc_settings_json": json.dumps(dict(self.settings)),
         }
@@ -272,7 +345,9 @@ def _model_statistics(model: str, records: list[dict[str, Any]], duration_s: flo
     )
 
 
-def statistics_from_records(records: list[dict[str, Any]], duration_s: float, seed: int) -> tuple[MonteCarloStatistics, MonteCarloStatistics]:
+def statistics_from_records(
+    records: list[dict[str, Any]], duration_s: float, seed: int
+) -> tuple[MonteCarloStatistics, MonteCarloStatistics]:
     """Linear and nonlinear statistics of realisation records (ordered by index)."""
     return _model_statistics("linear", records, duration_s, seed), _model_statistics("nonlinear", records, duration_s, seed)
 

@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import csv
 import io
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -60,7 +61,7 @@ _DESIGN_WAVE_MAXIMA = {
 
 def not_computed_row(model: str, method: str) -> dict[str, Any]:
     """A row of a method that did not run: empty cells."""
-    return {"model": model, "method": method, **{q: None for q in QUANTITIES}, "converged": None}
+    return {"model": model, "method": method, **dict.fromkeys(QUANTITIES), "converged": None}
 
 
 def monte_carlo_row(statistics: Any) -> dict[str, Any]:
@@ -107,7 +108,7 @@ def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") ->
     widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
 
     def fmt(cells: Sequence[str]) -> str:
-        return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths)))
+        return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
 
     out = [title] if title else []
     return "\n".join(out + [fmt(head), fmt(["-" * w for w in widths])] + [fmt(line) for line in lines])
@@ -127,16 +128,35 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
     d = ("design_wave",)
     waves, sols = design.waves, design.solutions
     v = {
-        "design_wave_quantity": xr.Variable(d, np.array([w.quantity for w in waves], dtype=str), {"long_name": "quantity the design wave is designed for (seastate.csv column)", "units": "1"}),
-        "design_wave_role": xr.Variable(d, np.array([w.role for w in waves], dtype=str), {"long_name": "where in the response spectrum: peak, band_low, band_high (ends of the half-peak band) or band", "units": "1"}),
-        "design_wave_location": _var(d, [w.location for w in waves], "governing location: saddle index (F_N, u_s_m, u_d_m) or x_moment_m index (M_b_Nm, sigma_b_Pa)", "1"),
+        "design_wave_quantity": xr.Variable(
+            d,
+            np.array([w.quantity for w in waves], dtype=str),
+            {"long_name": "quantity the design wave is designed for (seastate.csv column)", "units": "1"},
+        ),
+        "design_wave_role": xr.Variable(
+            d,
+            np.array([w.role for w in waves], dtype=str),
+            {"long_name": "where in the response spectrum: peak, band_low, band_high (ends of the half-peak band) or band", "units": "1"},
+        ),
+        "design_wave_location": _var(
+            d,
+            [w.location for w in waves],
+            "governing location: saddle index (F_N, u_s_m, u_d_m) or x_moment_m index (M_b_Nm, sigma_b_Pa)",
+            "1",
+        ),
         "design_wave_omega_rad_s": _var(d, [w.omega_rad_s for w in waves], "design wave frequency", "rad/s"),
-        "design_wave_amplitude_m": _var(d, [w.amplitude_m for w in waves], "design wave amplitude (linear response = linear spectral MPM)", "m"),
-        "design_wave_converged": _var(d, np.array([s.converged for s in sols], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"),
+        "design_wave_amplitude_m": _var(
+            d, [w.amplitude_m for w in waves], "design wave amplitude (linear response = linear spectral MPM)", "m"
+        ),
+        "design_wave_converged": _var(
+            d, np.array([s.converged for s in sols], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"
+        ),
         "design_wave_harmonics": _var(d, [s.harmonics for s in sols], "harmonics H of the harmonic balance that solved the wave", "1"),
     }
     for q, what in _DESIGN_WAVE_MAXIMA.items():
-        v[f"design_wave_{q}"] = _var(d, [s.maxima[q] for s in sols], f"{what} over the design wave's period (nonlinear, still water included)", QUANTITIES[q][1])
+        v[f"design_wave_{q}"] = _var(
+            d, [s.maxima[q] for s in sols], f"{what} over the design wave's period (nonlinear, still water included)", QUANTITIES[q][1]
+        )
     return v
 
 
@@ -149,17 +169,30 @@ def seastate_dataset(
     per = "per metre of wave amplitude"
     v: dict[str, xr.Variable] = {
         "wave_spectrum_m2_s_per_rad": _var(w, sp.density_m2_s_per_rad, "wave spectral density S(omega), one-sided", "m2 s/rad"),
-        "hull_emergence_amplitude_m": _var(w, tf.hull_emergence_amplitude_m, "regular-wave amplitude at which a hull section emerges (hull response linear below)", "m"),
+        "hull_emergence_amplitude_m": _var(
+            w, tf.hull_emergence_amplitude_m, "regular-wave amplitude at which a hull section emerges (hull response linear below)", "m"
+        ),
         "saddle_x_m": _var(("saddle",), analysis.model.saddle_x_m, "saddle position along the cargo from its aft end", "m"),
         "bending_section_modulus_m3": _var(("x_moment_m",), tf.bending_section_modulus_m3, "cargo section modulus I / (D/2)", "m3"),
     }
     _complex(v, "heave_transfer_m_per_m", w, tf.heave_m, f"heave at the pitch reference {per}", "m/m")
     _complex(v, "pitch_transfer_rad_per_m", w, tf.pitch_rad, f"pitch dz/dx, bow up, {per}", "rad/m")
-    _complex(v, "deck_deflection_transfer_m_per_m", s, tf.deck_displacement[:, 0::2], f"hull elastic deck deflection under each saddle {per}", "m/m")
-    _complex(v, "deck_slope_transfer_rad_per_m", s, tf.deck_displacement[:, 1::2], f"hull elastic deck slope under each saddle {per}", "rad/m")
+    _complex(
+        v,
+        "deck_deflection_transfer_m_per_m",
+        s,
+        tf.deck_displacement[:, 0::2],
+        f"hull elastic deck deflection under each saddle {per}",
+        "m/m",
+    )
+    _complex(
+        v, "deck_slope_transfer_rad_per_m", s, tf.deck_displacement[:, 1::2], f"hull elastic deck slope under each saddle {per}", "rad/m"
+    )
     _complex(v, "saddle_compression_transfer_m_per_m", s, tf.saddle_compression_m, f"saddle compression (linear model) {per}", "m/m")
     _complex(v, "saddle_force_transfer_N_per_m", s, tf.saddle_force_N, f"saddle force, compression-only part (linear model) {per}", "N/m")
-    _complex(v, "bending_moment_transfer_Nm_per_m", x, tf.bending_moment_Nm, f"cargo bending moment, sagging + (linear model) {per}", "N m/m")
+    _complex(
+        v, "bending_moment_transfer_Nm_per_m", x, tf.bending_moment_Nm, f"cargo bending moment, sagging + (linear model) {per}", "N m/m"
+    )
     for key, stats, unit, tag, spectrum_unit, label in (
         ("saddle_force", e.saddle_force, "N", "N", "N2 s/rad", "saddle force"),
         ("saddle_compression", e.saddle_compression, "m", "m", "m2 s/rad", "saddle compression"),
@@ -167,16 +200,29 @@ def seastate_dataset(
         ("bending_stress", e.bending_stress, "Pa", "Pa", "Pa2 s/rad", "cargo bending stress"),
     ):
         dims = ("saddle",) if key.startswith("saddle") else ("x_moment_m",)
-        v[f"{key}_spectrum_{tag}2_s_per_rad"] = _var(("omega_rad_s",) + dims, stats.spectrum, f"response spectrum of the {label} (linear)", spectrum_unit)
+        v[f"{key}_spectrum_{tag}2_s_per_rad"] = _var(
+            ("omega_rad_s",) + dims, stats.spectrum, f"response spectrum of the {label} (linear)", spectrum_unit
+        )
         v[f"{key}_std_{tag}"] = _var(dims, stats.sigma, f"standard deviation of the {label} (linear, spectral)", unit)
-        v[f"{key}_zero_crossing_period_s"] = _var(dims, stats.zero_crossing_period_s, f"mean zero-crossing period of the {label} (linear, spectral)", "s")
-        v[f"{key}_mpm_dynamic_{tag}"] = _var(dims, stats.mpm, f"Rayleigh most probable maximum of the dynamic {label} over the duration (linear)", unit)
+        v[f"{key}_zero_crossing_period_s"] = _var(
+            dims, stats.zero_crossing_period_s, f"mean zero-crossing period of the {label} (linear, spectral)", "s"
+        )
+        v[f"{key}_mpm_dynamic_{tag}"] = _var(
+            dims, stats.mpm, f"Rayleigh most probable maximum of the dynamic {label} over the duration (linear)", unit
+        )
     sw = e.still_water
     v["still_water_saddle_force_N"] = _var(("saddle",), sw.saddle_force_N, "still-water saddle force (linear)", "N")
     v["still_water_saddle_compression_m"] = _var(("saddle",), sw.saddle_compression_m, "still-water saddle compression (linear)", "m")
-    v["still_water_bending_moment_Nm"] = _var(("x_moment_m",), sw.bending_moment_Nm, "still-water cargo bending moment, sagging + (linear)", "N m")
+    v["still_water_bending_moment_Nm"] = _var(
+        ("x_moment_m",), sw.bending_moment_Nm, "still-water cargo bending moment, sagging + (linear)", "N m"
+    )
     v["still_water_bending_stress_Pa"] = _var(("x_moment_m",), sw.bending_stress_Pa, "still-water cargo bending stress (linear)", "Pa")
-    v["uplift_per_hour_per_saddle"] = _var(("saddle",), e.uplift_per_hour_per_saddle, "expected downward zero crossings of the saddle compression per hour (linear, Rice)", "1/h")
+    v["uplift_per_hour_per_saddle"] = _var(
+        ("saddle",),
+        e.uplift_per_hour_per_saddle,
+        "expected downward zero crossings of the saddle compression per hour (linear, Rice)",
+        "1/h",
+    )
     models, methods = ["linear", "nonlinear"], ["spectral", "monte_carlo", "design_wave"]
     for q, (long_name, unit) in QUANTITIES.items():
         table = np.full((2, 3), np.nan)
@@ -200,8 +246,14 @@ def seastate_dataset(
             "x_moment_m": _var(("x_moment_m",), tf.bending_moment_x_m, "position along the cargo from its aft end", "m"),
             "model": xr.Variable(("model",), models, {"long_name": "cargo model (linear: bilateral saddles)", "units": "1"}),
             # not "method": xarray's .sel(method=...) is taken
-            "estimate_method": xr.Variable(("estimate_method",), methods, {"long_name": "method of the extremes (seastate.csv column 'method')", "units": "1"}),
-            **({"design_wave": _var(("design_wave",), np.arange(len(design.waves)), "design wave index", "1")} if design is not None else {}),
+            "estimate_method": xr.Variable(
+                ("estimate_method",), methods, {"long_name": "method of the extremes (seastate.csv column 'method')", "units": "1"}
+            ),
+            **(
+                {"design_wave": _var(("design_wave",), np.arange(len(design.waves)), "design wave index", "1")}
+                if design is not None
+                else {}
+            ),
         },
         attrs={
             "title": f"seafast sea state: {case.name}",

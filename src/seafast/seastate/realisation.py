@@ -32,12 +32,14 @@ Why a coarse and a fine grid: a 3-hour record at the integrator's step is ~10^6 
 channel; the linear parts vary at wave frequencies (< 4 rad/s) and are exact on the coarse grid.
 (Slightly over the house's ~400 lines: the plan and the realisation that reads it stay together.)
 
-Size: over 400 lines because one realisation's synthesis, linear maxima, windowed nonlinear march and statistics share one plan and one time grid; they are pure functions of it.
+Size: over 400 lines because one realisation's synthesis, linear maxima, windowed nonlinear march and
+statistics share one plan and one time grid; they are pure functions of it.
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -192,12 +194,13 @@ class RealisationPlan:
 
 
 @numba.njit(cache=True)
-def _linear_samples(d_tot, k, g, U, moment_static, modulus):  # pragma: no cover - compiled
+def _linear_samples(  # pragma: no cover - compiled
+    d_tot: NDArray, k: NDArray, g: NDArray, U: NDArray, moment_static: NDArray, modulus: NDArray
+) -> NDArray:
     """Per coarse sample: max_s k d, max_s d, max_x |M|, max_x |M| / Z (M = M_0 + U g)."""
     n_t, n_s = d_tot.shape
     n_x, n_r = U.shape
     out = np.empty((n_t, 4))
-    M = np.empty(n_x)
     for t in range(n_t):
         f = -np.inf
         d = -np.inf
@@ -234,12 +237,14 @@ def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: 
     return top if top > 0 else float(omega[-1])
 
 
-def _density(case: Case, spectrum: WaveSpectrum):  # type: ignore[no-untyped-def]
+def _density(case: Case, spectrum: WaveSpectrum) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """S(omega) of the case's spectrum anywhere (parametric formulas; tables interpolated as the spectrum does)."""
     ss = case.sea_state
     if ss.spectrum in ("jonswap", "pierson_moskowitz"):
         gamma = 1.0 if ss.spectrum == "pierson_moskowitz" else float(ss.peak_enhancement)
-        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)  # type: ignore[arg-type]
+        # set: the spectrum passed here was built from this case, which refuses a parametric sea without them
+        assert ss.significant_height_m is not None and ss.peak_period_s is not None
+        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)
         return lambda w: jonswap_density(w, hs, tp, gamma)
     # a table is linear between its rows, which the spectrum's grid keeps: interpolating the grid is exact
     return lambda w: np.interp(w, spectrum.omega_rad_s, spectrum.density_m2_s_per_rad, left=0.0, right=0.0)
@@ -285,13 +290,13 @@ def realisation_plan(
     ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
     grid = synthesis_grid((lo, hi), density, ss.duration_s, dt_c_max)
     transfer = interpolate_transfer(omega_i, channels, grid.omega_rad_s)
-    system = modal_correction(
-        model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model)
-    )
+    system = modal_correction(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))
     beam = model.cargo
-    recover = lambda q: bending_moment_line(  # noqa: E731 - moment line of displacement rows (..., n_c)
-        beam.node_x_m, q, beam.element_bending_stiffness_Nm2, None, None, MOMENT_POINTS_PER_ELEMENT
-    )[1]
+
+    def recover(q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The bending-moment line [N m] of displacement rows (..., n_c)."""
+        return bending_moment_line(beam.node_x_m, q, beam.element_bending_stiffness_Nm2, None, None, MOMENT_POINTS_PER_ELEMENT)[1]
+
     moment_modes = recover(system.modes.T).T
     moment_residual = recover(system.residual_displacement.T).T
     modulus = tf.bending_section_modulus_m3
@@ -355,14 +360,17 @@ class RealisationTimeSeries:
 
 def _model_record(F: float, M: float, S: float, us: float, ud: float, lifted: float, events: int) -> dict[str, Any]:
     return {
-        "F_N": float(F), "M_b_Nm": float(M), "sigma_b_Pa": float(S), "u_s_m": float(max(us, 0.0)), "u_d_m": float(max(ud, 0.0)),
-        "time_lifted_fraction": float(lifted), "uplift_events": int(events),
+        "F_N": float(F),
+        "M_b_Nm": float(M),
+        "sigma_b_Pa": float(S),
+        "u_s_m": float(max(us, 0.0)),
+        "u_d_m": float(max(ud, 0.0)),
+        "time_lifted_fraction": float(lifted),
+        "uplift_events": int(events),
     }
 
 
-def evaluate_realisation(
-    plan: RealisationPlan, index: int, capture: bool = False
-) -> tuple[dict[str, Any], RealisationTimeSeries | None]:
+def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = False) -> tuple[dict[str, Any], RealisationTimeSeries | None]:
     """Maxima and uplift statistics of realisation ``index``, linear and nonlinear.
 
     Returns
@@ -384,14 +392,17 @@ def evaluate_realisation(
     g = X[:, n_s:]
     # ------------------------------------------------------------ linear model, per coarse sample
     U = plan.moment_basis
-    per_sample = _linear_samples(
-        np.ascontiguousarray(d_tot), k, np.ascontiguousarray(g), U, plan.moment_static_Nm, plan.section_modulus_m3
-    )
+    per_sample = _linear_samples(np.ascontiguousarray(d_tot), k, np.ascontiguousarray(g), U, plan.moment_static_Nm, plan.section_modulus_m3)
     force_t, comp_t, moment_t, stress_t = per_sample.T
     below = d_tot < 0.0
     lifted_t = below.any(axis=1)
     linear = _model_record(
-        force_t.max(), moment_t.max(), stress_t.max(), comp_t.max(), 0.0, lifted_t.mean(),
+        force_t.max(),
+        moment_t.max(),
+        stress_t.max(),
+        comp_t.max(),
+        0.0,
+        lifted_t.mean(),
         int(np.count_nonzero(~below[:-1] & below[1:])),
     )
     cov = np.cov(g, rowvar=False, bias=True).reshape(g.shape[1], g.shape[1])
@@ -406,7 +417,7 @@ def evaluate_realisation(
     nl = np.zeros(5)
     lifted_steps = events = windows = window_steps = 0
     solved = True
-    every = max(int(round(plan.settings.capture_step_s / grid.time_step_s)), 1) if capture else 0
+    every = max(round(plan.settings.capture_step_s / grid.time_step_s), 1) if capture else 0
     n_b = n_tc // every if capture else 0
     cap_comp = np.zeros((n_b, n_s))
     cap_lift = np.zeros((n_b, n_s), dtype=bool)
@@ -425,13 +436,24 @@ def evaluate_realisation(
         else:
             start, state = (i - 1) * ratio, MarchState.at_rest(plan.system)
         out = march_window(
-            plan.system, coef, ratio, plan.compression_static_m, trigger, start, n_fine - 1, state,
-            tolerance_m=plan.tolerance_m, moments=plan.moments, capture_every=every * ratio,
-            capture_compression=cap_comp, capture_lifted=cap_lift,
+            plan.system,
+            coef,
+            ratio,
+            plan.compression_static_m,
+            trigger,
+            start,
+            n_fine - 1,
+            state,
+            tolerance_m=plan.tolerance_m,
+            moments=plan.moments,
+            capture_every=every * ratio,
+            capture_compression=cap_comp,
+            capture_lifted=cap_lift,
         )
         covered[start // ratio + 1 : out.end // ratio + 1] = True
-        nl = np.maximum(nl, [out.max_saddle_force_N, out.max_bending_moment_Nm, out.max_bending_stress_Pa,
-                             out.max_compression_m, out.max_gap_m])
+        nl = np.maximum(
+            nl, [out.max_saddle_force_N, out.max_bending_moment_Nm, out.max_bending_stress_Pa, out.max_compression_m, out.max_gap_m]
+        )
         lifted_steps += out.lifted_steps
         events += out.uplift_events
         solved = solved and out.solved
@@ -462,6 +484,12 @@ def evaluate_realisation(
         nl_comp = np.where(covered[rows][:, None], cap_comp, d_tot[rows])
         wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size))[rows]
         series = RealisationTimeSeries(
-            int(index), np.asarray(rows * grid.time_step_s, dtype=np.float64), wave, lin_force, k * np.maximum(nl_comp, 0.0), cap_lift, plan.saddle_x_m
+            int(index),
+            np.asarray(rows * grid.time_step_s, dtype=np.float64),
+            wave,
+            lin_force,
+            k * np.maximum(nl_comp, 0.0),
+            cap_lift,
+            plan.saddle_x_m,
         )
     return record, series

@@ -21,8 +21,9 @@ open: its u_d is 0, as in ``seafast run``; whether that can be trusted is what
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -139,9 +140,7 @@ class SpectralExtremes:
         return {"model": "linear", "method": "spectral", **{k: float(v) for k, v in self.totals.items()}, "converged": True}
 
 
-def spectral_extremes(
-    tf: TransferFunctions, spectrum: WaveSpectrum, still: StillWater, duration_s: float
-) -> SpectralExtremes:
+def spectral_extremes(tf: TransferFunctions, spectrum: WaveSpectrum, still: StillWater, duration_s: float) -> SpectralExtremes:
     """Linear spectral extremes over ``duration_s`` (see the module docstring)."""
     if not np.array_equal(tf.omega_rad_s, spectrum.omega_rad_s):
         raise ValueError("spectral_extremes: the transfer functions must be on the spectrum's grid")

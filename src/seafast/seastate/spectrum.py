@@ -154,8 +154,10 @@ def read_spectrum_table(path: str | Path, key: str = "sea_state.spectrum") -> tu
     try:
         lines = [ln for ln in p.read_text(encoding="utf-8").splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     except (OSError, UnicodeDecodeError) as exc:
-        raise CaseError(f"{key} = '{p}': cannot read it ({getattr(exc, 'strerror', None) or exc}); allowed: jonswap, "
-                        "pierson_moskowitz or a CSV file with columns omega_rad_s,S_m2_s_per_rad") from None
+        raise CaseError(
+            f"{key} = '{p}': cannot read it ({getattr(exc, 'strerror', None) or exc}); allowed: jonswap, "
+            "pierson_moskowitz or a CSV file with columns omega_rad_s,S_m2_s_per_rad"
+        ) from None
     rows = list(csv.reader(lines))
     header = [h.strip() for h in rows[0]] if rows else []
     columns = ("omega_rad_s", "S_m2_s_per_rad")
@@ -239,23 +241,37 @@ def sea_state_spectrum(case: Case, n_points: int = DEFAULT_GRID_POINTS) -> WaveS
     """
     ss = case.sea_state
     if ss.spectrum in ("jonswap", "pierson_moskowitz"):
-        for key in ("significant_height_m", "peak_period_s"):
-            if getattr(ss, key) is None:
-                raise CaseError(f"sea_state.{key} = null: required for the {ss.spectrum} spectrum; give a value > 0")
-        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)  # type: ignore[arg-type]
+        if ss.significant_height_m is None or ss.peak_period_s is None:
+            key = "significant_height_m" if ss.significant_height_m is None else "peak_period_s"
+            raise CaseError(f"sea_state.{key} = null: required for the {ss.spectrum} spectrum; give a value > 0")
+        hs, tp = float(ss.significant_height_m), float(ss.peak_period_s)
         gamma = 1.0 if ss.spectrum == "pierson_moskowitz" else float(ss.peak_enhancement)
         wp = 2.0 * math.pi / tp
         above = _parametric_share_above(OMEGA_MAX_RAD_S / wp, gamma)
         if above > MAX_VARIANCE_OUTSIDE:
-            tp_min = 2.0 * math.pi / OMEGA_MAX_RAD_S * brentq(lambda u: _parametric_share_above(u, gamma) - MAX_VARIANCE_OUTSIDE, 1.01, 100.0)
-            raise _refuse("sea_state.peak_period_s", tp, above, f"above {OMEGA_MAX_RAD_S:g} rad/s (waves shorter than "
-                          f"{2 * math.pi * case.model.gravity_m_per_s2 / OMEGA_MAX_RAD_S**2:.1f} m)",
-                          f"peak_period_s >= {tp_min:.2f} s for this spectrum")
+            tp_min = (
+                2.0 * math.pi / OMEGA_MAX_RAD_S * brentq(lambda u: _parametric_share_above(u, gamma) - MAX_VARIANCE_OUTSIDE, 1.01, 100.0)
+            )
+            raise _refuse(
+                "sea_state.peak_period_s",
+                tp,
+                above,
+                f"above {OMEGA_MAX_RAD_S:g} rad/s (waves shorter than "
+                f"{2 * math.pi * case.model.gravity_m_per_s2 / OMEGA_MAX_RAD_S**2:.1f} m)",
+                f"peak_period_s >= {tp_min:.2f} s for this spectrum",
+            )
         below = _parametric_share_below(OMEGA_MIN_RAD_S / wp, gamma)
         if below > MAX_VARIANCE_OUTSIDE:
-            tp_max = 2.0 * math.pi / OMEGA_MIN_RAD_S * brentq(lambda u: _parametric_share_below(u, gamma) - MAX_VARIANCE_OUTSIDE, 0.05, 0.99)
-            raise _refuse("sea_state.peak_period_s", tp, below, f"below {OMEGA_MIN_RAD_S:g} rad/s",
-                          f"peak_period_s <= {tp_max:.1f} s for this spectrum")
+            tp_max = (
+                2.0 * math.pi / OMEGA_MIN_RAD_S * brentq(lambda u: _parametric_share_below(u, gamma) - MAX_VARIANCE_OUTSIDE, 0.05, 0.99)
+            )
+            raise _refuse(
+                "sea_state.peak_period_s",
+                tp,
+                below,
+                f"below {OMEGA_MIN_RAD_S:g} rad/s",
+                f"peak_period_s <= {tp_max:.1f} s for this spectrum",
+            )
         ref = wp * np.geomspace(0.3, 60.0, 8001)
         ref_s = jonswap_density(ref, hs, tp, gamma)
         grid = spectrum_grid(ref, ref_s, n_points)

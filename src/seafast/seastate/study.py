@@ -37,17 +37,19 @@ def evaluate_sea_state(case: Case) -> list[dict[str, Any]]:
     held = not any(s.lifted_off for s in design.solutions)
     rows = []
     for model, totals, converged in (("linear", analysis.extremes.totals, True), ("nonlinear", design.totals, design.converged)):
-        rows.append({
-            "load_case": SEA_STATE_LOAD_CASE,
-            "model": model,
-            "u_c_m": None,
-            "u_s_m": float(totals["u_s_m"]),
-            "u_d_m": float(totals["u_d_m"]),
-            "F_N": float(totals["F_N"]),
-            "M_b_Nm": float(totals["M_b_Nm"]),
-            "sigma_b_Pa": float(totals["sigma_b_Pa"]),
-            "converged": bool(converged),
-            "contact_preserved": bool(held),
-            "uplift_per_hour": float(totals["uplift_per_hour"]),
-        })
+        rows.append(
+            {
+                "load_case": SEA_STATE_LOAD_CASE,
+                "model": model,
+                "u_c_m": None,
+                "u_s_m": float(totals["u_s_m"]),
+                "u_d_m": float(totals["u_d_m"]),
+                "F_N": float(totals["F_N"]),
+                "M_b_Nm": float(totals["M_b_Nm"]),
+                "sigma_b_Pa": float(totals["sigma_b_Pa"]),
+                "converged": bool(converged),
+                "contact_preserved": bool(held),
+                "uplift_per_hour": float(totals["uplift_per_hour"]),
+            }
+        )
     return rows

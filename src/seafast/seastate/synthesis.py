@@ -23,8 +23,8 @@ Units SI; the spectral density is one-sided [m^2 s/rad].
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -104,14 +104,14 @@ def synthesis_grid(
     """
     T = float(duration_s)
     d_omega = 2.0 * math.pi / T
-    j0 = max(int(math.ceil(band_rad_s[0] / d_omega)), 1)
-    j1 = int(math.floor(band_rad_s[1] / d_omega))
+    j0 = max(math.ceil(band_rad_s[0] / d_omega), 1)
+    j1 = math.floor(band_rad_s[1] / d_omega)
     if j1 < j0:
         raise ValueError(f"duration_s = {duration_s!r} is too short to resolve the band {band_rad_s} rad/s")
     omega = np.asarray(np.arange(j0, j1 + 1) * d_omega, dtype=np.float64)
     S = np.asarray(density_m2_s_per_rad(omega), dtype=np.float64)
     amplitude = np.asarray(np.sqrt(2.0 * np.maximum(S, 0.0) * d_omega), dtype=np.float64)
-    n = max(int(math.ceil(T / float(max_time_step_s))), 2 * (j1 + 1) + 2)
+    n = max(math.ceil(T / float(max_time_step_s)), 2 * (j1 + 1) + 2)
     n = next_fast_len(n, real=True)
     while n % 2:
         n = next_fast_len(n + 1, real=True)

@@ -21,8 +21,9 @@ import os
 import sys
 import threading
 import time
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
-from typing import Any, Callable, Iterable, Iterator
+from typing import Any
 
 __all__ = ["StoreError", "TaskStore", "run_tasks", "progress_bar"]
 
@@ -53,7 +54,7 @@ class TaskStore:
         self.directory.mkdir(parents=True, exist_ok=True)
         self._check_manifest(manifest)
         self.completed: dict[int, dict[str, Any]] = self._read()
-        self._handle = open(self.path, "ab")
+        self._handle = open(self.path, "ab")  # noqa: SIM115 - appended to until close() / __exit__
 
     @property
     def path(self) -> Path:
@@ -120,7 +121,7 @@ class TaskStore:
     def close(self) -> None:
         self._handle.close()
 
-    def __enter__(self) -> "TaskStore":
+    def __enter__(self) -> TaskStore:
         return self
 
     def __exit__(self, *exc: object) -> None:

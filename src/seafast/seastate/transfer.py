@@ -37,7 +37,6 @@ from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import solve_harmonic, solve_linear
 
-
 __all__ = ["TransferFunctions", "StillWater", "transfer_functions", "still_water", "MOMENT_POINTS_PER_ELEMENT"]
 
 MOMENT_POINTS_PER_ELEMENT = 2
@@ -161,7 +160,7 @@ def _harmonic_solves(
     n, u = K.shape[0], _HALF_BANDWIDTH
     full = K + M + D
     if np.any(np.triu(full, u + 1)) or np.any(np.tril(full, -u - 1)):  # pragma: no cover - a new element type
-        return np.stack([solve_harmonic(model, float(om), f, xo) for om, f, xo in zip(omega_rad_s, cargo_load, deck)])
+        return np.stack([solve_harmonic(model, float(om), f, xo) for om, f, xo in zip(omega_rad_s, cargo_load, deck, strict=True)])
 
     def band(A: NDArray[np.float64]) -> NDArray[np.float64]:
         ab = np.zeros((2 * u + 1, n))
@@ -216,9 +215,7 @@ def transfer_functions(case: Case, model: StructuralModel, omega_rad_s: ArrayLik
     # The assembly is linear in the deck motion and in omega^2 (heave, pitch): assemble unit
     # heave and unit pitch once at omega = 1 and superpose (the same numbers as one assembly
     # per frequency, without n_w dense mass products).
-    unit = [
-        assemble_excitation(model, aft, 1.0, None, None, RigidBodyAmplitudes(h, p, ref_x)) for h, p in ((1.0, 0.0), (0.0, 1.0))
-    ]
+    unit = [assemble_excitation(model, aft, 1.0, None, None, RigidBodyAmplitudes(h, p, ref_x)) for h, p in ((1.0, 0.0), (0.0, 1.0))]
     w2 = (w**2)[:, None]
     load = w2 * (heave[:, None] * unit[0].cargo_load_N[1] + pitch[:, None] * unit[1].cargo_load_N[1])
     line = w2 * (heave[:, None] * unit[0].cargo_line_load_N_per_m[1] + pitch[:, None] * unit[1].cargo_line_load_N_per_m[1])
@@ -227,9 +224,7 @@ def transfer_functions(case: Case, model: StructuralModel, omega_rad_s: ArrayLik
     disp = _harmonic_solves(model, w, load, deck)
     compression = deck[:, model.saddle_deck_dof] - disp[:, model.saddle_cargo_dof]
     beam = model.cargo
-    x_m, moment = bending_moment_line(
-        beam.node_x_m, disp, beam.element_bending_stiffness_Nm2, None, line, MOMENT_POINTS_PER_ELEMENT
-    )
+    x_m, moment = bending_moment_line(beam.node_x_m, disp, beam.element_bending_stiffness_Nm2, None, line, MOMENT_POINTS_PER_ELEMENT)
     assert compression.shape == (n_w, n_s)
     return TransferFunctions(
         omega_rad_s=w,

@@ -17,6 +17,10 @@ part), ``u_s_m`` the largest compression, ``u_d_m`` the largest gap, ``M_b_Nm`` 
 the largest absolute bending moment and stress over the moment sample points of the cargo
 (element ends and midpoints, as ``seafast run``), still water included. Units SI; compression
 positive when compressed; sagging moment positive.
+
+Size: just over 400 lines as ruff formats it (one keyword argument a line in a call that does not
+fit on one line; about 390 lines before); the operators, the solves and the maxima share the wave's
+harmonic layout.
 """
 
 from __future__ import annotations
@@ -179,14 +183,16 @@ def wave_operators(
     if options.harmonics is None:
         raise ValueError("wave_operators: options.harmonics must be set (a fixed H; the amplitude search reuses the operators)")
     fixed = options.with_harmonics(int(options.harmonics))
-    H, N = int(fixed.harmonics), int(fixed.time_samples)  # type: ignore[arg-type]
+    H, N = fixed.fixed_grid()
     ops = condensed_operators(model, excitation, H)
     mm = moment_map(model) if moments is None else moments
     # the linear solution and the line loads live on the excitation's harmonics only
     n_k = min(excitation.harmonic_count, H + 1)
     moment = np.zeros((H + 1, mm.x_m.size), dtype=complex)
-    moment[:n_k] = (_real_map(mm.displacement_map, ops.linear_cargo_displacement[:n_k].T)
-                    + _real_map(mm.load_map, excitation.cargo_line_load_N_per_m[:n_k].T)).T
+    moment[:n_k] = (
+        _real_map(mm.displacement_map, ops.linear_cargo_displacement[:n_k].T)
+        + _real_map(mm.load_map, excitation.cargo_line_load_N_per_m[:n_k].T)
+    ).T
     moment[0] = moment[0].real + mm.gravity_moment_Nm
     Y = ops.cargo_influence  # (H+1, n_c, n_s)
     influence = _real_map(mm.displacement_map, Y.transpose(1, 0, 2).reshape(Y.shape[1], -1))
@@ -358,9 +364,11 @@ def solve_wave_adaptive(
     """
     mm = moment_map(model) if moments is None else moments
     exc = HarmonicExcitation(
-        unit.omega_rad_s, np.vstack([unit.deck_displacement[:1], amplitude * unit.deck_displacement[1:]]),
+        unit.omega_rad_s,
+        np.vstack([unit.deck_displacement[:1], amplitude * unit.deck_displacement[1:]]),
         np.vstack([unit.cargo_load_N[:1], amplitude * unit.cargo_load_N[1:]]),
-        np.vstack([unit.cargo_line_load_N_per_m[:1], amplitude * unit.cargo_line_load_N_per_m[1:]]), unit.source,
+        np.vstack([unit.cargo_line_load_N_per_m[:1], amplitude * unit.cargo_line_load_N_per_m[1:]]),
+        unit.source,
     )
     opts = HBMOptions() if options is None else options
     r = solve_hbm(model, exc, opts)
@@ -379,8 +387,15 @@ def solve_wave_adaptive(
     law = opts.law
     return WaveSolution(
         amplitude=float(amplitude),
-        maxima=_maxima(complex_to_real_harmonics(C), complex_to_real_harmonics(moment), inverse,
-                       np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float), law, mm.section_modulus_m3, True),
+        maxima=_maxima(
+            complex_to_real_harmonics(C),
+            complex_to_real_harmonics(moment),
+            inverse,
+            np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float),
+            law,
+            mm.section_modulus_m3,
+            True,
+        ),
         linear_maxima=None,
         converged=bool(r.converged),
         residual_norm=float(r.residual_norm),

@@ -91,7 +91,7 @@ class ContactLaw:
         x = kappa * d
         return k * np.logaddexp(0.0, x) / kappa, k * expit(x)
 
-    def with_regularisation(self, regularisation_per_m: float) -> "ContactLaw":
+    def with_regularisation(self, regularisation_per_m: float) -> ContactLaw:
         """The same law with another kappa [1/m]."""
         return ContactLaw(self.name, regularisation_per_m)
 

@@ -24,7 +24,8 @@ the omega component of the unit tangent, whose sign changes at the folds
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -53,6 +54,7 @@ class _Branch:
         self.model = model
         self.excitation_at = excitation_at
         self.options = options
+        self.harmonics, self.time_samples = options.fixed_grid()  # one branch, at a fixed H
         self.law: ContactLaw = options.law
         self._ops_cache: dict[float, CondensedOperators] = {}
 
@@ -62,14 +64,14 @@ class _Branch:
             ex = self.excitation_at(float(omega))
             if not np.isclose(ex.omega_rad_s, omega, rtol=1e-12, atol=0.0):
                 raise ValueError(f"excitation_at({omega!r}) returned an excitation at omega = {ex.omega_rad_s!r}")
-            ops = condensed_operators(self.model, ex, self.options.harmonics)  # type: ignore[arg-type]
+            ops = condensed_operators(self.model, ex, self.harmonics)
             if len(self._ops_cache) > 8:
                 self._ops_cache.clear()
             self._ops_cache[omega] = ops
         return ops
 
     def problem(self, omega: float) -> CondensedProblem:
-        return CondensedProblem(self.ops(omega), self.options.time_samples)  # type: ignore[arg-type]
+        return CondensedProblem(self.ops(omega), self.time_samples)
 
     def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, CondensedProblem]:
         p = self.problem(omega)
@@ -90,14 +92,14 @@ class _Branch:
     def metrics(self, u: NDArray, omega: float) -> tuple[float, float, float, bool]:
         ops = self.ops(omega)
         n_h, n_s = 2 * ops.harmonics + 1, ops.saddle_count
-        inverse, forward = real_dft_matrices(ops.harmonics, self.options.time_samples)  # type: ignore[arg-type]
+        inverse, forward = real_dft_matrices(ops.harmonics, self.time_samples)
         U = u.reshape(n_h, n_s)
         delta = inverse @ U
         force = self.law.force(delta, ops.saddle_stiffness_N_per_m)
         corr = forward @ (force - ops.saddle_stiffness_N_per_m * delta)
         C = real_to_complex_harmonics(corr)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
-        z = harmonics_to_time(X[:, 0::2], self.options.time_samples)  # type: ignore[arg-type]
+        z = harmonics_to_time(X[:, 0::2], self.time_samples)
         return float(np.max(force)), float(max(-np.min(delta), 0.0)), float(np.max(np.abs(z))), bool(np.all(delta > 0.0))
 
 
@@ -238,7 +240,7 @@ def frequency_response(
         residual = np.inf
         try:
             F, (state, p, uk, wk) = augmented(yk, y_pred, t)
-            for its in range(1, corrector_iterations + 1):
+            for its in range(1, corrector_iterations + 1):  # noqa: B007 - the count sets the next step length below
                 residual = float(np.max(np.abs(F[:-1])))
                 if residual <= tol_corrector and abs(F[-1]) <= 1e-8:
                     ok = True
@@ -310,7 +312,7 @@ def frequency_response(
 def _finish(
     pts: list, extra: list[tuple[NDArray, float, float]], message: str, steps: int, options: HBMOptions, end: BranchEnd
 ) -> FrequencyResponseBranch:
-    a: list[Any] = list(zip(*pts)) if pts else [[]] * 6
+    a: list[Any] = list(zip(*pts, strict=True)) if pts else [[]] * 6
     return FrequencyResponseBranch(
         omega_rad_s=np.asarray(a[0], dtype=float),
         max_saddle_force_N=np.asarray(a[1], dtype=float),

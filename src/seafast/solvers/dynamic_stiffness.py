@@ -129,7 +129,7 @@ def solve_dynamic_stack(q: QuadraticMatrices, omegas: NDArray, rhs: NDArray) -> 
     (:func:`seafast.solvers.banded.solve_dynamic_band_stack`): its cost is the arithmetic, where
     LAPACK's banded LU spends most of its time in per-column BLAS calls at this bandwidth.
     """
-    n_k, n, n_rhs = rhs.shape
+    _, n, _ = rhs.shape
     if q.bandwidth < n // 4:
         return solve_dynamic_band_stack(q.banded_stiffness, q.banded_mass, q.banded_damping, np.asarray(omegas, dtype=float), rhs)
     return np.stack([solve_dynamic(q, float(wk), rhs[k]) for k, wk in enumerate(omegas)])

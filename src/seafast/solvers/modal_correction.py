@@ -118,8 +118,12 @@ class ModalCorrectionSystem:
         poles, V = np.linalg.eig(S)
         V_inv = np.linalg.inv(V)
         Ps = self.saddle_mode_shape
-        as_complex = lambda a: np.asarray(a, dtype=np.complex128)  # noqa: E731 - eig's output type is not declared
-        return as_complex(Ps @ V[:m]), as_complex(poles), as_complex(V_inv[:, m:] @ Ps.T)
+        # complex arrays whatever eig returns (its output dtype depends on the eigenvalues found)
+        return (
+            np.asarray(Ps @ V[:m], dtype=np.complex128),
+            np.asarray(poles, dtype=np.complex128),
+            np.asarray(V_inv[:, m:] @ Ps.T, dtype=np.complex128),
+        )
 
 
 @dataclass(frozen=True)

@@ -28,8 +28,8 @@ Units: SI (rad/s, s, m, N). Nothing here prints or reads files.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -106,8 +106,14 @@ class _Held:
 
 
 def _hold(
-    model: StructuralModel, excitation: HarmonicExcitation, cutoff_rad_s: float, start: MarchState, steps: int,
-    tolerance: float, min_periods: int, max_periods: int,
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    cutoff_rad_s: float,
+    start: MarchState,
+    steps: int,
+    tolerance: float,
+    min_periods: int,
+    max_periods: int,
 ) -> _Held:
     """March whole periods at one frequency from a copy of ``start`` until the compressions repeat (or ``max_periods``)."""
     ops = condensed_operators(model, excitation, max(excitation.harmonic_count - 1, 1))
@@ -174,7 +180,9 @@ def stepped_sine_sweep(
     """
     w0, w1 = float(omega_start_rad_s), float(omega_end_rad_s)
     if not (w0 > 0 and w1 > 0 and w0 != w1 and math.isfinite(w0) and math.isfinite(w1)):
-        raise ValueError(f"omega_start_rad_s = {omega_start_rad_s!r}, omega_end_rad_s = {omega_end_rad_s!r}; allowed: two different positive frequencies")
+        raise ValueError(
+            f"omega_start_rad_s = {omega_start_rad_s!r}, omega_end_rad_s = {omega_end_rad_s!r}; allowed: two different positive frequencies"
+        )
     if not (0 < min_step_fraction <= step_fraction < 1):
         raise ValueError(f"step fractions {min_step_fraction!r}, {step_fraction!r}; allowed: 0 < min_step_fraction <= step_fraction < 1")
     if cutoff_rad_s is None:
@@ -187,8 +195,13 @@ def stepped_sine_sweep(
         steps = max(int(steps_per_period), 2 * math.ceil(6.0 * top / omega))
         return _hold(model, excitation_at(omega), float(cutoff_rad_s), state, steps, tolerance, min_periods, max_periods)
 
-    at_rest = MarchState(np.zeros(kept.mode_count), np.zeros(kept.mode_count), np.zeros(kept.mode_count),
-                         np.zeros(kept.saddle_count), np.zeros(kept.saddle_count, dtype=bool))
+    at_rest = MarchState(
+        np.zeros(kept.mode_count),
+        np.zeros(kept.mode_count),
+        np.zeros(kept.mode_count),
+        np.zeros(kept.saddle_count),
+        np.zeros(kept.saddle_count, dtype=bool),
+    )
     current = hold(w0, at_rest)
     omega = w0
     rows = [(omega, current)]

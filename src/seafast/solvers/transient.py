@@ -265,7 +265,9 @@ def modal_correction(
 
 # ====================================================================== compiled kernels
 @numba.njit(cache=True)
-def _solve_contact(d_pred, G, k, inverses, detached, tol):  # pragma: no cover - compiled
+def _solve_contact(  # pragma: no cover - compiled
+    d_pred: NDArray, G: NDArray, k: NDArray, inverses: NDArray, detached: NDArray, tol: float
+) -> tuple[NDArray, bool]:
     """Exact contact of one step; returns (delta, ok), updates ``detached`` in place."""
     n = d_pred.size
     delta = np.empty(n)
@@ -314,7 +316,7 @@ def _solve_contact(d_pred, G, k, inverses, detached, tol):  # pragma: no cover -
 
 
 @numba.njit(cache=True)
-def _bspline_row(coef, x):  # pragma: no cover - compiled
+def _bspline_row(coef: NDArray, x: float) -> NDArray:  # pragma: no cover - compiled
     """Cubic B-spline value of every channel at coarse position x (periodic coefficients (n, ch))."""
     n = coef.shape[0]
     i = int(np.floor(x))
@@ -323,15 +325,40 @@ def _bspline_row(coef, x):  # pragma: no cover - compiled
     w1 = (3.0 * t**3 - 6.0 * t**2 + 4.0) / 6.0
     w2 = (-3.0 * t**3 + 3.0 * t**2 + 3.0 * t + 1.0) / 6.0
     w3 = t**3 / 6.0
-    return (w0 * coef[(i - 1) % n] + w1 * coef[i % n] + w2 * coef[(i + 1) % n] + w3 * coef[(i + 2) % n])
+    return w0 * coef[(i - 1) % n] + w1 * coef[i % n] + w2 * coef[(i + 1) % n] + w3 * coef[(i + 2) % n]
 
 
 @numba.njit(cache=True)
 def _march(  # pragma: no cover - compiled
-    start, stop, ratio, coef, delta_static, trigger, dt, predictor, force_response, phi_b, G, k, inverses,
-    omega, mode_bound, tol_state, tol_sign, eta, deta, ddeta, c, detached,
-    moment_static, moment_basis, modulus, capture_every, capture_compression, capture_lifted,
-):
+    start: int,
+    stop: int,
+    ratio: float,
+    coef: NDArray,
+    delta_static: NDArray,
+    trigger: NDArray,
+    dt: float,
+    predictor: NDArray,
+    force_response: NDArray,
+    phi_b: NDArray,
+    G: NDArray,
+    k: NDArray,
+    inverses: NDArray,
+    omega: NDArray,
+    mode_bound: NDArray,
+    tol_state: float,
+    tol_sign: float,
+    eta: NDArray,
+    deta: NDArray,
+    ddeta: NDArray,
+    c: NDArray,
+    detached: NDArray,
+    moment_static: NDArray,
+    moment_basis: NDArray,
+    modulus: NDArray,
+    capture_every: int,
+    capture_compression: NDArray,
+    capture_lifted: NDArray,
+) -> tuple[int, NDArray, int, int, bool]:
     """March from fine step ``start`` (state given, updated in place) until quiet and untriggered, or ``stop``.
 
     Fine step p is at coarse position p / ratio of the B-spline coefficients ``coef`` (n_tc,
@@ -488,12 +515,12 @@ class MarchState:
     detached: NDArray[np.bool_]
 
     @staticmethod
-    def at_rest(system: ModalCorrection) -> "MarchState":
+    def at_rest(system: ModalCorrection) -> MarchState:
         m, n_s = system.mode_count, system.saddle_count
         return MarchState(np.zeros(m), np.zeros(m), np.zeros(m), np.zeros(n_s), np.zeros(n_s, dtype=bool))
 
     @staticmethod
-    def quasi_static(system: ModalCorrection, linear_compression_m: NDArray) -> "MarchState":
+    def quasi_static(system: ModalCorrection, linear_compression_m: NDArray) -> MarchState:
         """At rest in the exact-contact static state of ``linear_compression_m`` (n_s,).
 
         ``c`` from ``delta = delta_lin - G_0 c``, ``G_0 = B^T K^-1 B``, solved exactly by
@@ -561,11 +588,34 @@ def march_window(
     cl = np.zeros((0, n_s), dtype=bool) if capture_lifted is None else capture_lifted
     tol_sign = 1e-12 * max(float(np.max(np.abs(delta_static_m))), float(np.max(np.abs(coefficients[:, :n_s]))), 1e-9)
     end, maxima, lifted, events, solved = _march(
-        int(start), int(stop), float(ratio), coefficients, np.asarray(delta_static_m, dtype=float), trigger,
-        system.time_step_s, system.predictor, system.force_response, system.saddle_modes, system.receptance_m_per_N,
-        k, system.set_inverses, system.omega_rad_s, system.mode_deflection_bound, float(tolerance_m), tol_sign,
-        state.eta, state.eta_dot, state.eta_ddot, state.force_N, state.detached, ms, mb, mod,
-        int(capture_every), cc, cl,
+        int(start),
+        int(stop),
+        float(ratio),
+        coefficients,
+        np.asarray(delta_static_m, dtype=float),
+        trigger,
+        system.time_step_s,
+        system.predictor,
+        system.force_response,
+        system.saddle_modes,
+        system.receptance_m_per_N,
+        k,
+        system.set_inverses,
+        system.omega_rad_s,
+        system.mode_deflection_bound,
+        float(tolerance_m),
+        tol_sign,
+        state.eta,
+        state.eta_dot,
+        state.eta_ddot,
+        state.force_N,
+        state.detached,
+        ms,
+        mb,
+        mod,
+        int(capture_every),
+        cc,
+        cl,
     )
     F, u_s, u_d, M, sigma = (float(v) for v in maxima)
     return WindowOutcome(int(end), F, u_s, u_d, M, sigma, int(lifted), int(events), bool(solved))
@@ -594,9 +644,7 @@ class TransientRecord:
     solved: bool
 
 
-def integrate_record(
-    system: ModalCorrection, linear_compression_m: NDArray, *, initial: MarchState | None = None
-) -> TransientRecord:
+def integrate_record(system: ModalCorrection, linear_compression_m: NDArray, *, initial: MarchState | None = None) -> TransientRecord:
     """March one record of linear compressions sampled at the integrator's step.
 
     Parameters
@@ -620,10 +668,25 @@ def integrate_record(
     lifted = np.zeros((n_t, n_s), dtype=bool)
     compression[0] = d_lin[0] - system.saddle_displacement_m(state.eta, state.force_N)
     outcome = march_window(
-        system, coef, 1, np.zeros(n_s), np.ones(n_t, dtype=bool), 0, n_t - 1, state,
-        tolerance_m=0.0, capture_every=1, capture_compression=compression, capture_lifted=lifted,
+        system,
+        coef,
+        1,
+        np.zeros(n_s),
+        np.ones(n_t, dtype=bool),
+        0,
+        n_t - 1,
+        state,
+        tolerance_m=0.0,
+        capture_every=1,
+        capture_compression=compression,
+        capture_lifted=lifted,
     )
-    return TransientRecord(np.asarray(np.arange(n_t) * system.time_step_s, dtype=np.float64), compression, system.stiffness_N_per_m * np.maximum(compression, 0.0), outcome.solved)
+    return TransientRecord(
+        np.asarray(np.arange(n_t) * system.time_step_s, dtype=np.float64),
+        compression,
+        system.stiffness_N_per_m * np.maximum(compression, 0.0),
+        outcome.solved,
+    )
 
 
 # ====================================================================== periodic march
@@ -669,7 +732,7 @@ def march_periodic(
         largest linear compression, or after ``max_periods``.
     """
     d_lin = np.ascontiguousarray(linear_compression_m, dtype=float)
-    N, n_s = d_lin.shape
+    n_s = d_lin.shape[1]
     if n_s != system.saddle_count:
         raise ValueError(f"linear_compression_m has {n_s} columns; the model has {system.saddle_count} saddles")
     scale = max(float(np.max(np.abs(d_lin))), 1e-12)
@@ -678,7 +741,7 @@ def march_periodic(
     change = np.inf
     periods = 0
     delta = d_lin
-    for periods in range(1, int(max_periods) + 1):
+    for periods in range(1, int(max_periods) + 1):  # noqa: B007 - the count is returned
         delta = march_period(system, d_lin, state)
         if previous is not None:
             change = float(np.max(np.abs(delta - previous))) / scale
@@ -711,7 +774,17 @@ def march_period(system: ModalCorrection, linear_compression_m: NDArray[np.float
     lifted = np.zeros((N + 1, n_s), dtype=bool)
     captured[0] = d_lin[0] - system.saddle_displacement_m(state.eta, state.force_N)
     march_window(
-        system, coef, 1, np.zeros(n_s), np.ones(N, dtype=bool), 0, N, state, tolerance_m=0.0,
-        capture_every=1, capture_compression=captured, capture_lifted=lifted,
+        system,
+        coef,
+        1,
+        np.zeros(n_s),
+        np.ones(N, dtype=bool),
+        0,
+        N,
+        state,
+        tolerance_m=0.0,
+        capture_every=1,
+        capture_compression=captured,
+        capture_lifted=lifted,
     )
     return np.roll(captured[1:], 1, axis=0)  # t_1 .. t_N, and t_N is t_0 of the next period

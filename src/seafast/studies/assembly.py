@@ -11,8 +11,9 @@ import csv
 import json
 import math
 import os
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -174,7 +175,7 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
     data_vars["error"] = (grid.keys, error.reshape(grid.shape).astype(str), {"units": "1", "long_name": _LONG_NAMES["error"]})
     data_vars["eval_seconds"] = (grid.keys, seconds.reshape(grid.shape), {"units": "s", "long_name": _LONG_NAMES["eval_seconds"]})
     coords: dict[str, Any] = {}
-    for axis, key, c in zip(grid.spec.axes, grid.keys, grid.coordinates):
+    for axis, key, c in zip(grid.spec.axes, grid.keys, grid.coordinates, strict=True):
         try:
             base_value = float(grid.base_value(key))
         except (StudyError, TypeError, ValueError):

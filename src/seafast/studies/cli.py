@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 from seafast.config.loader import CaseError, parse_overrides
 
@@ -63,9 +64,13 @@ def _configure(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")
     parser.add_argument("--batch-size", type=int, default=None, metavar="N", help="points per task (default: automatic, at most 25)")
-    parser.add_argument("--response", choices=("regular_wave", "sea_state"), default=None,
-                        help="judge points on the regular wave (seafast run) or on their sea state's most probable maxima "
-                        "(linear spectral, nonlinear design waves); overrides the study file's response")
+    parser.add_argument(
+        "--response",
+        choices=("regular_wave", "sea_state"),
+        default=None,
+        help="judge points on the regular wave (seafast run) or on their sea state's most probable maxima "
+        "(linear spectral, nonlinear design waves); overrides the study file's response",
+    )
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     parser.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
@@ -103,8 +108,15 @@ def _error(message: str) -> int:
 
 def cmd_study(args: argparse.Namespace) -> int:
     """Handler of ``seafast study``; returns the exit code."""
-    from seafast.studies.limits import RANKING_COLUMNS, DesignLimits, compliance_rows, format_table, rank_compliant, write_rows_csv
-    from seafast.studies.limits import COMPLIANCE_COLUMNS
+    from seafast.studies.limits import (
+        COMPLIANCE_COLUMNS,
+        RANKING_COLUMNS,
+        DesignLimits,
+        compliance_rows,
+        format_table,
+        rank_compliant,
+        write_rows_csv,
+    )
     from seafast.studies.runner import ExecutionOptions, run_study
     from seafast.studies.spec import build_grid, load_study_spec, study_spec_from_mapping
 
@@ -117,7 +129,9 @@ def cmd_study(args: argparse.Namespace) -> int:
         overrides = parse_overrides(args.overrides)
         spec, directory = load_study_spec(args.study)
         if args.response is not None and args.response != spec.response:
-            spec = study_spec_from_mapping({**spec.model_dump(mode="json", exclude_none=True), "response": args.response}, f"'{args.study}'")
+            spec = study_spec_from_mapping(
+                {**spec.model_dump(mode="json", exclude_none=True), "response": args.response}, f"'{args.study}'"
+            )
         grid = build_grid(spec, directory, overrides)
     except CaseError as exc:
         return _error(str(exc))

@@ -29,8 +29,9 @@ import os
 import sys
 import threading
 import time
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Any, Callable, Iterator, Protocol, Sequence
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -121,7 +122,7 @@ _worker_ready = False
 
 def _prepare_worker() -> None:
     """Once per worker process: one BLAS/OpenMP thread (the parallelism is across points)."""
-    global _worker_ready
+    global _worker_ready  # noqa: PLW0603 - per-process state: a worker pins its threads once
     if _worker_ready:
         return
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS"):
@@ -130,7 +131,7 @@ def _prepare_worker() -> None:
         from threadpoolctl import threadpool_limits
 
         threadpool_limits(limits=1)
-    except Exception:  # pragma: no cover - threadpoolctl is a dependency; be lenient anyway
+    except Exception:  # noqa: BLE001  # pragma: no cover - pinning is an optimisation; a library threadpoolctl cannot inspect must not stop a worker
         pass
     _worker_ready = True
 
@@ -154,7 +155,7 @@ def _init_process_worker(coordinator_pid: int) -> None:
     the server, which exits when the coordinator does. Either way the worker watches the parent
     it starts with.
     """
-    global _worker_ready
+    global _worker_ready  # noqa: PLW0603 - per-process state, reset in a forked worker
     _worker_ready = False  # a forked worker re-pins its own BLAS
     _prepare_worker()
     parent = os.getppid()
@@ -163,7 +164,9 @@ def _init_process_worker(coordinator_pid: int) -> None:
     _exit_with_parent(parent)
 
 
-def evaluate_batch(grid: PointSource, indices: Sequence[int], evaluator: Evaluator | str | None = None, pin_threads: bool = True) -> list[PointRecord]:
+def evaluate_batch(
+    grid: PointSource, indices: Sequence[int], evaluator: Evaluator | str | None = None, pin_threads: bool = True
+) -> list[PointRecord]:
     """Evaluate a batch of points (runs in a worker).
 
     Parameters
@@ -294,7 +297,9 @@ def _iter_processes(
     if start_method == "fork" and batches and batches[0]:
         # the first point here, before forking: the workers inherit its imports and warm caches
         first, rest = batches[0][:1], batches[0][1:]
-        yield list(_iter_serial(grid, [first], evaluator))[0]
+        # unpacked, not next(): the generator runs to its end and leaves its thread limit
+        (records,) = _iter_serial(grid, [first], evaluator)
+        yield records
         batches = ([rest] if rest else []) + batches[1:]
         if not batches:
             return

@@ -18,13 +18,14 @@ from typing import Any
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-from matplotlib.colors import ListedColormap  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+from matplotlib.artist import Artist
+from matplotlib.colors import ListedColormap
+from matplotlib.patches import Patch
 
-from seafast.studies.limits import DesignLimits, compliance  # noqa: E402
+from seafast.studies.limits import DesignLimits, compliance
 
 __all__ = ["plot_study", "plot_surfaces", "plot_compliance_map", "plot_profiles", "study_slice"]
 
@@ -36,7 +37,7 @@ _QUANTITIES: tuple[tuple[str, str, float, str], ...] = (
 
 
 def _axis_keys(ds: xr.Dataset) -> list[str]:
-    return [d for d in ds["F_N"].dims if d not in ("load_case", "model")]
+    return [str(d) for d in ds["F_N"].dims if d not in ("load_case", "model")]
 
 
 def _total(ds: xr.Dataset) -> xr.Dataset:
@@ -130,7 +131,7 @@ def plot_surfaces(ds: xr.Dataset, path: str | Path, model: str = "nonlinear", li
     contact = total["contact_preserved"].sel(model="nonlinear" if "nonlinear" in total["model"] else model).values.astype(float)
     limit_of = {"F_N": limits.max_saddle_force_N, "sigma_b_Pa": limits.max_bending_stress_Pa}
     fig, axes = plt.subplots(1, 3, figsize=(17, 4.8), constrained_layout=True)
-    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES):
+    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES, strict=True):
         z = total[name].sel(model=model).values * scale
         mesh = ax.pcolormesh(xe, ye, np.ma.masked_invalid(z), shading="flat", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=f"{title} [{unit}]")
@@ -172,8 +173,15 @@ def plot_compliance_map(ds: xr.Dataset, path: str | Path, limits: DesignLimits |
     names = ["complies with neither", "linear model only", "nonlinear model only", "both models"]
     fig, ax = plt.subplots(figsize=(7.5, 5.5), constrained_layout=True)
     ax.pcolormesh(
-        _edges(x, _is_log(sliced, xkey)), _edges(y, _is_log(sliced, ykey)), category, shading="flat",
-        cmap=ListedColormap(colors), vmin=-0.5, vmax=3.5, edgecolors="white", linewidth=0.3,
+        _edges(x, _is_log(sliced, xkey)),
+        _edges(y, _is_log(sliced, ykey)),
+        category,
+        shading="flat",
+        cmap=ListedColormap(colors),
+        vmin=-0.5,
+        vmax=3.5,
+        edgecolors="white",
+        linewidth=0.3,
     )
     if "error" in sliced:
         failed = (sliced["error"] != "").broadcast_like(comp["complies"].isel(model=0)).transpose(ykey, xkey).values
@@ -184,7 +192,7 @@ def plot_compliance_map(ds: xr.Dataset, path: str | Path, limits: DesignLimits |
         ax.plot(x[xx], y[yy], "kx", linestyle="none", label="evaluation failed")
     _setup_axes(ax, sliced, xkey, ykey)
     _mark_base(ax, sliced, xkey, ykey)
-    handles = [Patch(color=c, label=n) for c, n in zip(colors, names)]
+    handles: list[Artist] = [Patch(color=c, label=n) for c, n in zip(colors, names, strict=True)]
     handles += ax.get_legend_handles_labels()[0]
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     ax.set_title(
@@ -209,7 +217,7 @@ def plot_profiles(ds: xr.Dataset, path: str | Path, limits: DesignLimits | None 
     limit_of = {"F_N": limits.max_saddle_force_N, "sigma_b_Pa": limits.max_bending_stress_Pa}
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.5), constrained_layout=True)
     xe = _edges(x, _is_log(sliced, key))
-    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES):
+    for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES, strict=True):
         for model, style in (("linear", "--"), ("nonlinear", "-")):
             if model in total["model"]:
                 ax.plot(x, total[name].sel(model=model).values * scale, style, marker="o", markersize=3, label=model)

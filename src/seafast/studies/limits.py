@@ -14,9 +14,10 @@ from __future__ import annotations
 import csv
 import math
 import os
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -52,15 +53,13 @@ class DesignLimits:
     max_bending_stress_Pa: float = 20.0e6
 
     @staticmethod
-    def from_attrs(attrs: Mapping[str, Any]) -> "DesignLimits":
+    def from_attrs(attrs: Mapping[str, Any]) -> DesignLimits:
         """The limits recorded in a study dataset's attributes (defaults where absent)."""
-        return DesignLimits(
-            float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6))
-        )
+        return DesignLimits(float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6)))
 
 
 def _axis_keys(ds: xr.Dataset) -> list[str]:
-    return [d for d in ds["F_N"].dims if d not in ("load_case", "model")]
+    return [str(d) for d in ds["F_N"].dims if d not in ("load_case", "model")]
 
 
 def _total_response(ds: xr.Dataset) -> xr.Dataset:
@@ -164,9 +163,9 @@ def compliance_rows(ds: xr.Dataset, limits: DesignLimits | None = None) -> list[
     models = [str(m) for m in comp["model"].values]
     rows = []
     for multi in np.ndindex(*shape):
-        at = dict(zip(keys, multi))
+        at = dict(zip(keys, multi, strict=True))
         point = comp.isel(at)
-        row: dict[str, Any] = {k: _scalar(ds[k].values[i]) for k, i in zip(keys, multi)}
+        row: dict[str, Any] = {k: _scalar(ds[k].values[i]) for k, i in zip(keys, multi, strict=True)}
         for model in ("linear", "nonlinear"):
             if model not in models:
                 continue
@@ -213,7 +212,7 @@ def rank_compliant(ds: xr.Dataset, limits: DesignLimits | None = None, model: st
     for multi in np.ndindex(*shape):
         if not complies[multi]:
             continue
-        values = {k: _scalar(ds[k].values[i]) for k, i in zip(keys, multi)}
+        values = {k: _scalar(ds[k].values[i]) for k, i in zip(keys, multi, strict=True)}
         count = values.get(SADDLE_COUNT_KEY, fixed_count)
         row: dict[str, Any] = {"saddle_count": int(count) if count is not None else None, **values}
         for name in ("F_N", "sigma_b_Pa", "margin_force", "margin_stress", "margin"):
@@ -269,10 +268,10 @@ def format_table(rows: Sequence[Mapping[str, Any]], columns: Sequence[str] | Non
     cells = [[_cell(r.get(c)) for c in cols] for r in shown]
     widths = [max(len(c), *(len(row[i]) for row in cells)) for i, c in enumerate(cols)]
     numeric = [all(_is_number(r.get(c)) for r in shown) for c in cols]
-    lines = ["  ".join(c.rjust(w) if num else c.ljust(w) for c, w, num in zip(cols, widths, numeric)).rstrip()]
+    lines = ["  ".join(c.rjust(w) if num else c.ljust(w) for c, w, num in zip(cols, widths, numeric, strict=True)).rstrip()]
     lines.append("  ".join("-" * w for w in widths))
     for row in cells:
-        lines.append("  ".join(v.rjust(w) if num else v.ljust(w) for v, w, num in zip(row, widths, numeric)).rstrip())
+        lines.append("  ".join(v.rjust(w) if num else v.ljust(w) for v, w, num in zip(row, widths, numeric, strict=True)).rstrip())
     if max_rows is not None and len(rows) > max_rows:
         lines.append(f"... {len(rows) - max_rows} more rows")
     return "\n".join(lines)

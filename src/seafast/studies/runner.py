@@ -22,9 +22,10 @@ from __future__ import annotations
 import logging
 import sys
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import xarray as xr
 
@@ -129,7 +130,7 @@ class StudyRun:
 def _progress_bar(total: int, initial: int, enabled: bool, label: str) -> Any:
     from tqdm import tqdm
 
-    class _Bar(tqdm):  # type: ignore[type-arg,misc]
+    class _Bar(tqdm):
         # no monitor thread: the bar is updated per batch, and local workers may be forked
         # from this process, which is only safe while it runs a single thread
         monitor_interval = 0
@@ -203,4 +204,6 @@ def run_study(
     }
     failed = sum(1 for r in records.values() if r.error)
     logger.info("study '%s': %d computed, %d failed, %.1f s", grid.spec.name, computed, failed, time.perf_counter() - t0)
-    return StudyRun(dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers)
+    return StudyRun(
+        dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers
+    )

@@ -32,10 +32,11 @@ import math
 import operator
 import types
 import typing
+from collections.abc import Mapping
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Annotated, Any, Literal, Mapping
+from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
@@ -130,9 +131,7 @@ def case_key_kind(key: str) -> Literal["int", "float"]:
         fields = model.model_fields
         if part not in fields:
             where = ".".join(walked) or "(case)"
-            raise StudyError(
-                f"'{key}' is not a case key: '{part}' is not in {where}; allowed: {', '.join(_field_names(model))}"
-            )
+            raise StudyError(f"'{key}' is not a case key: '{part}' is not in {where}; allowed: {', '.join(_field_names(model))}")
         walked.append(part)
         annotation = fields[part].annotation
         if depth < len(parts) - 1:
@@ -145,8 +144,7 @@ def case_key_kind(key: str) -> Literal["int", "float"]:
                 sub = _model_class(annotation)
                 assert sub is not None
                 raise StudyError(
-                    f"'{key}' is a group of keys, not a numeric value; allowed: "
-                    + ", ".join(f"{key}.{f}" for f in _field_names(sub))
+                    f"'{key}' is a group of keys, not a numeric value; allowed: " + ", ".join(f"{key}.{f}" for f in _field_names(sub))
                 )
             kinds = _numeric_kinds(annotation)
             if not kinds:
@@ -231,9 +229,7 @@ def _parse_expression(text: str) -> ast.Expression:
     try:
         tree = ast.parse(str(text), mode="eval")
     except SyntaxError:
-        raise StudyError(
-            f"derived expression {text!r} is not valid; allowed: {_ALLOWED_TEXT}"
-        ) from None
+        raise StudyError(f"derived expression {text!r} is not valid; allowed: {_ALLOWED_TEXT}") from None
     for node in ast.walk(tree):
         if isinstance(node, ast.Call):
             if not (isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS) or node.keywords or not node.args:
@@ -308,7 +304,7 @@ def evaluate_expression(text: str, lookup: typing.Callable[[str], float]) -> flo
         name = _dotted_name(node)
         if name is not None:
             return float(lookup(name))
-        if isinstance(node, ast.Constant):
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):  # the only constants parsing admits
             return float(node.value)
         if isinstance(node, ast.BinOp):
             return _BINARY_OPS[type(node.op)](ev(node.left), ev(node.right))
@@ -345,7 +341,7 @@ class AxisSpec(_Strict):
         return v
 
     @model_validator(mode="after")
-    def _check(self) -> "AxisSpec":
+    def _check(self) -> AxisSpec:
         ranged = (self.start, self.stop, self.num)
         if self.values is not None:
             if any(x is not None for x in ranged):
@@ -360,7 +356,7 @@ class AxisSpec(_Strict):
                 raise ValueError(f"values {list(self.values)} must be positive for scale: log")
         else:
             if any(x is None for x in ranged):
-                missing = [n for n, x in zip(("start", "stop", "num"), ranged) if x is None]
+                missing = [n for n, x in zip(("start", "stop", "num"), ranged, strict=True) if x is None]
                 raise ValueError(f"missing {', '.join(missing)}; give values, or all of start, stop, num")
             assert self.start is not None and self.stop is not None
             if not (math.isfinite(self.start) and math.isfinite(self.stop)):
@@ -390,9 +386,7 @@ class AxisSpec(_Strict):
         if case_key_kind(self.key) == "int":
             rounded = np.round(raw)
             if not np.allclose(raw, rounded, rtol=0, atol=1e-9):
-                raise StudyError(
-                    f"axes[{self.key}]: values {raw.tolist()} are not whole numbers; allowed: integers for {self.key}"
-                )
+                raise StudyError(f"axes[{self.key}]: values {raw.tolist()} are not whole numbers; allowed: integers for {self.key}")
             if len(set(rounded.tolist())) != len(rounded):
                 raise StudyError(f"axes[{self.key}]: start/stop/num give repeated integers {rounded.tolist()}")
             return rounded.astype(np.int64)
@@ -402,9 +396,7 @@ class AxisSpec(_Strict):
 class LimitsSpec(_Strict):
     """Design limits (the source's: 7 MN saddle force, 20 MPa bending stress)."""
 
-    max_saddle_force_N: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(
-        7.0e6, description="Largest allowed saddle force F [N]"
-    )
+    max_saddle_force_N: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(7.0e6, description="Largest allowed saddle force F [N]")
     max_bending_stress_Pa: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(
         20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]"
     )
@@ -454,7 +446,7 @@ class StudySpec(_Strict):
         return v
 
     @model_validator(mode="after")
-    def _check(self) -> "StudySpec":
+    def _check(self) -> StudySpec:
         axis_keys = {a.key for a in self.axes}
         both = sorted(axis_keys & set(self.derived))
         if both:
@@ -554,8 +546,7 @@ def load_study_spec(name_or_path: str | Path) -> tuple[StudySpec, Path | None]:
         path = Path(text_name)
         if not path.is_file():
             raise StudyError(
-                f"study '{text_name}': no such file, and not a built-in study; allowed: a YAML file or one of "
-                + ", ".join(BUILTIN_STUDIES)
+                f"study '{text_name}': no such file, and not a built-in study; allowed: a YAML file or one of " + ", ".join(BUILTIN_STUDIES)
             )
         try:
             text = path.read_text(encoding="utf-8")
@@ -615,7 +606,7 @@ class StudyGrid:
     def point_values(self, index: int) -> dict[str, Any]:
         """Axis values (Python scalars) of the point with flat (C-order) ``index``."""
         multi = np.unravel_index(index, self.shape)
-        return {key: coords[i].item() for key, coords, i in zip(self.keys, self.coordinates, multi)}
+        return {key: coords[i].item() for key, coords, i in zip(self.keys, self.coordinates, multi, strict=True)}
 
     def point_overrides(self, index: int) -> dict[str, Any]:
         """Dotted overrides (axes then derived keys) that turn the base case into point ``index``."""
@@ -629,7 +620,7 @@ class StudyGrid:
         for key, expr in self.spec.derived.items():
             value = evaluate_expression(expr, lookup)
             if case_key_kind(key) == "int":
-                value = int(round(value))
+                value = round(value)
             overrides[key] = value
         return overrides
 
@@ -649,7 +640,7 @@ class StudyGrid:
             "name": self.spec.name,
             "fingerprint": self.fingerprint(),
             "shape": list(self.shape),
-            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
+            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates, strict=True)},
             "spec": self.spec.model_dump(mode="json"),
         }
 
@@ -657,7 +648,7 @@ class StudyGrid:
         """SHA-256 (hex, 16 chars) of everything that determines the points' results."""
         payload: dict[str, Any] = {
             "base": self.base,
-            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates)},
+            "axes": {k: c.tolist() for k, c in zip(self.keys, self.coordinates, strict=True)},
             "derived": self.spec.derived,
         }
         if self.spec.evaluates_sea_state:  # regular-wave studies keep their fingerprint (stores made before resume)

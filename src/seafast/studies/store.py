@@ -20,9 +20,10 @@ import json
 import logging
 import os
 import time
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterable, Protocol
+from typing import Any, Protocol
 
 from seafast.studies.spec import StudyError
 
@@ -75,7 +76,7 @@ class PointRecord:
         )
 
     @staticmethod
-    def from_json(data: dict) -> "PointRecord":
+    def from_json(data: dict) -> PointRecord:
         """Inverse of :meth:`to_json` (already parsed)."""
         return PointRecord(int(data["index"]), tuple(data.get("rows") or ()), str(data.get("error") or ""), float(data.get("seconds", 0.0)))
 
@@ -111,7 +112,7 @@ class PointStore:
         self.directory.mkdir(parents=True, exist_ok=True)
         self._check_manifest(grid.manifest())
         self.completed: dict[int, PointRecord] = self._read_points()
-        self._handle = open(self.path, "ab")
+        self._handle = open(self.path, "ab")  # noqa: SIM115 - appended to until close() / __exit__
         self._last_sync = time.monotonic()
         self._unsynced = False
 
@@ -200,7 +201,7 @@ class PointStore:
             self.sync()
             self._handle.close()
 
-    def __enter__(self) -> "PointStore":
+    def __enter__(self) -> PointStore:
         return self
 
     def __exit__(self, *exc: object) -> None:

@@ -12,6 +12,7 @@ Coordinates: x along the ship from the aft perpendicular (AP), forward positive,
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import overload
 
 import numpy as np
 from numpy.typing import NDArray
@@ -69,7 +70,7 @@ class HullForm:
         stern_breadth_fraction: float = 0.7,
         aft_run_fraction: float = 0.2,
         bow_breadth_fraction: float = 0.0,
-    ) -> "HullForm":
+    ) -> HullForm:
         """Box hull with a parallel mid-body and linear tapers in breadth to stern and bow.
 
         The aft run (length ``aft_run_fraction * L``) tapers from full breadth to
@@ -109,7 +110,11 @@ class HullForm:
         """Maximum waterline breadth [m]."""
         return float(self.waterline_breadth_m.max())
 
-    def breadth_at(self, x_m: NDArray[np.float64] | float) -> NDArray[np.float64]:
+    @overload
+    def breadth_at(self, x_m: float) -> float: ...
+    @overload
+    def breadth_at(self, x_m: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    def breadth_at(self, x_m: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
         """Waterline breadth [m] at positions ``x_m`` (piecewise-linear between stations; 0 outside)."""
         return np.interp(x_m, self.station_x_m, self.waterline_breadth_m, left=0.0, right=0.0)
 

@@ -30,9 +30,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import pairwise
+from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from seafast.vessel.hull_form import HullForm
 
@@ -62,9 +64,7 @@ def section_profile(section_area_coefficient: float, draft_m: float) -> NDArray[
     """
     cs, t = float(section_area_coefficient), float(draft_m)
     if not 0.5 <= cs <= 1.0:
-        raise ValueError(
-            f"hull mesh: section_area_coefficient = {cs!r} not supported; must be in [0.5, 1]"
-        )
+        raise ValueError(f"hull mesh: section_area_coefficient = {cs!r} not supported; must be in [0.5, 1]")
     if cs == 1.0:
         return np.array([[1.0, 0.0], [1.0, -t], [0.0, -t]])
     if cs >= 0.75:
@@ -111,7 +111,7 @@ class HullMesh:
         """Number of lid panels of the full (both sides) mesh."""
         return 2 * int(self.lid_faces.shape[0])
 
-    def to_capytaine(self):
+    def to_capytaine(self) -> tuple[Any, Any]:
         """Return ``(hull_mesh, lid_mesh)`` as capytaine ``ReflectionSymmetricMesh`` (plane xOz)."""
         import capytaine as cpt
 
@@ -131,7 +131,8 @@ class _Builder:
         self.faces: list[list[int]] = []
 
     def _vid(self, p: NDArray[np.float64]) -> int:
-        key = tuple(round(float(c), 9) + 0.0 for c in p)
+        x, y, z = (round(float(c), 9) + 0.0 for c in p)
+        key = (x, y, z)
         i = self._index.get(key)
         if i is None:
             i = len(self.vertices)
@@ -139,7 +140,7 @@ class _Builder:
             self.vertices.append(key)
         return i
 
-    def quad(self, p0, p1, p2, p3) -> None:
+    def quad(self, p0: ArrayLike, p1: ArrayLike, p2: ArrayLike, p3: ArrayLike) -> None:
         ids: list[int] = []
         for p in (p0, p1, p2, p3):
             i = self._vid(np.asarray(p, dtype=float))
@@ -154,7 +155,7 @@ class _Builder:
         v = np.array([self.vertices[i] for i in ids])
         n = np.cross(v[2] - v[0], v[3] - v[1])
         warp = abs(np.dot(n / np.linalg.norm(n), v[1] - v[0]))
-        if warp > 1e-6 * max(np.linalg.norm(v[2] - v[0]), 1.0):  # twisted quad: two triangles
+        if warp > 1e-6 * max(float(np.linalg.norm(v[2] - v[0])), 1.0):  # twisted quad: two triangles
             self.faces.append([ids[0], ids[1], ids[2], ids[2]])
             self.faces.append([ids[0], ids[2], ids[3], ids[3]])
         else:
@@ -166,14 +167,12 @@ class _Builder:
 
 def _x_breaks(hull: HullForm, h: float) -> NDArray[np.float64]:
     xs = [np.array([hull.station_x_m[0]])]
-    for a, b in zip(hull.station_x_m[:-1], hull.station_x_m[1:]):
+    for a, b in pairwise(hull.station_x_m):
         xs.append(_subdivide(a, b, h)[1:])
     return np.concatenate(xs)
 
 
-def hull_mesh_arrays(
-    hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0
-) -> HullMesh:
+def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0) -> HullMesh:
     """Generate the half mesh (``Y >= 0``) of the wetted hull (sides, bottom, transom) and lid.
 
     Parameters
@@ -206,7 +205,7 @@ def hull_mesh_arrays(
 
     # profile parametrisation: list of (eta, z) points along the half girth
     pts = [prof[0]]
-    for p, q in zip(prof[:-1], prof[1:]):
+    for p, q in pairwise(prof):
         seg_len = math.hypot(0.5 * b_max * (q[0] - p[0]), q[1] - p[1])
         n = max(1, math.ceil(seg_len / h - 1e-9))
         for s in np.linspace(0.0, 1.0, n + 1)[1:]:
@@ -226,20 +225,23 @@ def hull_mesh_arrays(
     for i in range(len(xb) - 1):
         for j in range(len(girth) - 1):
             hb_mesh.quad(point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j))
+
+    # half-width at depth z of a section of half-breadth half_breadth_m, from the profile (eta as
+    # function of z; at -T use bottom eta)
+    def width(z: float, half_breadth_m: float) -> float:
+        eta = np.interp(-z, -prof[:-1, 1], prof[:-1, 0]) if z > -t else prof[-2, 0]
+        return float(eta * half_breadth_m)
+
     # transom (x = x_0, normal -x) and a blunt bow (x = x_end, normal +x) if breadth > 0
     for i_end, sign in ((0, -1.0), (len(xb) - 1, 1.0)):
         if hb[i_end] <= 0:
             continue
         zl = np.unique(np.concatenate([girth[:, 1]]))[::-1]  # 0 .. -T
-        # half-width at depth z from the profile (eta as function of z; at -T use bottom eta)
-        def width(z: float) -> float:
-            eta = np.interp(-z, -prof[:-1, 1], prof[:-1, 0]) if z > -t else prof[-2, 0]
-            return float(eta * hb[i_end])
         ny = max(1, math.ceil(hb[i_end] / h - 1e-9))
         xi = np.linspace(0.0, 1.0, ny + 1)
         x0 = xb[i_end] - x_mid
         for k in range(len(zl) - 1):
-            wa, wb = width(zl[k]), width(zl[k + 1])
+            wa, wb = width(zl[k], hb[i_end]), width(zl[k + 1], hb[i_end])
             for m in range(ny):
                 a = (x0, xi[m] * wa, zl[k])
                 b = (x0, xi[m + 1] * wa, zl[k])
@@ -274,8 +276,8 @@ def hull_mesh_arrays(
             lid.quad(a, b, c, d)
     lid_v, lid_f = lid.arrays()
     # make lid normals point down (-z)
-    n = _face_normals(lid_v, lid_f)
-    flip = n[:, 2] > 0
+    normals = _face_normals(lid_v, lid_f)
+    flip = normals[:, 2] > 0
     lid_f[flip] = lid_f[flip][:, ::-1]
     return HullMesh(hull_v, hull_f, lid_v, lid_f, float(x_mid), float(lid_z_m))
 
@@ -287,7 +289,9 @@ def _face_normals(v: NDArray[np.float64], f: NDArray[np.int64]) -> NDArray[np.fl
     return n / np.linalg.norm(n, axis=1, keepdims=True)
 
 
-def _orient_outward(v: NDArray[np.float64], f: NDArray[np.int64], interior_point: NDArray[np.float64]):
+def _orient_outward(
+    v: NDArray[np.float64], f: NDArray[np.int64], interior_point: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Flip faces whose normal points towards ``interior_point`` (valid for convex hulls).
 
     Wall-sided sections (box or chine) and a convex waterline make the hull convex, so a face
@@ -301,9 +305,7 @@ def _orient_outward(v: NDArray[np.float64], f: NDArray[np.int64], interior_point
     return v, f
 
 
-def mesh_hull(
-    hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0
-):
+def mesh_hull(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0) -> tuple[Any, Any]:
     """Capytaine meshes ``(hull_mesh, lid_mesh)`` of the wetted hull and its interior lid.
 
     See :func:`hull_mesh_arrays` for the parameters and the frame (origin at midship on the

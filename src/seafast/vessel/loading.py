@@ -43,8 +43,9 @@ the docstrings that give each choice its source.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from itertools import pairwise
 
 import numpy as np
 from numpy.typing import NDArray
@@ -145,9 +146,7 @@ class WeightItem:
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.x_start_m) and np.isfinite(self.x_end_m) and self.x_end_m > self.x_start_m):
-            raise ValueError(
-                f"weight item {self.name!r}: x_end_m = {self.x_end_m!r} must be > x_start_m = {self.x_start_m!r}"
-            )
+            raise ValueError(f"weight item {self.name!r}: x_end_m = {self.x_end_m!r} must be > x_start_m = {self.x_start_m!r}")
         if not (np.isfinite(self.mass_kg) and self.mass_kg >= 0):
             raise ValueError(f"weight item {self.name!r}: mass_kg = {self.mass_kg!r}; must be finite and >= 0")
 
@@ -276,9 +275,9 @@ class VesselLoading:
             pts.extend(self.lightship.breakpoints_m)
         for it in self.items:
             pts.extend((it.x_start_m, it.x_end_m))
-        return tuple(sorted(set(float(p) for p in pts)))
+        return tuple(sorted({float(p) for p in pts}))
 
-    def with_items(self, *items: WeightItem) -> "VesselLoading":
+    def with_items(self, *items: WeightItem) -> VesselLoading:
         """A copy with ``items`` appended."""
         return replace(self, items=self.items + tuple(items))
 
@@ -300,9 +299,7 @@ class BallastTank:
 
 
 # ---------------------------------------------------------------------------- distributions
-def monopile_mass_kg(
-    length_m: float, diameter_m: float, wall_thickness_m: float, density_kg_per_m3: float = 7850.0
-) -> float:
+def monopile_mass_kg(length_m: float, diameter_m: float, wall_thickness_m: float, density_kg_per_m3: float = 7850.0) -> float:
     """Mass [kg] of a uniform thin-walled steel tube (monopile).
 
     ``m = rho * pi / 4 * (D^2 - (D - 2 t)^2) * L``; 74 m x 8 m x 0.080 m gives 1.156e6 kg.
@@ -326,9 +323,7 @@ def mass_distribution_kg_per_m(x_m: FloatArray | float, loading: VesselLoading) 
     return out
 
 
-def weight_distribution_N_per_m(
-    x_m: FloatArray | float, loading: VesselLoading, gravity_m_per_s2: float = 9.81
-) -> FloatArray:
+def weight_distribution_N_per_m(x_m: FloatArray | float, loading: VesselLoading, gravity_m_per_s2: float = 9.81) -> FloatArray:
     """Weight per metre [N/m] of ``loading`` at ``x_m`` (a positive number acting downward)."""
     return gravity_m_per_s2 * mass_distribution_kg_per_m(x_m, loading)
 
@@ -337,7 +332,9 @@ def weight_distribution_N_per_m(
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(6)
 
 
-def _integrate(fun, a: float, b: float, breakpoints: Sequence[float], max_segment_m: float = 2.0) -> float:
+def _integrate(
+    fun: Callable[[NDArray[np.float64]], NDArray[np.float64]], a: float, b: float, breakpoints: Sequence[float], max_segment_m: float = 2.0
+) -> float:
     """Integral of ``fun`` on [a, b] by Gauss-Legendre on segments split at ``breakpoints``.
 
     Exact (to round-off) for piecewise polynomials of degree <= 11 between breakpoints.
@@ -346,7 +343,7 @@ def _integrate(fun, a: float, b: float, breakpoints: Sequence[float], max_segmen
         return 0.0
     pts = np.array(sorted({a, b, *[p for p in breakpoints if a < p < b]}))
     edges = [pts[0]]
-    for p0, p1 in zip(pts[:-1], pts[1:]):
+    for p0, p1 in pairwise(pts):
         n = max(1, int(np.ceil((p1 - p0) / max_segment_m)))
         edges.extend(np.linspace(p0, p1, n + 1)[1:])
     e = np.asarray(edges)
@@ -392,10 +389,12 @@ def _unit_tank_moments(hull: HullForm, tanks: tuple[tuple[float, float], ...], x
     if held is None:
         kw = dict(water_density_kg_per_m3=rho, gravity_m_per_s2=g)
         buoy_only = still_water_moment_even_keel_Nm(hull, VesselLoading(None, ()), x_m, **kw)
-        held = np.array([
-            still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
-            for a, b in tanks
-        ])
+        held = np.array(
+            [
+                still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
+                for a, b in tanks
+            ]
+        )
         if len(_UNIT_TANK_MOMENTS) >= 16:
             _UNIT_TANK_MOMENTS.pop(next(iter(_UNIT_TANK_MOMENTS)))
         _UNIT_TANK_MOMENTS[key] = held
@@ -462,9 +461,9 @@ def balance_ballast(
     except np.linalg.LinAlgError as exc:  # pragma: no cover - degenerate tank layout
         raise ValueError(f"balance_ballast: tank arrangement gives a singular system ({exc})") from exc
     if np.any(masses < 0):
-        detail = ", ".join(f"{t.name}: {m:.4g} kg" for t, m in zip(tanks, masses))
+        detail = ", ".join(f"{t.name}: {m:.4g} kg" for t, m in zip(tanks, masses, strict=True))
         raise ValueError(f"balance_ballast: negative ballast needed ({detail}); move or resize the tanks")
-    new = tuple(WeightItem(t.name, t.x_start_m, t.x_end_m, float(m)) for t, m in zip(tanks, masses))
+    new = tuple(WeightItem(t.name, t.x_start_m, t.x_end_m, float(m)) for t, m in zip(tanks, masses, strict=True))
     return loading.with_items(*new)
 
 
@@ -532,8 +531,11 @@ def base_vessel_loading(
     tanks = [BallastTank(n, f0 * L, f1 * L) for n, f0, f1 in BASE_BALLAST_TANKS_FRACTION]
     if still_water_moment_Nm is None:
         return balance_ballast(
-            hull, loading, [tanks[0], tanks[2]],
-            water_density_kg_per_m3=water_density_kg_per_m3, gravity_m_per_s2=gravity_m_per_s2,
+            hull,
+            loading,
+            [tanks[0], tanks[2]],
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
         )
     return balance_ballast(
         hull,

@@ -70,6 +70,7 @@ __all__ = [
     "PDF_FILENAME",
     "PNG_DPI",
     "TRUNCATION_LIMIT",
+    "TENSILE_NOTE_FRACTION",
     "ReportError",
     "Finding",
     "ReportFigure",
@@ -99,4 +100,5 @@ __all__ = [
     "write_print_figures",
     "write_report",
     "add_report_subcommand",
+    "REPORT_EXAMPLES",
 ]

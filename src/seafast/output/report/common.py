@@ -139,7 +139,7 @@ def case_mapping(text: Any) -> dict[str, Any]:
 def study_keys(sds: xr.Dataset) -> list[str]:
     """The study's axes: the dimensions of the results other than ``load_case`` and ``model``."""
     ref = "F_N" if "F_N" in sds else next(iter(sds.data_vars))
-    return [d for d in sds[ref].dims if d not in ("load_case", "model")]
+    return [str(d) for d in sds[ref].dims if d not in ("load_case", "model")]
 
 
 def total_load_case(ds: xr.Dataset) -> str:

@@ -53,9 +53,11 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
                     Finding(
                         "WARNING",
                         f"{lc} {m}: the two-way hull-cargo coupling did NOT converge ({sel['coupling_outcome'].values.item()})",
-                        f"coupling residual {float(sel['coupling_residual_m']):.2e} m > tolerance {float(sel['coupling_tolerance_m']):.2e} m "
-                        f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): the deck under the saddles and the hull "
-                        "under the cargo's forces disagree, so this row's numbers and the coupled hull must not be trusted.",
+                        f"coupling residual {float(sel['coupling_residual_m']):.2e} m > "
+                        f"tolerance {float(sel['coupling_tolerance_m']):.2e} m "
+                        f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): "
+                        "the deck under the saddles and the hull under the cargo's forces disagree, "
+                        "so this row's numbers and the coupled hull must not be trusted.",
                     )
                 )
             elif "converged" in sel and not bool(sel["converged"]):
@@ -138,15 +140,23 @@ def _axial_findings(ds: xr.Dataset, lcs: list[str], models: list[str]) -> list[F
         for m in models:
             sel = ds.sel(load_case=lc, model=m)
             if "axial_converged" in sel and not bool(sel["axial_converged"]):
-                out.append(Finding("WARNING", f"{lc} {m}: the axial (friction) solve did NOT converge",
-                                   str(sel["axial_solver_message"].values.item()) if "axial_solver_message" in sel else ""))
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the axial (friction) solve did NOT converge",
+                        str(sel["axial_solver_message"].values.item()) if "axial_solver_message" in sel else "",
+                    )
+                )
             slip = float(sel["slip_m"])
             if slip > 0 and m == "nonlinear":
-                out.append(Finding(
-                    "WARNING", f"{lc} {m}: the cargo slides on its saddles, {slip * 1e3:.1f} mm per period",
-                    f"the friction coefficient is below the critical {float(sel['critical_friction_coefficient']):.4f}; the lashings "
-                    f"and stoppers carry up to {float(sel['axial_force_N']) / 1e3:.1f} kN. Add stoppers or friction.",
-                ))
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the cargo slides on its saddles, {slip * 1e3:.1f} mm per period",
+                        f"the friction coefficient is below the critical {float(sel['critical_friction_coefficient']):.4f}; the lashings "
+                        f"and stoppers carry up to {float(sel['axial_force_N']) / 1e3:.1f} kN. Add stoppers or friction.",
+                    )
+                )
     return out
 
 

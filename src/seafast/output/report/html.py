@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import html
 import math
-from datetime import datetime, timezone
+from collections.abc import Mapping, Sequence
+from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -33,7 +34,8 @@ header{background:#12355b;color:#fff;padding:18px 32px}header h1{margin:0;font-s
 nav{background:#e8eef5;padding:8px 32px;font-size:14px;position:sticky;top:0;z-index:10;border-bottom:1px solid #c9d6e3}
 nav a{margin-right:16px;color:#12355b;text-decoration:none}nav a:hover{text-decoration:underline}
 main{padding:8px 32px 40px;max-width:1500px}section{margin-top:26px}h2{border-bottom:2px solid #12355b;padding-bottom:4px;color:#12355b}
-table{border-collapse:collapse;font-size:13px;margin:8px 0;background:#fff}th,td{border:1px solid #ccd;padding:4px 8px;text-align:left;vertical-align:top}
+table{border-collapse:collapse;font-size:13px;margin:8px 0;background:#fff}
+th,td{border:1px solid #ccd;padding:4px 8px;text-align:left;vertical-align:top}
 th{background:#eef2f7}td.num{text-align:right;font-variant-numeric:tabular-nums}
 .finding{border-left:8px solid;padding:10px 14px;margin:10px 0;border-radius:4px}
 .finding.WARNING{background:#fdecea;border-color:#c62828}.finding.WARNING .lvl{color:#c62828}
@@ -48,7 +50,9 @@ th{background:#eef2f7}td.num{text-align:right;font-variant-numeric:tabular-nums}
 def _table(header: Sequence[str], rows: Sequence[Sequence[Any]], cls: str = "") -> str:
     def cell(v: Any) -> str:
         text = html.escape(str(v))
-        numeric = isinstance(v, (int, float)) or (isinstance(v, str) and v.replace(".", "", 1).replace("-", "", 1).replace("e", "", 1).isdigit())
+        numeric = isinstance(v, (int, float)) or (
+            isinstance(v, str) and v.replace(".", "", 1).replace("-", "", 1).replace("e", "", 1).isdigit()
+        )
         return f'<td class="num">{text}</td>' if numeric else f"<td>{text}</td>"
 
     head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
@@ -88,7 +92,7 @@ def render_html(title: str, subtitle: str, sections: Sequence[tuple[str, str, st
     nav = "".join(f'<a href="#{sid}">{html.escape(h)}</a>' for sid, h, _ in sections)
     body = "".join(f'<section id="{sid}"><h2>{html.escape(h)}</h2>{inner}</section>' for sid, h, inner in sections)
     return (
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
         f'<meta name="viewport" content="width=device-width, initial-scale=1"><meta name="seafast-figure-count" content="{figure_count}">'
         f"<title>{html.escape(title)}</title><style>{_CSS}</style></head><body>"
         f"<header><h1>{html.escape(title)}</h1><p>{html.escape(subtitle)}</p></header><nav>{nav}</nav><main>{body}</main></body></html>\n"
@@ -104,7 +108,9 @@ def _inputs_section(case: Mapping[str, Any], heading_note: str = "") -> str:
     )
 
 
-def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Finding], first_fig: bool, files_note: str) -> tuple[list[tuple[str, str, str]], bool]:
+def _run_sections(
+    ds: xr.Dataset, figs: list[ReportFigure], findings: list[Finding], first_fig: bool, files_note: str
+) -> tuple[list[tuple[str, str, str]], bool]:
     by_id = {f.id: f for f in figs}
 
     def figs_html(ids: Sequence[str]) -> str:
@@ -121,7 +127,11 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
     dheader, drows = diagnostics_rows(ds)
     omega = attr_float(ds, "wave_frequency_rad_s")
     exc = html.escape(str(ds.attrs.get("excitation_source", "")))
-    vessel_html = f"<p>Excitation: {exc}. Wave frequency {omega:.4f} rad/s (period {2 * math.pi / omega:.2f} s).</p>" if math.isfinite(omega) and omega > 0 else f"<p>Excitation: {exc}</p>"
+    vessel_html = (
+        f"<p>Excitation: {exc}. Wave frequency {omega:.4f} rad/s (period {2 * math.pi / omega:.2f} s).</p>"
+        if math.isfinite(omega) and omega > 0
+        else f"<p>Excitation: {exc}</p>"
+    )
     if "coupling_converged" in ds:
         vessel_html += (
             "<p>Hull-cargo coupling (vessel.coupling = two_way): the deck of each row iterated with the hull girder. "
@@ -130,13 +140,14 @@ def _run_sections(ds: xr.Dataset, figs: list[ReportFigure], findings: list[Findi
         )
     vessel_html += figs_html(["fig-hull-girder", "fig-raos", "fig-deck-motion"])
     if "fig-raos" not in by_id:
-        vessel_html += '<p class="small">No rigid-body motions in this run (vessel.motions = none, or a deck-deflection table), so no RAO figure.</p>'
+        vessel_html += (
+            '<p class="small">No rigid-body motions in this run (vessel.motions = none, or a deck-deflection table), so no RAO figure.</p>'
+        )
     summary_html = (
         _findings_html([f for f in findings if f.level == "WARNING"])
-        + "<p>Maxima over the cargo, the saddles and one wave period; cargo deflection u_c relative to the sea-fastening baseline (deck line through the outermost saddles), rigid-body heave and pitch removed; "
-        "<i>dynamic</i> = total response (still water included).</p>"
-        + _table(header, rows)
-        + files_note
+        + "<p>Maxima over the cargo, the saddles and one wave period; cargo deflection u_c relative to the sea-fastening baseline "
+        "(deck line through the outermost saddles), rigid-body heave and pitch removed; "
+        "<i>dynamic</i> = total response (still water included).</p>" + _table(header, rows) + files_note
     )
     sections = [
         ("run-summary", "Results summary", summary_html),
@@ -157,21 +168,41 @@ def _axial_html(ds: xr.Dataset) -> str:
     for lc in [str(v) for v in ds["load_case"].values]:  # plain xarray: no report helper needed
         for m in [str(v) for v in ds["model"].values]:
             sel = ds.sel(load_case=lc, model=m)
-            rows.append([lc, m, f"{float(sel['slip_m']) * 1e3:.2f}", f"{float(sel['friction_utilisation']):.3f}",
-                         f"{float(sel['axial_force_N']) / 1e3:.1f}", f"{float(sel['critical_friction_coefficient']):.4f}",
-                         "yes" if int(sel["axial_converged"]) else "NO"])
+            rows.append(
+                [
+                    lc,
+                    m,
+                    f"{float(sel['slip_m']) * 1e3:.2f}",
+                    f"{float(sel['friction_utilisation']):.3f}",
+                    f"{float(sel['axial_force_N']) / 1e3:.1f}",
+                    f"{float(sel['critical_friction_coefficient']):.4f}",
+                    "yes" if int(sel["axial_converged"]) else "NO",
+                ]
+            )
     mu = ", ".join(f"{v:.3g}" for v in np.asarray(ds["friction_coefficient"].values)) if "friction_coefficient" in ds else "?"
     return (
         f"<p>Coulomb friction at the saddles (coefficients {html.escape(mu)}) with each model's own saddle contact forces, "
         f"lashings {float(ds.attrs.get('axial_lashing_stiffness_N_per_m', math.nan)) / 1e3:.1f} kN/m axially; axial load amplitude "
         f"{float(ds.attrs.get('axial_load_amplitude_N', math.nan)) / 1e3:.0f} kN (surge, pitch inertia, gravity). "
         "Utilisation 1 = the cargo slides; it slides whenever the friction coefficient is below the critical one.</p>"
-        + _table(["load case", "model", "slip per period [mm]", "friction utilisation [-]", "lashing + stopper force [kN]",
-                  "critical friction coefficient [-]", "converged"], rows)
+        + _table(
+            [
+                "load case",
+                "model",
+                "slip per period [mm]",
+                "friction utilisation [-]",
+                "lashing + stopper force [kN]",
+                "critical friction coefficient [-]",
+                "converged",
+            ],
+            rows,
+        )
     )
 
 
-def _study_sections(sds: xr.Dataset, figs: list[ReportFigure], findings: list[Finding], first_fig: bool, ranking_csv: Path | None) -> tuple[list[tuple[str, str, str]], bool]:
+def _study_sections(
+    sds: xr.Dataset, figs: list[ReportFigure], findings: list[Finding], first_fig: bool, ranking_csv: Path | None
+) -> tuple[list[tuple[str, str, str]], bool]:
     parts = []
     for f in figs:
         parts.append(_figure_html(f, first_fig))
@@ -180,7 +211,16 @@ def _study_sections(sds: xr.Dataset, figs: list[ReportFigure], findings: list[Fi
     axes_rows = []
     for k in keys:
         v = np.asarray(sds[k].values)
-        axes_rows.append([k, display_unit(k), str(v.size), f"{v.min():.4g} .. {v.max():.4g}", str(sds[k].attrs.get("scale", "")), f"{base_value(sds, k):.4g}"])
+        axes_rows.append(
+            [
+                k,
+                display_unit(k),
+                str(v.size),
+                f"{v.min():.4g} .. {v.max():.4g}",
+                str(sds[k].attrs.get("scale", "")),
+                f"{base_value(sds, k):.4g}",
+            ]
+        )
     header, rows = ranking_rows(sds, ranking_csv)
     show = rows[:40]
 
@@ -200,7 +240,11 @@ def _study_sections(sds: xr.Dataset, figs: list[ReportFigure], findings: list[Fi
         f"<p>{len(rows)} compliant arrangement(s), ranked by fewest saddles, then the larger margin (nonlinear model, total response)."
         + (f" The first {len(show)} are shown; see ranking.csv for all." if len(rows) > len(show) else "")
         + "</p>"
-        + (_table(header, [[fmt(r.get(h)) for h in header] for r in show]) if rows else "<p><b>No arrangement of this study complies with the limits.</b></p>")
+        + (
+            _table(header, [[fmt(r.get(h)) for h in header] for r in show])
+            if rows
+            else "<p><b>No arrangement of this study complies with the limits.</b></p>"
+        )
     )
     lim = design_limits(sds)
     overview = (
@@ -278,7 +322,7 @@ def build_report_html(
         names.append(f"operability {operability.attrs.get('title', '').removeprefix('seafast operability: ')}")
     sources = [d for d in (run, study, seastate, operability) if d is not None]
     version = sources[0].attrs.get("seafast_version", "") if sources else ""
-    stamp = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    stamp = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     subtitle = f"seafast {version or ''} report, generated {stamp}. SI inputs; results in mm, MN, MN m, MPa."
     page = render_html(title or f"seafast report: {', '.join(names)}", subtitle, sections, len(figures))
     return page, figures, findings

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import html
 import math
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -17,8 +18,15 @@ from seafast.output.report.common import Finding, ReportError, ReportFigure
 
 __all__ = ["operability_findings", "operability_figure", "operability_report_sections", "OPERABILITY_TABLE_HEADER"]
 
-OPERABILITY_TABLE_HEADER = ("Tp [s]", "allowable Hs, linear [m]", "allowable Hs, nonlinear [m]", "uplift onset Hs [m]",
-                            "governing (linear)", "governing (nonlinear)", "steepest Hs [m]")
+OPERABILITY_TABLE_HEADER = (
+    "Tp [s]",
+    "allowable Hs, linear [m]",
+    "allowable Hs, nonlinear [m]",
+    "uplift onset Hs [m]",
+    "governing (linear)",
+    "governing (nonlinear)",
+    "steepest Hs [m]",
+)
 _PLOTLY_CONFIG = {"displaylogo": False, "responsive": True}
 
 
@@ -29,9 +37,17 @@ def _m(value: float) -> str:
 def _rows(ds: xr.Dataset) -> list[list[str]]:
     out = []
     for i, tp in enumerate(ds["peak_period_s"].values):
-        out.append([f"{float(tp):g}", _m(float(ds["hs_allowable_linear_m"].values[i])), _m(float(ds["hs_allowable_nonlinear_m"].values[i])),
-                    _m(float(ds["hs_uplift_onset_m"].values[i])), str(ds["governing_linear"].values[i]),
-                    str(ds["governing_nonlinear"].values[i]), _m(float(ds["hs_max_steepness_m"].values[i]))])
+        out.append(
+            [
+                f"{float(tp):g}",
+                _m(float(ds["hs_allowable_linear_m"].values[i])),
+                _m(float(ds["hs_allowable_nonlinear_m"].values[i])),
+                _m(float(ds["hs_uplift_onset_m"].values[i])),
+                str(ds["governing_linear"].values[i]),
+                str(ds["governing_nonlinear"].values[i]),
+                _m(float(ds["hs_max_steepness_m"].values[i])),
+            ]
+        )
     return out
 
 
@@ -39,22 +55,37 @@ def operability_findings(ds: xr.Dataset) -> list[Finding]:
     """WARNING / NOTE / OK statements on an operability result."""
     out: list[Finding] = []
     tp = ds["peak_period_s"].values
-    lin, nl, onset = (ds[n].values.astype(float) for n in ("hs_allowable_linear_m", "hs_allowable_nonlinear_m", "hs_uplift_onset_m"))
-    failed = [float(t) for t, g in zip(tp, ds["governing_nonlinear"].values) if str(g) == "not_converged"]
+    lin, onset = (ds[n].values.astype(float) for n in ("hs_allowable_linear_m", "hs_uplift_onset_m"))
+    failed = [float(t) for t, g in zip(tp, ds["governing_nonlinear"].values, strict=True) if str(g) == "not_converged"]
     if failed:
-        out.append(Finding("WARNING", f"The nonlinear search did not converge at Tp = {', '.join(f'{t:g}' for t in failed)} s",
-                           "Its allowable Hs is left empty; the linear one stands alone there."))
-    lifted = [float(t) for t, h, u in zip(tp, lin, onset) if math.isfinite(u) and u < h]
+        out.append(
+            Finding(
+                "WARNING",
+                f"The nonlinear search did not converge at Tp = {', '.join(f'{t:g}' for t in failed)} s",
+                "Its allowable Hs is left empty; the linear one stands alone there.",
+            )
+        )
+    lifted = [float(t) for t, h, u in zip(tp, lin, onset, strict=True) if math.isfinite(u) and u < h]
     if lifted:
-        out.append(Finding("NOTE", f"Saddles lift off below the linear allowable Hs at {len(lifted)} peak period(s) "
-                           f"({min(lifted):g}-{max(lifted):g} s)",
-                           "There the linear answer assumes saddles that pull; the nonlinear (design-wave) curve is the one to use."))
+        out.append(
+            Finding(
+                "NOTE",
+                f"Saddles lift off below the linear allowable Hs at {len(lifted)} peak period(s) ({min(lifted):g}-{max(lifted):g} s)",
+                "There the linear answer assumes saddles that pull; the nonlinear (design-wave) curve is the one to use.",
+            )
+        )
     else:
         out.append(Finding("OK", "No saddle lifts off below the allowable Hs: the linear and nonlinear curves agree", ""))
     if "share_within_limits_nonlinear" in ds.attrs:
-        out.append(Finding("NOTE", f"Scatter diagram {ds.attrs.get('scatter_source', '')}: within the limits "
-                           f"{float(ds.attrs['share_within_limits_linear']):.1%} of the time (linear), "
-                           f"{float(ds.attrs['share_within_limits_nonlinear']):.1%} (nonlinear)", ""))
+        out.append(
+            Finding(
+                "NOTE",
+                f"Scatter diagram {ds.attrs.get('scatter_source', '')}: within the limits "
+                f"{float(ds.attrs['share_within_limits_linear']):.1%} of the time (linear), "
+                f"{float(ds.attrs['share_within_limits_nonlinear']):.1%} (nonlinear)",
+                "",
+            )
+        )
     return out
 
 
@@ -65,27 +96,59 @@ def operability_figure(ds: xr.Dataset) -> ReportFigure:
     tp = ds["peak_period_s"].values
     fig = go.Figure()
     fig.add_trace(go.Scatter(x=tp, y=ds["hs_max_steepness_m"].values, name="limiting steepness", line={"color": "gray", "dash": "dot"}))
-    fig.add_trace(go.Scatter(x=tp, y=ds["hs_allowable_nonlinear_m"].values, name="allowable Hs, nonlinear (design waves)",
-                             mode="lines+markers", line={"color": "#d62728", "width": 3}))
-    fig.add_trace(go.Scatter(x=tp, y=ds["hs_allowable_linear_m"].values, name="allowable Hs, linear (spectral MPM)",
-                             mode="lines+markers", line={"color": "#1f77b4", "dash": "dash"}))
+    fig.add_trace(
+        go.Scatter(
+            x=tp,
+            y=ds["hs_allowable_nonlinear_m"].values,
+            name="allowable Hs, nonlinear (design waves)",
+            mode="lines+markers",
+            line={"color": "#d62728", "width": 3},
+        )
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=tp,
+            y=ds["hs_allowable_linear_m"].values,
+            name="allowable Hs, linear (spectral MPM)",
+            mode="lines+markers",
+            line={"color": "#1f77b4", "dash": "dash"},
+        )
+    )
     fig.add_trace(go.Scatter(x=tp, y=ds["hs_uplift_onset_m"].values, name="uplift onset", line={"color": "#2ca02c", "dash": "dashdot"}))
     if "scatter_occurrence" in ds:
         occ = ds["scatter_occurrence"].values
         within = ds["scatter_within_limits_nonlinear"].values.astype(bool)
         size = 6.0 + 30.0 * np.sqrt(occ / max(float(occ.max()), 1e-300))
         for sel, colour, label in ((within, "#2ca02c", "scatter: within limits (nonlinear)"), (~within, "gray", "scatter: not within")):
-            fig.add_trace(go.Scatter(x=ds["scatter_peak_period_s"].values[sel], y=ds["scatter_significant_height_m"].values[sel],
-                                     mode="markers", name=label, marker={"size": size[sel], "color": colour, "symbol": "circle-open"}))
-    top = np.nanmax(np.concatenate([ds["hs_allowable_linear_m"].values, ds["hs_allowable_nonlinear_m"].values,
-                                    np.nan_to_num(ds["hs_uplift_onset_m"].values, nan=0.0)]))
+            fig.add_trace(
+                go.Scatter(
+                    x=ds["scatter_peak_period_s"].values[sel],
+                    y=ds["scatter_significant_height_m"].values[sel],
+                    mode="markers",
+                    name=label,
+                    marker={"size": size[sel], "color": colour, "symbol": "circle-open"},
+                )
+            )
+    top = np.nanmax(
+        np.concatenate(
+            [
+                ds["hs_allowable_linear_m"].values,
+                ds["hs_allowable_nonlinear_m"].values,
+                np.nan_to_num(ds["hs_uplift_onset_m"].values, nan=0.0),
+            ]
+        )
+    )
     fig.update_xaxes(title_text="peak period Tp [s]")
     fig.update_yaxes(title_text="significant wave height Hs [m]", range=[0.0, 1.15 * max(float(top), 0.1)])
     fig.update_layout(height=480, template="plotly_white")
-    return ReportFigure("fig-operability", "Allowable sea states", fig,
-                        "Largest Hs per peak period within the saddle-force and bending-stress limits (most probable maxima over "
-                        "the duration, still water included): linear spectral and nonlinear design-wave estimates; the Hs at "
-                        "which a saddle first lifts off; the steepest sea state (DNV-RP-C205).")
+    return ReportFigure(
+        "fig-operability",
+        "Allowable sea states",
+        fig,
+        "Largest Hs per peak period within the saddle-force and bending-stress limits (most probable maxima over "
+        "the duration, still water included): linear spectral and nonlinear design-wave estimates; the Hs at "
+        "which a saddle first lifts off; the steepest sea state (DNV-RP-C205).",
+    )
 
 
 def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
@@ -97,18 +160,27 @@ def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
 def _finding_html(findings: Sequence[Finding]) -> str:
     return "".join(
         f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
-        + (f"<div>{html.escape(f.text)}</div>" if f.text else "") + "</div>"
+        + (f"<div>{html.escape(f.text)}</div>" if f.text else "")
+        + "</div>"
         for f in findings
     )
 
 
-def operability_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
+def operability_report_sections(
+    ds: xr.Dataset, first_figure: bool
+) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
     """The operability section (id, heading, inner HTML), its figure and findings.
 
     ``first_figure``: whether plotly.js still has to be embedded; returned updated.
     """
-    needed = ("hs_allowable_linear_m", "hs_allowable_nonlinear_m", "hs_uplift_onset_m", "governing_linear", "governing_nonlinear",
-              "hs_max_steepness_m")
+    needed = (
+        "hs_allowable_linear_m",
+        "hs_allowable_nonlinear_m",
+        "hs_uplift_onset_m",
+        "governing_linear",
+        "governing_nonlinear",
+        "hs_max_steepness_m",
+    )
     missing = [n for n in needed if n not in ds]
     if missing:
         raise ReportError(f"operability.nc lacks {', '.join(missing)}: write it again with this version's 'seafast operability'")
@@ -123,7 +195,6 @@ def operability_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[lis
         "head seas. Nonlinear: design waves solved by harmonic balance (docs/operability.md).</p>"
         + _finding_html(findings)
         + f'<div class="figure" data-figure="{html.escape(fig.id)}"><h3>{html.escape(fig.title)}</h3>{div}'
-        f'<p class="caption">{html.escape(fig.caption)}</p></div>'
-        + _table_html(OPERABILITY_TABLE_HEADER, _rows(ds))
+        f'<p class="caption">{html.escape(fig.caption)}</p></div>' + _table_html(OPERABILITY_TABLE_HEADER, _rows(ds))
     )
     return [("operability", "Operability: allowable sea states", body)], [fig], findings, False

@@ -8,9 +8,10 @@ them into the PDF without changing those modules.
 from __future__ import annotations
 
 import logging
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Iterator, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -53,11 +54,11 @@ def _print_quality(pdf: Any | None, min_dpi: int) -> Iterator[list[str]]:
                 busy[0] = False
         return result
 
-    Figure.savefig = savefig  # type: ignore[method-assign]
+    Figure.savefig = savefig  # type: ignore[method-assign]  # patched on purpose, for the with-block only
     try:
         yield saved
     finally:
-        Figure.savefig = original  # type: ignore[method-assign]
+        Figure.savefig = original  # type: ignore[method-assign]  # restored
 
 
 def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
@@ -77,7 +78,7 @@ def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
     ds_ = np.diff(s).mean() if s.size > 1 else 1.0
     xe = np.concatenate([s - ds_ / 2, [s[-1] + ds_ / 2]])
     cmap = ListedColormap(["#fdae61", "#1a9850"])
-    for ax, m in zip(axes[:, 0], models):
+    for ax, m in zip(axes[:, 0], models, strict=True):
         z = (ds["saddle_compression_m"].sel(load_case=lc, model=m).values > 0).astype(int).T
         ax.pcolormesh(xe, np.arange(n + 1) - 0.5, z, cmap=cmap, vmin=0, vmax=1, shading="flat")
         ax.set_yticks(range(n))
@@ -85,7 +86,12 @@ def plot_contact_timeline(ds: xr.Dataset, path: Path) -> Path:
         ax.set_ylabel("saddle [-]")
         ax.set_title(f"{m} model" + (" (detached = would need tension)" if m == "linear" else ""), fontsize=10)
     axes[-1, 0].set_xlabel("period fraction t/T [-]")
-    fig.legend(handles=[Patch(color="#1a9850", label="in contact"), Patch(color="#fdae61", label="detached")], loc="upper right", ncol=2, fontsize=8)
+    fig.legend(
+        handles=[Patch(color="#1a9850", label="in contact"), Patch(color="#fdae61", label="detached")],
+        loc="upper right",
+        ncol=2,
+        fontsize=8,
+    )
     fig.suptitle(f"Contact state over one wave period ({lc})", fontsize=11, x=0.02, ha="left")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     fig.savefig(path, dpi=PNG_DPI)
@@ -141,13 +147,21 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                 widths = [max(len(str(r[i])) for r in [header, *rows]) for i in range(len(header))]
                 lines += ["maxima over the cargo, the saddles and one wave period (dynamic = total response)", ""]
                 for r in [header, *rows]:
-                    lines.append("  ".join(str(c).ljust(w) if i < 2 else str(c).rjust(w) for i, (c, w) in enumerate(zip(r, widths))))
+                    lines.append(
+                        "  ".join(str(c).ljust(w) if i < 2 else str(c).rjust(w) for i, (c, w) in enumerate(zip(r, widths, strict=True)))
+                    )
                 lines += ["", f"excitation: {run.attrs.get('excitation_source', '')}"]
                 lines += [f"{f.level}: {f.title}" for f in run_findings(run)]
             if study is not None:
                 lines += ["", f"study {study.attrs.get('study', '')}: {study.attrs.get('description', '')}"]
                 lines += [f"{f.level}: {f.title}" for f in study_findings(study)]
-            name = case_mapping(run.attrs.get("case_json")).get("name", "") if run is not None else study.attrs.get("study", "") if study is not None else ""
+            name = (
+                case_mapping(run.attrs.get("case_json")).get("name", "")
+                if run is not None
+                else study.attrs.get("study", "")
+                if study is not None
+                else ""
+            )
             _summary_page(pdf, f"seafast report: {name}", lines)
         with _print_quality(pdf, PNG_DPI):
             for fname, fn in jobs:
@@ -160,7 +174,7 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                     from seafast.studies.figures import plot_study
 
                     paths += list(plot_study(study, fig_dir))
-                except Exception as exc:  # noqa: BLE001
+                except Exception as exc:  # noqa: BLE001 - one bad figure must not lose the report
                     logger.warning("study print figures skipped (%s: %s)", type(exc).__name__, exc)
     finally:
         if pdf is not None:

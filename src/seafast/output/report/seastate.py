@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import html
 import math
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -52,27 +53,47 @@ def seastate_findings(ds: xr.Dataset) -> list[Finding]:
     hours = float(ds.attrs.get("duration_s", 10800.0)) / 3600.0
     events = _value(ds, "uplift_per_hour", "linear", "spectral") * hours
     if events >= 1.0:
-        out.append(Finding("WARNING", f"The linear model predicts {events:.1f} uplift events in {hours:g} h: saddles lift off",
-                           "The linear spectral extremes assume saddles that pull; with lift-off they are not to be trusted. "
-                           "Use the nonlinear rows (design waves, Monte Carlo)."))
+        out.append(
+            Finding(
+                "WARNING",
+                f"The linear model predicts {events:.1f} uplift events in {hours:g} h: saddles lift off",
+                "The linear spectral extremes assume saddles that pull; with lift-off they are not to be trusted. "
+                "Use the nonlinear rows (design waves, Monte Carlo).",
+            )
+        )
     elif events >= 0.01:
-        out.append(Finding("NOTE", f"Lift-off is possible: {events:.2f} expected uplift events in {hours:g} h (linear, Rice)",
-                           "Compare with the nonlinear rows (design waves, Monte Carlo)."))
+        out.append(
+            Finding(
+                "NOTE",
+                f"Lift-off is possible: {events:.2f} expected uplift events in {hours:g} h (linear, Rice)",
+                "Compare with the nonlinear rows (design waves, Monte Carlo).",
+            )
+        )
     else:
         out.append(Finding("OK", f"No lift-off expected ({events:.1e} uplift events in {hours:g} h): the linear extremes hold", ""))
-    limits = {"F_N": float(ds.attrs.get("max_saddle_force_N", math.nan)), "sigma_b_Pa": float(ds.attrs.get("max_bending_stress_Pa", math.nan))}
+    limits = {
+        "F_N": float(ds.attrs.get("max_saddle_force_N", math.nan)),
+        "sigma_b_Pa": float(ds.attrs.get("max_bending_stress_Pa", math.nan)),
+    }
     for model, method in [r for r in _methods(ds) if r[1] != "monte_carlo" or r[0] == "nonlinear"]:
         for name, label, unit, scale in (("F_N", "saddle force", "MN", 1e-6), ("sigma_b_Pa", "bending stress", "MPa", 1e-6)):
             v = _value(ds, name, model, method)
             if math.isfinite(v) and math.isfinite(limits[name]) and v > limits[name]:
-                out.append(Finding("WARNING", f"{model} {method}: MPM {label} {v * scale:.2f} {unit} exceeds the limit "
-                                   f"{limits[name] * scale:g} {unit}", "limits.* keys of the case."))
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{model} {method}: MPM {label} {v * scale:.2f} {unit} exceeds the limit {limits[name] * scale:g} {unit}",
+                        "limits.* keys of the case.",
+                    )
+                )
     for model, method in _methods(ds):
         if int(ds["converged"].sel({"model": model, "estimate_method": method}).values) == 0:
             what = "A design wave's harmonic balance" if method == "design_wave" else "A Monte Carlo realisation"
             out.append(Finding("WARNING", f"{what} did not converge ({model}, {method})", "Its row is flagged converged = NO."))
     if not math.isfinite(_value(ds, "F_N", "nonlinear", "monte_carlo")):
-        out.append(Finding("NOTE", "The nonlinear Monte Carlo reference was not computed", "Run seafast seastate without --no-monte-carlo."))
+        out.append(
+            Finding("NOTE", "The nonlinear Monte Carlo reference was not computed", "Run seafast seastate without --no-monte-carlo.")
+        )
     return out
 
 
@@ -90,10 +111,14 @@ def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
     x = int(np.argmax(np.abs(ds["still_water_bending_moment_Nm"].values) + ds["bending_moment_mpm_dynamic_Nm"].values))
     spec = make_subplots(specs=[[{"secondary_y": True}]])
     spec.add_trace(go.Scatter(x=w, y=ds["wave_spectrum_m2_s_per_rad"].values, name="wave S(ω)", line={"color": "black"}))
-    for name, idx, label in (("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}"),
-                             ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment at x = {float(ds['x_moment_m'][x]):.1f} m")):
+    for name, idx, label in (
+        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}"),
+        ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment at x = {float(ds['x_moment_m'][x]):.1f} m"),
+    ):
         r = ds[name].isel(idx).values
-        spec.add_trace(go.Scatter(x=w, y=r / max(float(r.max()), 1e-300), name=f"response: {label}", line={"dash": "dash"}), secondary_y=True)
+        spec.add_trace(
+            go.Scatter(x=w, y=r / max(float(r.max()), 1e-300), name=f"response: {label}", line={"dash": "dash"}), secondary_y=True
+        )
     spec.update_xaxes(title_text="wave frequency ω [rad/s]")
     spec.update_yaxes(title_text="wave spectral density S [m² s/rad]", secondary_y=False)
     spec.update_yaxes(title_text="response spectrum / its peak [-]", secondary_y=True)
@@ -102,16 +127,28 @@ def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
     force = _abs(ds, "saddle_force_transfer_N_per_m")
     for i in range(force.shape[1]):
         tf.add_trace(go.Scatter(x=w, y=force[:, i] / 1e6, name=f"saddle {i}"), row=1, col=1)
-    tf.add_trace(go.Scatter(x=w, y=_abs(ds, "bending_moment_transfer_Nm_per_m")[:, x] / 1e6, name=f"M at x = {float(ds['x_moment_m'][x]):.1f} m"), row=1, col=2)
+    tf.add_trace(
+        go.Scatter(x=w, y=_abs(ds, "bending_moment_transfer_Nm_per_m")[:, x] / 1e6, name=f"M at x = {float(ds['x_moment_m'][x]):.1f} m"),
+        row=1,
+        col=2,
+    )
     tf.update_xaxes(title_text="wave frequency ω [rad/s]")
     tf.update_yaxes(title_text="|F| [MN per m of wave]", row=1, col=1)
     tf.update_yaxes(title_text="|M_b| [MN m per m of wave]", row=1, col=2)
     tf.update_layout(height=420, template="plotly_white")
     figures = [
-        ReportFigure("fig-seastate-spectrum", "Wave and response spectra", spec,
-                     "The wave spectrum and the response spectra of the governing saddle force and bending moment (normalised)."),
-        ReportFigure("fig-seastate-transfer", "Transfer functions", tf,
-                     "Magnitude of the linear transfer functions per metre of wave amplitude (head seas)."),
+        ReportFigure(
+            "fig-seastate-spectrum",
+            "Wave and response spectra",
+            spec,
+            "The wave spectrum and the response spectra of the governing saddle force and bending moment (normalised).",
+        ),
+        ReportFigure(
+            "fig-seastate-transfer",
+            "Transfer functions",
+            tf,
+            "Magnitude of the linear transfer functions per metre of wave amplitude (head seas).",
+        ),
     ]
     if "mc_F_N" in ds:
         figures.append(_maxima_figure(ds))
@@ -131,8 +168,18 @@ def _maxima_figure(ds: xr.Dataset) -> ReportFigure:
             m = np.sort(ds[f"mc_{q}"].sel(model=model).values.astype(float))
             m = m[np.isfinite(m)]
             p = (np.arange(1, m.size + 1) - 0.44) / (m.size + 0.12)
-            fig.add_trace(go.Scatter(x=m / 1e6, y=p, mode="markers", name=f"{model}: per-realisation maxima",
-                                     marker={"color": colours[model]}, showlegend=col == 1), row=1, col=col)
+            fig.add_trace(
+                go.Scatter(
+                    x=m / 1e6,
+                    y=p,
+                    mode="markers",
+                    name=f"{model}: per-realisation maxima",
+                    marker={"color": colours[model]},
+                    showlegend=col == 1,
+                ),
+                row=1,
+                col=col,
+            )
             mpm = float(ds[f"mc_mpm_{q}"].sel(model=model))
             fig.add_vline(x=mpm / 1e6, line={"color": colours[model], "dash": "dot"}, row=1, col=col)
         fig.add_vline(x=_value(ds, q, "linear", "spectral") / 1e6, line={"color": "black", "dash": "dash"}, row=1, col=col)
@@ -140,9 +187,13 @@ def _maxima_figure(ds: xr.Dataset) -> ReportFigure:
     fig.update_xaxes(title_text="M_b [MN m]", row=1, col=2)
     fig.update_yaxes(title_text="non-exceedance probability [-]")
     fig.update_layout(height=420, template="plotly_white")
-    return ReportFigure("fig-seastate-maxima", "Distribution of the maxima", fig,
-                        "Per-realisation maxima over the duration (Gringorten plotting positions); dotted: Monte Carlo MPM "
-                        "(Gumbel mode) per model, dashed: linear spectral MPM.")
+    return ReportFigure(
+        "fig-seastate-maxima",
+        "Distribution of the maxima",
+        fig,
+        "Per-realisation maxima over the duration (Gringorten plotting positions); dotted: Monte Carlo MPM "
+        "(Gumbel mode) per model, dashed: linear spectral MPM.",
+    )
 
 
 def _example_figure(ds: xr.Dataset) -> ReportFigure:
@@ -162,16 +213,29 @@ def _example_figure(ds: xr.Dataset) -> ReportFigure:
         colour = f"hsl({(i * 110) % 360},60%,45%)"
         for model, dash in (("linear", "dash"), ("nonlinear", "solid")):
             f = ds["mc_example_saddle_force_N"].sel(model=model).isel(saddle=i).values[window] / 1e6
-            fig.add_trace(go.Scattergl(x=t, y=f, mode="lines", name=f"saddle {i}, {model}", line={"color": colour, "dash": dash, "width": 1}))
+            fig.add_trace(
+                go.Scattergl(x=t, y=f, mode="lines", name=f"saddle {i}, {model}", line={"color": colour, "dash": dash, "width": 1})
+            )
         if lifted[:, i].any():
-            fig.add_trace(go.Scattergl(x=t[lifted[:, i]], y=np.zeros(int(lifted[:, i].sum())), mode="markers", name=f"saddle {i} lifted off",
-                                       marker={"symbol": "line-ns-open", "size": 10, "color": colour}))
+            fig.add_trace(
+                go.Scattergl(
+                    x=t[lifted[:, i]],
+                    y=np.zeros(int(lifted[:, i].sum())),
+                    mode="markers",
+                    name=f"saddle {i} lifted off",
+                    marker={"symbol": "line-ns-open", "size": 10, "color": colour},
+                )
+            )
     fig.update_xaxes(title_text="time t [s]")
     fig.update_yaxes(title_text="saddle force F [MN]")
     fig.update_layout(height=450, template="plotly_white")
-    return ReportFigure("fig-seastate-realisation", f"One realisation ({ds['mc_example_time_s'].attrs.get('long_name', '')})", fig,
-                        "Saddle forces, nonlinear (solid) and linear (dashed), over 300 s around the lift-off nearest the largest "
-                        "linear force; lift-off marked on F = 0 (the whole record: seastate.nc, seastate_realisation.png).")
+    return ReportFigure(
+        "fig-seastate-realisation",
+        f"One realisation ({ds['mc_example_time_s'].attrs.get('long_name', '')})",
+        fig,
+        "Saddle forces, nonlinear (solid) and linear (dashed), over 300 s around the lift-off nearest the largest "
+        "linear force; lift-off marked on F = 0 (the whole record: seastate.nc, seastate_realisation.png).",
+    )
 
 
 def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
@@ -183,12 +247,15 @@ def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
 def _finding_html(findings: Sequence[Finding]) -> str:
     return "".join(
         f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
-        + (f"<div>{html.escape(f.text)}</div>" if f.text else "") + "</div>"
+        + (f"<div>{html.escape(f.text)}</div>" if f.text else "")
+        + "</div>"
         for f in findings
     )
 
 
-def seastate_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
+def seastate_report_sections(
+    ds: xr.Dataset, first_figure: bool
+) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
     """The sea-state sections (id, heading, inner HTML), their figures and findings.
 
     ``first_figure``: whether plotly.js still has to be embedded (with this section's first
@@ -204,8 +271,10 @@ def seastate_report_sections(ds: xr.Dataset, first_figure: bool) -> tuple[list[t
     for f in figs:
         div = f.figure.to_html(full_html=False, include_plotlyjs=True if first_figure else False, div_id=f.id, config=_PLOTLY_CONFIG)
         first_figure = False
-        parts.append(f'<div class="figure" data-figure="{html.escape(f.id)}"><h3>{html.escape(f.title)}</h3>{div}'
-                     f'<p class="caption">{html.escape(f.caption)}</p></div>')
+        parts.append(
+            f'<div class="figure" data-figure="{html.escape(f.id)}"><h3>{html.escape(f.title)}</h3>{div}'
+            f'<p class="caption">{html.escape(f.caption)}</p></div>'
+        )
     hs, tp = float(ds.attrs.get("significant_height_m", math.nan)), float(ds.attrs.get("peak_period_s", math.nan))
     summary = (
         f"<p>{html.escape(str(ds.attrs.get('spectrum', '')))}: Hs = {hs:g} m, Tp = {tp:.3g} s, head seas; most probable "

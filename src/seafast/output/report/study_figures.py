@@ -7,7 +7,8 @@ few varying axes); :func:`study_figures` collects them in report order.
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -52,7 +53,11 @@ def _study_view(sds: xr.Dataset, keep: int) -> tuple[xr.Dataset, list[str], dict
             continue
         coords = np.asarray(view[k].values)
         base = base_value(view, k)
-        idx = int(np.argmin(np.abs(coords.astype(float) - base))) if math.isfinite(base) and coords.min() <= base <= coords.max() else len(coords) // 2
+        idx = (
+            int(np.argmin(np.abs(coords.astype(float) - base)))
+            if math.isfinite(base) and coords.min() <= base <= coords.max()
+            else len(coords) // 2
+        )
         held[k] = coords[idx].item()
         view = view.isel({k: idx})
     return view, varying[:keep], held
@@ -111,30 +116,71 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
         z = np.asarray(total[name].sel(model=model).values, dtype=float) * scale
         dom = fig.layout[f"xaxis{'' if i == 1 else i}"].domain
         fig.add_trace(
-            go.Heatmap(x=xe, y=ye, z=z, colorscale="Viridis", colorbar=dict(x=dom[1] + 0.005, thickness=12, len=0.9, title=dict(text=unit, side="right")),
-                       hovertemplate=f"{xkey} %{{x:.4g}}<br>{ykey} %{{y:.4g}}<br>{title} %{{z:.3f}} {unit}<extra>{model}</extra>"),
-            row=1, col=i,
+            go.Heatmap(
+                x=xe,
+                y=ye,
+                z=z,
+                colorscale="Viridis",
+                colorbar=dict(x=dom[1] + 0.005, thickness=12, len=0.9, title=dict(text=unit, side="right")),
+                hovertemplate=f"{xkey} %{{x:.4g}}<br>{ykey} %{{y:.4g}}<br>{title} %{{z:.3f}} {unit}<extra>{model}</extra>",
+            ),
+            row=1,
+            col=i,
         )
         if name in lim and np.isfinite(z).any() and np.nanmin(z) < lim[name] * scale < np.nanmax(z):
             fig.add_trace(
-                go.Contour(x=x, y=y, z=z, contours=dict(start=lim[name] * scale, end=lim[name] * scale, size=1, coloring="none",
-                                                        showlabels=True, labelfont=dict(color="#d62728")),
-                           line=dict(color="#d62728", width=2, dash="dash"), showscale=False, name="design limit",
-                           legendgroup="limit", showlegend=i == 1, hoverinfo="skip"),
-                row=1, col=i,
+                go.Contour(
+                    x=x,
+                    y=y,
+                    z=z,
+                    contours=dict(
+                        start=lim[name] * scale,
+                        end=lim[name] * scale,
+                        size=1,
+                        coloring="none",
+                        showlabels=True,
+                        labelfont=dict(color="#d62728"),
+                    ),
+                    line=dict(color="#d62728", width=2, dash="dash"),
+                    showscale=False,
+                    name="design limit",
+                    legendgroup="limit",
+                    showlegend=i == 1,
+                    hoverinfo="skip",
+                ),
+                row=1,
+                col=i,
             )
         if contact is not None and contact.any():
             fig.add_trace(
-                go.Scatter(x=X[contact], y=Y[contact], mode="markers", marker=dict(symbol="circle", size=8, color="white", line=dict(color="black", width=1)),
-                           name="contact preserved (linear valid)", legendgroup="contact", showlegend=i == 1, hoverinfo="skip"),
-                row=1, col=i,
+                go.Scatter(
+                    x=X[contact],
+                    y=Y[contact],
+                    mode="markers",
+                    marker=dict(symbol="circle", size=8, color="white", line=dict(color="black", width=1)),
+                    name="contact preserved (linear valid)",
+                    legendgroup="contact",
+                    showlegend=i == 1,
+                    hoverinfo="skip",
+                ),
+                row=1,
+                col=i,
             )
         bx, by = base_value(view, xkey), base_value(view, ykey)
         if math.isfinite(bx) and math.isfinite(by):
             fig.add_trace(
-                go.Scatter(x=[bx], y=[by], mode="markers", marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5)),
-                           name="base case", legendgroup="base", showlegend=i == 1, hovertemplate="base case<extra></extra>"),
-                row=1, col=i,
+                go.Scatter(
+                    x=[bx],
+                    y=[by],
+                    mode="markers",
+                    marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5)),
+                    name="base case",
+                    legendgroup="base",
+                    showlegend=i == 1,
+                    hovertemplate="base case<extra></extra>",
+                ),
+                row=1,
+                col=i,
             )
         fig.update_xaxes(title_text=_key_label(view, xkey), **_axis_ticks(view, xkey), row=1, col=i)
         fig.update_yaxes(title_text=_key_label(view, ykey) if i == 1 else None, **_axis_ticks(view, ykey), row=1, col=i)
@@ -152,27 +198,57 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
     go = plotly_go()
     total = total_response(view)
     x = view[key].values.astype(float)
-    log = _is_log(view, key)
     lim = design_limits(sds)
     fig = subplots(rows=1, cols=3, horizontal_spacing=0.08, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
-    contact = np.asarray(total["contact_preserved"].sel(model="nonlinear").values).astype(bool) if "nonlinear" in coord_labels(total["model"]) else None
-    for i, (name, title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
+    contact = (
+        np.asarray(total["contact_preserved"].sel(model="nonlinear").values).astype(bool)
+        if "nonlinear" in coord_labels(total["model"])
+        else None
+    )
+    for i, (name, _title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
         for m in coord_labels(total["model"]):
-            fig.add_trace(go.Scatter(x=x, y=np.asarray(total[name].sel(model=m).values, dtype=float) * scale, mode="lines+markers", name=m,
-                                     legendgroup=m, showlegend=i == 1, line=dict(color=MODEL_COLORS.get(m, "black"), dash="dash" if m == "linear" else "solid"),
-                                     hovertemplate=f"{key} %{{x:.4g}}<br>%{{y:.3f}} {unit}<extra>{m}</extra>"), row=1, col=i)
+            fig.add_trace(
+                go.Scatter(
+                    x=x,
+                    y=np.asarray(total[name].sel(model=m).values, dtype=float) * scale,
+                    mode="lines+markers",
+                    name=m,
+                    legendgroup=m,
+                    showlegend=i == 1,
+                    line=dict(color=MODEL_COLORS.get(m, "black"), dash="dash" if m == "linear" else "solid"),
+                    hovertemplate=f"{key} %{{x:.4g}}<br>%{{y:.3f}} {unit}<extra>{m}</extra>",
+                ),
+                row=1,
+                col=i,
+            )
         if name in lim:
             fig.add_hline(y=lim[name] * scale, line=dict(color="#d62728", dash="dot"), row=1, col=i)
         if contact is not None and contact.any():
             yv = np.asarray(total[name].sel(model="nonlinear").values, dtype=float)[contact] * scale
-            fig.add_trace(go.Scatter(x=x[contact], y=yv, mode="markers", marker=dict(symbol="circle-open", size=12, color="#1a9850", line=dict(width=2)),
-                                     name="contact preserved (linear valid)", legendgroup="contact", showlegend=i == 1, hoverinfo="skip"), row=1, col=i)
+            fig.add_trace(
+                go.Scatter(
+                    x=x[contact],
+                    y=yv,
+                    mode="markers",
+                    marker=dict(symbol="circle-open", size=12, color="#1a9850", line=dict(width=2)),
+                    name="contact preserved (linear valid)",
+                    legendgroup="contact",
+                    showlegend=i == 1,
+                    hoverinfo="skip",
+                ),
+                row=1,
+                col=i,
+            )
         b = base_value(view, key)
         if math.isfinite(b):
             fig.add_vline(x=b, line=dict(color="black", width=1), row=1, col=i)
         fig.update_xaxes(title_text=_key_label(view, key), **_axis_ticks(view, key), row=1, col=i)
     fig.update_yaxes(title_text="total (dynamic) response", row=1, col=1)
-    style_figure(fig, f"Study {sds.attrs.get('study', '')}: total (dynamic) response; red dotted = design limit, black = base case{_held_text(held)}", 500)
+    style_figure(
+        fig,
+        f"Study {sds.attrs.get('study', '')}: total (dynamic) response; red dotted = design limit, black = base case{_held_text(held)}",
+        500,
+    )
     return _bottom_legend(fig, 500)
 
 
@@ -217,9 +293,19 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
         scale += [[i / 4, c], [(i + 1) / 4, c]]
     text = np.vectorize(lambda k: names[k])(cat)
     fig = go.Figure(
-        go.Heatmap(x=xe, y=ye, z=cat, zmin=0, zmax=4, colorscale=scale, xgap=1, ygap=1, text=text,
-                   colorbar=dict(tickvals=[0.5, 1.5, 2.5, 3.5], ticktext=names, thickness=14),
-                   hovertemplate="%{x:.4g}, %{y:.4g}<br>%{text}<extra></extra>")
+        go.Heatmap(
+            x=xe,
+            y=ye,
+            z=cat,
+            zmin=0,
+            zmax=4,
+            colorscale=scale,
+            xgap=1,
+            ygap=1,
+            text=text,
+            colorbar=dict(tickvals=[0.5, 1.5, 2.5, 3.5], ticktext=names, thickness=14),
+            hovertemplate="%{x:.4g}, %{y:.4g}<br>%{text}<extra></extra>",
+        )
     )
     if "error" in view:
         err = np.asarray(view["error"].transpose(*order).values).astype(str) != ""
@@ -227,12 +313,21 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
             err = err[None, :]
         if err.any():
             yy, xx = np.nonzero(err)
-            fig.add_trace(go.Scatter(x=x[xx], y=yv[yy], mode="markers", marker=dict(symbol="x", size=10, color="black"), name="evaluation failed"))
+            fig.add_trace(
+                go.Scatter(x=x[xx], y=yv[yy], mode="markers", marker=dict(symbol="x", size=10, color="black"), name="evaluation failed")
+            )
     if ykey is not None:
         bx, by = base_value(view, xkey), base_value(view, ykey)
         if math.isfinite(bx) and math.isfinite(by):
-            fig.add_trace(go.Scatter(x=[bx], y=[by], mode="markers", name="base case",
-                                     marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5))))
+            fig.add_trace(
+                go.Scatter(
+                    x=[bx],
+                    y=[by],
+                    mode="markers",
+                    name="base case",
+                    marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5)),
+                )
+            )
     fig.update_xaxes(title_text=_key_label(view, xkey), **_axis_ticks(view, xkey))
     fig.update_yaxes(title_text=ylabel, showticklabels=ykey is not None, **(_axis_ticks(view, ykey) if ykey is not None else {}))
     lim = design_limits(sds)
@@ -253,16 +348,34 @@ def study_figures(sds: xr.Dataset) -> list[ReportFigure]:
         for m in ("nonlinear", "linear"):
             fig = study_surface_figure(sds, m)
             if fig is not None:
-                out.append(ReportFigure(f"fig-study-surface-{m}", f"Study surfaces, {m} model", fig,
-                                        "Circles: contact preserved at every saddle over the whole period (nonlinear model), so the linear "
-                                        "model is valid there; dashed red: design limit; star: base case."))
+                out.append(
+                    ReportFigure(
+                        f"fig-study-surface-{m}",
+                        f"Study surfaces, {m} model",
+                        fig,
+                        "Circles: contact preserved at every saddle over the whole period (nonlinear model), so the linear "
+                        "model is valid there; dashed red: design limit; star: base case.",
+                    )
+                )
     elif varying or keys:
         fig = study_profile_figure(sds)
         if fig is not None:
-            out.append(ReportFigure("fig-study-profiles", "Study profiles", fig,
-                                    "Circles: contact preserved at every saddle (linear model valid); red dotted: design limit."))
+            out.append(
+                ReportFigure(
+                    "fig-study-profiles",
+                    "Study profiles",
+                    fig,
+                    "Circles: contact preserved at every saddle (linear model valid); red dotted: design limit.",
+                )
+            )
     fig = compliance_map_figure(sds) if varying else None
     if fig is not None:
-        out.append(ReportFigure("fig-compliance-map", "Compliance map", fig,
-                                "Which model's verdict admits each arrangement; decisions use the nonlinear model."))
+        out.append(
+            ReportFigure(
+                "fig-compliance-map",
+                "Compliance map",
+                fig,
+                "Which model's verdict admits each arrangement; decisions use the nonlinear model.",
+            )
+        )
     return out

@@ -6,9 +6,11 @@ Every function is pure (dataset or mapping in, rows out); the HTML module render
 from __future__ import annotations
 
 import csv
+import functools
 import math
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -99,8 +101,7 @@ def input_rows(case: Mapping[str, Any]) -> list[dict[str, str]]:
         ``unit`` (SI, from the key's suffix) and ``description`` (from the case schema).
     """
     return [
-        {"key": k, "value": _format_value(v), "unit": display_unit(k), "description": _description_of(k)}
-        for k, v in flatten_case(case)
+        {"key": k, "value": _format_value(v), "unit": display_unit(k), "description": _description_of(k)} for k, v in flatten_case(case)
     ]
 
 
@@ -142,6 +143,15 @@ def summary_table_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
+def _largest_finite_cell(sel: xr.Dataset, name: str, fmt: str, scale: float = 1.0) -> str:
+    """The largest finite value of ``sel[name]`` times ``scale``, formatted; ``-`` if absent or none finite."""
+    if name not in sel:
+        return "-"
+    vals = np.asarray(sel[name].values, dtype=float) * scale
+    vals = vals[np.isfinite(vals)] if vals.ndim else (vals[None] if np.isfinite(vals) else np.array([]))
+    return format(float(vals.max()), fmt) if vals.size else "-"
+
+
 def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     """Convergence diagnostics per (load case, model).
 
@@ -150,7 +160,16 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     tensile force of the regularised contact law [kN], solver message; after a two-way run
     also the coupling's own residual and tolerance [m] and its steps.
     """
-    header = ["load case", "model", "converged", "residual norm", "iterations", "truncation indicator", "tensile-force error [kN]", "solver message"]
+    header = [
+        "load case",
+        "model",
+        "converged",
+        "residual norm",
+        "iterations",
+        "truncation indicator",
+        "tensile-force error [kN]",
+        "solver message",
+    ]
     coupled = "coupling_residual_m" in ds
     if coupled:
         header[-1:-1] = ["coupling residual [m]", "coupling tolerance [m]", "coupling steps"]
@@ -158,14 +177,7 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
     for lc in coord_labels(ds["load_case"]):
         for m in coord_labels(ds["model"]):
             sel = ds.sel(load_case=lc, model=m)
-
-            def num(name: str, fmt: str, scale: float = 1.0, reduce: bool = False) -> str:
-                if name not in sel:
-                    return "-"
-                vals = np.asarray(sel[name].values, dtype=float) * scale
-                vals = vals[np.isfinite(vals)] if vals.ndim else (vals[None] if np.isfinite(vals) else np.array([]))
-                return format(float(vals.max()), fmt) if vals.size else "-"
-
+            num = functools.partial(_largest_finite_cell, sel)
             rows.append(
                 [
                     lc,
@@ -175,7 +187,11 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
                     str(int(sel["iterations"])) if "iterations" in sel else "-",
                     num("harmonic_truncation_indicator", ".2e"),
                     num("tensile_force_error_N", ".1f", 1e-3),
-                    *([num("coupling_residual_m", ".2e"), num("coupling_tolerance_m", ".2e"), str(int(sel["coupling_iterations"]))] if coupled else []),
+                    *(
+                        [num("coupling_residual_m", ".2e"), num("coupling_tolerance_m", ".2e"), str(int(sel["coupling_iterations"]))]
+                        if coupled
+                        else []
+                    ),
                     str(sel["solver_message"].values.item()) if "solver_message" in sel else "",
                 ]
             )

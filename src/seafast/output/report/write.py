@@ -72,14 +72,19 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
 
             fig_dir.mkdir(parents=True, exist_ok=True)
             pngs = list(pngs) + [plot_operability(operability, fig_dir / "operability.png")]
-    listed = "".join(f'<li><a href="{html.escape(p.relative_to(out.parent).as_posix())}">{html.escape(p.name)}</a></li>' for p in pngs if p.is_relative_to(out.parent))
+    listed = "".join(
+        f'<li><a href="{html.escape(p.relative_to(out.parent).as_posix())}">{html.escape(p.name)}</a></li>'
+        for p in pngs
+        if p.is_relative_to(out.parent)
+    )
     files_note = (
-        f'<details><summary>Print figures ({len(pngs)} PNG at {PNG_DPI} dpi, and {PDF_FILENAME})</summary><ul>{listed}'
+        f"<details><summary>Print figures ({len(pngs)} PNG at {PNG_DPI} dpi, and {PDF_FILENAME})</summary><ul>{listed}"
         f'<li><a href="{PDF_FILENAME}">{PDF_FILENAME}</a></li></ul></details>'
         if pngs
         else ""
     )
-    page, figs, findings = build_report_html(run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate,
-                                             operability=operability)
+    page, figs, findings = build_report_html(
+        run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate, operability=operability
+    )
     out.write_text(page, encoding="utf-8")
     return ReportOutputs(out, tuple(pngs), pdf_path if figures else None, tuple(f.id for f in figs), tuple(findings))

@@ -142,8 +142,9 @@ class _Problem:
         return X if np.all(np.isfinite(X)) else None
 
 
-def _newton(p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int,
-            first: tuple[NDArray, Any, NDArray] | None = None) -> tuple[NDArray, float, int, bool, tuple[NDArray, Any, NDArray]]:
+def _newton(
+    p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int, first: tuple[NDArray, Any, NDArray] | None = None
+) -> tuple[NDArray, float, int, bool, tuple[NDArray, Any, NDArray]]:
     """Damped Newton; returns the iterate, its relative residual, iterations, success and its evaluation."""
     ev = first if first is not None else p.evaluate(X, capacity)
     R, jen, u = ev
@@ -228,7 +229,7 @@ def solve_axial_hbm(
             break
     assert best is not None
     _, start_name, X0, ev0 = best
-    X, norm, iters, ok, (R, jen, u) = _newton(p, X0, capacity, options.tolerance, options.max_iterations, ev0)
+    X, norm, iters, ok, (_, jen, u) = _newton(p, X0, capacity, options.tolerance, options.max_iterations, ev0)
     path = f"from the {start_name} solution" if ok else f"did not converge (Newton from the {start_name} solution)"
     lam = jen.force_N
     lashing, stop = restraint.restoring_force_N(u)
@@ -240,8 +241,27 @@ def solve_axial_hbm(
     if p.gauge:
         msg += "; no lashing or stopper restrains the cargo axially: its mean position is pinned"
     return AxialResponse(
-        "hbm", load.omega_rad_s, u, p.E @ V, -lam, capacity, -lashing, -stop, p.load_t, jen.slipped,
-        jen.slip_path_m, bool(ok), norm, int(iters), msg, real_to_complex_harmonics(X),
-        {"harmonics": H, "time_samples": N, "tolerance": options.tolerance, "max_iterations": options.max_iterations,
-         "tangential_stiffness_N_per_m": p.kt},
+        "hbm",
+        load.omega_rad_s,
+        u,
+        p.E @ V,
+        -lam,
+        capacity,
+        -lashing,
+        -stop,
+        p.load_t,
+        jen.slipped,
+        jen.slip_path_m,
+        bool(ok),
+        norm,
+        int(iters),
+        msg,
+        real_to_complex_harmonics(X),
+        {
+            "harmonics": H,
+            "time_samples": N,
+            "tolerance": options.tolerance,
+            "max_iterations": options.max_iterations,
+            "tangential_stiffness_N_per_m": p.kt,
+        },
     )

@@ -75,7 +75,9 @@ class JenkinsPeriod:
     slip_path_m: float
 
 
-def march_jenkins(u_m: NDArray[np.float64], capacity_N: NDArray[np.float64], stiffness_N_per_m: float, w_init_m: float = 0.0) -> JenkinsPeriod:
+def march_jenkins(
+    u_m: NDArray[np.float64], capacity_N: NDArray[np.float64], stiffness_N_per_m: float, w_init_m: float = 0.0
+) -> JenkinsPeriod:
     """The periodic response of the Jenkins element to the displacement samples ``u_m``.
 
     Parameters

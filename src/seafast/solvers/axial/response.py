@@ -115,7 +115,7 @@ class AxialResponse:
         """Largest axial force of the lashings and stoppers together on the cargo [N] (magnitude)."""
         return float(np.max(np.abs(self.lashing_force_N + self.stopper_force_N))) if self.displacement_m.size else 0.0
 
-    def on_grid(self, time_samples: int) -> "AxialResponse":
+    def on_grid(self, time_samples: int) -> AxialResponse:
         """The response at ``time_samples`` points of the period (a divisor of N: every (N / n)-th sample)."""
         n = self.time_samples
         if time_samples == n:
@@ -123,12 +123,31 @@ class AxialResponse:
         if n % time_samples:
             raise ValueError(f"AxialResponse: {time_samples} samples do not divide the solution's {n}")
         step = n // time_samples
-        pick = {name: getattr(self, name)[::step] for name in (
-            "displacement_m", "velocity_m_per_s", "friction_force_N", "capacity_N", "lashing_force_N",
-            "stopper_force_N", "load_N", "sliding")}
-        return AxialResponse(self.method, self.omega_rad_s, slip_m=self.slip_m, converged=self.converged,
-                             residual_norm=self.residual_norm, iterations=self.iterations, message=self.message,
-                             harmonics=self.harmonics, options=self.options, **pick)
+        pick = {
+            name: getattr(self, name)[::step]
+            for name in (
+                "displacement_m",
+                "velocity_m_per_s",
+                "friction_force_N",
+                "capacity_N",
+                "lashing_force_N",
+                "stopper_force_N",
+                "load_N",
+                "sliding",
+            )
+        }
+        return AxialResponse(
+            self.method,
+            self.omega_rad_s,
+            slip_m=self.slip_m,
+            converged=self.converged,
+            residual_norm=self.residual_norm,
+            iterations=self.iterations,
+            message=self.message,
+            harmonics=self.harmonics,
+            options=self.options,
+            **pick,
+        )
 
 
 def static_response(restraint: AxialRestraint, load_N: float, capacity_N: float, omega_rad_s: float, time_samples: int) -> AxialResponse:
@@ -137,5 +156,20 @@ def static_response(restraint: AxialRestraint, load_N: float, capacity_N: float,
         raise ValueError("static_response: a constant load above the friction capacity has no static state")
     z = np.zeros(time_samples)
     full = np.full(time_samples, 1.0)
-    return AxialResponse("statics", omega_rad_s, z, z.copy(), -load_N * full, capacity_N * full, z.copy(), z.copy(),
-                         load_N * full, np.zeros(time_samples, dtype=bool), 0.0, True, 0.0, 0, "stuck (statics)")
+    return AxialResponse(
+        "statics",
+        omega_rad_s,
+        z,
+        z.copy(),
+        -load_N * full,
+        capacity_N * full,
+        z.copy(),
+        z.copy(),
+        load_N * full,
+        np.zeros(time_samples, dtype=bool),
+        0.0,
+        True,
+        0.0,
+        0,
+        "stuck (statics)",
+    )

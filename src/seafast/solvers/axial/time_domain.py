@@ -105,8 +105,11 @@ def _advance(sys_: _System, t: float, h: float, state: list) -> float:
     if sign == 0:
         if abs(sys_.demand(t + h, u)) <= sys_.capacity(t + h):
             return t + h
-        g = lambda tt: abs(sys_.demand(tt, u)) - sys_.capacity(tt)  # noqa: E731
-        t_go = brentq(g, t, t + h, xtol=1e-14 * sys_.T) if g(t) < 0 else t
+
+        def excess(tt: float) -> float:  # demand beyond the friction capacity: > 0 once it slides
+            return abs(sys_.demand(tt, u)) - sys_.capacity(tt)
+
+        t_go = brentq(excess, t, t + h, xtol=1e-14 * sys_.T) if excess(t) < 0 else t
         state[0] = 1 if sys_.demand(t_go, u) > 0 else -1
         state[2] = 0.0
         return t_go
@@ -220,13 +223,31 @@ def solve_axial_time_domain(
     cap = np.array([s.capacity(t) for t in t_out])
     lashing, stop = restraint.restoring_force_N(u)
     friction = np.where(sign == 0, lashing + stop - load_t, -sign * cap)
-    msg = (f"axial time domain (rigid Coulomb, event-driven RK4, {steps} steps per period): "
-           f"{'periodic' if converged else 'NOT periodic'} after {periods} periods, last change {change:.2e} "
-           f"of the displacement scale {u_scale:.3g} m")
+    msg = (
+        f"axial time domain (rigid Coulomb, event-driven RK4, {steps} steps per period): "
+        f"{'periodic' if converged else 'NOT periodic'} after {periods} periods, last change {change:.2e} "
+        f"of the displacement scale {u_scale:.3g} m"
+    )
     if not converged:
-        msg += f"; the cargo moves {state[1] - start[1]:+.4g} m per period (walks)" if abs(state[2] - start[2]) <= tolerance * v_scale else ""
+        msg += (
+            f"; the cargo moves {state[1] - start[1]:+.4g} m per period (walks)" if abs(state[2] - start[2]) <= tolerance * v_scale else ""
+        )
     return AxialResponse(
-        "time_domain", s.w, u, v, friction, cap, -lashing, -stop, load_t, sign != 0, slip, converged, float(change),
-        periods, msg, None,
+        "time_domain",
+        s.w,
+        u,
+        v,
+        friction,
+        cap,
+        -lashing,
+        -stop,
+        load_t,
+        sign != 0,
+        slip,
+        converged,
+        float(change),
+        periods,
+        msg,
+        None,
         {"time_samples": time_samples, "steps_per_period": steps, "max_periods": max_periods, "tolerance": tolerance},
     )

@@ -286,7 +286,7 @@ class CondensedProblem:
         J[np.diag_indices_from(J)] += 1.0
         return J
 
-    def factorise(self, fp: NDArray) -> "DetachedSampleJacobian | DenseJacobian":
+    def factorise(self, fp: NDArray) -> DetachedSampleJacobian | DenseJacobian:
         w = fp - self.k_u
         # |w| below round-off of k_u: the sample is in contact (the smooth laws' tails)
         support = np.abs(w) > 1e-13 * np.maximum(self.k_u, 1e-300)

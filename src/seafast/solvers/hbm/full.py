@@ -84,9 +84,7 @@ class FullProblem:
         T_cols = np.broadcast_to(self.index[:, None, :], (self.n_s, self.n_h, self.n_h)).ravel()
         all_rows = np.concatenate([L_rows, T_rows])
         all_cols = np.concatenate([L_cols, T_cols])
-        pattern = sparse.csc_matrix(
-            (np.arange(1, all_rows.size + 1, dtype=float), (all_rows, all_cols)), shape=(self.size, self.size)
-        )
+        pattern = sparse.csc_matrix((np.arange(1, all_rows.size + 1, dtype=float), (all_rows, all_cols)), shape=(self.size, self.size))
         pattern.sum_duplicates()
         pattern.sort_indices()
         # position of every (row, col) entry in the CSC data array

@@ -16,9 +16,9 @@ missing harmonic by the cargo's dynamic amplification there.
 
 The adaptive choice (:func:`select_harmonics`) marches the correction system of the periodic problem
 (:func:`seafast.solvers.transient.march_periodic`, the project's one transient integrator: exact contact,
-modes below the march's Nyquist frequency, the rest static) to its periodic state from the linear solution (the attractor the physical system reaches
-from there), reads the harmonic content of the compressions, and takes the smallest H whose neglected
-harmonics move every saddle force by less than the tolerance. The march, projected on those harmonics,
+modes below the march's Nyquist frequency, the rest static) to its periodic state from the linear solution
+(the attractor the physical system reaches from there), reads the harmonic content of the compressions, and
+takes the smallest H whose neglected harmonics move every saddle force by less than the tolerance. The march, projected on those harmonics,
 is also the Newton start: from the few-harmonic solution the semi-smooth Newton at H ~ 150 does not
 converge, from the march it takes 2-4 steps.
 """
@@ -111,8 +111,8 @@ def _march_samples(model: StructuralModel, omega_rad_s: float, max_harmonics: in
     # resolve twice the second bilateral mode with 2 samples per period of it (Nyquist), in powers of 2
     w2 = float(modal_basis(model, 0.0).natural_frequency_rad_s[1])
     need = 2.0 * 2.0 * (2.0 * w2) / max(omega_rad_s, 1e-12)
-    n = 2 ** int(math.ceil(math.log2(max(need, MINIMUM_TIME_SAMPLES))))
-    return int(min(max(n, MINIMUM_TIME_SAMPLES), 8 * 2 ** int(math.ceil(math.log2(max(max_harmonics, 8))))))
+    n = 2 ** math.ceil(math.log2(max(need, MINIMUM_TIME_SAMPLES)))
+    return int(min(max(n, MINIMUM_TIME_SAMPLES), 8 * 2 ** math.ceil(math.log2(max(max_harmonics, 8)))))
 
 
 def select_harmonics(
@@ -163,7 +163,7 @@ def select_harmonics(
     H = n_exc
     estimated = neglected_error(H)
     while np.max(estimated, initial=0.0) > tolerance and H < N0 // 2 - 1 and H < max_harmonics:
-        H = min(max(int(math.ceil(1.2 * H)), H + 2), N0 // 2 - 1, int(max_harmonics))
+        H = min(max(math.ceil(1.2 * H), H + 2), N0 // 2 - 1, int(max_harmonics))
         estimated = neglected_error(H)
     capped = bool(np.max(estimated, initial=0.0) > tolerance)
     C = np.zeros((H + 1, march.shape[1]), dtype=complex)
@@ -208,7 +208,7 @@ def truncation_error(
     U = np.asarray(compression_harmonics_m, dtype=float)
     H = (U.shape[0] - 1) // 2
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
-    N_f = 2 ** int(math.ceil(math.log2(max(8 * max(H, 1), 256))))
+    N_f = 2 ** math.ceil(math.log2(max(8 * max(H, 1), 256)))
     delta = harmonics_to_time(real_to_complex_harmonics(U), N_f)  # an inverse real FFT
     force, _ = law.force_and_derivative(delta, k_u)
     correction = force - k_u * delta
@@ -231,4 +231,3 @@ def pad_harmonics(U: NDArray[np.float64], harmonics: int) -> NDArray[np.float64]
     m = min(out.shape[0], U.shape[0])
     out[:m] = U[:m]
     return out
-

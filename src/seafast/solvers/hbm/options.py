@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
 import math
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -23,6 +23,8 @@ def samples_for(harmonics: int) -> int:
     """The default AFT samples N for H harmonics: 2.5 H rounded up to an even number, at least 128 and 2H + 2."""
     H = int(harmonics)
     return int(max(MINIMUM_TIME_SAMPLES, 2 * H + 2, 2 * math.ceil(1.25 * H)))
+
+
 SOLVERS: tuple[str, ...] = ("newton", "hybr")
 
 
@@ -124,7 +126,22 @@ class HBMOptions:
         """Whether H is chosen by the solver."""
         return self.harmonics is None
 
-    def with_harmonics(self, harmonics: int, time_samples: int | None = None) -> "HBMOptions":
+    def fixed_grid(self) -> tuple[int, int]:
+        """(H, N) of options whose harmonics and time samples are both set (e.g. by :meth:`with_harmonics`).
+
+        Raises
+        ------
+        ValueError
+            If either is None (adaptive H, or N left to the solver).
+        """
+        if self.harmonics is None or self.time_samples is None:
+            raise ValueError(
+                f"HBMOptions.harmonics = {self.harmonics!r}, time_samples = {self.time_samples!r}; "
+                "allowed here: both set (a fixed grid: HBMOptions.with_harmonics(H))"
+            )
+        return int(self.harmonics), int(self.time_samples)
+
+    def with_harmonics(self, harmonics: int, time_samples: int | None = None) -> HBMOptions:
         """The same settings at a given H (and N: the given one, else this one's if it fits, else the default)."""
         N = time_samples if time_samples is not None else self.time_samples
         if N is None or N < 2 * int(harmonics) + 2:

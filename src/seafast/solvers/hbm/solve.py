@@ -10,7 +10,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, high_harmonic_energy_share, real_dft_matrices, real_to_complex_harmonics
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    harmonics_to_time,
+    high_harmonic_energy_share,
+    real_dft_matrices,
+    real_to_complex_harmonics,
+)
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
 from seafast.solvers.hbm.full import FullProblem
@@ -59,7 +65,7 @@ def solve_condensed(
     """Solve the condensed HBM system for given operators (used by :func:`solve_hbm` and continuation)."""
     if options.time_samples is None or options.harmonics != ops.harmonics:
         options = options.with_harmonics(ops.harmonics)
-    problem = CondensedProblem(ops, int(options.time_samples))  # type: ignore[arg-type]
+    problem = CondensedProblem(ops, options.fixed_grid()[1])
     u0 = None if initial_compression is None else np.asarray(initial_compression, dtype=float).ravel()
     a = solve_with_fallback(problem, options.law, options, u0)
     U = a.u.reshape(problem.n_h, problem.n_s)
@@ -112,8 +118,8 @@ def solve_hbm(
         given = np.asarray(initial_compression_m, dtype=float)
         if given.ndim != 2 or given.shape[1] != model.saddle_count or given.shape[0] < 2:
             raise ValueError(f"initial_compression_m: shape {given.shape}; must be (samples, n_saddles = {model.saddle_count})")
-    if not options.adaptive:
-        H = int(options.harmonics)  # type: ignore[arg-type]
+    if options.harmonics is not None:  # a fixed H (not options.adaptive)
+        H = int(options.harmonics)
         fixed = options.with_harmonics(H)
         start = None if given is None else _project(given, H)
         response = _solve_fixed(model, excitation, fixed, start)
@@ -130,7 +136,9 @@ def solve_hbm(
     # the steps from the march (or from the previous H) are near the solution: a few Newton steps, no fallbacks
     quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), _QUICK_ITERATIONS))
     ops = condensed_operators(model, excitation, H)
-    response = _solve_fixed(model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops)
+    response = _solve_fixed(
+        model, excitation, quick.with_harmonics(H), selection.start_compression_m if given is None else _project(given, H), ops
+    )
     if not response.converged:
         # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (a given
         # start has just failed), then the refinement below from there
@@ -151,7 +159,7 @@ def solve_hbm(
         # contact-state modes can be ill-posed, so then 2 H and 3 H (from the march) before giving up
         attempts = [(1.5, "previous"), (1.5, "march"), (2.0, "march"), (3.0, "march")]
         for factor, origin in attempts:
-            H_next = min(max(int(math.ceil(factor * H)), H + 8), int(options.max_harmonics))
+            H_next = min(max(math.ceil(factor * H), H + 8), int(options.max_harmonics))
             ops = condensed_operators(model, excitation, H_next, reuse=ops)
             if origin == "previous":
                 start = pad_harmonics(_compression_harmonics(previous, H), H_next)
@@ -180,7 +188,10 @@ def solve_hbm(
         march_periods=selection.march_periods,
         march_change=selection.march_change,
     )
-    note = response.message + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
+    note = (
+        response.message
+        + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
+    )
     return _with_truncation(replace(response, options=record, message=note), error, options.truncation_tolerance)
 
 
@@ -190,7 +201,9 @@ def _with_truncation(response: PeriodicResponse, error: NDArray, tolerance: floa
     if response.converged and float(np.max(error, initial=0.0)) > tolerance:
         logger.warning(
             "harmonic balance: H = %s leaves an estimated %.2g of a saddle's peak force out (tolerance %.2g)",
-            response.options.get("harmonics"), float(np.max(error)), tolerance,
+            response.options.get("harmonics"),
+            float(np.max(error)),
+            tolerance,
         )
         warnings = warnings + (SolverWarning.TOO_FEW_HARMONICS,)
     return replace(response, truncation_error=error, warnings=warnings)
@@ -220,7 +233,7 @@ def _solve_fixed(
 ) -> PeriodicResponse:
     """One harmonic-balance solve at the options' H and N (start: real-layout compression harmonics; ``ops``:
     operators to extend to H)."""
-    H, N = int(options.harmonics), int(options.time_samples)  # type: ignore[arg-type]
+    H, N = options.fixed_grid()
     law = options.law
     ops = condensed_operators(model, excitation, H, reuse=ops)
     if options.formulation == "condensed":

@@ -168,9 +168,7 @@ def _quasi_static(model: StructuralModel, excitation: HarmonicExcitation, t: flo
     return q
 
 
-def orbit_distance(
-    compression_m: NDArray, start_compression_m: NDArray, stiffness_N_per_m: NDArray, harmonics: int | None = None
-) -> float:
+def orbit_distance(compression_m: NDArray, start_compression_m: NDArray, stiffness_N_per_m: NDArray, harmonics: int | None = None) -> float:
     """RMS saddle-force difference of two periodic states over the RMS saddle force of the second [-].
 
     Both (N, n_s) [m] on the same grid; forces with the exact law ``k_u max(delta, 0)``. ``harmonics``:
@@ -218,7 +216,9 @@ def orbit_outcome(
         outcome = SolverOutcome.OTHER_ORBIT
     else:
         outcome = SolverOutcome.CONVERGED
-    record = OrbitRecord(start.kind, start.method, bool(periodic), int(periods), float(period_change), distance, same, float(orbit_tolerance))
+    record = OrbitRecord(
+        start.kind, start.method, bool(periodic), int(periods), float(period_change), distance, same, float(orbit_tolerance)
+    )
     return outcome, record
 
 

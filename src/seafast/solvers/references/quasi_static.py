@@ -37,7 +37,7 @@ QUASI_STATIC_RATIO_LIMIT = 0.2
 def _effective_harmonic(force: NDArray, omega: float, share: float = 1e-3) -> int:
     """Smallest H whose truncation misses less than ``share`` of the force fluctuation energy."""
     N = force.shape[0]
-    for h in range(0, N // 2 + 1):
+    for h in range(N // 2 + 1):
         if np.all(high_harmonic_energy_share(force, h) < share):
             return max(h, 1)
     return N // 2
@@ -99,10 +99,12 @@ def solve_quasi_static(
         w2 = eigh(K, q.mass, eigvals_only=True, subset_by_index=[0, 0])[0]
         w1 = min(w1, float(np.sqrt(max(w2, 0.0))))
     ratio = h_eff * excitation.omega_rad_s / w1 if w1 > 0 else np.inf
+    criterion = f"H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g}"
     verdict = (
-        f"quasi-statics justified: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} <= {QUASI_STATIC_RATIO_LIMIT}"
+        f"quasi-statics justified: {criterion} <= {QUASI_STATIC_RATIO_LIMIT}"
         if ratio <= QUASI_STATIC_RATIO_LIMIT
-        else f"quasi-statics questionable: H_eff*omega/omega_1 = {h_eff}*{excitation.omega_rad_s:.4g}/{w1:.4g} = {ratio:.3g} > {QUASI_STATIC_RATIO_LIMIT} (cargo dynamics matter; use HBM or the time-domain reference)"
+        else f"quasi-statics questionable: {criterion} > {QUASI_STATIC_RATIO_LIMIT} "
+        "(cargo dynamics matter; use HBM or the time-domain reference)"
     )
     options = {
         "time_samples": N,
@@ -118,6 +120,17 @@ def solve_quasi_static(
     else:
         logger.debug("quasi-static reference: %s", verdict)
     return exact_law_response(
-        "quasi_static", model, excitation, cargo, delta, SolverOutcome.CONVERGED, 0.0, len(states), N,
-        f"exact active-set solution at {N} instants; {verdict}", harmonics_for_indicator, options, warnings,
+        "quasi_static",
+        model,
+        excitation,
+        cargo,
+        delta,
+        SolverOutcome.CONVERGED,
+        0.0,
+        len(states),
+        N,
+        f"exact active-set solution at {N} instants; {verdict}",
+        harmonics_for_indicator,
+        options,
+        warnings,
     )

@@ -25,6 +25,10 @@ reached is then compared with. A cargo that lifts off can have several periodic 
 chaotic motion for one excitation; the start decides which one a time integration finds, and the
 result says what it found (:class:`~seafast.solvers.outcome.OrbitRecord`, outcome ``CONVERGED``,
 ``NOT_PERIODIC`` or ``OTHER_ORBIT``).
+
+Size: just over 400 lines as ruff formats it (one keyword argument a line in a call that does not
+fit on one line; about 380 lines before); the full-DOF and condensed formulations share the
+integrator's step and the periodicity check.
 """
 
 from __future__ import annotations
@@ -60,7 +64,7 @@ class _Run:
 
     cargo_m: NDArray[np.float64]
     compression_m: NDArray[np.float64]
-    check: "_PeriodicityCheck"
+    check: _PeriodicityCheck
     periods: int
     steps: int
     description: str
@@ -169,12 +173,25 @@ def solve_time_domain(
     given = f" ({initial.method})" if initial.kind is TimeDomainStart.GIVEN else ""
     message = f"{run.description}; from the {_START_WORDS[initial.kind]}{given}; " + run.check.describe(run.periods)
     if orbit.distance_from_start is not None:
-        message += f"; distance from the start's orbit {orbit.distance_from_start:.2e} (" + (
-            "the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached"
-        ) + f", tolerance {orbit.orbit_tolerance:g})"
+        message += (
+            f"; distance from the start's orbit {orbit.distance_from_start:.2e} ("
+            + ("the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached")
+            + f", tolerance {orbit.orbit_tolerance:g})"
+        )
     response = exact_law_response(
-        "time_domain", model, excitation, run.cargo_m, run.compression_m, outcome, run.check.change, run.periods, run.steps,
-        message, int(harmonics_for_indicator), options, orbit=orbit,
+        "time_domain",
+        model,
+        excitation,
+        run.cargo_m,
+        run.compression_m,
+        outcome,
+        run.check.change,
+        run.periods,
+        run.steps,
+        message,
+        int(harmonics_for_indicator),
+        options,
+        orbit=orbit,
     )
     logger.log(logging.DEBUG if outcome is SolverOutcome.CONVERGED else logging.INFO, "time-domain reference: %s", response.message)
     return response
@@ -219,8 +236,14 @@ class _PeriodicityCheck:
 
 
 def _time_domain_full(
-    model: StructuralModel, excitation: HarmonicExcitation, initial: StartState, N: int, S: int, max_periods: int,
-    tolerance: float, alpha: float,
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    initial: StartState,
+    N: int,
+    S: int,
+    max_periods: int,
+    tolerance: float,
+    alpha: float,
 ) -> _Run:
     """Full-DOF HHT-alpha with the exact unilateral saddle springs (see :func:`solve_time_domain`).
 
@@ -274,7 +297,7 @@ def _time_domain_full(
     check = _PeriodicityCheck(k_u, delta0, tolerance)
     cargo_out = np.empty((N, n_c))
     delta_out = np.empty((N, n_s))
-    for periods in range(1, max_periods + 1):
+    for periods in range(1, max_periods + 1):  # noqa: B007 - the count is returned
         for n in range(S):
             if n % stride == 0:
                 j = n // stride
@@ -303,8 +326,14 @@ def _time_domain_full(
 
 
 def _time_domain_condensed(
-    model: StructuralModel, excitation: HarmonicExcitation, initial: StartState, N: int, S: int, max_periods: int,
-    tolerance: float, hht_alpha: float,
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    initial: StartState,
+    N: int,
+    S: int,
+    max_periods: int,
+    tolerance: float,
+    hht_alpha: float,
 ) -> _Run:
     """HHT-alpha with the saddles bilateral in K and each step's contact condensed on the saddles."""
     q = quadratic_matrices(model, True)
@@ -348,7 +377,7 @@ def _time_domain_condensed(
     check = _PeriodicityCheck(k_u, delta_n, tolerance)
     cargo_out = np.empty((N, n_c))
     delta_out = np.empty((N, model.saddle_count))
-    for periods in range(1, int(max_periods) + 1):
+    for periods in range(1, int(max_periods) + 1):  # noqa: B007 - the count is returned
         for n in range(S):
             if n % stride == 0:
                 j = n // stride
