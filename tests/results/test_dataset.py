@@ -133,3 +133,22 @@ def test_sea_fastening_frame_deflection_is_fixed_by_the_saddle_reactions(tmp_pat
     assert abs(deflection_change) < 0.03
     for row in rows:
         assert 5.0e-3 < row["u_c_m"] < 5.6e-3
+
+
+def test_the_truncation_estimate_reaches_results_nc_and_agrees_with_the_warning(tmp_path):
+    """``truncation_error`` (each saddle's estimated peak-force error from the harmonics above H) is in
+    results.nc as the solver computed it: above the 0.1 % tolerance where a fixed H = 16 triggers
+    ``too_few_harmonics`` (on the base case with motions H = 16 misses a saddle's own peak by 0.67 %
+    against the converged transient analysis, benchmarks/bench_hbm.py), below it where H is adaptive."""
+    fixed = run_case(load_case(overrides={"vessel.motions": "none", "solver.harmonics": 16}))
+    adaptive = run_case(load_case(overrides={"vessel.motions": "none"}))
+    for res, too_few in ((fixed, True), (adaptive, False)):
+        back = xr.open_dataset(write_netcdf(res.dataset, tmp_path / f"{too_few}.nc")).load()
+        var = back["truncation_error"]
+        assert var.attrs["units"] == "1" and "peak force" in var.attrs["long_name"]
+        row = var.sel(load_case="dynamic", model="nonlinear").values
+        np.testing.assert_allclose(row, res.responses["nonlinear_dynamic"].truncation_error, rtol=1e-12)
+        assert np.all(np.isnan(var.sel(model="linear").values))  # the linear model truncates nothing
+        flag = bool(back["solver_warning_flag"].sel(load_case="dynamic", model="nonlinear", solver_warning="too_few_harmonics"))
+        assert flag is too_few
+        assert bool(row.max() > 1e-3) is too_few, row

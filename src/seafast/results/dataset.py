@@ -100,6 +100,7 @@ class CaseArrays:
     iterations: np.ndarray
     solver_message: np.ndarray
     harmonic_truncation_indicator: np.ndarray  # (load_case, model, saddle)
+    truncation_error: np.ndarray  # (load_case, model, saddle): estimated peak-force error from the harmonics left out
     tensile_force_error_N: np.ndarray
     solver_outcome: np.ndarray  # (load_case, model): SolverOutcome values
     solver_warning: np.ndarray  # (load_case, model, solver_warning): bool, one per SolverWarning
@@ -141,6 +142,7 @@ def case_arrays(
     residual = np.full((2, 2), np.nan)
     iterations = np.zeros((2, 2), dtype=int)
     truncation = np.full((2, 2, n_s), np.nan)
+    truncation_error = np.full((2, 2, n_s), np.nan)
     tensile = np.full((2, 2), np.nan)
     messages = np.empty((2, 2), dtype=object)
     outcomes = np.empty((2, 2), dtype=object)
@@ -168,6 +170,8 @@ def case_arrays(
             flags[i, j] = [w in ts.warnings for w in SolverWarning]
             if "harmonic_truncation_indicator" in ts.diagnostics:
                 truncation[i, j] = np.broadcast_to(ts.diagnostics["harmonic_truncation_indicator"], (n_s,))
+            if "truncation_error" in ts.diagnostics:
+                truncation_error[i, j] = np.broadcast_to(ts.diagnostics["truncation_error"], (n_s,))
             if "tensile_force_error_N" in ts.diagnostics:
                 tensile[i, j] = float(np.max(ts.diagnostics["tensile_force_error_N"]))
     is_nonlinear = (np.array(MODELS) == "nonlinear")[None, :, None, None]
@@ -188,6 +192,7 @@ def case_arrays(
         iterations=iterations,
         solver_message=messages.astype(str),
         harmonic_truncation_indicator=truncation,
+        truncation_error=truncation_error,
         tensile_force_error_N=tensile,
         solver_outcome=outcomes.astype(str),
         solver_warning=flags,
@@ -274,6 +279,13 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
         "solver_message": xr.Variable(("load_case", "model"), a.solver_message, {"long_name": "solver message"}),
         "harmonic_truncation_indicator": _var(
             ("load_case", "model", "saddle"), a.harmonic_truncation_indicator, "share of the contact-force signal above harmonic H", "1"
+        ),
+        "truncation_error": _var(
+            ("load_case", "model", "saddle"),
+            a.truncation_error,
+            "estimated error of each saddle's peak force from the harmonics above H, over the saddle's force scale"
+            " (NaN where the solver gives none; compare solver.truncation_tolerance)",
+            "1",
         ),
         "tensile_force_error_N": _var(
             ("load_case", "model"), a.tensile_force_error_N, "largest tensile force of the regularised contact law", "N"

@@ -64,7 +64,7 @@ def from_periodic_response(response: Any, time_samples: int | None = None) -> Pe
         "iterations": int(getattr(response, "iterations", 0) or 0),
         "message": str(getattr(response, "message", "")),
     }
-    for name in ("harmonic_truncation_indicator", "tensile_force_error_N"):
+    for name in ("harmonic_truncation_indicator", "truncation_error", "tensile_force_error_N"):
         if hasattr(response, name) and getattr(response, name) is not None:
             diag[name] = np.asarray(getattr(response, name), dtype=float)
     outcome = getattr(response, "outcome", None)

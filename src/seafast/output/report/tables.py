@@ -157,8 +157,10 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
 
     Columns: load case, model, converged, residual norm [-], iterations, largest harmonic
     truncation indicator [-] (share of the contact-force signal above harmonic H), largest
-    tensile force of the regularised contact law [kN], solver message; after a two-way run
-    also the coupling's own residual and tolerance [m] and its steps.
+    estimated peak-force error from the harmonics above H [-] (relative to the saddle's force
+    scale; compare ``solver.truncation_tolerance``), largest tensile force of the regularised
+    contact law [kN], solver message; after a two-way run also the coupling's own residual and
+    tolerance [m] and its steps.
     """
     header = [
         "load case",
@@ -167,6 +169,7 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
         "residual norm",
         "iterations",
         "truncation indicator",
+        "peak-force truncation error",
         "tensile-force error [kN]",
         "solver message",
     ]
@@ -186,6 +189,7 @@ def diagnostics_rows(ds: xr.Dataset) -> tuple[list[str], list[list[str]]]:
                     num("residual_norm", ".2e"),
                     str(int(sel["iterations"])) if "iterations" in sel else "-",
                     num("harmonic_truncation_indicator", ".2e"),
+                    num("truncation_error", ".2e"),
                     num("tensile_force_error_N", ".1f", 1e-3),
                     *(
                         [num("coupling_residual_m", ".2e"), num("coupling_tolerance_m", ".2e"), str(int(sel["coupling_iterations"]))]

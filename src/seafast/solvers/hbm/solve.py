@@ -178,6 +178,15 @@ def solve_hbm(
     error = truncation_error(model, excitation.omega_rad_s, _compression_harmonics(response, H), options.law)
     if np.all(np.isfinite(settle)):
         error = np.maximum(error, settle)
+    logger.debug(
+        "adaptive H: path %s (march of %d period(s) at %d samples), peaks settled to %.2g, estimate %.2g (tolerance %.2g)",
+        path,
+        selection.march_periods,
+        selection.march_samples,
+        float(np.max(settle)),
+        float(np.max(error, initial=0.0)),
+        options.truncation_tolerance,
+    )
     record = dict(response.options)
     record.update(
         harmonics_selection="adaptive",
