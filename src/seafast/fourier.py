@@ -23,6 +23,9 @@ from numpy.typing import NDArray
 __all__ = [
     "period_fraction",
     "harmonics_to_time",
+    "time_to_harmonics",
+    "real_harmonics_to_time",
+    "time_to_real_harmonics",
     "real_dft_matrices",
     "complex_to_real_harmonics",
     "real_to_complex_harmonics",
@@ -63,6 +66,42 @@ def harmonics_to_time(harmonics: NDArray, time_samples: int) -> NDArray[np.float
     # real arithmetic: Re(X e^{i p}) = Re X cos p - Im X sin p
     out = np.cos(phase) @ np.ascontiguousarray(flat.real) - np.sin(phase) @ np.ascontiguousarray(flat.imag)
     return out.reshape((N,) + X.shape[1:])
+
+
+def time_to_harmonics(samples: NDArray, harmonics: int) -> NDArray[np.complex128]:
+    """Complex amplitudes ``X_k``, k = 0 .. H, of one period sampled at ``t_n = n T / N`` (the inverse
+    of :func:`harmonics_to_time` for H < N / 2), by one real FFT.
+
+    Parameters
+    ----------
+    samples
+        Real samples, shape (N, ...); any unit (the amplitudes carry it).
+    harmonics
+        H, at most N // 2 (at k = N / 2 only the cosine part is seen).
+
+    Returns
+    -------
+    Shape (H+1, ...); row 0 the (real) mean.
+    """
+    x = np.asarray(samples, dtype=float)
+    N, H = x.shape[0], int(harmonics)
+    if H > N // 2:
+        raise ValueError(f"time_to_harmonics: harmonics = {H} needs at least {2 * H} samples per period; got {N}")
+    X = np.fft.rfft(x, axis=0)[: H + 1] * (2.0 / N)
+    X[0] *= 0.5
+    return X
+
+
+def real_harmonics_to_time(coefficients: NDArray, time_samples: int) -> NDArray[np.float64]:
+    """Samples (N, ...) of real-layout coefficients (2H+1, ...): ``inverse @ coefficients`` of
+    :func:`real_dft_matrices`, by an inverse real FFT when H < N / 2."""
+    return harmonics_to_time(real_to_complex_harmonics(coefficients), time_samples)
+
+
+def time_to_real_harmonics(samples: NDArray, harmonics: int) -> NDArray[np.float64]:
+    """Real-layout coefficients (2H+1, ...) of samples (N, ...): ``forward @ samples`` of
+    :func:`real_dft_matrices`, by a real FFT."""
+    return complex_to_real_harmonics(time_to_harmonics(samples, harmonics))
 
 
 @lru_cache(maxsize=64)

@@ -33,10 +33,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.axial import AxialLoad
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    real_dft_matrices,
+    real_harmonics_to_time,
+    real_to_complex_harmonics,
+    time_to_real_harmonics,
+)
 from seafast.model.axial import AxialRestraint
 from seafast.solvers.axial.jenkins import march_jenkins
 from seafast.solvers.axial.response import AxialResponse, periodic_interpolation
-from seafast.solvers.hbm import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
 
 __all__ = ["AxialHBMOptions", "solve_axial_hbm", "axial_time_samples"]
 
@@ -90,55 +96,82 @@ class _Problem:
     def __init__(self, restraint: AxialRestraint, load: AxialLoad, capacity: NDArray, H: int, N: int):
         self.r = restraint
         self.H, self.N = H, N
-        self.E, self.D = real_dft_matrices(H, N)
         w = load.omega_rad_s
         f = np.zeros(H + 1, dtype=complex)
         n = min(H + 1, load.force_N.size)
         f[:n] = load.force_N[:n]
         self.F = complex_to_real_harmonics(f)
-        self.load_t = self.E @ self.F
+        self.load_t = real_harmonics_to_time(self.F, N)
         self.capacity = capacity
         k = np.arange(1, H + 1)
-        Z = np.zeros((2 * H + 1, 2 * H + 1))
         k_restore = restraint.lashing_axial_stiffness_N_per_m
         m = restraint.cargo_mass_kg
         self.inertia_N_per_m = m * w**2
         self.kt = restraint.stick_stiffness_N_per_m
         # nothing but friction restrains the cargo's mean position: pin it (docs/axial.md)
         self.gauge = k_restore == 0.0 and not restraint.has_stoppers
-        Z[0, 0] = k_restore if not self.gauge else 1e-9 * max(self.inertia_N_per_m, 1.0)
-        diag = k_restore - m * (k * w) ** 2
-        c = restraint.damping_N_s_per_m * k * w
-        Z[2 * k - 1, 2 * k - 1] = diag
-        Z[2 * k, 2 * k] = diag
-        Z[2 * k - 1, 2 * k] = c
-        Z[2 * k, 2 * k - 1] = -c
-        self.Z = Z
+        # the linear part Z is block diagonal: Z[0, 0], then [[d_k, c_k], [-c_k, d_k]] per harmonic, applied
+        # and solved block by block; the dense matrix only for the Jacobian
+        self.mean_stiffness_N_per_m = k_restore if not self.gauge else 1e-9 * max(self.inertia_N_per_m, 1.0)
+        self.harmonic_diagonal_N_per_m = k_restore - m * (k * w) ** 2
+        self.harmonic_coupling_N_per_m = restraint.damping_N_s_per_m * k * w
         self.scale = max(float(np.max(np.abs(self.load_t))), float(np.max(capacity)) if capacity.size else 0.0, 1e-300)
 
     def evaluate(self, X: NDArray, capacity: NDArray) -> tuple[NDArray, Any, NDArray]:
-        u = self.E @ X
+        # the transforms by FFT (O(N log N)); the dense E and D only for the Jacobian
+        u = real_harmonics_to_time(X, self.N)
         _, stop = self.r.restoring_force_N(u)
         jen = march_jenkins(u, capacity, self.kt)
-        R = self.Z @ X + self.D @ (jen.force_N + stop) - self.F
+        R = self.apply_linear(X) + time_to_real_harmonics(jen.force_N + stop, self.H) - self.F
         return R, jen, u
 
     def jacobian(self, jen: Any, u: NDArray) -> NDArray:
-        E = self.E
+        E, D = real_dft_matrices(self.H, self.N)
         gathered = np.where((jen.last_slip >= 0)[:, None], E[np.maximum(jen.last_slip, 0)], 0.0)
         dfe = self.kt * (E - gathered) + self.r.stopper_tangent_N_per_m(u)[:, None] * E
-        return self.Z + self.D @ dfe
+        return self.Z + D @ dfe
+
+    @property
+    def Z(self) -> NDArray:
+        """The linear part as a dense (2H+1, 2H+1) matrix [N/m]."""
+        k = np.arange(1, self.H + 1)
+        d, c = self.harmonic_diagonal_N_per_m, self.harmonic_coupling_N_per_m
+        Z = np.zeros((2 * self.H + 1, 2 * self.H + 1))
+        Z[0, 0] = self.mean_stiffness_N_per_m
+        Z[2 * k - 1, 2 * k - 1] = d
+        Z[2 * k, 2 * k] = d
+        Z[2 * k - 1, 2 * k] = c
+        Z[2 * k, 2 * k - 1] = -c
+        return Z
+
+    def apply_linear(self, X: NDArray) -> NDArray:
+        """``Z X`` block by block [N]."""
+        d, c = self.harmonic_diagonal_N_per_m, self.harmonic_coupling_N_per_m
+        a, b = X[1::2], X[2::2]
+        out = np.empty_like(X)
+        out[0] = self.mean_stiffness_N_per_m * X[0]
+        out[1::2] = d * a + c * b
+        out[2::2] = -c * a + d * b
+        return out
+
+    def solve_linear(self, added_stiffness_N_per_m: float) -> NDArray:
+        """``(Z + k I)^-1 F`` block by block; inf or NaN where a block is singular."""
+        d = self.harmonic_diagonal_N_per_m + added_stiffness_N_per_m
+        c = self.harmonic_coupling_N_per_m
+        fa, fb = self.F[1::2], self.F[2::2]
+        X = np.empty_like(self.F)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            X[0] = self.F[0] / (self.mean_stiffness_N_per_m + added_stiffness_N_per_m)
+            det = d * d + c * c
+            X[1::2] = (d * fa - c * fb) / det
+            X[2::2] = (c * fa + d * fb) / det
+        return X
 
     def stick_guess(self) -> NDArray:
-        A = self.Z.copy()
-        A[np.diag_indices_from(A)] += self.kt
-        return np.linalg.solve(A, self.F)
+        return self.solve_linear(self.kt)
 
     def free_guess(self) -> NDArray | None:
-        try:
-            X = np.linalg.solve(self.Z, self.F)
-        except np.linalg.LinAlgError:
-            return None
+        X = self.solve_linear(0.0)
         return X if np.all(np.isfinite(X)) else None
 
 
@@ -244,7 +277,7 @@ def solve_axial_hbm(
         "hbm",
         load.omega_rad_s,
         u,
-        p.E @ V,
+        real_harmonics_to_time(V, N),
         -lam,
         capacity,
         -lashing,

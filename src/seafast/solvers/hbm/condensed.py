@@ -30,7 +30,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    real_dft_matrices,
+    real_harmonics_to_time,
+    real_to_complex_harmonics,
+    time_to_real_harmonics,
+)
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.dynamic_stiffness import quadratic_matrices, saddle_selection, solve_dynamic_stack
@@ -230,18 +236,11 @@ class CondensedProblem:
 
     def to_samples(self, U: NDArray) -> NDArray[np.float64]:
         """Samples (N, n_s) of real-layout coefficients (2H+1, n_s): ``inverse @ U`` by an inverse real FFT."""
-        X = real_to_complex_harmonics(U)
-        N = self.time_samples
-        A = np.zeros((N // 2 + 1, X.shape[1]), dtype=complex)
-        A[0] = X[0].real * N
-        A[1 : X.shape[0]] = X[1:] * (0.5 * N)
-        return np.fft.irfft(A, n=N, axis=0)
+        return real_harmonics_to_time(U, self.time_samples)
 
     def to_harmonics(self, samples: NDArray) -> NDArray[np.float64]:
         """Real-layout coefficients (2H+1, n_s) of samples (N, n_s): ``forward @ samples`` by a real FFT."""
-        F = np.fft.rfft(samples, axis=0)[: self.ops.harmonics + 1] * (2.0 / self.time_samples)
-        F[0] *= 0.5
-        return complex_to_real_harmonics(F)
+        return time_to_real_harmonics(samples, self.ops.harmonics)
 
     def initial_guess(self, amplitude: float) -> NDArray:
         return self.ops.linear_compression_at(amplitude).ravel().copy()
