@@ -58,6 +58,32 @@ def motions_from_rigid_coefficients(
     wave phase referred to ``wave_phase_origin_x_m``. With 3x3 inputs the DOFs are (surge,
     heave, eta5) about the point (``coeff_reference_x_m``, ``coeff_reference_z_wl_m`` above the
     waterline), and surge, heave and pitch are solved together (:func:`_coupled_surge_motions`).
+
+    Parameters
+    ----------
+    omega, k
+        Frequencies [rad/s] (ascending) and their wave numbers [rad/m], shape (n_w,).
+    a_eta, b_eta
+        Added mass and radiation damping, shape (n_w, d, d), d = 2 or 3 [kg, kg m, kg m^2 and
+        the same per second].
+    f_eta_plus
+        Excitation per metre of wave amplitude, shape (n_w, d) [N/m, N m/m].
+    hull
+        Hull form (hydrostatic stiffness, midship).
+    coeff_reference_x_m, coeff_reference_z_wl_m
+        Reference point of the coefficients: x from the AP [m], height above the waterline [m].
+    wave_phase_origin_x_m
+        x from the AP [m] where the source's incident wave has its crest at ``t = 0``.
+    mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2
+        As in :func:`~seafast.excitation.hydrodynamics.bem.compute_motions` (CoG z above the keel).
+    source
+        Free text stored in the result.
+
+    Returns
+    -------
+    RigidBodyMotions
+        About the CoG x, phases relative to the wave crest at midship; with surge fields when
+        d = 3.
     """
     if np.shape(a_eta)[-1] == 3:
         # heave and pitch by the 2-DOF solve of their block (unchanged), plus the coupled solution
