@@ -8,11 +8,14 @@ import numpy as np
 import pytest
 import xarray as xr
 
-import seafast.excitation.hydrodynamics as hd
 from seafast.excitation.hydrodynamics import (
     RigidBodyMotions,
     base_vessel_mass_properties,
+    bem,
+    capytaine_io,
     compute_motions,
+    default_cache_dir,
+    equations,
     hydrostatic_stiffness_matrix,
     load_motions,
     read_wamit_1,
@@ -85,7 +88,7 @@ def test_chine_sections_keep_volume():
     mesh, _ = mesh_hull(h, 4.0)
     body = cpt.FloatingBody(mesh=mesh)
     assert body.disp_volume == pytest.approx(h.displaced_volume_m3(), rel=1e-3)
-    assert body.center_of_buoyancy[2] == pytest.approx(hd._section_centroid_below_wl(h), rel=1e-2)
+    assert body.center_of_buoyancy[2] == pytest.approx(equations._section_centroid_below_wl(h), rel=1e-2)
 
 
 # ------------------------------------------------------------------------------ conventions
@@ -143,7 +146,7 @@ def test_capytaine_file_without_surge_has_no_surge(hull, mass_props, cache_dir, 
     import capytaine as cpt
 
     files = sorted(cache_dir.glob("motions_*.nc"))
-    ds = hd._read_capytaine_netcdf(files[0])
+    ds = capytaine_io.read_capytaine_netcdf(files[0])
     two = ds.sel(influenced_dof=["Heave", "Pitch"], radiating_dof=["Heave", "Pitch"])
     path = tmp_path / "heave_pitch.nc"
     cpt.export_dataset(path, two)
@@ -179,7 +182,7 @@ def test_cache_avoids_second_bem_run(hull, mass_props, cache_dir, coarse, monkey
     def boom(*a, **k):
         raise AssertionError("BEM must not run on a cache hit")
 
-    monkeypatch.setattr(hd, "_run_bem", boom)
+    monkeypatch.setattr(bem, "_run_bem", boom)
     again = compute_motions(hull, **mass_props, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
     np.testing.assert_array_equal(again.heave_rao_m_per_m, coarse.heave_rao_m_per_m)
     np.testing.assert_array_equal(again.excitation_force, coarse.excitation_force)
@@ -192,7 +195,7 @@ def test_another_loading_reuses_the_extracted_coefficients_and_equals_the_file_i
     # dataset once, and the motions of a second loading equal an import of the cache file
     mp2 = dict(mass_props, mass_kg=1.1 * mass_props["mass_kg"], centre_of_gravity_m=(mass_props["centre_of_gravity_m"][0] - 3.0, 0.0, 8.0))
     compute_motions(hull, **mass_props, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
-    monkeypatch.setattr(hd, "_capytaine_rigid_coefficients", lambda *a: (_ for _ in ()).throw(AssertionError("extracted twice")))
+    monkeypatch.setattr(bem, "capytaine_rigid_coefficients", lambda *a: (_ for _ in ()).throw(AssertionError("extracted twice")))
     second = compute_motions(hull, **mp2, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
     monkeypatch.undo()
     imported = load_motions(sorted(cache_dir.glob("motions_*.nc"))[0], hull, **mp2)
@@ -203,7 +206,7 @@ def test_another_loading_reuses_the_extracted_coefficients_and_equals_the_file_i
 
 def test_cache_dir_from_environment(monkeypatch, tmp_path):
     monkeypatch.setenv("SEAFAST_CACHE_DIR", str(tmp_path))
-    assert hd.default_cache_dir() == tmp_path
+    assert default_cache_dir() == tmp_path
 
 
 # ------------------------------------------------------------------------------ importers
@@ -275,7 +278,7 @@ def test_wamit_import_matches_capytaine(hull, mass_props, tmp_path):
     from capytaine.io.wamit import export_to_wamit
 
     omega = np.array([0.3, 0.5, 0.6, 0.8])
-    ds = hd._run_bem(hull, omega, np.array([0.0, 0.0, 0.0]), COARSE_M, RHO, G, math.inf)
+    ds = bem._run_bem(hull, omega, np.array([0.0, 0.0, 0.0]), COARSE_M, RHO, G, math.inf)
     nc = tmp_path / "bem.nc"
     cpt.export_dataset(nc, ds)
     ref = load_motions(nc, hull, **mass_props)

@@ -192,10 +192,11 @@ def test_imported_motions_without_surge(tmp_path, capsys, plain):
     """Heave/pitch-only hydrodynamic data: the vertical analysis runs, the axial one refuses (exit 2)."""
     import capytaine as cpt
 
-    from seafast.excitation import hydrodynamics as hd
+    from seafast.excitation.hydrodynamics import default_cache_dir
+    from seafast.excitation.hydrodynamics.capytaine_io import read_capytaine_netcdf
 
     key = re.search(r"cache key (\w+)", plain.vessel.motions.source).group(1)
-    ds = hd._read_capytaine_netcdf(hd.default_cache_dir() / f"motions_{key}.nc")
+    ds = read_capytaine_netcdf(default_cache_dir() / f"motions_{key}.nc")
     path = tmp_path / "heave_pitch.nc"
     cpt.export_dataset(path, ds.sel(influenced_dof=["Heave", "Pitch"], radiating_dof=["Heave", "Pitch"]))
     common = [

@@ -1,0 +1,235 @@
+"""The vessel's hydrodynamics from capytaine (BEM), cached on disk: :func:`compute_motions`.
+
+The cache key (:func:`compute_motions`, Notes) must not change without a reason: it names the
+files of every user's cache (``motions_<key>.nc``); bump :data:`MESH_ALGORITHM_VERSION` to
+invalidate them on purpose.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import math
+import os
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
+
+from seafast.excitation.hydrodynamics.capytaine_io import capytaine_rigid_coefficients, read_capytaine_netcdf
+from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coefficients
+from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
+from seafast.vessel.hull_form import HullForm
+from seafast.vessel.hull_mesh import hull_mesh_arrays
+
+__all__ = ["compute_motions", "default_cache_dir", "BEM_DOFS", "MESH_ALGORITHM_VERSION"]
+
+logger = logging.getLogger(__name__)
+
+#: Bump when the mesher or the post-processing changes, to invalidate cached BEM results.
+MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
+
+#: Radiating DOFs of the BEM run (surge added for the axial analysis; part of the cache key).
+BEM_DOFS: tuple[str, ...] = ("Surge", "Heave", "Pitch")
+
+
+def default_cache_dir() -> Path:
+    """``$SEAFAST_CACHE_DIR`` if set, else ``~/.cache/seafast/hydrodynamics``."""
+    env = os.environ.get("SEAFAST_CACHE_DIR")
+    return Path(env) if env else Path.home() / ".cache" / "seafast" / "hydrodynamics"
+
+
+def _cache_key(payload: dict) -> str:
+    return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:32]
+
+
+def _run_bem(
+    hull: HullForm,
+    omega: NDArray[np.float64],
+    rotation_center_wl: NDArray[np.float64],
+    panel_size_m: float,
+    rho: float,
+    g: float,
+    depth: float,
+) -> xr.Dataset:
+    """Radiation (:data:`BEM_DOFS`: surge, heave, pitch) and head-sea diffraction; returns capytaine's dataset.
+
+    Frame: origin at midship on the waterline (see :mod:`seafast.vessel.hull_mesh`).
+    """
+    import capytaine as cpt
+
+    hm = hull_mesh_arrays(hull, panel_size_m)
+    mesh, lid = hm.to_capytaine()
+    body = cpt.FloatingBody(
+        mesh=mesh,
+        lid_mesh=lid,
+        dofs=cpt.rigid_body_dofs(only=list(BEM_DOFS), rotation_center=rotation_center_wl),
+        center_of_mass=rotation_center_wl,
+        name="seafast_vessel",
+    )
+    solver = cpt.BEMSolver()
+    problems = []
+    for w in omega:
+        kw = dict(body=body, omega=float(w), rho=rho, g=g, water_depth=depth)
+        problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in BEM_DOFS]
+        problems.append(cpt.DiffractionProblem(wave_direction=np.pi, **kw))
+    from threadpoolctl import threadpool_limits
+
+    # the BEM's dense complex solves do profit from every core (callers may have pinned BLAS)
+    with threadpool_limits(limits=os.cpu_count() or 1, user_api="blas"):
+        results = solver.solve_all(problems, progress_bar=False)
+    ds = cpt.assemble_dataset(results, hydrostatics=False)
+    ds.attrs["seafast_origin_x_m"] = float(hm.x_mid_m)
+    ds.attrs["seafast_panel_size_m"] = float(panel_size_m)
+    ds.attrs["seafast_nb_panels_hull"] = hm.nb_hull_panels_full
+    ds.attrs["seafast_nb_panels_lid"] = hm.nb_lid_panels_full
+    return ds
+
+
+def compute_motions(
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    omega_rad_s: ArrayLike,
+    panel_size_m: float = 3.0,
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+    water_depth_m: float = math.inf,
+    cache_dir: str | os.PathLike | None = None,
+    use_cache: bool = True,
+) -> RigidBodyMotions:
+    """Heave and pitch RAOs of the vessel in head seas from capytaine (BEM), cached on disk.
+
+    Parameters
+    ----------
+    hull
+        Hull form; meshed with :func:`seafast.vessel.hull_mesh.hull_mesh_arrays` (sides, bottom,
+        transom, plus an interior waterplane lid removing irregular frequencies; y-symmetry used).
+    mass_kg
+        Ship mass [kg] (given explicitly; capytaine's uniform-density default is not used).
+    centre_of_gravity_m
+        ``(x from AP, y, z above keel)`` [m]. Pitch acts about ``x_G``; ``z_G`` enters the
+        pitch restoring term ``-m g z_G`` and the rotation centre.
+    pitch_radius_of_gyration_m
+        Radius of gyration about the transverse axis through the CoG [m].
+    omega_rad_s
+        Wave frequencies [rad/s] (> 0; sorted internally, duplicates removed).
+    panel_size_m
+        Target panel size [m]: 3 m for production, ~8 m for quick checks.
+    water_density_kg_per_m3, gravity_m_per_s2
+        Passed to capytaine explicitly (its default density is 1000).
+    water_depth_m
+        Water depth [m] (``inf``: deep water).
+    cache_dir
+        Directory of cached capytaine datasets; default :func:`default_cache_dir`.
+    use_cache
+        Read and write the cache (default True).
+
+    Returns
+    -------
+    RigidBodyMotions
+        About ``reference_x_m = x_G``; phases relative to the wave crest at ``L/2``.
+
+    Notes
+    -----
+    The cache key hashes the hull geometry, the BEM pitch axis (LCB x at the CoG height),
+    frequencies, panel size, density, gravity, depth, the capytaine version and
+    :data:`MESH_ALGORITHM_VERSION`; mass, CoG x and inertia are applied after the BEM, so a
+    change of loading reuses the cached hydrodynamic coefficients. The cache file is
+    the capytaine dataset written with capytaine's own NetCDF export, so it can be read back with
+    :func:`load_motions` as well.
+    """
+    import capytaine as cpt
+
+    omega = np.unique(np.asarray(omega_rad_s, dtype=float).ravel())
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega <= 0):
+        raise ValueError(f"compute_motions: omega_rad_s must be finite and > 0, got {omega_rad_s!r}")
+    if not mass_kg > 0 or not pitch_radius_of_gyration_m > 0:
+        raise ValueError("compute_motions: mass_kg and pitch_radius_of_gyration_m must be > 0")
+    cog = tuple(float(c) for c in centre_of_gravity_m)
+    if len(cog) != 3:
+        raise ValueError("compute_motions: centre_of_gravity_m must be (x, y, z)")
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    # The BEM pitch axis is fixed at the hull's LCB (at the CoG height): the radiation and
+    # diffraction coefficients then depend on the hull alone, so one cached BEM run serves every
+    # loading (studies vary the cargo and with it the CoG); they are moved to the CoG x below.
+    rotation_center = np.array([hull.centre_of_buoyancy_x_m() - x_mid, 0.0, cog[2] - hull.draft_m])
+    depth = float(water_depth_m)
+
+    payload = {
+        "stations": [repr(float(v)) for v in hull.station_x_m],
+        "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
+        "draft": repr(float(hull.draft_m)),
+        "cs": repr(float(hull.section_area_coefficient)),
+        "rotation_center": [repr(float(c)) for c in rotation_center],
+        "omega": [repr(float(v)) for v in omega],
+        "panel": repr(float(panel_size_m)),
+        "rho": repr(float(water_density_kg_per_m3)),
+        "g": repr(float(gravity_m_per_s2)),
+        "depth": repr(depth),
+        "capytaine": cpt.__version__,
+        "mesh": MESH_ALGORITHM_VERSION,
+        "dofs": list(BEM_DOFS),
+    }
+    key = _cache_key(payload)
+    cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
+    path = cdir / f"motions_{key}.nc"
+    ds = None
+    if use_cache and path.is_file():
+        try:
+            ds = read_capytaine_netcdf(path)
+            logger.debug("BEM cache hit: %s", path)
+        except Exception:  # noqa: BLE001 - a corrupt or foreign cache file, whatever the error: recompute it
+            logger.warning("BEM cache file %s is unreadable; recomputing it", path)
+            ds = None
+    if ds is None:
+        logger.info("computing the vessel's hydrodynamics with capytaine (BEM, tens of seconds); cache: %s", path if use_cache else "off")
+        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), depth)
+        if use_cache:
+            cdir.mkdir(parents=True, exist_ok=True)
+            ds.attrs["seafast_cache_key"] = key
+            fd, tmp = tempfile.mkstemp(suffix=".nc", dir=cdir)
+            os.close(fd)
+            try:
+                cpt.export_dataset(tmp, ds)
+                os.replace(tmp, path)
+            finally:
+                if os.path.exists(tmp):
+                    os.remove(tmp)
+    # the coefficients depend on the hull alone: extracted from the dataset once per process (a
+    # cargo study changes the loading, hence mass and CoG, at every point, not the hull)
+    held = _CAPYTAINE_COEFFICIENTS.get(key)
+    if held is None or held[0] is not ds:  # extracted from this very dataset (a re-read or re-run dataset is new)
+        held = (ds, capytaine_rigid_coefficients(ds, x_mid, gravity_m_per_s2))
+        if len(_CAPYTAINE_COEFFICIENTS) >= 8:
+            _CAPYTAINE_COEFFICIENTS.pop(next(iter(_CAPYTAINE_COEFFICIENTS)))
+        _CAPYTAINE_COEFFICIENTS[key] = held
+    omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = held[1]
+    return motions_from_rigid_coefficients(
+        omega_c,
+        k_c,
+        a_c,
+        b_c,
+        f_c,
+        hull,
+        coeff_reference_x_m=x_rot,
+        wave_phase_origin_x_m=x_mid,
+        coeff_reference_z_wl_m=z_rot_wl,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=cog,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+        source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
+    )
+
+
+# (dataset, its rigid-body coefficients) of BEM runs, by cache key (the key covers the hull,
+# frequencies, panel size, density, gravity, depth and the capytaine version)
+_CAPYTAINE_COEFFICIENTS: dict[str, tuple[xr.Dataset, tuple]] = {}
