@@ -122,7 +122,10 @@ def solve_hbm(
         H = int(options.harmonics)
         fixed = options.with_harmonics(H)
         start = None if given is None else _project(given, H)
-        response = _solve_fixed(model, excitation, fixed, start)
+        if H > _SAFE_HARMONICS and options.formulation == "condensed":
+            response = _solve_fixed_many_harmonics(model, excitation, fixed, start)
+        else:
+            response = _solve_fixed(model, excitation, fixed, start)
         if H == 0:
             return response
         error = truncation_error(model, excitation.omega_rad_s, _compression_harmonics(response, H), fixed.law)
@@ -202,6 +205,27 @@ def solve_hbm(
         + f"; H = {H} chosen adaptively (path {path}; march of {selection.march_periods} period(s) at {selection.march_samples} samples)"
     )
     return _with_truncation(replace(response, options=record, message=note), error, options.truncation_tolerance)
+
+
+def _solve_fixed_many_harmonics(
+    model: StructuralModel, excitation: HarmonicExcitation, options: HBMOptions, start: NDArray | None
+) -> PeriodicResponse:
+    """A fixed H above :data:`_SAFE_HARMONICS`: a few Newton steps from the given start, then from the periodic
+    march (the start from which the semi-smooth Newton converges at many harmonics), and only then the full
+    fallback chain, whose continuation costs minutes at hundreds of harmonics."""
+    H = int(options.harmonics or 0)
+    quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), _QUICK_ITERATIONS))
+    ops = condensed_operators(model, excitation, H)
+    if start is not None:
+        response = _solve_fixed(model, excitation, quick, start, ops)
+        if response.converged:
+            return response
+    selection = select_harmonics(model, excitation, tolerance=options.truncation_tolerance, max_harmonics=max(H, 1))
+    if selection.march_periods > 0:
+        response = _solve_fixed(model, excitation, quick, _project(selection.march_compression_m, H), ops)
+        if response.converged:
+            return replace(response, message=response.message + "; started from the periodic march")
+    return _solve_fixed(model, excitation, options, start, ops)
 
 
 def _with_truncation(response: PeriodicResponse, error: NDArray, tolerance: float) -> PeriodicResponse:
