@@ -6,8 +6,10 @@ figures, HTML, print figures); the public names are re-exported by :mod:`seafast
 
 from __future__ import annotations
 
+import html
 import json
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -33,6 +35,8 @@ __all__ = [
     "total_response",
     "base_value",
     "design_limits",
+    "plain_table_html",
+    "findings_html",
 ]
 
 REPORT_FILENAME = "report.html"
@@ -166,3 +170,20 @@ def base_value(sds: xr.Dataset, key: str) -> float:
 def design_limits(sds: xr.Dataset) -> dict[str, float]:
     """The study's design limits: ``F_N`` [N] and ``sigma_b_Pa`` [Pa] (defaults 7 MN, 20 MPa)."""
     return {"F_N": attr_float(sds, "max_saddle_force_N", 7e6), "sigma_b_Pa": attr_float(sds, "max_bending_stress_Pa", 20e6)}
+
+
+def plain_table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
+    """An HTML table of escaped text cells (the report's sea-state and operability tables)."""
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def findings_html(findings: Sequence[Finding]) -> str:
+    """The findings as the report's coloured boxes (level, title, text; escaped)."""
+    return "".join(
+        f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
+        + (f"<div>{html.escape(f.text)}</div>" if f.text else "")
+        + "</div>"
+        for f in findings
+    )

@@ -16,7 +16,16 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import Finding, ReportFigure, attr_float, base_value, case_mapping, design_limits, study_keys
+from seafast.output.report.common import (
+    Finding,
+    ReportFigure,
+    attr_float,
+    base_value,
+    case_mapping,
+    design_limits,
+    findings_html,
+    study_keys,
+)
 from seafast.output.report.figures import run_figures
 from seafast.output.report.findings import run_findings, study_findings
 from seafast.output.report.study_figures import study_figures
@@ -58,15 +67,6 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[Any]], cls: str = "") 
     head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
     body = "".join("<tr>" + "".join(cell(v) for v in r) + "</tr>" for r in rows)
     return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
-
-
-def _findings_html(findings: Sequence[Finding]) -> str:
-    return "".join(
-        f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
-        + (f"<div>{html.escape(f.text)}</div>" if f.text else "")
-        + "</div>"
-        for f in findings
-    )
 
 
 def _figure_html(fig: ReportFigure, first: bool) -> str:
@@ -144,14 +144,14 @@ def _run_sections(
             '<p class="small">No rigid-body motions in this run (vessel.motions = none, or a deck-deflection table), so no RAO figure.</p>'
         )
     summary_html = (
-        _findings_html([f for f in findings if f.level == "WARNING"])
+        findings_html([f for f in findings if f.level == "WARNING"])
         + "<p>Maxima over the cargo, the saddles and one wave period; cargo deflection u_c relative to the sea-fastening baseline "
         "(deck line through the outermost saddles), rigid-body heave and pitch removed; "
         "<i>dynamic</i> = total response (still water included).</p>" + _table(header, rows) + files_note
     )
     sections = [
         ("run-summary", "Results summary", summary_html),
-        ("run-diagnostics", "Convergence diagnostics", _findings_html(findings) + _table(dheader, drows)),
+        ("run-diagnostics", "Convergence diagnostics", findings_html(findings) + _table(dheader, drows)),
         ("run-inputs", "Inputs", _inputs_section(case, "The case as run (every key, defaults filled in; SI units).")),
         ("run-vessel", "Vessel excitation", vessel_html),
         ("run-saddles", "Saddles over the period", figs_html(["fig-saddle-histories", "fig-contact-timeline"])),
@@ -254,7 +254,7 @@ def _study_sections(
     )
     base = case_mapping(sds.attrs.get("base_case_json"))
     sections = [
-        ("study-overview", "Study", overview + _findings_html(findings)),
+        ("study-overview", "Study", overview + findings_html(findings)),
         ("study-figures", "Study surfaces and compliance", "".join(parts) or "<p>Single-point study: no surfaces.</p>"),
         ("study-ranking", "Ranking of compliant arrangements", ranking_html),
         ("study-inputs", "Study base case", _inputs_section(base, "Every key of the base case the study varies from (SI units).")),

@@ -8,13 +8,11 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import Finding, ReportError, ReportFigure
+from seafast.output.report.common import Finding, ReportError, ReportFigure, findings_html, plain_table_html
 
 __all__ = ["operability_findings", "operability_figure", "operability_report_sections", "OPERABILITY_TABLE_HEADER"]
 
@@ -151,21 +149,6 @@ def operability_figure(ds: xr.Dataset) -> ReportFigure:
     )
 
 
-def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
-
-
-def _finding_html(findings: Sequence[Finding]) -> str:
-    return "".join(
-        f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
-        + (f"<div>{html.escape(f.text)}</div>" if f.text else "")
-        + "</div>"
-        for f in findings
-    )
-
-
 def operability_report_sections(
     ds: xr.Dataset, first_figure: bool
 ) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
@@ -193,8 +176,8 @@ def operability_report_sections(
         f"probable maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included; "
         f"{html.escape(str(ds.attrs.get('spectrum', '')))} spectrum (&gamma; = {float(ds.attrs.get('peak_enhancement', math.nan)):g}), "
         "head seas. Nonlinear: design waves solved by harmonic balance (docs/operability.md).</p>"
-        + _finding_html(findings)
+        + findings_html(findings)
         + f'<div class="figure" data-figure="{html.escape(fig.id)}"><h3>{html.escape(fig.title)}</h3>{div}'
-        f'<p class="caption">{html.escape(fig.caption)}</p></div>' + _table_html(OPERABILITY_TABLE_HEADER, _rows(ds))
+        f'<p class="caption">{html.escape(fig.caption)}</p></div>' + plain_table_html(OPERABILITY_TABLE_HEADER, _rows(ds))
     )
     return [("operability", "Operability: allowable sea states", body)], [fig], findings, False

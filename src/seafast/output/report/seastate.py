@@ -8,13 +8,11 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import Finding, ReportError, ReportFigure
+from seafast.output.report.common import Finding, ReportError, ReportFigure, findings_html, plain_table_html
 
 __all__ = ["seastate_findings", "seastate_figures", "seastate_report_sections", "SEASTATE_TABLE_HEADER"]
 
@@ -238,21 +236,6 @@ def _example_figure(ds: xr.Dataset) -> ReportFigure:
     )
 
 
-def _table_html(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in r) + "</tr>" for r in rows)
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
-
-
-def _finding_html(findings: Sequence[Finding]) -> str:
-    return "".join(
-        f'<div class="finding {f.level}"><span class="lvl">{html.escape(f.level)}</span><b>{html.escape(f.title)}</b>'
-        + (f"<div>{html.escape(f.text)}</div>" if f.text else "")
-        + "</div>"
-        for f in findings
-    )
-
-
 def seastate_report_sections(
     ds: xr.Dataset, first_figure: bool
 ) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
@@ -281,8 +264,8 @@ def seastate_report_sections(
         f"maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included "
         "(linear spectral: Rayleigh; design waves: harmonic balance of the regular waves whose linear response is the "
         "linear MPM, docs/operability.md; Monte Carlo: mode of the Gumbel fit to the per-realisation maxima).</p>"
-        + _finding_html(findings)
-        + _table_html(SEASTATE_TABLE_HEADER, _rows(ds))
+        + findings_html(findings)
+        + plain_table_html(SEASTATE_TABLE_HEADER, _rows(ds))
     )
     sections = [("seastate-summary", "Sea state: extremes", summary), ("seastate-figures", "Sea state: figures", "".join(parts))]
     return sections, figs, findings, first_figure
