@@ -25,6 +25,7 @@ import yaml
 import seafast
 from seafast.operability.allowable import OperabilityResult
 from seafast.operability.scatter import ScatterAssessment
+from seafast.results.labelled import labelled_variable as _var
 
 __all__ = [
     "OPERABILITY_COLUMNS",
@@ -69,10 +70,6 @@ def operability_csv_text(result: OperabilityResult) -> str:
         row = p.row()
         w.writerow([_cell(row[c]) for c in OPERABILITY_COLUMNS])
     return buf.getvalue()
-
-
-def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Variable:
-    return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units})
 
 
 def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | None = None) -> xr.Dataset:

@@ -21,6 +21,7 @@ import xarray as xr
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, period_fraction
 from seafast.model.structure import StructuralModel
+from seafast.results.labelled import labelled_variable as _var
 from seafast.results.timeseries import PeriodTimeSeries, moment_lines
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
 
@@ -53,10 +54,6 @@ _SUMMARY_ATTRS = {
     "converged": ("solver converged", "1"),
     "contact_preserved": ("every saddle in contact over the whole period (linear theory valid)", "1"),
 }
-
-
-def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Variable:
-    return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units})
 
 
 def seafastening_baseline(model: StructuralModel, excitation: HarmonicExcitation, deck_z: np.ndarray) -> np.ndarray:

@@ -24,6 +24,7 @@ import xarray as xr
 import yaml
 
 import seafast
+from seafast.results.labelled import labelled_variable as _var
 from seafast.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
 
 __all__ = [
@@ -112,10 +113,6 @@ def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") ->
 
     out = [title] if title else []
     return "\n".join(out + [fmt(head), fmt(["-" * w for w in widths])] + [fmt(line) for line in lines])
-
-
-def _var(dims: tuple[str, ...], data: Any, long_name: str, units: str) -> xr.Variable:
-    return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units})
 
 
 def _complex(out: dict[str, xr.Variable], name: str, dims: tuple[str, ...], data: Any, long_name: str, units: str) -> None:
