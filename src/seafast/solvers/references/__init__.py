@@ -14,25 +14,10 @@ same grid ``t_n = n T / N`` as HBM.
     the linear system of a trial set of detached saddles; it stops when the signs agree) with
     enumeration of all sets as a fallback, so the answer is exact to round-off.
 ``solve_time_domain``
-    HHT-alpha integration (average-acceleration Newmark for ``hht_alpha = 0``) of the cargo
-    equations with the exact law, period by period until the change between two periods is
-    below ``tolerance`` (the periodic steady state). Two formulations of the same equations:
-
-    ``formulation="full"`` (default, the independent reference)
-        All cargo DOFs, ``M q'' + D q' + K_lin q = f_static + f_vessel(t) - K_co x_o(t) +
-        B f_c(delta)`` with ``K_lin`` the cargo beam and the lashing springs only and the
-        saddles as exact unilateral springs ``f_c = k_u max(delta, 0)``, ``delta = z_deck -
-        z_cargo``. Each implicit step is solved by a semi-smooth Newton (active-set)
-        iteration on the full effective stiffness; one banded Cholesky factorisation is cached
-        per active set, so a step costs one banded matrix-vector product and one or two banded
-        triangular solves. It uses the model's matrices directly (none of the receptance /
-        condensation machinery of the HBM) and starts from the exact-contact quasi-static
-        state at t = 0.
-    ``formulation="condensed"``
-        The same integration with the saddles bilateral in the linear stiffness and the
-        implicit contact problem of each step condensed onto the saddles (the step's
-        effective receptance) and solved with the active-set method of
-        :class:`~seafast.solvers.exact_contact.ExactContact`; starts from the linear periodic solution.
+    HHT-alpha integration of the cargo equations with the exact law to the periodic steady
+    state, in two formulations of the same equations (``"full"``, the independent reference,
+    and ``"condensed"``), both started from one stated state and reporting the orbit reached
+    (:mod:`~seafast.solvers.references.time_domain`, :mod:`~seafast.solvers.references.orbit`).
 
 The references live in :mod:`~seafast.solvers.references.quasi_static` and
 :mod:`~seafast.solvers.references.time_domain`; the active-set contact solvers they use in
