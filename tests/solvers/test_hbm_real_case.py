@@ -48,6 +48,19 @@ EXACT_16 = dict(harmonics=16, time_samples=128, contact_law="exact")
 TANH_5 = dict(harmonics=5, time_samples=128, contact_law="tanh")
 
 
+@pytest.mark.parametrize("harmonics", [96, 128])
+def test_a_fixed_h_of_many_harmonics_starts_from_the_periodic_march(real_case, harmonics):
+    """From the quasi-static predictor the semi-smooth Newton at H ~ 100 does not converge (the kappa
+    continuation took 1.5 and 7.9 s); a fixed H above 16 is started from the periodic march, as the adaptive
+    H is, and converges directly, within its own truncation estimate of the adaptive answer."""
+    model, ex = real_case
+    r = solve_hbm(model, ex, HBMOptions(harmonics=harmonics))
+    assert _direct(r) and "started from the periodic march" in r.message, r.message
+    adaptive = solve_hbm(model, ex)
+    error = abs(r.max_saddle_force_N / adaptive.max_saddle_force_N - 1.0)
+    assert error <= float(np.max(r.truncation_error)) + float(np.max(adaptive.truncation_error)), (error, r.truncation_error)
+
+
 @pytest.mark.parametrize("harmonics", [5, 8, 16, 20])
 def test_newton_exact_converges_directly(real_case, harmonics):
     """Semi-smooth Newton from the quasi-static contact predictor, no kappa continuation."""
