@@ -16,6 +16,7 @@ from seafast.fourier import (
     high_harmonic_energy_share,
     real_dft_matrices,
     real_to_complex_harmonics,
+    time_to_harmonics,
 )
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
@@ -244,12 +245,9 @@ def _with_truncation(response: PeriodicResponse, error: NDArray, tolerance: floa
 
 def _project(samples: NDArray, harmonics: int) -> NDArray:
     """Real-layout harmonics 0 .. H of periodic samples (N', n_s) (an exact DFT projection)."""
-    N = samples.shape[0]
-    X = np.fft.rfft(samples, axis=0) / N
+    X = time_to_harmonics(samples, min(harmonics, samples.shape[0] // 2))
     C = np.zeros((harmonics + 1, samples.shape[1]), dtype=complex)
-    m = min(harmonics, X.shape[0] - 1)
-    C[0] = X[0].real
-    C[1 : m + 1] = 2.0 * X[1 : m + 1]
+    C[: X.shape[0]] = X  # harmonics the samples cannot resolve are zero
     return complex_to_real_harmonics(C)
 
 
