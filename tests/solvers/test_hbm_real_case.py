@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
+from seafast.fourier import harmonics_to_time, time_to_harmonics
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.periodic import PeriodicResponse, SolverOutcome
 from seafast.solvers.references import solve_quasi_static, solve_time_domain
@@ -118,11 +119,13 @@ def test_exact_h16_agrees_with_references(real_case):
     """H = 16 exact: design values within 1 % of the quasi-static and time-domain references.
 
     Sample by sample the time-domain reference rings after each re-contact (an impact that
-    excites the cargo's ~16 rad/s mode, the 27th harmonic): it differs from the quasi-static
-    reference by ~7 % of the peak force near those instants, and from HBM (H = 16) by the same
-    amount. So: peak saddle force and peak bending moment within 1 % of both references, the
-    force history within 1 % (RMS over the period) of the quasi-static one, and HBM no further
-    from the time-domain history than the quasi-static reference is.
+    excites the cargo's modes at 44-50 rad/s, harmonics 73-83 of the wave): it differs from the
+    quasi-static reference by ~5 % of the peak force near those instants, and from HBM (H = 16) by
+    the same amount, content that 16 harmonics cannot hold. So: peak saddle force and peak bending
+    moment within 1 % of both references, the force history within 1 % (RMS over the period) of the
+    quasi-static one, and, in the harmonics 0 .. 16 that the balance represents, HBM closer to the
+    time-domain history than the quasi-static reference (no inertia) is: 1.4 % against 1.9 % of the
+    peak force.
     """
     model, ex = real_case
     r = solve_hbm(model, ex, HBMOptions(**EXACT_16))
@@ -139,4 +142,13 @@ def test_exact_h16_agrees_with_references(real_case):
         assert e_peak < 0.01 and e_moment < 0.01, figures
     rms = float(np.sqrt(np.mean((r.saddle_force_time_N - qs.saddle_force_time_N) ** 2)) / qs.max_saddle_force_N)
     assert rms < 0.01
-    assert _force_error(r, td) <= 1.05 * _force_error(qs, td)
+    assert _force_error(r, td) < 0.08  # the ringing H = 16 leaves out
+
+    def up_to_h16(force_N: np.ndarray) -> np.ndarray:
+        return harmonics_to_time(time_to_harmonics(force_N, 16), force_N.shape[0])
+
+    scale = td.max_saddle_force_N
+    td_16 = up_to_h16(td.saddle_force_time_N)
+    hbm_error = np.max(np.abs(up_to_h16(r.saddle_force_time_N) - td_16)) / scale
+    quasi_static_error = np.max(np.abs(up_to_h16(qs.saddle_force_time_N) - td_16)) / scale
+    assert hbm_error < 0.85 * quasi_static_error, (hbm_error, quasi_static_error)

@@ -13,8 +13,11 @@ from threadpoolctl import threadpool_limits
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
 from seafast.model.sections import CargoGeometry, TubeSegment
-from seafast.model.structure import build_structural_model, rayleigh_coefficients
-from seafast.solvers.hbm import HBMOptions, solve_hbm
+from seafast.model.structure import build_structural_model
+from seafast.solvers.contact import ContactLaw
+from seafast.solvers.hbm import HBMOptions, condensed_operators, solve_hbm
+from seafast.solvers.hbm.condensed import CondensedProblem
+from seafast.solvers.hbm.nonlinear import solve_with_fallback
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.periodic import PeriodicResponse, SolverOutcome, SolverWarning
 from seafast.solvers.references import QUASI_STATIC_RATIO_LIMIT, solve_exact_contact, solve_quasi_static, solve_time_domain
@@ -421,18 +424,27 @@ def test_time_domain_rejects_bad_formulation(base):
 
 
 def test_exact_law_converges_from_the_sharpest_soft_solution_reached():
-    """A case hypothesis found (a 1 % saddle near resonance, H = 10): the direct exact-law solve
-    stagnates and the softplus path breaks before its last kappa; the exact law started from
-    the last converged softplus solution converges."""
+    """The fallback's continuation in kappa, exercised deterministically: from the mirrored linear solution (every
+    compressed saddle lifted as far as it was compressed) Newton on the exact law stagnates, the softplus path of
+    rising kappa converges, and the exact law started from its sharpest solution converges: a solution of the
+    exact-law balance (residual at tolerance, no saddle pulls), the softplus solution's to 1 %. This near-resonant
+    case (a 1 % saddle) has more than one periodic solution at H = 10; the path decides which one is reached."""
+    model, ex = random_case(3, np.array([0.01, 1.0, 1.0]), 1.0, [3.0, 0.0, 1.0], [0.0, 0.0, 0.0], 2.0)
+    options = HBMOptions(harmonics=10, time_samples=64, contact_law="exact")
+    problem = CondensedProblem(condensed_operators(model, ex, 10), 64)
+    mirrored = -problem.initial_guess(1.0)
     with threadpool_limits(1):
-        model, ex = random_case(3, np.array([0.01, 1.0, 1.0]), 1.0, [3.0, 0.0, 1.0], [0.0, 0.0, 0.0], 2.0)
-        # the damping the case was found with (the classic two-frequency Rayleigh coefficients, before
-        # issue 12's fit on the modes): the fallback mechanism is what this test exercises
-        alpha, beta = rayleigh_coefficients(0.02, *model.natural_frequencies_rad_s(True, 2))
-        model = replace(model, rayleigh_alpha_per_s=alpha, rayleigh_beta_s=beta, _springs={})
-        r = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="exact"))
-        ref = solve_hbm(model, ex, HBMOptions(harmonics=10, time_samples=64, contact_law="softplus"))
-    assert r.outcome is SolverOutcome.CONVERGED_BY_CONTINUATION, r.message
-    assert "continuation in kappa" in r.message
-    assert r.saddle_force_time_N.min() >= 0.0
-    assert r.max_saddle_force_N == pytest.approx(ref.max_saddle_force_N, rel=0.01)
+        direct = solve_with_fallback(problem, options.law, replace(options, continuation=False), u_start=mirrored)
+        attempt = solve_with_fallback(problem, options.law, options, u_start=mirrored)
+        soft = solve_with_fallback(problem, ContactLaw("softplus", 1e4 / problem.compression_scale_m), options, u_start=mirrored)
+    assert not direct.converged  # the direct solve from this start does fail: the fallback is what is tested
+    assert attempt.converged and attempt.by_continuation and attempt.outcome is SolverOutcome.CONVERGED_BY_CONTINUATION
+    residual, _ = problem.evaluate(attempt.u, options.law, 1.0)
+    assert np.max(np.abs(residual)) <= options.tolerance * problem.scale
+    compression = problem.to_samples(attempt.u.reshape(problem.n_h, problem.n_s))
+    force = options.law.force(compression, problem.k_u)
+    assert force.min() >= 0.0 and np.any(compression < 0.0)  # a saddle lifts off, and none pulls
+    soft_force = ContactLaw("softplus", 1e4 / problem.compression_scale_m).force(
+        problem.to_samples(soft.u.reshape(problem.n_h, problem.n_s)), problem.k_u
+    )
+    assert soft.converged and force.max() == pytest.approx(soft_force.max(), rel=0.01)

@@ -248,17 +248,57 @@ class StructuralModel:
         """Rayleigh damping of the cargo beam [N s/m, ...]."""
         return self.rayleigh_alpha_per_s * self.cargo.mass + self.rayleigh_beta_s * self.cargo.stiffness
 
+    @property
+    def quasi_static_support_influence(self) -> NDArray[np.float64]:
+        """``S = -K_cc^-1 K_co`` (n_c, n_o): the cargo displacement the deck DOFs impose quasi-statically [m/m, ...].
+
+        ``S x_o`` is the static response of the cargo on bilateral saddles (their full stiffness, lashings) to the
+        deck DOFs ``x_o`` alone: the motion the supports impose. It is the same for the linear and the nonlinear
+        model (the damping law below must not depend on which saddles are in contact).
+        """
+        key = "support_influence"
+        if key not in self._springs:
+            b = self.cargo.half_bandwidth
+            springs, Kco, _ = self.spring_parts(True)
+            band = _upper_band(self.cargo.stiffness, b)
+            band[b] += springs
+            self._springs[key] = -scipy.linalg.solveh_banded(band, Kco, check_finite=False)
+        return self._springs[key]
+
+    @property
+    def support_damping_coupling(self) -> NDArray[np.float64]:
+        """``D_co = -D S`` (n_c, n_o) [N s/m, ...]: the damping's coupling to the deck velocities.
+
+        The cargo's damping acts on its motion relative to the motion the supports impose quasi-statically,
+        ``D (q' - S x_o')`` (:attr:`quasi_static_support_influence`): structural damping dissipates on
+        deformation, and a cargo that follows the deck's quasi-static deflection rigidly is not damped by it. On
+        the right-hand side that is ``+ D S x_o' = - D_co x_o'``, beside the springs' ``- K_co x_o``; per harmonic
+        the cargo-deck coupling is ``K_co + i k omega D_co`` (:meth:`dynamic_stiffness`). The springs themselves
+        carry no dashpot, so the forces on the deck stay ``K_oc q + K_oo x_o``.
+        """
+        key = "support_damping"
+        if key not in self._springs:
+            b = self.cargo.half_bandwidth
+            mass, beam = _full_band(self.cargo.mass, b), _full_band(self.cargo.stiffness, b)
+            damping = self.rayleigh_alpha_per_s * mass + self.rayleigh_beta_s * beam
+            self._springs[key] = -_band_matmul(damping, b, self.quasi_static_support_influence)
+        return self._springs[key]
+
     def dynamic_stiffness(self, omega_rad_s: float, include_saddles: bool) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         """Dynamic stiffness blocks K_d = K - omega^2 M + i omega D at ``omega_rad_s``.
 
-        Returns (Kd_cc, Kd_co, Kd_oc, Kd_oo); real arrays at omega = 0, complex otherwise.
-        Mass and damping live on the cargo DOFs only (deck DOFs are prescribed).
+        Returns (Kd_cc, Kd_co, Kd_oc, Kd_oo); real arrays at omega = 0, complex otherwise. Mass and damping live
+        on the cargo DOFs only (deck DOFs are prescribed); the damping's coupling to the deck velocities,
+        ``Kd_co = K_co + i omega D_co`` (:attr:`support_damping_coupling`), loads the cargo, not the deck:
+        ``Kd_oc = K_co^T``.
         """
         Kcc, Kco, Koo = self.spring_matrices(include_saddles)
         Kd_cc = self.cargo.stiffness + Kcc
+        Kd_co = Kco
         if omega_rad_s != 0.0:
             Kd_cc = Kd_cc - omega_rad_s**2 * self.cargo.mass + 1j * omega_rad_s * self.damping_cc
-        return Kd_cc, Kco, Kco.T, Koo
+            Kd_co = Kco + 1j * omega_rad_s * self.support_damping_coupling
+        return Kd_cc, Kd_co, Kco.T, Koo
 
     def banded_quadratic(self, include_saddles: bool) -> tuple[int, NDArray, NDArray, NDArray, NDArray]:
         """The parts of :meth:`dynamic_stiffness` ``K_d^cc(w) = K - w^2 M + i w D``, banded, in O(n).
@@ -419,6 +459,16 @@ def _full_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
         else:
             band[bandwidth - offset, : n + offset] = d
     return band
+
+
+def _band_matmul(band: NDArray[np.float64], bandwidth: int, X: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``A @ X`` for A in full band storage ``band[b + i - j, j] = A[i, j]`` (O(n b) per column of X)."""
+    n = band.shape[1]
+    out = np.zeros((n, *X.shape[1:]), dtype=np.result_type(band, X))
+    for offset in range(-bandwidth, bandwidth + 1):
+        rows = np.arange(max(0, -offset), min(n, n - offset))
+        out[rows] += band[bandwidth - offset, rows + offset][:, None] * X[rows + offset]
+    return out
 
 
 def _upper_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:

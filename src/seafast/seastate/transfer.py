@@ -173,7 +173,8 @@ def _harmonic_solves(
         return ab
 
     Kb, Mb, Db = band(K), band(M), band(D)
-    rhs = cargo_load - deck @ Kco.T
+    # the springs' K_co and the damping's coupling to the deck velocities (StructuralModel.support_damping_coupling)
+    rhs = cargo_load - deck @ Kco.T - 1j * np.asarray(omega_rad_s)[:, None] * (deck @ model.support_damping_coupling.T)
     out = np.empty_like(rhs)
     for i, om in enumerate(omega_rad_s):
         out[i] = solve_banded((u, u), Kb - om**2 * Mb + 1j * om * Db, rhs[i], check_finite=False)

@@ -45,7 +45,9 @@ class QuadraticMatrices:
     Attributes
     ----------
     coupling_stiffness, coupling_mass, coupling_damping
-        The cargo-deck blocks, (n_c, n_o) (the deck carries no mass or damping: the last two are zero).
+        The cargo-deck blocks, (n_c, n_o): K_co of the springs, zero mass (the deck carries none), and the damping's
+        coupling to the deck velocities ``D_co`` (:attr:`~seafast.model.structure.StructuralModel.support_damping_coupling`:
+        the cargo is damped on its motion relative to the quasi-static support motion).
     bandwidth
         Half bandwidth of K, M, D together.
     banded_stiffness, banded_mass, banded_damping
@@ -97,8 +99,8 @@ def quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> 
         return hit[1]
     bw, K, M, D, Kco = model.banded_quadratic(include_saddles)
     Kco = np.asarray(Kco, dtype=float)
-    zeros = np.zeros_like(Kco)
-    q = QuadraticMatrices(Kco, zeros, zeros, int(bw), K, M, D)
+    # the deck carries no mass; the damping couples to the deck velocities through the quasi-static support motion
+    q = QuadraticMatrices(Kco, np.zeros_like(Kco), np.asarray(model.support_damping_coupling, dtype=float), int(bw), K, M, D)
     if len(_QUADRATIC_CACHE) > 64:
         for k in [k for k, (ref, _) in _QUADRATIC_CACHE.items() if ref() is None]:
             del _QUADRATIC_CACHE[k]
@@ -145,8 +147,8 @@ def saddle_selection(model: StructuralModel) -> NDArray[np.float64]:
 def linear_force_harmonics(model: StructuralModel, excitation: HarmonicExcitation, quasi_static: bool) -> NDArray:
     """Harmonics of f_static + f_vessel - K_d^co x_o on the cargo DOFs (n_k, n_c) [N, N m].
 
-    ``quasi_static``: the cargo-deck coupling at omega = 0 for every harmonic (no inertia or
-    damping of the deck's motion).
+    ``K_d^co(k w) = K_co + i k w D_co``. ``quasi_static``: the cargo-deck coupling at omega = 0 for every
+    harmonic (no damping of the deck's motion).
     """
     q = quadratic_matrices(model, True)
     P = np.zeros((excitation.harmonic_count, model.cargo_dof_count), dtype=complex)

@@ -2,8 +2,11 @@
 
 Equation of motion (docs/theory.md#5-harmonic-balance), cargo DOFs q, deck DOFs x_o prescribed::
 
-    M q'' + D q' + K q = f_static + f_vessel(t) - K_co x_o(t) + B f(delta(t)),
+    M q'' + D q' + K q = f_static + f_vessel(t) - K_co x_o(t) - D_co x_o'(t) + B f(delta(t)),
     delta = z_deck - z_cargo  (saddle compression, positive compressed),
+
+(D_co: the damping acts on the cargo's motion relative to the quasi-static support motion,
+:attr:`~seafast.model.structure.StructuralModel.support_damping_coupling`)
 
 with f the contact law of the compression-only saddle part (force on the cargo, upward) and B
 the map from saddles to cargo z DOFs. The periodic steady state is expanded in H harmonics

@@ -5,8 +5,9 @@ equations with the exact law, period by period until the change between two peri
 below ``tolerance`` (the periodic steady state). Two formulations of the same equations:
 
 ``formulation="full"`` (default, the independent reference)
-    All cargo DOFs, ``M q'' + D q' + K_lin q = f_static + f_vessel(t) - K_co x_o(t) +
-    B f_c(delta)`` with ``K_lin`` the cargo beam and the lashing springs only and the
+    All cargo DOFs, ``M q'' + D q' + K_lin q = f_static + f_vessel(t) - K_co x_o(t) -
+    D_co x_o'(t) + B f_c(delta)`` (``D_co``: the damping acts on the motion relative to the
+    quasi-static support motion) with ``K_lin`` the cargo beam and the lashing springs only and the
     saddles as exact unilateral springs ``f_c = k_u max(delta, 0)``, ``delta = z_deck -
     z_cargo``. Each implicit step is solved by a semi-smooth Newton (active-set)
     iteration on the full effective stiffness; one banded Cholesky factorisation is cached
@@ -266,8 +267,11 @@ def _time_domain_full(
     beta = 0.25 * (1.0 - alpha) ** 2
     h = 0.5 - beta
     c1, c2 = 1.0 / (beta * dt * dt), gamma / (beta * dt)
-    # loads at the step times: f_static + f_vessel(t) - K_co x_o(t) (the deck DOFs carry no mass or damping)
-    P = np.asarray(excitation.cargo_load_N, dtype=complex) - np.asarray(excitation.deck_displacement, dtype=complex) @ K_co.T
+    # loads at the step times: f_static + f_vessel(t) - K_co x_o(t) - D_co x_o'(t) (the deck DOFs carry no mass; the
+    # cargo is damped on its motion relative to the quasi-static support motion, StructuralModel.support_damping_coupling)
+    deck = np.asarray(excitation.deck_displacement, dtype=complex)
+    deck_velocity = 1j * omega * np.arange(deck.shape[0])[:, None] * deck
+    P = np.asarray(excitation.cargo_load_N, dtype=complex) - deck @ K_co.T - deck_velocity @ model.support_damping_coupling.T
     P[0] = P[0].real + model.static_load_N
     P_t = harmonics_to_time(P, S)  # (S, n_c)
     z_t = harmonics_to_time(np.asarray(excitation.deck_displacement)[:, sad_o], S)  # deck z at the saddles (S, n_s)
