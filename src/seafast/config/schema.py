@@ -52,10 +52,14 @@ def _not_bool(value: object) -> object:
     return value
 
 
+# The yes/no check is the last annotation, so it runs first (a before-validator wraps what precedes it) and
+# the bounds stay on the number itself, where pydantic exports them as JSON Schema's minimum /
+# exclusiveMinimum / maximum / exclusiveMaximum (before the check they come out as pydantic's own ge/gt/le/lt,
+# which a standard validator ignores).
 NotBool = BeforeValidator(_not_bool)
-Positive = Annotated[float, NotBool, Field(gt=0, allow_inf_nan=False)]
-NonNegative = Annotated[float, NotBool, Field(ge=0, allow_inf_nan=False)]
-Finite = Annotated[float, NotBool, Field(allow_inf_nan=False)]
+Positive = Annotated[float, Field(gt=0, allow_inf_nan=False), NotBool]
+NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False), NotBool]
+Finite = Annotated[float, Field(allow_inf_nan=False), NotBool]
 Count = Annotated[int, NotBool]
 
 
@@ -95,9 +99,9 @@ class CargoConfig(_Strict):
         None, description="x of the cargo midpoint on the ship from the aft perpendicular [m]; default midship"
     )
     youngs_modulus_Pa: Positive = 210e9
-    poisson_ratio: Annotated[float, NotBool, Field(gt=0, lt=0.5)] = 0.3
+    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5), NotBool] = 0.3
     density_kg_per_m3: Positive = 7850.0
-    units_abreast: Annotated[Count, Field(ge=1, le=20)] = Field(
+    units_abreast: Annotated[int, Field(ge=1, le=20), NotBool] = Field(
         4, description="Identical cargo items side by side (their weights add on the hull; one is modelled)"
     )
 
@@ -129,7 +133,7 @@ class LashingConfig(_Strict):
         37.5e3, description="Wire axial stiffness k_l [N/m]; k_z and k_theta scale with it from 6.5 kN/m and 1.46 MN m/rad"
     )
     pretension_N: NonNegative = Field(210e3, description="Total pretension T_l [N], shared by the lashed saddles, acting downward")
-    angle_deg: Annotated[float, NotBool, Field(gt=0, le=90, allow_inf_nan=False)] = Field(
+    angle_deg: Annotated[float, Field(gt=0, le=90, allow_inf_nan=False), NotBool] = Field(
         45.0,
         description="Angle of the lashing wires from the deck [deg], fore/aft pairs in the ship's vertical-longitudinal plane: "
         "axial stiffness k_l cos^2(angle) per lashed saddle, axial pretension components cancel (axial analysis only, docs/axial.md)",
@@ -159,7 +163,7 @@ class StopperConfig(_Strict):
 class SeaFasteningConfig(_Strict):
     """Saddles and lashings."""
 
-    saddle_count: Annotated[Count, Field(ge=1, le=50)] = Field(
+    saddle_count: Annotated[int, Field(ge=1, le=50), NotBool] = Field(
         3, description="n saddles evenly from 0.2 L to 0.8 L, lashings at the two outermost"
     )
     saddle_positions_m: tuple[Finite, ...] | None = Field(
@@ -168,7 +172,7 @@ class SeaFasteningConfig(_Strict):
     saddle_stiffness_N_per_m: Positive | tuple[Positive, ...] = Field(
         BASE_SADDLE_STIFFNESS_N_PER_M, description="Compression stiffness per saddle [N/m]: one value for all, or one per saddle"
     )
-    lashed_saddles: tuple[Annotated[Count, Field(ge=0)], ...] | None = Field(
+    lashed_saddles: tuple[Annotated[int, Field(ge=0), NotBool], ...] | None = Field(
         None, description="Indices (0-based, aft to fore) of lashed saddles; default the two outermost"
     )
     lashing: LashingConfig = LashingConfig()
@@ -225,7 +229,7 @@ class VesselConfig(_Strict):
     hull_second_moment_m4: Positive = Field(103.8, description="Hull-girder second moment of area I_s [m^4]")
     hull_shear_area_m2: Positive | None = Field(None, description="Hull-girder effective shear area [m^2]; default documented")
     youngs_modulus_Pa: Positive = 210e9
-    poisson_ratio: Annotated[float, NotBool, Field(gt=0, lt=0.5)] = 0.3
+    poisson_ratio: Annotated[float, Field(gt=0, lt=0.5), NotBool] = 0.3
     water_density_kg_per_m3: Positive = 1025.0
     lightship_mass_kg: Positive | None = Field(None, description="Lightship mass [kg]; default documented")
     hull_form_table: Path | None = Field(
@@ -305,27 +309,27 @@ class SolverConfig(_Strict):
         "exact", description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
     )
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
-    harmonics: Annotated[Count, Field(ge=1, le=1024)] | None = Field(
+    harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] | None = Field(
         None,
         description="Number of harmonics H; default (null): chosen adaptively until the saddle-force peaks settle to "
         "solver.truncation_tolerance",
     )
-    time_samples: Annotated[Count, Field(ge=4, le=16384)] | None = Field(
+    time_samples: Annotated[int, Field(ge=4, le=16384), NotBool] | None = Field(
         None, description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references)"
     )
     nonlinear_solver: Literal["hybr", "newton"] = Field(
         "newton", description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
     )
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
-    axial_harmonics: Annotated[Count, Field(ge=1, le=400)] = Field(
+    axial_harmonics: Annotated[int, Field(ge=1, le=400), NotBool] = Field(
         100, description="Number of harmonics of the axial (friction) harmonic balance (axial analysis only)"
     )
-    truncation_tolerance: Annotated[float, NotBool, Field(gt=0, lt=1)] = Field(
+    truncation_tolerance: Annotated[float, Field(gt=0, lt=1), NotBool] = Field(
         1e-3,
         description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "
         "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few",
     )
-    max_harmonics: Annotated[Count, Field(ge=1, le=1024)] = Field(512, description="Upper bound of the adaptive H")
+    max_harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] = Field(512, description="Upper bound of the adaptive H")
 
     @model_validator(mode="before")
     @classmethod
@@ -350,7 +354,7 @@ class ModelConfig(_Strict):
     """Discretisation, damping and environment."""
 
     element_length_m: Positive = Field(1.0, description="Target cargo finite-element length [m]")
-    damping_ratio: Annotated[float, NotBool, Field(ge=0, lt=1)] = Field(
+    damping_ratio: Annotated[float, Field(ge=0, lt=1), NotBool] = Field(
         0.02, description="Rayleigh damping ratio at the first two cargo natural frequencies [-]"
     )
     gravity_m_per_s2: Positive = 9.81
@@ -388,16 +392,16 @@ class SeaStateConfig(_Strict):
     spectrum: str = Field(
         "jonswap", description="'jonswap' (DNV-RP-C205), 'pierson_moskowitz', or a CSV path with columns omega_rad_s,S_m2_s_per_rad"
     )
-    peak_enhancement: Annotated[float, NotBool, Field(ge=1.0, le=10.0, allow_inf_nan=False)] = Field(
+    peak_enhancement: Annotated[float, Field(ge=1.0, le=10.0, allow_inf_nan=False), NotBool] = Field(
         3.3, description="JONSWAP peak-enhancement factor gamma [-] (1 = Pierson-Moskowitz)"
     )
-    duration_s: Annotated[float, NotBool, Field(ge=60.0, le=86400.0, allow_inf_nan=False)] = Field(
+    duration_s: Annotated[float, Field(ge=60.0, le=86400.0, allow_inf_nan=False), NotBool] = Field(
         10800.0, description="Duration of the sea state over which maxima are taken [s] (3 hours)"
     )
-    realisations: Annotated[Count, Field(ge=3, le=10000)] = Field(
+    realisations: Annotated[int, Field(ge=3, le=10000), NotBool] = Field(
         20, description="Random-phase realisations of the nonlinear Monte Carlo reference"
     )
-    seed: Annotated[Count, Field(ge=0)] = Field(0, description="Seed of the random phases (reproducible realisations)")
+    seed: Annotated[int, Field(ge=0), NotBool] = Field(0, description="Seed of the random phases (reproducible realisations)")
 
     @model_validator(mode="after")
     def _check(self) -> SeaStateConfig:
