@@ -97,6 +97,10 @@ def test_schema_is_json(capsys):
         ("solver.contact_law=hertz", "solver.contact_law"),
         ("vessel.deck_deflection_table=/nonexistent.csv", "deck_deflection_table"),
         ("vessel.motions=/nonexistent.nc", "vessel.motions"),
+        # a wave past the breaking limit (H / lambda > 1/7), e.g. millimetres typed for metres
+        ("wave.amplitude_m=20", "wave: amplitude_m = 20.0 at length_m = 171.0"),
+        ("wave.amplitude_m=100", "past the breaking limit 1/7"),
+        ("wave.amplitude_m=3000", "allowed amplitude_m <= 12.2 m"),
     ],
 )
 def test_invalid_input_gives_exit_2_and_one_clear_message(tmp_path, capsys, override, expect):

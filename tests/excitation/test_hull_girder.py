@@ -8,6 +8,7 @@ from scipy.interpolate import CubicHermiteSpline
 
 from seafast.excitation.hull_girder import (
     HullGirder,
+    HydrostaticBalanceError,
     deck_deflection_at,
     deck_harmonics_at,
     deck_load_influence,
@@ -208,6 +209,16 @@ def test_wave_box_barge_closed_form_crest_and_trough():
     assert w.trim_rad[16] == pytest.approx(-12 * a / (k * Lb**2), rel=1e-4)
     assert w.trim_rad[48] == pytest.approx(+12 * a / (k * Lb**2), rel=1e-4)
     assert np.abs(w.sinkage_m).max() < 1e-6 * a
+
+
+def test_a_wave_the_hull_cannot_float_on_is_a_clear_error(base):
+    """A 300 m wave amplitude (millimetres typed for metres): the hull leaves the water and the wall-sided
+    balance has no answer. A typed error (a ValueError: the command line's exit 2) naming the wave and the
+    draught, not an internal RuntimeError."""
+    girder, loading, _ = base
+    with pytest.raises(HydrostaticBalanceError, match=r"wave surface of up to 300 m against the draught"):
+        wave_response(girder, loading, 171.0, 300.0)
+    assert issubclass(HydrostaticBalanceError, ValueError)
 
 
 def test_wave_response_linear_in_amplitude(base):

@@ -36,6 +36,7 @@ __all__ = [
     "SeaStateConfig",
     "LimitsConfig",
     "BASE_SADDLE_STIFFNESS_N_PER_M",
+    "BREAKING_STEEPNESS",
     "SOURCE_SOLVER_SETTINGS",
     "max_significant_height_m",
 ]
@@ -270,12 +271,30 @@ class VesselConfig(_Strict):
         return self
 
 
+BREAKING_STEEPNESS = 1.0 / 7.0
+"""Wave height over length above which a deep-water wave breaks (Michell's limit, ~0.142) [-]."""
+
+
 class WaveConfig(_Strict):
-    """Regular head-sea wave."""
+    """Regular head-sea wave, no steeper than the breaking limit (height over length at most 1/7)."""
 
     length_m: Positive = Field(171.0, description="Wave length lambda [m]")
-    amplitude_m: NonNegative = Field(3.0, description="Wave amplitude zeta_a [m]")
+    amplitude_m: NonNegative = Field(
+        3.0, description="Wave amplitude zeta_a [m]; the height 2 zeta_a is at most 1/7 of the length (breaking limit)"
+    )
     frequency_rad_s: Positive | None = Field(None, description="Wave frequency [rad/s]; default from deep-water dispersion")
+
+    @model_validator(mode="after")
+    def _check(self) -> WaveConfig:
+        steepness = 2.0 * self.amplitude_m / self.length_m
+        if steepness > BREAKING_STEEPNESS:
+            raise ValueError(
+                f"amplitude_m = {self.amplitude_m} at length_m = {self.length_m}: the wave height 2 zeta_a is "
+                f"{steepness:.3g} of the length, past the breaking limit 1/7 = {BREAKING_STEEPNESS:.3f} (no such regular "
+                f"wave exists); allowed amplitude_m <= {0.5 * BREAKING_STEEPNESS * self.length_m:.3g} m at this length "
+                "(amplitude in metres, half the wave height)"
+            )
+        return self
 
 
 #: The source's method (``solver.preset: source``): the values it gives the keys the case leaves unset.

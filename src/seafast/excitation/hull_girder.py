@@ -57,6 +57,7 @@ __all__ = [
     "DEFAULT_SHEAR_AREA_M2",
     "HullGirder",
     "HullGirderResponse",
+    "HydrostaticBalanceError",
     "WaveHullResponse",
     "still_water_response",
     "deflection_from_bending_moment",
@@ -382,6 +383,10 @@ class _Beam:
         return z, slope
 
 
+class HydrostaticBalanceError(ValueError):
+    """The hull girder finds no hydrostatic balance on the given wave (the hull leaves the water); the message says why."""
+
+
 def _balance(
     girder: HullGirder,
     x: FloatArray,
@@ -424,8 +429,14 @@ def _balance(
         tr = tr + delta[..., 1]
         if np.all(np.abs(delta[..., 0]) < 1e-13 * T) and np.all(np.abs(delta[..., 1]) * L < 1e-13 * T):
             break
-    else:  # pragma: no cover - only for pathological emergence
-        raise RuntimeError("hull girder: hydrostatic balance did not converge")
+    else:
+        worst = float(np.max(np.abs(R) / np.maximum(np.abs(weight_resultants), 1.0)))
+        raise HydrostaticBalanceError(
+            f"hull girder: no hydrostatic balance (sinkage and trim) found in {max_iter} Newton steps on a wave surface "
+            f"of up to {float(np.max(np.abs(zeta))):.3g} m against the draught {T:.3g} m (residual {worst:.2e} of the "
+            "weight): the hull leaves the water over much of its length, which the quasi-static wall-sided model "
+            "does not describe; check the wave amplitude (metres, half the wave height) and the loading"
+        )
     d = T + s[..., None] - tr[..., None] * (x - xm) + zeta
     b = rgc * breadth * np.maximum(d, 0.0)
     qa = b[..., :-1] - wa

@@ -25,6 +25,7 @@ from scipy.linalg import cho_factor, cho_solve
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time
+from seafast.config.schema import BREAKING_STEEPNESS
 from seafast.model.structure import StructuralModel
 
 __all__ = ["DEFAULT_MAX_GAP_M", "BREAKING_STEEPNESS", "RangeLimit", "RangeLimits", "time_extremes", "deck_acceleration_m_per_s2"]
@@ -34,8 +35,6 @@ DEFAULT_MAX_GAP_M = 0.1
 10 cm off its saddles has left the sea-fastening's design state; the model's linear lashings,
 fixed saddle positions and undamped re-contact no longer describe what happens next."""
 
-BREAKING_STEEPNESS = 1.0 / 7.0
-"""Wave height over length above which a deep-water wave breaks (Michell's limit, ~0.142)."""
 
 
 class RangeLimit(Enum):
