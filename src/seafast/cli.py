@@ -1,7 +1,9 @@
 """The ``seafast`` command line: run, init, schema, study, report.
 
 Exit codes: 0 success; 2 invalid input (one clear message on stderr, no traceback); 3 the
-case ran but the nonlinear solver did not converge (results are still written, flagged).
+case ran but the nonlinear solver did not converge (results are still written, flagged); 4 the
+case ran and converged, but a result lies outside the model's small-displacement validity
+(results written, flagged ``within_validity = false`` in results.nc; :mod:`seafast.results.validity`).
 
 Messages: :func:`main` routes the package's logging (``seafast.*`` loggers) to stderr for the
 duration of the command: progress at INFO (shown by default), warnings as
@@ -20,6 +22,7 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 # Small dense solves are fastest on one BLAS thread on few cores; OpenBLAS reads this when it is
 # loaded, so set it before numpy/scipy load (study worker processes inherit it). An explicit
@@ -30,6 +33,9 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import seafast  # noqa: E402 - after the thread settings above, like numpy
 
+if TYPE_CHECKING:
+    from seafast.pipeline import CaseResult
+
 __all__ = ["main", "build_parser"]
 
 logger = logging.getLogger(__name__)
@@ -37,6 +43,7 @@ logger = logging.getLogger(__name__)
 EXIT_OK = 0
 EXIT_INVALID_INPUT = 2
 EXIT_NOT_CONVERGED = 3
+EXIT_OUTSIDE_VALIDITY = 4
 
 RUN_EXAMPLES = """examples:
   seafast run                                   # the built-in base case
@@ -233,7 +240,32 @@ def _cmd_run(args: argparse.Namespace) -> int:
             "its numbers are flagged converged=false in summary.csv and must not be trusted",
             file=sys.stderr,
         )
-    return EXIT_NOT_CONVERGED if bad else EXIT_OK
+    if bad:
+        return EXIT_NOT_CONVERGED
+    return EXIT_OUTSIDE_VALIDITY if _warn_validity(result) else EXIT_OK
+
+
+def _warn_validity(result: CaseResult) -> bool:
+    """Warn (stderr) about each row beyond the model's validity, with the likely cause; whether there was one."""
+    from seafast.results.validity import likely_cause
+
+    issues = result.validity
+    rows = dict.fromkeys((i.load_case, i.model) for i in issues)
+    for load_case, model in rows:
+        what = "; ".join(
+            f"{i.quantity} {i.value:.4g} {i.unit} > {i.allowed:.3g} {i.unit}"
+            for i in issues
+            if (i.load_case, i.model) == (load_case, model)
+        )
+        print(
+            f"seafast: warning: {load_case} {model}: results beyond the model's small-displacement validity ({what}); "
+            "written, flagged within_validity=false in results.nc, and not a valid answer",
+            file=sys.stderr,
+        )
+    cause = likely_cause(result.case, issues)
+    if cause is not None:
+        print(f"seafast: warning: {cause}", file=sys.stderr)
+    return bool(issues)
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:

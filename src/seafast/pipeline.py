@@ -45,6 +45,7 @@ from seafast.results.dataset import (
     summary_rows_from_arrays,
 )
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
+from seafast.results.validity import ValidityIssue, validity_issues, with_validity, within_validity
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.periodic import harmonics_to_time
 
@@ -192,12 +193,17 @@ class CaseResult:
         """Summary rows (summary.csv's columns plus contact_preserved and diagnostics; a two-way
         run adds each row's coupling_converged, coupling_residual_m, coupling_tolerance_m and
         coupling_iterations; the axial columns when the axial analysis ran)."""
-        rows = summary_rows_from_arrays(self.arrays)
+        rows = with_validity(summary_rows_from_arrays(self.arrays, self.model.cargo.node_x_m), cargo_diameter_m(self.model))
         for row in rows:
             status = self.coupling.get((row["load_case"], row["model"]))
             if status is not None:
                 row.update(coupling_summary_fields(status))
         return rows if self.axial is None else self.axial.extend_summary(rows)
+
+    @functools.cached_property
+    def validity(self) -> tuple[ValidityIssue, ...]:
+        """Every row's results beyond the model's small-displacement validity (empty: all valid; :mod:`seafast.results.validity`)."""
+        return validity_issues(self.summary, cargo_diameter_m(self.model))
 
     @property
     def summary_columns(self) -> tuple[str, ...]:
@@ -208,6 +214,15 @@ class CaseResult:
     def dataset(self) -> xr.Dataset:
         """All results labelled (what results.nc holds), vessel data merged in."""
         ds = build_case_dataset(self.arrays, self.model, self.attrs)
+        ds["within_validity"] = xr.DataArray(
+            within_validity(self.validity),
+            dims=("load_case", "model"),
+            attrs={
+                "long_name": "the row's results lie within the model's small-displacement validity (docs/theory.md, validity)",
+                "units": "1",
+            },
+        )
+        ds.attrs["validity_issues"] = "\n".join(issue.message for issue in self.validity)
         if self.vessel is not None and hasattr(self.vessel, "to_dataset"):
             vds = self.vessel.to_dataset()
             ds = xr.merge([ds, vds], combine_attrs="override")
@@ -496,7 +511,14 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
         dynamic.residual_norm,
         dynamic.iterations,
     )
-    return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
+    return with_validity(
+        summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N), cargo_diameter_m(model)
+    )
+
+
+def cargo_diameter_m(model: StructuralModel) -> float:
+    """The cargo's largest outer diameter [m] (the scale of the validity check's displacement line)."""
+    return float(np.max(model.cargo.element_outer_diameter_m))
 
 
 #: The fixed H at which the two-way coupling iterates the deck when the case leaves H adaptive (the deck forces

@@ -72,24 +72,33 @@ def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
 
 
 def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:
-    """Human-readable table in engineering units (mm, MN, MN m, MPa)."""
-    head = ("load case", "model", "u_c [mm]", "u_s [mm]", "u_d [mm]", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "contact", "converged")
+    """Human-readable table in engineering units (mm, MN, MN m, MPa).
+
+    A ``valid`` column is added when a row lies outside the model's small-displacement validity
+    (``within_validity`` False, :mod:`seafast.results.validity`).
+    """
+    head: tuple[str, ...] = ("load case", "model", "u_c [mm]", "u_s [mm]", "u_d [mm]", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "contact")
+    head += ("converged",)
+    show_validity = any(not r.get("within_validity", True) for r in rows)
+    if show_validity:
+        head += ("valid",)
     lines = []
     for r in rows:
-        lines.append(
-            (
-                r["load_case"],
-                r["model"],
-                f"{r['u_c_m'] * 1e3:.2f}",
-                f"{r['u_s_m'] * 1e3:.2f}",
-                f"{r['u_d_m'] * 1e3:.2f}",
-                f"{r['F_N'] / 1e6:.3f}",
-                f"{r['M_b_Nm'] / 1e6:.2f}",
-                f"{r['sigma_b_Pa'] / 1e6:.2f}",
-                "kept" if r.get("contact_preserved", True) else "LOST",
-                "yes" if r["converged"] else _not_converged(r),
-            )
+        line: tuple[str, ...] = (
+            r["load_case"],
+            r["model"],
+            f"{r['u_c_m'] * 1e3:.2f}",
+            f"{r['u_s_m'] * 1e3:.2f}",
+            f"{r['u_d_m'] * 1e3:.2f}",
+            f"{r['F_N'] / 1e6:.3f}",
+            f"{r['M_b_Nm'] / 1e6:.2f}",
+            f"{r['sigma_b_Pa'] / 1e6:.2f}",
+            "kept" if r.get("contact_preserved", True) else "LOST",
+            "yes" if r["converged"] else _not_converged(r),
         )
+        if show_validity:
+            line += ("yes" if r.get("within_validity", True) else "NO",)
+        lines.append(line)
     widths = _column_widths(head, lines)
     out = [title] if title else []
     out += [_format_row(head, widths), _format_row(["-" * w for w in widths], widths)] + [_format_row(line, widths) for line in lines]

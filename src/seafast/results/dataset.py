@@ -35,6 +35,7 @@ __all__ = [
     "case_arrays",
     "build_case_dataset",
     "summary_rows_from_arrays",
+    "largest_slope_rad",
     "seafastening_baseline",
 ]
 
@@ -196,15 +197,27 @@ def case_arrays(
     )
 
 
-def summary_rows_from_arrays(arrays: CaseArrays) -> list[dict[str, Any]]:
-    """The summary table rows straight from the arrays (no Dataset needed: fast for studies)."""
+def largest_slope_rad(deflection_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
+    """Largest |dz/dx| over the last two axes (time, node) of a deflection (..., n_t, n_x) at nodes ``x_m`` [rad]."""
+    slope = np.diff(np.asarray(deflection_m, dtype=float), axis=-1) / np.diff(np.asarray(x_m, dtype=float))
+    return np.asarray(np.abs(slope).max(axis=(-2, -1)), dtype=float)
+
+
+def summary_rows_from_arrays(arrays: CaseArrays, cargo_x_m: np.ndarray) -> list[dict[str, Any]]:
+    """The summary table rows straight from the arrays (no Dataset needed: fast for studies).
+
+    ``cargo_x_m``: the cargo's node positions [m], for ``cargo_slope_rad`` (the largest slope of the cargo's
+    deflection relative to the vessel's rigid-body frame, which the validity check reads).
+    """
     mx = arrays.maxima()
+    slope = largest_slope_rad(arrays.cargo_deflection_vessel_frame_m, cargo_x_m)
     rows = []
     for i, lc in enumerate(LOAD_CASES):
         for j, mdl in enumerate(MODELS):
             row: dict[str, Any] = {"load_case": lc, "model": mdl}
             for name in ("u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa"):
                 row[name] = float(mx[name][i, j])
+            row["cargo_slope_rad"] = float(slope[i, j])
             row["converged"] = bool(arrays.converged[i, j])
             row["contact_preserved"] = bool(mx["contact_preserved"][i, j])
             row["residual_norm"] = float(arrays.residual_norm[i, j])

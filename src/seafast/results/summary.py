@@ -35,7 +35,7 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.beam import element_end_moments
 from seafast.model.structure import StructuralModel
-from seafast.results.dataset import seafastening_baseline
+from seafast.results.dataset import largest_slope_rad, seafastening_baseline
 
 __all__ = ["RowSolution", "summary_rows", "summary_row", "MOMENT_POINTS_PER_ELEMENT"]
 
@@ -162,6 +162,7 @@ def summary_rows(model: StructuralModel, rows: Sequence[tuple[str, str, RowSolut
                 "F_N": float(np.max(row.saddle_force_N)),
                 "M_b_Nm": float(np.max(np.abs(moment))),
                 "sigma_b_Pa": float(np.max(np.abs(moment / modulus))),
+                "cargo_slope_rad": float(largest_slope_rad(z, beam.node_x_m)),
                 "converged": bool(row.converged),
                 "contact_preserved": bool(np.all(comp > 0.0)),
                 "residual_norm": float(row.residual_norm),

@@ -23,9 +23,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import cho_factor, cho_solve
 
+from seafast.config.schema import BREAKING_STEEPNESS
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time
-from seafast.config.schema import BREAKING_STEEPNESS
 from seafast.model.structure import StructuralModel
 
 __all__ = ["DEFAULT_MAX_GAP_M", "BREAKING_STEEPNESS", "RangeLimit", "RangeLimits", "time_extremes", "deck_acceleration_m_per_s2"]
@@ -34,7 +34,6 @@ DEFAULT_MAX_GAP_M = 0.1
 """Largest detachment gap [m] inside the meaningful range (``docs/sweeps.md``): a monopile lifted
 10 cm off its saddles has left the sea-fastening's design state; the model's linear lashings,
 fixed saddle positions and undamped re-contact no longer describe what happens next."""
-
 
 
 class RangeLimit(Enum):

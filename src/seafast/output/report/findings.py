@@ -37,7 +37,8 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
     WARNING when: a solve did not converge (a two-way coupling that did not converge is named
     as such, with the coupling's own residual and tolerance); the harmonic truncation indicator exceeds
     :data:`TRUNCATION_LIMIT`; a solve raised a typed warning (``solver_warning_flag``: e.g. the
-    quasi-static assumption, or excitation harmonics above H dropped); contact is lost while the linear
+    quasi-static assumption, or excitation harmonics above H dropped); a row lies beyond the model's
+    small-displacement validity (``within_validity``); contact is lost while the linear
     (bilateral) model is used — its forces then include tension a saddle cannot carry.
     NOTE when the regularised contact law's tensile force exceeds
     :data:`TENSILE_NOTE_FRACTION` of the largest saddle force.
@@ -68,6 +69,19 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
                         f"{lc} {m}: the solver did NOT converge",
                         f"residual norm {res:.3e}. Its numbers (summary, figures) must not be trusted; "
                         "try more harmonics/time samples, the 'newton' solver or another contact law.",
+                    )
+                )
+            if "within_validity" in sel and not bool(sel["within_validity"]):
+                prefix = f"{lc} {m}: "
+                lines = [
+                    line.removeprefix(prefix) for line in str(ds.attrs.get("validity_issues", "")).splitlines() if line.startswith(prefix)
+                ]
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: results beyond the model's small-displacement validity",
+                        "; ".join(lines) + ". The row is written but is not a valid answer (docs/theory.md, validity): "
+                        "check the units of the inputs that set it (a saddle stiffness in N/m, say).",
                     )
                 )
             if "solver_outcome" in sel and str(sel["solver_outcome"].values.item()) == SolverOutcome.OTHER_ORBIT.value:
