@@ -189,10 +189,10 @@ class CaseResult:
 
     @property
     def summary(self) -> list[dict[str, Any]]:
-        """Summary rows (summary.csv's columns plus contact_preserved and diagnostics; a two-way
-        run adds each row's coupling_converged, coupling_residual_m, coupling_tolerance_m and
-        coupling_iterations; the axial columns when the axial analysis ran)."""
-        rows = summary_rows_from_arrays(self.arrays)
+        """Summary rows (summary.csv's columns plus contact_preserved, diagnostics and the row's typed
+        ``warnings``; a two-way run adds each row's coupling_converged, coupling_residual_m,
+        coupling_tolerance_m and coupling_iterations; the axial columns when the axial analysis ran)."""
+        rows = summary_rows_from_arrays(self.arrays, self.model.warnings)
         for row in rows:
             status = self.coupling.get((row["load_case"], row["model"]))
             if status is not None:
@@ -495,6 +495,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
         dynamic.converged,
         dynamic.residual_norm,
         dynamic.iterations,
+        dynamic.warnings,
     )
     return summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N)
 
