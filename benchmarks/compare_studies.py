@@ -4,8 +4,10 @@ Usage::
 
     python benchmarks/compare_studies.py OLD_DIR NEW_DIR [--rtol 1e-8]
 
-Checks that ``study.csv`` has the same header and rows (axis values, load case, model), and per
+Checks that ``study.csv`` has the same columns and rows (axis values, load case, model), and per
 numeric column reports the largest difference relative to the column's largest magnitude;
+columns only NEW has (e.g. ``warnings``, added after OLD was run) are listed, not judged, and
+the columns both have are compared; a column OLD has and NEW lacks is a difference;
 boolean columns (``converged``, ``contact_preserved``) and ``error`` must match exactly;
 ``ranking.csv`` and ``compliance.csv`` are compared the same way when both runs have them.
 ``iterations`` and ``residual_norm`` are solver diagnostics and are reported, not judged. The
@@ -42,14 +44,19 @@ def compare_table(old: Path, new: Path, rtol: float) -> tuple[bool, dict[str, fl
     h_old, r_old = _read(old)
     h_new, r_new = _read(new)
     problems: list[str] = []
-    if h_old != h_new:
-        return False, {}, [f"{new.name}: header differs: {h_old} vs {h_new}"]
+    missing = [c for c in h_old if c not in h_new]
+    if missing or [c for c in h_new if c in h_old] != h_old:
+        return False, {}, [f"{new.name}: columns differ: {h_old} vs {h_new}"]
+    added = [c for c in h_new if c not in h_old]
+    if added:
+        print(f"  {new.name}: columns only in {new.parent.name}: {', '.join(added)} (not judged)")
     if len(r_old) != len(r_new):
         return False, {}, [f"{new.name}: {len(r_old)} rows vs {len(r_new)}"]
     worst: dict[str, float] = {}
     for j, name in enumerate(h_old):
+        k = h_new.index(name)
         a = [row[j] for row in r_old]
-        b = [row[j] for row in r_new]
+        b = [row[k] for row in r_new]
         xa, xb = [_number(v) for v in a], [_number(v) for v in b]
         numeric = (
             all(v is not None or t == "" for v, t in zip(xa, a, strict=True))

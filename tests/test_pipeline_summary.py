@@ -16,7 +16,9 @@ import numpy as np
 import pytest
 
 from seafast.config import load_case
-from seafast.pipeline import evaluate_summary, run_case
+from seafast.model.warning import ModelWarning
+from seafast.pipeline import build_model, evaluate_summary, run_case
+from seafast.solvers.outcome import SolverWarning
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -68,6 +70,7 @@ def test_short_path_rows_equal_the_full_pipeline(name):
             assert f[key] == pytest.approx(r[key], rel=rel, abs=1e-10 * scale), f"{label} {key}"
         assert (f["converged"], f["contact_preserved"], f["iterations"]) == (r["converged"], r["contact_preserved"], r["iterations"]), label
         assert f["residual_norm"] == pytest.approx(r["residual_norm"], rel=1e-3, abs=case.solver.tolerance), label
+        assert f["warnings"] == r["warnings"], label  # the same typed warnings, in the same order
 
 
 def test_the_short_path_is_taken_where_it_applies(monkeypatch):
@@ -92,3 +95,35 @@ def test_short_path_sees_lift_off_where_the_linear_model_pulls():
     assert dyn_nl["F_N"] < dyn_lin["F_N"] and dyn_nl["M_b_Nm"] < dyn_lin["M_b_Nm"]
     assert rows[("static", "nonlinear")]["contact_preserved"] and rows[("static", "linear")]["F_N"] == pytest.approx(6.305e6, rel=2e-3)
     assert np.isclose(rows[("static", "nonlinear")]["F_N"], rows[("static", "linear")]["F_N"], rtol=5e-3)
+
+
+def test_rows_carry_the_typed_warnings_of_their_solve_and_of_the_model():
+    """What a study stores per row. Seven saddles at 1.1e10 N/m with H fixed at 16: the re-contact rings far
+    above 16 omega, the truncation estimate is about 3 % (30 times the 0.1 % tolerance), so the dynamic
+    nonlinear row, and only it, raises too_few_harmonics. Two saddles at 2.57e9 N/m: the first two modes
+    (55 and 65 rad/s) ride on the saddles, the Rayleigh fallback realises 2.36 % and 1.58 % for 2 % (21 %
+    off), a warning on the dynamic rows (the damping does nothing in still water)."""
+    stiff = load_case(overrides={"seafastening.saddle_count": 7, "seafastening.saddle_stiffness_N_per_m": 1.1e10, "solver.harmonics": 16})
+    full = run_case(stiff)
+    error = float(full.dataset["truncation_error"].sel(load_case="dynamic", model="nonlinear").max())
+    assert 10 * stiff.solver.truncation_tolerance < error < 0.1
+    for rows in (evaluate_summary(stiff), full.summary):
+        by_row = {(r["load_case"], r["model"]): r["warnings"] for r in rows}
+        assert by_row == {
+            ("static", "linear"): (),
+            ("static", "nonlinear"): (),
+            ("dynamic", "linear"): (),
+            ("dynamic", "nonlinear"): (SolverWarning.TOO_FEW_HARMONICS,),
+        }
+    damped = load_case(overrides={"seafastening.saddle_count": 2, "seafastening.saddle_stiffness_N_per_m": 2.569e9})
+    fit = build_model(damped).rayleigh_fit
+    assert fit is not None and not fit.exact and 0.15 < fit.miss < 0.3
+    for rows in (evaluate_summary(damped), run_case(damped).summary):
+        by_row = {(r["load_case"], r["model"]): r["warnings"] for r in rows}
+        fallback = (ModelWarning.RAYLEIGH_FALLBACK,)
+        assert by_row == {
+            ("static", "linear"): (),
+            ("static", "nonlinear"): (),
+            ("dynamic", "linear"): fallback,
+            ("dynamic", "nonlinear"): fallback,
+        }

@@ -6,9 +6,10 @@ case ran and converged, but a result lies outside the model's small-displacement
 (results written, flagged ``within_validity = false`` in results.nc; :mod:`seafast.results.validity`).
 
 Messages: :func:`main` routes the package's logging (``seafast.*`` loggers) to stderr for the
-duration of the command: progress at INFO (shown by default), warnings as
-``seafast: warning: ...``; ``-v/--verbose`` adds DEBUG (solver paths, cache hits), ``-q/--quiet``
-keeps warnings and errors only (``seafast run -q`` and ``seafast study -q`` as well).
+duration of the command (:func:`seafast.console.command_logging`): progress at INFO (shown by
+default), warnings as ``seafast: warning: ...``; ``-v/--verbose`` adds DEBUG (solver paths, cache
+hits), ``-q/--quiet`` keeps warnings and errors only (``seafast run -q`` and ``seafast study -q``
+as well).
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 
 import seafast  # noqa: E402 - after the thread settings above, like numpy
+from seafast.console import command_logging  # noqa: E402 - after the thread settings above
 
 if TYPE_CHECKING:
     from seafast.pipeline import CaseResult
@@ -322,18 +324,6 @@ def _cmd_schema(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-class _CliFormatter(logging.Formatter):
-    """Progress as plain lines; warnings and errors as ``seafast: warning: ...``; debug with its logger."""
-
-    def format(self, record: logging.LogRecord) -> str:
-        message = record.getMessage()
-        if record.levelno >= logging.WARNING:
-            return f"seafast: {record.levelname.lower()}: {message}"
-        if record.levelno < logging.INFO:
-            return f"seafast: debug: {record.name}: {message}"
-        return message
-
-
 def _log_level(args: argparse.Namespace) -> int:
     """DEBUG with --verbose, WARNING with a -q (global or the command's), else INFO."""
     if args.global_quiet or getattr(args, "quiet", False):
@@ -355,22 +345,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         args.quiet = True  # the command's own quiet mode (no tables) follows the global one
     # the package's log records go to stderr for this command only (main can be called again,
     # e.g. by tests or scripts, and must not leave a handler on a stale stream)
-    package_logger = logging.getLogger("seafast")
-    handler = logging.StreamHandler(sys.stderr)
-    handler.setFormatter(_CliFormatter())
-    saved = package_logger.level, package_logger.propagate
-    package_logger.addHandler(handler)
-    package_logger.setLevel(_log_level(args))
-    package_logger.propagate = False
-    try:
+    with command_logging(_log_level(args)):
         # seafast's dense solves are small (~100-5000 unknowns): one BLAS thread is fastest on
         # few cores, and leaves the cores to study workers (the BEM step lifts this limit for itself).
         with threadpool_limits(limits=1, user_api="blas"):
             return int(args.handler(args))
-    finally:
-        package_logger.removeHandler(handler)
-        package_logger.setLevel(saved[0])
-        package_logger.propagate = saved[1]
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -190,10 +190,13 @@ class CaseResult:
 
     @property
     def summary(self) -> list[dict[str, Any]]:
-        """Summary rows (summary.csv's columns plus contact_preserved and diagnostics; a two-way
-        run adds each row's coupling_converged, coupling_residual_m, coupling_tolerance_m and
-        coupling_iterations; the axial columns when the axial analysis ran)."""
-        rows = with_validity(summary_rows_from_arrays(self.arrays, self.model.cargo.node_x_m), cargo_diameter_m(self.model))
+        """Summary rows (summary.csv's columns plus contact_preserved, diagnostics, the row's typed
+        ``warnings`` and ``within_validity``; a two-way run adds each row's coupling_converged,
+        coupling_residual_m, coupling_tolerance_m and coupling_iterations; the axial columns when the
+        axial analysis ran)."""
+        rows = with_validity(
+            summary_rows_from_arrays(self.arrays, self.model.cargo.node_x_m, self.model.warnings), cargo_diameter_m(self.model)
+        )
         for row in rows:
             status = self.coupling.get((row["load_case"], row["model"]))
             if status is not None:
@@ -510,6 +513,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
         dynamic.converged,
         dynamic.residual_norm,
         dynamic.iterations,
+        dynamic.warnings,
     )
     return with_validity(
         summary_rows(model, [(lc, mdl, rows[(lc, mdl)]) for lc in LOAD_CASES for mdl in MODELS], N), cargo_diameter_m(model)

@@ -16,6 +16,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.seafastening import BASE_LASHING, SeaFastening, evenly_spaced_saddles
 from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.structure import MechanismError, StructuralModel, build_structural_model
+from seafast.model.warning import ModelWarning
 from seafast.solvers.linear import solve_linear
 
 LM, D, T, RHO, G = 74.0, 8.0, 0.08, 7850.0, 9.81
@@ -250,6 +251,7 @@ def test_rayleigh_damping_gives_the_modes_the_requested_ratio() -> None:
     for ratio in (0.02, 0.05):
         model = build_structural_model(_geometry(), sf, target_element_length_m=1.0, damping_ratio=ratio)
         assert model.rayleigh_fit is not None and model.rayleigh_fit.exact
+        assert model.rayleigh_fit.miss == 0.0 and model.warnings == ()
         np.testing.assert_allclose(model.modal_damping_ratios(2), ratio, rtol=1e-9)
         # the complex modes of the non-proportionally damped model: the modal formula is first-order exact
         np.testing.assert_allclose(_state_space_damping(model), ratio, rtol=0.02)
@@ -432,5 +434,7 @@ def test_the_damping_fallback_warns_only_when_it_misses_the_ratio_by_more_than_a
     assert fit is not None and not fit.exact
     off = float(np.max(np.abs(np.asarray(fit.realised_damping_ratio) / ratio - 1.0)))
     assert (off > 0.1) is warned, fit.realised_damping_ratio
+    assert fit.miss == pytest.approx(off, rel=1e-12) and fit.damping_ratio == ratio
+    assert model.warnings == ((ModelWarning.RAYLEIGH_FALLBACK,) if warned else ())  # the typed value a study records
     records = [r for r in caplog.records if "cannot give both" in r.getMessage()]
     assert [r.levelname for r in records] == ["WARNING" if warned else "INFO"]

@@ -8,12 +8,14 @@ case and the extreme-but-real soft-saddle cases of the test suite stay valid.
 
 from __future__ import annotations
 
+import csv
+
 import xarray as xr
 
 from seafast.cli import EXIT_OUTSIDE_VALIDITY, main
 from seafast.config import load_case
 from seafast.output.report.findings import run_findings
-from seafast.pipeline import run_case
+from seafast.pipeline import evaluate_summary, run_case
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.results.sweep_range import DEFAULT_MAX_GAP_M
 from seafast.results.validity import (
@@ -89,3 +91,26 @@ def test_the_likely_cause_names_the_stiffness_only_when_it_explains_the_issue():
     (gap,) = validity_issues([_row(u_d_m=0.3)], 8.0)
     assert "saddle_stiffness" not in (likely_cause(load_case(), (gap,)) or "")
     assert likely_cause(soft, ()) is None
+
+
+def test_a_study_records_the_rows_beyond_validity_as_typed_warnings(tmp_path, capsys):
+    """Both routes to a row (the run's and a study point's short path) mark it, and a study stores the line
+    crossed in its warnings column and counts it once at the end."""
+    slip = load_case(overrides={"seafastening.saddle_stiffness_N_per_m": 1.1, "model.element_length_m": 4.0})
+    rows = evaluate_summary(slip)
+    assert not any(r["within_validity"] for r in rows)
+    assert all(ValidityLimit.DISPLACEMENT in r["warnings"] for r in rows)
+    assert [r["warnings"] for r in rows] == [r["warnings"] for r in run_case(slip).summary]
+    spec = tmp_path / "slip.yaml"
+    spec.write_text(
+        "name: slip\naxes:\n  - key: seafastening.saddle_stiffness_N_per_m\n    values: [1.1, 1.1e9]\n"
+        "set:\n  model.element_length_m: 4.0\n  solver.harmonics: 16\n",
+        encoding="utf-8",
+    )
+    assert main(["study", str(spec), "-o", str(tmp_path / "out"), "--workers", "1"]) == 0
+    err = capsys.readouterr().err
+    assert "1 of 2 points: displacement_beyond_quarter_diameter" in err
+    with open(tmp_path / "out" / "study.csv", newline="", encoding="utf-8") as fh:
+        study = list(csv.DictReader(fh))
+    flagged = {r["seafastening.saddle_stiffness_N_per_m"] for r in study if "displacement_beyond_quarter_diameter" in r["warnings"]}
+    assert flagged == {"1.1"}

@@ -243,3 +243,17 @@ def test_more_realisations_extend_the_store(tmp_path):
     other = case_of(significant_height_m=2.5, duration_s=600.0, realisations=3)
     with pytest.raises(StoreError, match="another run"):
         run_monte_carlo(other, tmp_path, workers=1, progress=False)
+
+
+def test_progress_off_a_terminal_is_plain_lines_as_a_study_s(tmp_path, monkeypatch, caplog):
+    """The Monte Carlo reports through seafast.progress (as a study does): off a terminal, plain lines."""
+    import logging
+
+    import seafast.progress
+
+    monkeypatch.setattr(seafast.progress, "PROGRESS_MIN_INTERVAL_S", 0.0)
+    case = case_of(significant_height_m=2.0, duration_s=600.0, realisations=3)
+    with caplog.at_level(logging.INFO, logger="seafast.progress"):
+        run_monte_carlo(case, tmp_path, workers=1, progress=True)
+    lines = [r.getMessage() for r in caplog.records if r.name == "seafast.progress"]
+    assert [line.split(" (")[0] for line in lines] == [f"Monte Carlo {case.name}: {i}/3 realisations" for i in (1, 2, 3)]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 import json
 import os
 import signal
@@ -114,5 +115,10 @@ def test_sigkill_then_resume_equals_an_uninterrupted_run(tmp_path: Path):
     )
     assert ref.returncode == 0, ref.stderr
     assert (out / "study.csv").read_text() == (reference / "study.csv").read_text()
+    # ... warnings included: the points stored before the kill keep theirs (fake: 12 soft points, 4 stiff ones)
+    with open(out / "study.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    warned = {int(i) // 4 for i, r in enumerate(rows) if r["warnings"]}
+    assert len(warned) == 16 and warned & set(stored_after_kill), "no stored point carried a warning"
     assert (out / "compliance.csv").read_text() == (reference / "compliance.csv").read_text()
     assert (out / "ranking.csv").read_text() == (reference / "ranking.csv").read_text()

@@ -126,7 +126,7 @@ def test_csv_columns_follow_the_interface(small_grid, tmp_path: Path):
     assert header[:2] == keys
     assert header[2:11] == fixed
     assert header[11] == "contact_preserved"
-    assert header[12:] == ["residual_norm", "iterations", "error"]
+    assert header[12:] == ["residual_norm", "iterations", "warnings", "error"]
     assert tuple(header[2:12]) == CORE_COLUMNS
     assert len(rows) - 1 == small_grid.size * 4  # one row per point, load case and model
     assert {r[11] for r in rows[1:]} == {"true", "false"}

@@ -12,7 +12,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["RAYLEIGH_BETA_LIMIT", "RayleighFit", "fit_rayleigh_to_modes", "rayleigh_coefficients"]
+from seafast.model.warning import ModelWarning
+
+__all__ = ["RAYLEIGH_BETA_LIMIT", "RAYLEIGH_FALLBACK_TOLERANCE", "RayleighFit", "fit_rayleigh_to_modes", "rayleigh_coefficients"]
 
 
 def rayleigh_coefficients(damping_ratio: float, omega_1_rad_s: float, omega_2_rad_s: float) -> tuple[float, float]:
@@ -31,6 +33,10 @@ def rayleigh_coefficients(damping_ratio: float, omega_1_rad_s: float, omega_2_ra
 #: (it would overdamp the beam modes, e.g. when both modes are rigid-body-like bounce and pitch).
 RAYLEIGH_BETA_LIMIT = 10.0
 
+#: The fallback raises :attr:`ModelWarning.RAYLEIGH_FALLBACK` (and is logged as a warning) when a realised modal
+#: ratio misses the requested one by more than this share; within it, it is an engineering detail (logged as info).
+RAYLEIGH_FALLBACK_TOLERANCE = 0.1
+
 
 @dataclass(frozen=True)
 class RayleighFit:
@@ -47,6 +53,8 @@ class RayleighFit:
         ``phi^T D phi / (2 omega phi^T M phi)`` of those two modes [-].
     exact
         Whether both modes have exactly the requested ratio (False: the documented fallback was used).
+    damping_ratio
+        The requested ratio [-] (NaN when not recorded).
     """
 
     alpha_per_s: float
@@ -54,6 +62,19 @@ class RayleighFit:
     omega_rad_s: tuple[float, float]
     realised_damping_ratio: tuple[float, float]
     exact: bool
+    damping_ratio: float = float("nan")
+
+    @property
+    def miss(self) -> float:
+        """Largest relative miss ``|zeta_realised / zeta - 1|`` of the two modes [-] (0 when exact or zeta = 0)."""
+        if self.exact or not self.damping_ratio > 0.0:
+            return 0.0
+        return float(np.max(np.abs(np.asarray(self.realised_damping_ratio) / self.damping_ratio - 1.0)))
+
+    @property
+    def warnings(self) -> tuple[ModelWarning, ...]:
+        """``(RAYLEIGH_FALLBACK,)`` when the fallback misses by more than :data:`RAYLEIGH_FALLBACK_TOLERANCE`, else ()."""
+        return (ModelWarning.RAYLEIGH_FALLBACK,) if self.miss > RAYLEIGH_FALLBACK_TOLERANCE else ()
 
 
 def fit_rayleigh_to_modes(
@@ -91,17 +112,17 @@ def fit_rayleigh_to_modes(
         return float(z[0]), float(z[1])
 
     if zeta == 0.0:
-        return RayleighFit(0.0, 0.0, (float(w[0]), float(w[1])), (0.0, 0.0), True)
+        return RayleighFit(0.0, 0.0, (float(w[0]), float(w[1])), (0.0, 0.0), True, zeta)
     _, beta_classic = rayleigh_coefficients(zeta, float(w[0]), float(w[1]))
     det = kappa[1] - kappa[0]
     if abs(det) > 1e-12 * max(float(np.max(np.abs(kappa))), 1e-300):
         beta = 2.0 * zeta * (w[1] - w[0]) / det
         alpha = 2.0 * zeta * w[0] - beta * kappa[0]
         if alpha >= 0.0 and 0.0 <= beta <= RAYLEIGH_BETA_LIMIT * beta_classic:
-            return RayleighFit(float(alpha), float(beta), (float(w[0]), float(w[1])), realised(alpha, beta), True)
+            return RayleighFit(float(alpha), float(beta), (float(w[0]), float(w[1])), realised(alpha, beta), True, zeta)
     # fallback: the classic beta (it bounds the beam modes as textbook Rayleigh damping does), and the alpha that
     # brings modes 1 and 2 closest to the ratio in the least-squares sense
     beta = beta_classic
     a_i = 2.0 * zeta * w - beta * kappa  # the alpha each mode alone would need
     alpha = max(float(np.sum(a_i / w**2) / np.sum(1.0 / w**2)), 0.0)
-    return RayleighFit(alpha, float(beta), (float(w[0]), float(w[1])), realised(alpha, beta), False)
+    return RayleighFit(alpha, float(beta), (float(w[0]), float(w[1])), realised(alpha, beta), False, zeta)

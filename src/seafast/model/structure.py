@@ -36,11 +36,9 @@ from seafast.model.damping import RayleighFit, fit_rayleigh_to_modes, rayleigh_c
 from seafast.model.mesh import mesh_cargo
 from seafast.model.seafastening import SeaFastening
 from seafast.model.sections import CargoGeometry, tube_area_m2, tube_second_moment_m4
+from seafast.model.warning import ModelWarning
 
 logger = logging.getLogger(__name__)
-
-#: The damping fallback is logged as a warning only when a realised modal ratio misses the requested one by more than this share.
-_DAMPING_FALLBACK_WARNING_SHARE = 0.1
 
 __all__ = [
     "CargoBeam",
@@ -172,6 +170,11 @@ class StructuralModel:
     @property
     def saddle_count(self) -> int:
         return int(self.saddle_node.size)
+
+    @property
+    def warnings(self) -> tuple[ModelWarning, ...]:
+        """The model's typed warnings (its Rayleigh fit's)."""
+        return () if self.rayleigh_fit is None else self.rayleigh_fit.warnings
 
     @property
     def saddle_x_m(self) -> NDArray[np.float64]:
@@ -535,10 +538,8 @@ def build_structural_model(
         fit = fit_rayleigh_to_modes(damping_ratio, *model.first_modes_beam_share())
         _remember(_RAYLEIGH_CACHE, rayleigh_key, fit)
         if not fit.exact:
-            # within a tenth of the requested ratio the fallback is an engineering detail (recorded in results.nc:
-            # realised_damping_ratio_modes_1_2); beyond it the user should know (a study would print it per point)
-            off = float(np.max(np.abs(np.asarray(fit.realised_damping_ratio) / damping_ratio - 1.0))) if damping_ratio > 0 else 0.0
-            log = logger.warning if off > _DAMPING_FALLBACK_WARNING_SHARE else logger.info
+            # beyond RAYLEIGH_FALLBACK_TOLERANCE a typed warning of the model (StructuralModel.warnings), else a detail
+            log = logger.warning if fit.warnings else logger.info
             log(
                 "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
                 "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",

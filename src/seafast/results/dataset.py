@@ -11,7 +11,7 @@ a row raised one).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -21,6 +21,7 @@ import xarray as xr
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, period_fraction
 from seafast.model.structure import StructuralModel
+from seafast.model.warning import ModelWarning
 from seafast.results.labelled import labelled_variable as _var
 from seafast.results.timeseries import PeriodTimeSeries, moment_lines
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
@@ -37,6 +38,8 @@ __all__ = [
     "summary_rows_from_arrays",
     "largest_slope_rad",
     "seafastening_baseline",
+    "RowWarning",
+    "row_warnings",
 ]
 
 SOLVER_OUTCOMES = tuple(o.value for o in SolverOutcome)
@@ -44,6 +47,24 @@ SOLVER_WARNINGS = tuple(w.value for w in SolverWarning)
 LOAD_CASES = ("static", "dynamic")
 MODELS = ("linear", "nonlinear")
 SUMMARY_COLUMNS = ("load_case", "model", "u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa", "converged")
+
+RowWarning = SolverWarning | ModelWarning
+"""A typed warning of a summary row: its solve's or its model's."""
+
+
+def row_warnings(
+    load_case: str, solver_warnings: Iterable[SolverWarning], model_warnings: Iterable[ModelWarning]
+) -> tuple[RowWarning, ...]:
+    """A summary row's typed warnings (its ``warnings``): its solve's, then the model's that bear on the row.
+
+    A model warning bears on every row unless it concerns the motion only
+    (:attr:`ModelWarning.dynamic_only`, e.g. the damping fit), which leaves the ``static`` rows.
+    Each warning once, in its enum's order (so that every route to a row lists them alike).
+    """
+    solver, model = set(solver_warnings), set(model_warnings)
+    bearing = [w for w in ModelWarning if w in model and (load_case != "static" or not w.dynamic_only)]
+    return (*[w for w in SolverWarning if w in solver], *bearing)
+
 
 _SUMMARY_ATTRS = {
     "u_c_m": ("maximum cargo deflection relative to the sea-fastening baseline (rigid-body motion removed)", "m"),
@@ -203,14 +224,19 @@ def largest_slope_rad(deflection_m: np.ndarray, x_m: np.ndarray) -> np.ndarray:
     return np.asarray(np.abs(slope).max(axis=(-2, -1)), dtype=float)
 
 
-def summary_rows_from_arrays(arrays: CaseArrays, cargo_x_m: np.ndarray) -> list[dict[str, Any]]:
+def summary_rows_from_arrays(
+    arrays: CaseArrays, cargo_x_m: np.ndarray, model_warnings: Iterable[ModelWarning] = ()
+) -> list[dict[str, Any]]:
     """The summary table rows straight from the arrays (no Dataset needed: fast for studies).
 
     ``cargo_x_m``: the cargo's node positions [m], for ``cargo_slope_rad`` (the largest slope of the cargo's
-    deflection relative to the vessel's rigid-body frame, which the validity check reads).
+    deflection relative to the vessel's rigid-body frame, which the validity check reads). Each row's
+    ``warnings`` (:func:`row_warnings`) are its solver warnings (``arrays.solver_warning``) and the given model
+    warnings that bear on it.
     """
     mx = arrays.maxima()
     slope = largest_slope_rad(arrays.cargo_deflection_vessel_frame_m, cargo_x_m)
+    model_warnings = tuple(model_warnings)
     rows = []
     for i, lc in enumerate(LOAD_CASES):
         for j, mdl in enumerate(MODELS):
@@ -222,6 +248,8 @@ def summary_rows_from_arrays(arrays: CaseArrays, cargo_x_m: np.ndarray) -> list[
             row["contact_preserved"] = bool(mx["contact_preserved"][i, j])
             row["residual_norm"] = float(arrays.residual_norm[i, j])
             row["iterations"] = int(arrays.iterations[i, j])
+            raised = [w for w, flag in zip(SolverWarning, arrays.solver_warning[i, j], strict=True) if flag]
+            row["warnings"] = row_warnings(lc, raised, model_warnings)
             rows.append(row)
     return rows
 

@@ -35,7 +35,8 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.beam import element_end_moments
 from seafast.model.structure import StructuralModel
-from seafast.results.dataset import largest_slope_rad, seafastening_baseline
+from seafast.results.dataset import largest_slope_rad, row_warnings, seafastening_baseline
+from seafast.solvers.outcome import SolverWarning
 
 __all__ = ["RowSolution", "summary_rows", "summary_row", "MOMENT_POINTS_PER_ELEMENT"]
 
@@ -66,6 +67,8 @@ class RowSolution:
         The nonlinear solver's relative residual (0 for the linear model).
     iterations : int
         Nonlinear iterations (0 for the linear model).
+    warnings : tuple of SolverWarning
+        The solve's typed warnings.
     """
 
     cargo_harmonics: NDArray[np.complex128]
@@ -76,6 +79,7 @@ class RowSolution:
     converged: bool = True
     residual_norm: float = 0.0
     iterations: int = 0
+    warnings: tuple[SolverWarning, ...] = ()
 
 
 @functools.lru_cache(maxsize=32)
@@ -133,7 +137,8 @@ def summary_rows(model: StructuralModel, rows: Sequence[tuple[str, str, RowSolut
     list of dict
         Per row: ``load_case, model, u_c_m, u_s_m, u_d_m, F_N, M_b_Nm, sigma_b_Pa, converged,
         contact_preserved, residual_norm, iterations`` (the columns of ``summary.csv`` and
-        ``study.csv``, SI units).
+        ``study.csv``, SI units) and ``warnings``, the row's typed warnings
+        (:func:`seafast.results.dataset.row_warnings`: the solve's and the model's).
     """
     beam = model.cargo
     modulus = np.repeat(beam.element_second_moment_m4 / (beam.element_outer_diameter_m / 2.0), MOMENT_POINTS_PER_ELEMENT + 1)
@@ -167,6 +172,7 @@ def summary_rows(model: StructuralModel, rows: Sequence[tuple[str, str, RowSolut
                 "contact_preserved": bool(np.all(comp > 0.0)),
                 "residual_norm": float(row.residual_norm),
                 "iterations": int(row.iterations),
+                "warnings": row_warnings(load_case, row.warnings, model.warnings),
             }
         )
     return out

@@ -60,6 +60,17 @@ class ValidityLimit(StrEnum):
     LIFT_OFF_GAP = "lift_off_gap_beyond_meaningful_range"
     """A saddle's lift-off gap exceeds :data:`~seafast.results.sweep_range.DEFAULT_MAX_GAP_M`."""
 
+    @property
+    def description(self) -> str:
+        """One line for people (CLI, study counts, report)."""
+        return {
+            ValidityLimit.DISPLACEMENT: "a saddle compression or the cargo deflection exceeds a quarter of the cargo's diameter: "
+            "not a valid answer (check the units of the stiffnesses)",
+            ValidityLimit.ROTATION: "the cargo's slope exceeds 0.1 rad: beyond the small-angle kinematics, not a valid answer",
+            ValidityLimit.LIFT_OFF_GAP: "a saddle lifts off by more than 0.1 m: the cargo has left the sea-fastening's design "
+            "state, not a valid answer",
+        }[self]
+
 
 @dataclass(frozen=True)
 class ValidityIssue:
@@ -117,10 +128,15 @@ def within_validity(issues: Sequence[ValidityIssue]) -> np.ndarray:
 
 
 def with_validity(rows: Sequence[Mapping[str, Any]], diameter_m: float) -> list[dict[str, Any]]:
-    """The rows with ``within_validity`` (bool) set on each: False where the row crosses a line."""
+    """The rows with ``within_validity`` (bool) set on each, False where the row crosses a line, and the
+    lines crossed appended to the row's typed ``warnings`` (as :class:`ValidityLimit` members, each once)."""
     issues = validity_issues(rows, diameter_m)
-    bad = {(i.load_case, i.model) for i in issues}
-    return [{**row, "within_validity": (row["load_case"], row["model"]) not in bad} for row in rows]
+    out = []
+    for row in rows:
+        crossed = {i.limit for i in issues if (i.load_case, i.model) == (row["load_case"], row["model"])}
+        warnings = (*row.get("warnings", ()), *(limit for limit in ValidityLimit if limit in crossed))
+        out.append({**row, "within_validity": not crossed, "warnings": warnings})
+    return out
 
 
 def likely_cause(case: Case, issues: Sequence[ValidityIssue]) -> str | None:

@@ -36,6 +36,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from seafast.config.schema import Case
+from seafast.progress import progress as progress_reporter
 from seafast.seastate.extremes import CONFIDENCE_LEVEL, MPMEstimate, most_probable_maximum
 from seafast.seastate.realisation import (
     QUANTITIES,
@@ -45,7 +46,7 @@ from seafast.seastate.realisation import (
     evaluate_realisation,
     realisation_plan,
 )
-from seafast.seastate.task_store import StoreError, TaskStore, progress_bar, run_tasks
+from seafast.seastate.task_store import StoreError, TaskStore, run_tasks
 
 __all__ = [
     "MODELS",
@@ -375,7 +376,8 @@ def run_monte_carlo(
     scheduler
         Dask scheduler address; overrides ``workers``.
     progress
-        Show a progress bar on stderr (when it is a terminal).
+        Show progress on stderr (:func:`seafast.progress.progress`: a bar on a terminal, else a
+        plain line every few per cent).
     settings
         Numerical settings (defaults verified by the tests).
 
@@ -400,7 +402,7 @@ def run_monte_carlo(
     with TaskStore(Path(directory) / STORE_DIRECTORY, fingerprint, manifest) as store:
         pending = store.pending(n_r)
         reused = n_r - len(pending)
-        bar = progress_bar(n_r, reused, progress, f"Monte Carlo {case.name}")
+        bar = progress_reporter(n_r, reused, label=f"Monte Carlo {case.name}", unit="realisations", enabled=progress and bool(pending))
         try:
             for record in run_tasks(_task, plan, pending, workers=workers, scheduler=scheduler):
                 bar.update(store.append([record]))

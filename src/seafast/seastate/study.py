@@ -7,7 +7,8 @@ point with :func:`evaluate_sea_state` instead of ``seafast run``'s regular wave:
 study's compliance and ranking (which judge the nonlinear model's total response) rank the
 arrangements by their nonlinear MPM in the design sea state. ``u_c_m`` is not computed (empty);
 ``contact_preserved`` says that no design wave lifts a saddle off (the linear model then holds);
-``uplift_per_hour`` (Rice, linear) is a diagnostic column.
+``uplift_per_hour`` (Rice, linear) is a diagnostic column; ``warnings`` are the model's typed
+warnings (:attr:`seafast.model.structure.StructuralModel.warnings`: the damping fit bears on both rows).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from __future__ import annotations
 from typing import Any
 
 from seafast.config.schema import Case
+from seafast.results.dataset import row_warnings
 from seafast.seastate.design_wave import sea_state_design_waves
 from seafast.seastate.spectral import spectral_analysis
 
@@ -35,6 +37,7 @@ def evaluate_sea_state(case: Case) -> list[dict[str, Any]]:
     analysis = spectral_analysis(case)
     design = sea_state_design_waves(analysis)
     held = not any(s.lifted_off for s in design.solutions)
+    warnings = row_warnings(SEA_STATE_LOAD_CASE, (), analysis.model.warnings)
     rows = []
     for model, totals, converged in (("linear", analysis.extremes.totals, True), ("nonlinear", design.totals, design.converged)):
         rows.append(
@@ -50,6 +53,7 @@ def evaluate_sea_state(case: Case) -> list[dict[str, Any]]:
                 "converged": bool(converged),
                 "contact_preserved": bool(held),
                 "uplift_per_hour": float(totals["uplift_per_hour"]),
+                "warnings": warnings,
             }
         )
     return rows

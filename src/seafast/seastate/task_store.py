@@ -18,14 +18,13 @@ import concurrent.futures as cf
 import json
 import multiprocessing
 import os
-import sys
 import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
-__all__ = ["StoreError", "TaskStore", "run_tasks", "progress_bar"]
+__all__ = ["StoreError", "TaskStore", "run_tasks"]
 
 
 class StoreError(ValueError):
@@ -236,11 +235,3 @@ def run_tasks(
             yield future.result()
     finally:
         executor.shutdown(wait=True, cancel_futures=True)
-
-
-def progress_bar(total: int, initial: int, enabled: bool, label: str) -> Any:
-    """A tqdm bar on stderr (shown only when stderr is a terminal and ``enabled``)."""
-    from tqdm import tqdm
-
-    show = enabled and hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
-    return tqdm(total=total, initial=initial, disable=not show, file=sys.stderr, unit="realisation", desc=label, dynamic_ncols=True)

@@ -3,6 +3,9 @@
 Both are assembled from the finished :class:`~seafast.studies.store.PointRecord` of every point
 (missing points are left NaN with the error ``"not evaluated"``) and written atomically
 (temporary file, then rename), so a study killed while writing leaves the previous file or none.
+Each row's typed warnings are the ``warnings`` column of ``study.csv`` (values joined by ``;``)
+and the ``warning_flag`` of ``study.nc`` along its ``warning`` coordinate
+(:mod:`seafast.studies.messages`).
 """
 
 from __future__ import annotations
@@ -18,11 +21,13 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from seafast.studies.messages import warning_kinds, warning_values
 from seafast.studies.spec import StudyError, StudyGrid, units_of_key
 from seafast.studies.store import PointRecord
 
 __all__ = [
     "CORE_COLUMNS",
+    "WARNINGS_COLUMN",
     "LOAD_CASES",
     "MODELS",
     "assemble_dataset",
@@ -62,7 +67,10 @@ _LONG_NAMES: dict[str, str] = {
     "iterations": "nonlinear solver iterations",
     "error": "error text of a point whose evaluation failed (empty when it succeeded)",
     "eval_seconds": "wall time to evaluate the point",
+    "warning_flag": "typed warning raised by the row's solution or model (one per warning kind, coordinate warning)",
 }
+WARNINGS_COLUMN = "warnings"
+"""The column of ``study.csv`` (and the row key) holding a row's typed warnings."""
 
 
 # --------------------------------------------------------------------------- assembly
@@ -85,7 +93,7 @@ def _labels(records: Iterable[PointRecord], key: str, canonical: tuple[str, ...]
 
 
 def _extra_keys(records: Iterable[PointRecord]) -> list[str]:
-    core = set(CORE_COLUMNS)
+    core = {*CORE_COLUMNS, WARNINGS_COLUMN}
     extras: list[str] = []
     for r in records:
         for row in r.rows:
@@ -113,6 +121,61 @@ def _derived_values(grid: StudyGrid) -> dict[str, np.ndarray]:
     return out
 
 
+def _warning_flags(
+    records: dict[int, PointRecord], shape: tuple[int, int, int], lc_index: dict[str, int], m_index: dict[str, int], kinds: list[str]
+) -> np.ndarray:
+    """(point, load case, model, kind) booleans: the row raised the typed warning."""
+    flags = np.zeros((*shape, len(kinds)), dtype=bool)
+    for index, record in records.items():
+        for row in record.rows:
+            li, mi = lc_index.get(str(row.get("load_case"))), m_index.get(str(row.get("model")))
+            if li is not None and mi is not None:
+                raised = warning_values(row.get(WARNINGS_COLUMN))
+                flags[index, li, mi] = [kind in raised for kind in kinds]
+    return flags
+
+
+def _coordinates(grid: StudyGrid, load_cases: list[str], models: list[str], kinds: list[str]) -> dict[str, Any]:
+    """The study dataset's coordinates: the axes (units, scale, base value), derived keys, load cases, models, warnings."""
+    coords: dict[str, Any] = {}
+    for axis, key, c in zip(grid.spec.axes, grid.keys, grid.coordinates, strict=True):
+        try:
+            base_value = float(grid.base_value(key))
+        except (StudyError, TypeError, ValueError):
+            base_value = float("nan")
+        coords[key] = (key, c, {"units": units_of_key(key), "long_name": key, "scale": axis.scale, "base_value": base_value})
+    for key, a in _derived_values(grid).items():
+        coords[key] = (grid.keys, a, {"units": units_of_key(key), "long_name": f"{key} = {grid.spec.derived[key]}"})
+    coords["load_case"] = ("load_case", np.array(load_cases, dtype=str), {"long_name": "load case (dynamic = total response)"})
+    coords["model"] = ("model", np.array(models, dtype=str), {"long_name": "response model"})
+    coords["warning"] = (
+        "warning",
+        np.array(kinds, dtype=str),
+        {"units": "1", "long_name": "typed warning (SolverWarning or ModelWarning value)"},
+    )
+    return coords
+
+
+def _attributes(grid: StudyGrid, records: dict[int, PointRecord]) -> dict[str, Any]:
+    """The study dataset's global attributes (identity, limits, counts)."""
+    base_counts = "seafastening.saddle_count" not in grid.keys
+    attrs = {
+        "study": grid.spec.name,
+        "description": grid.spec.description,
+        "fingerprint": grid.fingerprint(),
+        "axes": " ".join(grid.keys),
+        "study_spec_json": json.dumps(grid.spec.model_dump(mode="json")),
+        "base_case_json": json.dumps(grid.base),
+        "max_saddle_force_N": grid.spec.limits.max_saddle_force_N,
+        "max_bending_stress_Pa": grid.spec.limits.max_bending_stress_Pa,
+        "points": grid.size,
+        "failed_points": int(sum(1 for r in records.values() if r.error)),
+    }
+    if base_counts:
+        attrs["saddle_count"] = int(grid.base["seafastening"]["saddle_count"])
+    return attrs
+
+
 def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dataset:
     """The study's labelled results.
 
@@ -129,8 +192,10 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
         Dimensions: the axis keys (dotted names), ``load_case`` (static, dynamic) and ``model``
         (linear, nonlinear). Variables ``u_c_m, u_s_m, u_d_m, F_N, M_b_Nm, sigma_b_Pa`` (float,
         NaN where missing), ``converged`` and ``contact_preserved`` (bool, False where missing),
-        numeric diagnostics (e.g. ``residual_norm``, ``iterations``), ``error`` (str per point)
-        and ``eval_seconds``; each with ``units`` and ``long_name``.
+        numeric diagnostics (e.g. ``residual_norm``, ``iterations``), ``warning_flag`` (bool, the
+        study dimensions, ``load_case``, ``model`` and ``warning``: the row raised that typed
+        warning), ``error`` (str per point) and ``eval_seconds``; each with ``units`` and
+        ``long_name``.
     """
     values = list(records.values())
     load_cases = _labels(values, "load_case", LOAD_CASES)
@@ -144,6 +209,7 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
     floats = {k: np.full((n, nl, nm), np.nan) for k in (*_FLOAT_RESULTS, *numeric_extras)}
     bools = {k: np.zeros((n, nl, nm), dtype=bool) for k in _BOOL_RESULTS}
     texts = {k: np.full((n, nl, nm), "", dtype=object) for k in text_extras}
+    kinds = warning_kinds(values)
     error = np.full(n, "not evaluated", dtype=object)
     seconds = np.full(n, np.nan)
     lc_index = {v: i for i, v in enumerate(load_cases)}
@@ -172,34 +238,12 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
         data_vars[k] = (dims, a.reshape(shape), {"units": "1", "long_name": _LONG_NAMES[k]})
     for k, a in texts.items():
         data_vars[k] = (dims, a.reshape(shape).astype(str), {"units": "1", "long_name": k})
+    flags = _warning_flags(records, (n, nl, nm), lc_index, m_index, kinds).reshape((*shape, len(kinds)))
+    data_vars["warning_flag"] = ((*dims, "warning"), flags, {"units": "1", "long_name": _LONG_NAMES["warning_flag"]})
     data_vars["error"] = (grid.keys, error.reshape(grid.shape).astype(str), {"units": "1", "long_name": _LONG_NAMES["error"]})
     data_vars["eval_seconds"] = (grid.keys, seconds.reshape(grid.shape), {"units": "s", "long_name": _LONG_NAMES["eval_seconds"]})
-    coords: dict[str, Any] = {}
-    for axis, key, c in zip(grid.spec.axes, grid.keys, grid.coordinates, strict=True):
-        try:
-            base_value = float(grid.base_value(key))
-        except (StudyError, TypeError, ValueError):
-            base_value = float("nan")
-        coords[key] = (key, c, {"units": units_of_key(key), "long_name": key, "scale": axis.scale, "base_value": base_value})
-    for key, a in _derived_values(grid).items():
-        coords[key] = (grid.keys, a, {"units": units_of_key(key), "long_name": f"{key} = {grid.spec.derived[key]}"})
-    coords["load_case"] = ("load_case", np.array(load_cases, dtype=str), {"long_name": "load case (dynamic = total response)"})
-    coords["model"] = ("model", np.array(models, dtype=str), {"long_name": "response model"})
-    base_counts = "seafastening.saddle_count" not in grid.keys
-    attrs = {
-        "study": grid.spec.name,
-        "description": grid.spec.description,
-        "fingerprint": grid.fingerprint(),
-        "axes": " ".join(grid.keys),
-        "study_spec_json": json.dumps(grid.spec.model_dump(mode="json")),
-        "base_case_json": json.dumps(grid.base),
-        "max_saddle_force_N": grid.spec.limits.max_saddle_force_N,
-        "max_bending_stress_Pa": grid.spec.limits.max_bending_stress_Pa,
-        "points": grid.size,
-        "failed_points": int(sum(1 for r in records.values() if r.error)),
-    }
-    if base_counts:
-        attrs["saddle_count"] = int(grid.base["seafastening"]["saddle_count"])
+    coords = _coordinates(grid, load_cases, models, kinds)
+    attrs = _attributes(grid, records)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
@@ -216,14 +260,15 @@ def study_rows(grid: StudyGrid, records: dict[int, PointRecord]) -> tuple[list[s
 
     Columns: the study's dotted keys, then ``load_case, model, u_c_m, u_s_m, u_d_m, F_N,
     M_b_Nm, sigma_b_Pa, converged, contact_preserved``, then the evaluator's diagnostics, the
-    derived keys and ``error``. A failed point has empty result cells and its error text.
+    derived keys, ``warnings`` (the row's typed warnings' values joined by ``;``, empty when
+    none) and ``error``. A failed point has empty result cells and its error text.
     """
     values = list(records.values())
     load_cases = _labels(values, "load_case", LOAD_CASES)
     models = _labels(values, "model", MODELS)
     extras = _extra_keys(values)
     derived = list(grid.spec.derived)
-    header = [*_axis_columns(grid), *CORE_COLUMNS, *extras, *derived, "error"]
+    header = [*_axis_columns(grid), *CORE_COLUMNS, *extras, *derived, WARNINGS_COLUMN, "error"]
     derived_values = _derived_values(grid)
     rows: list[list[Any]] = []
     for index in range(grid.size):
@@ -240,6 +285,7 @@ def study_rows(grid: StudyGrid, records: dict[int, PointRecord]) -> tuple[list[s
                 cells += [_csv_value(row.get(k)) for k in CORE_COLUMNS[2:]]
                 cells += [_csv_value(row.get(k)) for k in extras]
                 cells += dvals
+                cells.append(";".join(warning_values(row.get(WARNINGS_COLUMN))))
                 cells.append(record.error)
                 rows.append(cells)
     return header, rows

@@ -71,7 +71,9 @@ def _configure(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
         help="judge points on the regular wave (seafast run) or on their sea state's most probable maxima "
         "(linear spectral, nonlinear design waves); overrides the study file's response",
     )
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument(
+        "--no-progress", action="store_true", help="no progress (a bar on a terminal, else a line every few per cent; also off with -q)"
+    )
     parser.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     parser.set_defaults(handler=cmd_study)
@@ -136,7 +138,7 @@ def cmd_study(args: argparse.Namespace) -> int:
     except CaseError as exc:
         return _error(str(exc))
     out = Path(args.output or f"study-{spec.name}")
-    execution = ExecutionOptions(args.workers, args.scheduler, args.batch_size, progress=not args.no_progress)
+    execution = ExecutionOptions(args.workers, args.scheduler, args.batch_size, progress=not (args.no_progress or args.quiet))
     where = {"serial": "serially", "processes": f"on {execution.worker_count()} local processes", "dask": f"on Dask at {args.scheduler}"}
     say(f"study '{spec.name}': {grid.size} points over {' x '.join(grid.keys)} {where[execution.mode()]} -> {out}")
     try:
@@ -157,7 +159,8 @@ def cmd_study(args: argparse.Namespace) -> int:
     if not args.no_figures:
         from seafast.studies.figures import plot_study
 
-        figures = plot_study(run.dataset, out, limits)
+        # the figures lay out the study's axes, load case and model; the warning flags are not drawn
+        figures = plot_study(run.dataset.drop_dims("warning", errors="ignore"), out, limits)
     say(
         f"{run.points} points: {run.computed} computed, {run.reused} reused from {run.files['store']}, "
         f"{run.failed} failed; {run.seconds:.1f} s ({run.points_per_second:.1f} points/s)"
@@ -188,9 +191,14 @@ def cmd_study(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m seafast.studies.cli``: the ``seafast study`` command on its own."""
+    """``python -m seafast.studies.cli``: the ``seafast study`` command on its own (messages as ``seafast study``'s)."""
+    import logging
+
+    from seafast.console import command_logging
+
     args = build_study_parser().parse_args(argv)
-    return int(args.handler(args))
+    with command_logging(logging.WARNING if args.quiet else logging.INFO):
+        return int(args.handler(args))
 
 
 if __name__ == "__main__":  # pragma: no cover

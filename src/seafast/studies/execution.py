@@ -4,7 +4,9 @@ Every point is evaluated by an *evaluator* ``Callable[[Case], list[dict]]`` (def
 :func:`seafast.pipeline.evaluate_summary`, imported lazily) returning one row per load case and
 model. Points travel to workers in batches (:func:`plan_batches`); :func:`evaluate_batches`
 yields each batch's :class:`~seafast.studies.store.PointRecord` list as it completes, whatever
-the back-end. A point whose evaluation raises is recorded with its error text.
+the back-end. A point whose evaluation raises is recorded with its error text; a row's typed
+warnings are stored as their values, and the log records of a point are captured, not printed
+(:mod:`seafast.studies.messages`).
 
 The back-ends are generic: they need an object with ``size`` and ``point_case(index)``
 (:class:`PointSource`), e.g. a :class:`~seafast.studies.spec.StudyGrid`.
@@ -33,11 +35,10 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
-import numpy as np
-
 from seafast.config.schema import Case
+from seafast.studies.messages import point_log
 from seafast.studies.spec import StudyError
-from seafast.studies.store import PointRecord
+from seafast.studies.store import PointRecord, stored_row
 
 __all__ = [
     "Evaluator",
@@ -106,17 +107,6 @@ def resolve_evaluator(evaluator: Evaluator | str | None) -> Evaluator:
     return target
 
 
-def _plain(value: Any) -> Any:
-    """A JSON-compatible Python scalar (numpy scalars unwrapped)."""
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, (bool, int, float, str)) or value is None:
-        return value
-    if isinstance(value, np.ndarray) and value.size == 1:
-        return value.item()
-    return str(value)
-
-
 _worker_ready = False
 
 
@@ -165,7 +155,11 @@ def _init_process_worker(coordinator_pid: int) -> None:
 
 
 def evaluate_batch(
-    grid: PointSource, indices: Sequence[int], evaluator: Evaluator | str | None = None, pin_threads: bool = True
+    grid: PointSource,
+    indices: Sequence[int],
+    evaluator: Evaluator | str | None = None,
+    pin_threads: bool = True,
+    keep_messages: bool = False,
 ) -> list[PointRecord]:
     """Evaluate a batch of points (runs in a worker).
 
@@ -179,11 +173,15 @@ def evaluate_batch(
         See :func:`resolve_evaluator`.
     pin_threads : bool
         Limit BLAS/OpenMP to one thread in this process (workers; not the serial runner).
+    keep_messages : bool
+        Return each point's log records with its record (:func:`seafast.studies.messages.point_log`);
+        False: they are dropped. Either way nothing is printed while a point runs.
 
     Returns
     -------
     list of PointRecord
-        One per index, in order; a point that raised carries its error text.
+        One per index, in order; a point that raised carries its error text. Each row holds
+        ``warnings``, the list of its typed warnings' values (empty when none).
     """
     if pin_threads:
         _prepare_worker()
@@ -191,13 +189,15 @@ def evaluate_batch(
     records = []
     for index in indices:
         t0 = time.perf_counter()
-        try:
-            case = grid.point_case(int(index))
-            rows = tuple({k: _plain(v) for k, v in row.items()} for row in func(case))
-            records.append(PointRecord(int(index), rows, "", time.perf_counter() - t0))
-        except Exception as exc:  # noqa: BLE001 - any failure of one point is recorded, the study goes on
-            text = " ".join(str(exc).split()) or "(no message)"
-            records.append(PointRecord(int(index), (), f"{type(exc).__name__}: {text}", time.perf_counter() - t0))
+        with point_log(keep_messages) as messages:
+            try:
+                case = grid.point_case(int(index))
+                rows = tuple(stored_row(row) for row in func(case))
+                error = ""
+            except Exception as exc:  # noqa: BLE001 - any failure of one point is recorded, the study goes on
+                text = " ".join(str(exc).split()) or "(no message)"
+                rows, error = (), f"{type(exc).__name__}: {text}"
+        records.append(PointRecord(int(index), rows, error, time.perf_counter() - t0, tuple(messages)))
     return records
 
 
@@ -244,7 +244,8 @@ class ExecutionOptions:
     batch_size : int or None
         Points per task; None = about four tasks per worker, at most 25 points each.
     progress : bool
-        Show a progress bar on stderr (only when stderr is a terminal).
+        Show progress on stderr (:func:`seafast.progress.progress`: a bar on a terminal, else a
+        plain line every few per cent).
     start_method : str or None
         How local worker processes start: ``fork``, ``forkserver`` or ``spawn``; None = ``fork``
         on Linux when this process runs no other Python thread, else ``forkserver`` where
@@ -282,23 +283,25 @@ class ExecutionOptions:
 
 
 # --------------------------------------------------------------------------- back-ends
-def _iter_serial(grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None) -> Iterator[list[PointRecord]]:
+def _iter_serial(
+    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, keep: bool = False
+) -> Iterator[list[PointRecord]]:
     from threadpoolctl import threadpool_limits
 
     # One BLAS thread here too: the model's matrices are small, and threading them is slower.
     with threadpool_limits(limits=1):
         for batch in batches:
-            yield evaluate_batch(grid, batch, evaluator, pin_threads=False)
+            yield evaluate_batch(grid, batch, evaluator, pin_threads=False, keep_messages=keep)
 
 
 def _iter_processes(
-    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, workers: int, start_method: str
+    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, workers: int, start_method: str, keep: bool = False
 ) -> Iterator[list[PointRecord]]:
     if start_method == "fork" and batches and batches[0]:
         # the first point here, before forking: the workers inherit its imports and warm caches
         first, rest = batches[0][:1], batches[0][1:]
         # unpacked, not next(): the generator runs to its end and leaves its thread limit
-        (records,) = _iter_serial(grid, [first], evaluator)
+        (records,) = _iter_serial(grid, [first], evaluator, keep)
         yield records
         batches = ([rest] if rest else []) + batches[1:]
         if not batches:
@@ -314,14 +317,16 @@ def _iter_processes(
         max_workers=min(workers, len(batches)), mp_context=context, initializer=_init_process_worker, initargs=(os.getpid(),)
     )
     try:
-        futures = [executor.submit(evaluate_batch, grid, batch, evaluator) for batch in batches]
+        futures = [executor.submit(evaluate_batch, grid, batch, evaluator, True, keep) for batch in batches]
         for future in cf.as_completed(futures):
             yield future.result()
     finally:
         executor.shutdown(wait=True, cancel_futures=True)
 
 
-def _iter_dask(grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, address: str) -> Iterator[list[PointRecord]]:
+def _iter_dask(
+    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, address: str, keep: bool = False
+) -> Iterator[list[PointRecord]]:
     from distributed import Client, as_completed
 
     try:
@@ -330,7 +335,7 @@ def _iter_dask(grid: PointSource, batches: list[list[int]], evaluator: Evaluator
         raise StudyError(f"--scheduler {address}: cannot connect to a Dask scheduler ({exc})") from None
     try:
         grid_future = client.scatter(grid, broadcast=True, hash=False)
-        futures = [client.submit(evaluate_batch, grid_future, batch, evaluator, pure=False) for batch in batches]
+        futures = [client.submit(evaluate_batch, grid_future, batch, evaluator, True, keep, pure=False) for batch in batches]
         for future in as_completed(futures, loop=client.loop):
             yield future.result()
     finally:
@@ -338,7 +343,11 @@ def _iter_dask(grid: PointSource, batches: list[list[int]], evaluator: Evaluator
 
 
 def evaluate_batches(
-    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, execution: ExecutionOptions
+    grid: PointSource,
+    batches: list[list[int]],
+    evaluator: Evaluator | str | None,
+    execution: ExecutionOptions,
+    keep_messages: bool = False,
 ) -> Iterator[list[PointRecord]]:
     """Evaluate batches on the back-end ``execution`` selects; yields each batch's records as it completes.
 
@@ -353,6 +362,8 @@ def evaluate_batches(
         spawned-process and Dask back-ends.
     execution : ExecutionOptions
         Serial, local processes or a Dask scheduler.
+    keep_messages : bool
+        Return each point's log records with its record (see :func:`evaluate_batch`).
 
     Raises
     ------
@@ -364,9 +375,9 @@ def evaluate_batches(
     mode = execution.mode()
     if mode == "dask":
         assert execution.scheduler is not None
-        return _iter_dask(grid, batches, evaluator, execution.scheduler)
+        return _iter_dask(grid, batches, evaluator, execution.scheduler, keep_messages)
     if mode == "processes":
         method = execution.process_start_method()
         logger.debug("local worker processes start by %s", method)
-        return _iter_processes(grid, batches, evaluator, execution.worker_count(), method)
-    return _iter_serial(grid, batches, evaluator)
+        return _iter_processes(grid, batches, evaluator, execution.worker_count(), method, keep_messages)
+    return _iter_serial(grid, batches, evaluator, keep_messages)

@@ -15,20 +15,25 @@ the study goes on.
 Every point is a pure function of its case: the default evaluator starts each nonlinear solve
 from the point's own predictor, never from a neighbour's solution, so the results do not depend
 on the back-end, the batch plan, the number of workers or a resume (bit for bit on one machine).
+
+Messages: progress through :func:`seafast.progress.progress` (a bar on a terminal, else a plain
+line every few per cent); a point's log records are not printed as it runs, but logged again here
+naming the point (index and overrides) when this process logs at DEBUG (``seafast -v study``);
+at the end one warning per typed warning kind with the number of points that raised it
+(:mod:`seafast.studies.messages`).
 """
 
 from __future__ import annotations
 
 import logging
-import sys
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 import xarray as xr
 
+from seafast.progress import progress
 from seafast.studies.assembly import (
     CORE_COLUMNS,
     LOAD_CASES,
@@ -48,6 +53,7 @@ from seafast.studies.execution import (
     plan_batches,
     resolve_evaluator,
 )
+from seafast.studies.messages import point_label, points_with_warning, replay_point_messages, warning_count_lines
 from seafast.studies.spec import StudyGrid
 from seafast.studies.store import PointRecord, PointStore
 
@@ -108,6 +114,9 @@ class StudyRun:
         0 on Dask (the cluster's size is the scheduler's business).
     files : dict
         Written files by role (``netcdf``, ``csv``, ``store``).
+    warning_points : dict
+        Per typed warning value raised: the number of points that raised it in some row (all
+        points of the study, those reused from the store included).
     """
 
     dataset: xr.Dataset
@@ -120,6 +129,7 @@ class StudyRun:
     mode: str
     files: dict[str, Path] = field(default_factory=dict)
     workers: int = 1
+    warning_points: dict[str, int] = field(default_factory=dict)
 
     @property
     def points_per_second(self) -> float:
@@ -127,16 +137,15 @@ class StudyRun:
         return self.computed / self.seconds if self.seconds > 0 else float("nan")
 
 
-def _progress_bar(total: int, initial: int, enabled: bool, label: str) -> Any:
-    from tqdm import tqdm
-
-    class _Bar(tqdm):
-        # no monitor thread: the bar is updated per batch, and local workers may be forked
-        # from this process, which is only safe while it runs a single thread
-        monitor_interval = 0
-
-    show = enabled and hasattr(sys.stderr, "isatty") and sys.stderr.isatty()
-    return _Bar(total=total, initial=initial, disable=not show, file=sys.stderr, unit="pt", desc=label, dynamic_ncols=True)
+def _replay(grid: StudyGrid, records: list[PointRecord]) -> None:
+    """Log the captured messages of freshly computed points again, each naming its point."""
+    for record in records:
+        if record.messages:
+            try:
+                label = point_label(record.index, grid.point_overrides(record.index))
+            except Exception:  # noqa: BLE001 - an invalid point's overrides: its index still names it
+                label = f"point {record.index}"
+            replay_point_messages(label, record.messages)
 
 
 def run_study(
@@ -186,12 +195,14 @@ def run_study(
         logger.info(
             "study '%s': %d points, %d already stored in %s, %d to compute (%s)", grid.spec.name, grid.size, reused, out, len(pending), mode
         )
-        stream: Iterator[list[PointRecord]] = evaluate_batches(grid, batches, evaluator, execution)
-        bar = _progress_bar(grid.size, reused, execution.progress, grid.spec.name)
+        keep = logging.getLogger("seafast").isEnabledFor(logging.DEBUG)  # point messages wanted (seafast -v)
+        stream: Iterator[list[PointRecord]] = evaluate_batches(grid, batches, evaluator, execution, keep)
+        bar = progress(grid.size, reused, label=f"study {grid.spec.name}", unit="points", enabled=execution.progress and bool(pending))
         try:
             for batch in stream:
                 added = store.append(batch)
                 computed += added
+                _replay(grid, batch)
                 bar.update(added)
         finally:
             bar.close()
@@ -204,6 +215,9 @@ def run_study(
     }
     failed = sum(1 for r in records.values() if r.error)
     logger.info("study '%s': %d computed, %d failed, %.1f s", grid.spec.name, computed, failed, time.perf_counter() - t0)
+    counts = points_with_warning(records.values())
+    for line in warning_count_lines(counts, grid.size):
+        logger.warning("%s", line)
     return StudyRun(
-        dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers
+        dataset, out, grid.size, reused, computed, failed, time.perf_counter() - t0, mode, files, 0 if mode == "dask" else workers, counts
     )

@@ -12,6 +12,10 @@ nothing it appended; a write torn by the kill leaves a partial last line, which 
 drops. Durability against a power cut (``fsync``) is batched: at most one ``fsync`` per
 ``fsync_interval_s`` seconds and one when the store closes, so a crash of the machine can lose
 the last second of points (they are recomputed on resume), never corrupt the store.
+
+A record holds each row's typed ``warnings`` (their values), so a resumed study restores the
+warnings of the points computed before the interruption. A record without them (written by a
+seafast that did not store warnings) is not trusted: its point is recomputed.
 """
 
 from __future__ import annotations
@@ -25,9 +29,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
+import numpy as np
+
+from seafast.studies.messages import warning_values
 from seafast.studies.spec import StudyError
 
-__all__ = ["PointRecord", "PointStore", "StoredPoints"]
+__all__ = ["PointRecord", "PointStore", "StoredPoints", "stored_row"]
 
 logger = logging.getLogger(__name__)
 
@@ -46,6 +53,24 @@ class StoredPoints(Protocol):
         """JSON-compatible description written to ``study.json`` (must hold ``name``)."""
 
 
+def _plain(value: Any) -> Any:
+    """A JSON-compatible Python scalar (numpy scalars unwrapped)."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (bool, int, float, str)) or value is None:
+        return value
+    if isinstance(value, np.ndarray) and value.size == 1:
+        return value.item()
+    return str(value)
+
+
+def stored_row(row: dict) -> dict:
+    """An evaluator's row as stored: JSON-compatible scalars, and ``warnings`` as a list of values (always present)."""
+    out = {k: _plain(v) for k, v in row.items() if k != "warnings"}
+    out["warnings"] = warning_values(row.get("warnings"))
+    return out
+
+
 @dataclass(frozen=True)
 class PointRecord:
     """The outcome of one study point.
@@ -60,12 +85,16 @@ class PointRecord:
         Error text, empty when the evaluation succeeded.
     seconds : float
         Wall time of the evaluation [s].
+    messages : tuple of (str, int, str)
+        The point's log records (logger name, level, text) when the study asked for them
+        (:func:`seafast.studies.messages.point_log`); not stored.
     """
 
     index: int
     rows: tuple[dict, ...] = ()
     error: str = ""
     seconds: float = 0.0
+    messages: tuple[tuple[str, int, str], ...] = ()
 
     def to_json(self, fingerprint: str) -> str:
         """One line of ``points.jsonl`` (no newline)."""
@@ -146,6 +175,7 @@ class PointStore:
         data = self.path.read_bytes()
         end = data.rfind(b"\n") + 1  # bytes after the last newline are a torn record
         completed: dict[int, PointRecord] = {}
+        stale = 0
         for line in data[:end].splitlines():
             if not line.strip():
                 continue
@@ -159,8 +189,15 @@ class PointStore:
                     f"this study {self.fingerprint}); choose another -o DIR"
                 )
             record = PointRecord.from_json(raw)
-            if 0 <= record.index < self.size:
-                completed[record.index] = record
+            if not (0 <= record.index < self.size):
+                continue
+            if not record.error and not all("warnings" in row for row in record.rows):
+                stale += 1  # stored without its warnings: recomputed
+                completed.pop(record.index, None)
+                continue
+            completed[record.index] = record
+        if stale:
+            logger.info("%d point(s) in %s were stored without their warnings; they are recomputed", stale, self.path)
         if end < len(data):
             logger.info("dropping a torn record at the end of %s", self.path)
             with open(self.path, "r+b") as fh:

@@ -173,7 +173,8 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                 try:
                     from seafast.studies.figures import plot_study
 
-                    paths += list(plot_study(study, fig_dir))
+                    # the figures lay out the study's axes, load case and model; the warning flags are not drawn
+                    paths += list(plot_study(study.drop_dims("warning", errors="ignore"), fig_dir))
                 except Exception as exc:  # noqa: BLE001 - one bad figure must not lose the report
                     logger.warning("study print figures skipped (%s: %s)", type(exc).__name__, exc)
     finally:
