@@ -51,14 +51,11 @@ def _spectrum_figure(ds: xr.Dataset, path: Path) -> Path:
     ax.set_ylabel("wave spectral density S(ω) [m² s/rad]")
     ax2 = ax.twinx()
     # the two normalised response spectra nearly coincide: a wide light line under a thin dashed one
+    wide: dict[str, Any] = {"color": "C0", "lw": 4, "alpha": 0.45}
+    thin: dict[str, Any] = {"color": "C3", "lw": 1.2, "ls": "--"}
     for name, idx, label, style in (
-        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}", {"color": "C0", "lw": 4, "alpha": 0.45}),
-        (
-            "bending_moment_spectrum_Nm2_s_per_rad",
-            {"x_moment_m": x},
-            f"bending moment, x = {float(ds['x_moment_m'][x]):.1f} m",
-            {"color": "C3", "lw": 1.2, "ls": "--"},
-        ),
+        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}", wide),
+        ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment, x = {float(ds['x_moment_m'][x]):.1f} m", thin),
     ):
         r = ds[name].isel(idx).values
         ax2.plot(w, r / max(float(r.max()), 1e-300), **style, label=f"response: {label}")
@@ -87,7 +84,7 @@ def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
     deck = _abs(ds, "deck_deflection_transfer_m_per_m")
     for i in range(force.shape[1]):
         # saddles with mirror-image responses coincide: each a line style of its own, later ones thinner
-        style = {"ls": ("-", "--", "-.", ":")[i % 4], "lw": max(2.4 - 0.5 * i, 0.8), "color": f"C{i}"}
+        style: dict[str, Any] = {"ls": ("-", "--", "-.", ":")[i % 4], "lw": max(2.4 - 0.5 * i, 0.8), "color": f"C{i}"}
         axes[0, 0].plot(w, force[:, i] / 1e6, **style, label=f"saddle {i} (x = {float(ds['saddle_x_m'][i]):.1f} m)")
         axes[1, 0].plot(w, deck[:, i] * 1e3, **style, label=f"saddle {i}")
     axes[0, 0].set_ylabel("|saddle force| [MN per m of wave]")

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import html
 import math
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -99,14 +100,12 @@ def _abs(ds: xr.Dataset, name: str) -> np.ndarray:
     return np.hypot(ds[f"{name}_real"].values, ds[f"{name}_imag"].values)
 
 
-def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
-    """Interactive figures: spectra, transfer functions."""
+def _spectrum_figure(ds: xr.Dataset, s: int, x: int) -> Any:
+    """The wave spectrum and the normalised response spectra of saddle ``s``'s force and the moment at ``x_moment_m[x]``."""
     import plotly.graph_objects as go
     from plotly.subplots import make_subplots
 
     w = ds["omega_rad_s"].values
-    s = int(np.argmax(ds["still_water_saddle_force_N"].values + ds["saddle_force_mpm_dynamic_N"].values))
-    x = int(np.argmax(np.abs(ds["still_water_bending_moment_Nm"].values) + ds["bending_moment_mpm_dynamic_Nm"].values))
     spec = make_subplots(specs=[[{"secondary_y": True}]])
     spec.add_trace(go.Scatter(x=w, y=ds["wave_spectrum_m2_s_per_rad"].values, name="wave S(ω)", line={"color": "black"}))
     # the two normalised response spectra nearly coincide: a wide light line under a thin dashed one
@@ -132,6 +131,18 @@ def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
         legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom", "x": 0.0},
         margin={"b": 110},
     )
+    return spec
+
+
+def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
+    """Interactive figures: spectra, transfer functions."""
+    import plotly.graph_objects as go
+    from plotly.subplots import make_subplots
+
+    w = ds["omega_rad_s"].values
+    s = int(np.argmax(ds["still_water_saddle_force_N"].values + ds["saddle_force_mpm_dynamic_N"].values))
+    x = int(np.argmax(np.abs(ds["still_water_bending_moment_Nm"].values) + ds["bending_moment_mpm_dynamic_Nm"].values))
+    spec = _spectrum_figure(ds, s, x)
     tf = make_subplots(rows=1, cols=2, subplot_titles=("saddle forces", "bending moment (largest total)"))
     force = _abs(ds, "saddle_force_transfer_N_per_m")
     for i in range(force.shape[1]):  # mirror-image saddles coincide: a dash and width of their own
