@@ -169,7 +169,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     # the study, sea-state, operability and report commands are defined in their own packages
     from seafast.operability.cli import add_operability_subcommand
-    from seafast.output.report import add_report_subcommand
+    from seafast.output.report.cli import add_report_subcommand
     from seafast.seastate.cli import add_seastate_subcommand
     from seafast.studies.cli import add_study_subcommand
 
@@ -333,14 +333,14 @@ def _log_level(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``seafast`` command; returns the exit code."""
-    import scipy.linalg  # noqa: F401 - load scipy's BLAS now so the limit below reaches it
-    from threadpoolctl import threadpool_limits
-
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(argv)  # --help and --version exit here, before numpy/scipy load
     if not getattr(args, "handler", None):
         parser.print_help()
         return EXIT_OK
+    import scipy.linalg  # noqa: F401 - load scipy's BLAS now so the limit below reaches it
+    from threadpoolctl import threadpool_limits
+
     if args.global_quiet and hasattr(args, "quiet"):
         args.quiet = True  # the command's own quiet mode (no tables) follows the global one
     # the package's log records go to stderr for this command only (main can be called again,

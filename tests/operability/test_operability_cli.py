@@ -11,7 +11,8 @@ import pytest
 import xarray as xr
 
 from seafast.cli import main
-from seafast.operability.cli import parse_peak_periods
+from seafast.config import CaseError, load_case
+from seafast.operability.cli import default_peak_periods, parse_peak_periods
 from seafast.operability.outputs import OPERABILITY_COLUMNS
 from seafast.operability.scatter import assess_scatter, read_scatter_diagram
 
@@ -116,6 +117,33 @@ def test_peak_periods_include_stop():
     assert len(parse_peak_periods("5:16:0.5")) == 23
     assert parse_peak_periods("6:6:1") == [6.0]
     assert parse_peak_periods("6:8.9:1") == [6.0, 7.0, 8.0]
+
+
+def test_without_tp_the_default_range_runs_and_holds_the_response_peak(tmp_path, capsys):
+    """``seafast operability`` with no arguments: Tp 5 to 20 s every 0.5 s; the smallest allowable Hs
+    (the response peak per metre of Hs, wave length near the ship's) lies inside the range, not at an end."""
+    out = tmp_path / "o"
+    assert main(["operability", "-o", str(out), "--no-plots"]) == 0
+    assert "31 peak periods 5-20 s every 0.5 s (the default" in capsys.readouterr().err
+    rows = _rows(out / "operability.csv")
+    assert [float(r["peak_period_s"]) for r in rows] == [5.0 + 0.5 * i for i in range(31)]
+    hs = [float(r["hs_allowable_linear_m"]) for r in rows]
+    i_min = hs.index(min(hs))
+    assert 6 <= i_min <= 12  # Tp 8-11 s; 0.37 m at 9.5-10 s on the base case
+    assert hs[0] > 3 * hs[i_min] and hs[-1] > 1.5 * hs[i_min]
+
+
+def test_the_default_range_starts_where_the_spectrum_is_resolved():
+    from seafast.seastate.spectrum import sea_state_spectrum
+
+    for spectrum, gamma, first in (("jonswap", 3.3, 5.0), ("pierson_moskowitz", 1.0, 5.5), ("jonswap", 10.0, 5.0)):
+        shape = {"sea_state.spectrum": spectrum, "sea_state.peak_enhancement": gamma, "sea_state.significant_height_m": 1.0}
+        tps = default_peak_periods(load_case(overrides=shape))
+        assert tps[0] == first and tps[-1] == 20.0 and len(tps) == round((20.0 - first) / 0.5) + 1
+        sea_state_spectrum(load_case(overrides={**shape, "sea_state.peak_period_s": first}))  # resolved: no error
+    pm = {"sea_state.spectrum": "pierson_moskowitz", "sea_state.significant_height_m": 1.0, "sea_state.peak_period_s": 5.0}
+    with pytest.raises(CaseError, match=r"peak_period_s >= 5\.25 s"):  # the bound the start is rounded up from
+        sea_state_spectrum(load_case(overrides=pm))
 
 
 @pytest.mark.parametrize(

@@ -1,4 +1,4 @@
-"""Operability: allowable significant wave heights per peak period, linear and nonlinear (issue 15).
+"""Operability: allowable significant wave heights per peak period, linear and nonlinear.
 
 * :mod:`~seafast.operability.allowable` - the allowable Hs per Tp (closed forms; bracketing with design waves).
 * :mod:`~seafast.operability.scatter` - a wave scatter diagram's share of sea states within the limits.
@@ -8,12 +8,36 @@
 Theory, rules and verification: ``docs/operability.md``.
 """
 
-from seafast.operability.allowable import (
-    GOVERNING,
-    OperabilityPoint,
-    OperabilityResult,
-    OperabilitySettings,
-    allowable_sea_states,
-)
+from __future__ import annotations
 
-__all__ = ["GOVERNING", "OperabilityPoint", "OperabilityResult", "OperabilitySettings", "allowable_sea_states"]
+from typing import TYPE_CHECKING
+
+from seafast.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from seafast.operability.allowable import (
+        GOVERNING,
+        OperabilityPoint,
+        OperabilityResult,
+        OperabilitySettings,
+        allowable_sea_states,
+    )
+
+# imported on first use (seafast.lazy), so the command line's parser does not load numpy/xarray
+EXPORTS = {
+    "seafast.operability.allowable": (
+        "GOVERNING",
+        "OperabilityPoint",
+        "OperabilityResult",
+        "OperabilitySettings",
+        "allowable_sea_states",
+    ),
+}
+__all__ = [
+    "GOVERNING",
+    "OperabilityPoint",
+    "OperabilityResult",
+    "OperabilitySettings",
+    "allowable_sea_states",
+]
+lazy_exports(__name__, EXPORTS)

@@ -1,6 +1,10 @@
 """The ``seafast operability`` subcommand: allowable Hs per peak period, linear and nonlinear.
 
-``seafast operability [CASE] --tp START:STOP:STEP [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]``
+``seafast operability [CASE] [--tp START:STOP:STEP] [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]``
+
+Without ``--tp`` the peak periods are :data:`DEFAULT_PEAK_PERIODS` (5 to 20 s every 0.5 s; the
+start raised to the shortest peak period the case's spectrum allows, see
+:func:`default_peak_periods` and ``docs/operability.md`` section 4).
 
 Exit codes as ``seafast run``: 0 success; 2 invalid input (one message naming the option or key,
 the value and what is allowed); 3 a nonlinear search did not converge (results written, its
@@ -14,14 +18,28 @@ import math
 import sys
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-__all__ = ["add_operability_subcommand", "parse_peak_periods", "OPERABILITY_EXAMPLES", "MAX_PEAK_PERIODS"]
+if TYPE_CHECKING:
+    from seafast.config import Case
+
+__all__ = [
+    "add_operability_subcommand",
+    "parse_peak_periods",
+    "default_peak_periods",
+    "OPERABILITY_EXAMPLES",
+    "MAX_PEAK_PERIODS",
+    "DEFAULT_PEAK_PERIODS",
+]
 
 MAX_PEAK_PERIODS = 1000
+# START:STOP:STEP [s] without --tp: the wind seas and swell this kind of vessel meets, the
+# response peak (Tp 9.5-10 s on the base case) well inside (docs/operability.md section 4)
+DEFAULT_PEAK_PERIODS = "5:20:0.5"
 
 OPERABILITY_EXAMPLES = """examples:
-  seafast operability --tp 5:16:0.5                          # the base case, 23 peak periods, limits 7 MN / 20 MPa
+  seafast operability                                        # the base case, Tp 5-20 s every 0.5 s, limits 7 MN / 20 MPa
+  seafast operability --tp 5:16:0.5                          # 23 peak periods
   seafast operability case.yaml --tp 6:14:1 -o out/op --set limits.max_saddle_force_N=11.5e6
   seafast operability --tp 4:18:1 --scatter hindcast.csv    # also the share of a scatter diagram within the limits
 
@@ -62,6 +80,24 @@ def parse_peak_periods(text: str) -> list[float]:
     return [round(start + i * step, 10) for i in range(n)]
 
 
+def default_peak_periods(case: Case) -> list[float]:
+    """The peak periods [s] of :data:`DEFAULT_PEAK_PERIODS`, the start raised to the case's spectrum.
+
+    The start is the larger of 5 s and the shortest peak period whose spectrum the transfer
+    functions resolve (:func:`seafast.seastate.spectrum.shortest_peak_period_s`), rounded up to
+    the 0.5 s step: 5 s for JONSWAP with gamma = 3.3 (4.72 s), 5.5 s for Pierson-Moskowitz (5.25 s).
+    A spectrum table gives the fixed range (operability refuses it with its own message).
+    """
+    start, stop, step = (float(v) for v in DEFAULT_PEAK_PERIODS.split(":"))
+    ss = case.sea_state
+    if ss.spectrum in ("jonswap", "pierson_moskowitz"):
+        from seafast.seastate.spectrum import shortest_peak_period_s
+
+        gamma = 1.0 if ss.spectrum == "pierson_moskowitz" else float(ss.peak_enhancement)
+        start = max(start, math.ceil(shortest_peak_period_s(gamma) / step - 1e-9) * step)
+    return parse_peak_periods(f"{start:g}:{stop:g}:{step:g}")
+
+
 def _cmd_operability(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.operability.allowable import allowable_sea_states
@@ -70,7 +106,7 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     from seafast.operability.scatter import assess_scatter, read_scatter_diagram
 
     try:
-        tps = parse_peak_periods(args.tp)
+        tps = parse_peak_periods(args.tp) if args.tp is not None else None
     except ValueError as exc:
         return _error(str(exc))
     if args.scatter and Path(args.scatter).resolve() == (Path(args.output) / "scatter.csv").resolve():
@@ -85,9 +121,13 @@ def _cmd_operability(args: argparse.Namespace) -> int:
         return _error(str(exc))
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     t0 = time.perf_counter()
+    default = tps is None
+    if tps is None:
+        tps = default_peak_periods(case)
     scatter_tps = [float(t) for t in scatter.peak_periods_s] if scatter is not None else []
     say(
         f"seafast operability: '{case.name}', {len(tps)} peak periods {tps[0]:g}-{tps[-1]:g} s"
+        + (f" every {tps[1] - tps[0]:g} s (the default; --tp START:STOP:STEP to choose)" if default else "")
         + (f" and the {len(scatter_tps)} of the scatter diagram" if scatter is not None else "")
     )
     try:
@@ -154,7 +194,13 @@ def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
-    p.add_argument("--tp", required=True, metavar="START:STOP:STEP", help="peak periods [s], STOP included, e.g. 5:16:0.5")
+    p.add_argument(
+        "--tp",
+        default=None,
+        metavar="START:STOP:STEP",
+        help=f"peak periods [s], STOP included, e.g. 5:16:0.5 (default: {DEFAULT_PEAK_PERIODS}, the start raised to the shortest "
+        "peak period the case's spectrum resolves: 5.5 s for pierson_moskowitz)",
+    )
     p.add_argument("-o", "--output", default="seafast-operability", help="output directory (default: %(default)s)")
     p.add_argument(
         "--set",

@@ -210,8 +210,10 @@ def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from seafast.output.style import legend_outside
+
     tp = ds["peak_period_s"].values
-    fig, ax = plt.subplots(figsize=(8.0, 5.0))
+    fig, ax = plt.subplots(figsize=(11.0, 5.0))
     ax.plot(tp, ds["hs_max_steepness_m"].values, color="0.6", lw=1.0, ls=":", label="limiting steepness (DNV-RP-C205)")
     ax.plot(tp, ds["hs_allowable_nonlinear_m"].values, color="tab:red", lw=2.5, marker=".", label="allowable Hs, nonlinear (design waves)")
     ax.plot(
@@ -253,7 +255,7 @@ def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
         fontsize=10,
     )
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    legend_outside(ax)
     fig.tight_layout()
     out = Path(path)
     fig.savefig(out, dpi=200)

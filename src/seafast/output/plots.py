@@ -1,7 +1,9 @@
 """Report-ready figures of one case (matplotlib, PNG). Every axis carries its unit.
 
 All functions take the case Dataset written as ``results.nc`` (so they also work on a file
-read back later) and return the path written.
+read back later) and return the path written. The conventions of :mod:`seafast.output.style`
+hold: the linear model dashed over the nonlinear one, legends outside the axes, axis units
+scaled to the data with plain-number ticks.
 """
 
 from __future__ import annotations
@@ -15,6 +17,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, scaled_unit
+
 __all__ = [
     "plot_deflection",
     "plot_forces_and_moments",
@@ -27,7 +31,7 @@ __all__ = [
     "write_case_figures",
 ]
 
-_COLORS = {"linear": "tab:blue", "nonlinear": "tab:red"}
+_MODELS = ("nonlinear", "linear")  # drawing order: the thin dashed linear line on top
 DPI = 200
 
 
@@ -41,7 +45,7 @@ def _save(fig: plt.Figure, path: Path) -> Path:
 def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
     """Ship deck, saddles and cargo deflection (static and dynamic envelope)."""
     has_hull = "hull_x_m" in ds.coords
-    fig, axes = plt.subplots(2 if has_hull else 1, 1, figsize=(9, 7 if has_hull else 4), squeeze=False)
+    fig, axes = plt.subplots(2 if has_hull else 1, 1, figsize=(12, 7.5 if has_hull else 4), squeeze=False)
     axes = axes[:, 0]
     ax_c = axes[-1]
     aft = float(ds.attrs.get("cargo_aft_end_x_m", 0.0))
@@ -79,32 +83,41 @@ def plot_deflection(ds: xr.Dataset, path: Path) -> Path:
             "Hull deflection (relative to the chord through the ship's ends)"
             + ("; black and grey: one-way" if ds.attrs.get("hull_cargo_coupling") else "")
         )
-        ax.legend(fontsize=8)
+        legend_outside(ax)
         ax.grid(alpha=0.3)
     xc = ds["x_cargo_m"].values
-    for mdl in ("linear", "nonlinear"):
-        c = _COLORS[mdl]
+    for mdl in _MODELS:
+        style = MODEL_LINES[mdl]
         st = ds["cargo_deflection_m"].sel(load_case="static", model=mdl).isel(period_fraction=0).values * 1e3
-        ax_c.plot(xc, st, color=c, lw=2, label=f"{mdl}, static")
+        ax_c.plot(xc, st, **style, label=f"{mdl}, static")
         dyn = ds["cargo_deflection_m"].sel(load_case="dynamic", model=mdl).values * 1e3
-        ax_c.fill_between(xc, dyn.min(axis=0), dyn.max(axis=0), color=c, alpha=0.15, label=f"{mdl}, dynamic envelope")
+        _envelope(ax_c, xc, dyn, mdl)
     deck = ds["deck_rise_m"].sel(load_case="static").isel(period_fraction=0).values * 1e3
-    ax_c.plot(ds["saddle_x_m"].values, deck, "^", color="tab:green", ms=9, label="deck under saddles (static)")
+    ax_c.plot(ds["saddle_x_m"].values, deck, "^", color="tab:green", ms=9, zorder=4, label="deck under saddles (static)")
     ax_c.set_xlabel("x along the cargo from its aft end [m]")
     ax_c.set_ylabel("deflection [mm]")
-    ax_c.set_title("Cargo deflection relative to the sea-fastening baseline (deck line through the outer saddles)")
-    ax_c.legend(fontsize=8, ncol=2)
+    ax_c.set_title("Cargo deflection relative to the sea-fastening baseline\n(deck line through the outer saddles)")
+    legend_outside(ax_c)
     ax_c.grid(alpha=0.3)
     return _save(fig, path)
 
 
+def _envelope(ax: plt.Axes, x: np.ndarray, values: np.ndarray, model: str) -> None:
+    """The min-max envelope over the period of one model: a light fill with its edges in the model's line style."""
+    style = MODEL_LINES[model]
+    lo, hi = values.min(axis=0), values.max(axis=0)
+    ax.fill_between(x, lo, hi, color=style["color"], alpha=0.12, lw=0, label=f"{model}, dynamic envelope")
+    for edge in (lo, hi):
+        ax.plot(x, edge, color=style["color"], ls=style["ls"], lw=0.9, zorder=style["zorder"])
+
+
 def plot_forces_and_moments(ds: xr.Dataset, path: Path) -> Path:
     """Saddle forces (static and dynamic range) and bending-moment lines along the cargo."""
-    fig, (ax_f, ax_m) = plt.subplots(2, 1, figsize=(9, 7))
+    fig, (ax_f, ax_m) = plt.subplots(2, 1, figsize=(12, 7.5))
     xs = ds["saddle_x_m"].values
     width = 0.015 * float(ds["x_cargo_m"].max())
     for i, mdl in enumerate(("linear", "nonlinear")):
-        c = _COLORS[mdl]
+        c = MODEL_LINES[mdl]["color"]
         off = (i - 0.5) * width
         st = ds["saddle_force_N"].sel(load_case="static", model=mdl).isel(period_fraction=0).values / 1e6
         dyn = ds["saddle_force_N"].sel(load_case="dynamic", model=mdl).values / 1e6
@@ -116,21 +129,20 @@ def plot_forces_and_moments(ds: xr.Dataset, path: Path) -> Path:
     ax_f.set_xlabel("saddle position along the cargo [m]")
     ax_f.set_ylabel("saddle force [MN]")
     ax_f.set_title("Saddle normal forces (negative = tension, impossible for a real saddle)")
-    ax_f.legend(fontsize=8, ncol=2)
+    legend_outside(ax_f)
     ax_f.grid(alpha=0.3)
     xm = ds["x_moment_m"].values
-    for mdl in ("linear", "nonlinear"):
-        c = _COLORS[mdl]
+    for mdl in _MODELS:
         st = ds["bending_moment_Nm"].sel(load_case="static", model=mdl).isel(period_fraction=0).values / 1e6
         dyn = ds["bending_moment_Nm"].sel(load_case="dynamic", model=mdl).values / 1e6
-        ax_m.plot(xm, st, color=c, lw=2, label=f"{mdl}, static")
-        ax_m.fill_between(xm, dyn.min(axis=0), dyn.max(axis=0), color=c, alpha=0.15, label=f"{mdl}, dynamic envelope")
+        ax_m.plot(xm, st, **MODEL_LINES[mdl], label=f"{mdl}, static")
+        _envelope(ax_m, xm, dyn, mdl)
     for x in xs:
         ax_m.axvline(x, color="tab:green", lw=0.8, ls=":")
     ax_m.set_xlabel("x along the cargo from its aft end [m]")
     ax_m.set_ylabel("bending moment [MN m] (sagging +)")
-    ax_m.set_title("Cargo bending moment")
-    ax_m.legend(fontsize=8, ncol=2)
+    ax_m.set_title("Cargo bending moment (dotted green: saddles)")
+    legend_outside(ax_m)
     ax_m.grid(alpha=0.3)
     return _save(fig, path)
 
@@ -138,13 +150,13 @@ def plot_forces_and_moments(ds: xr.Dataset, path: Path) -> Path:
 def plot_saddle_time_histories(ds: xr.Dataset, path: Path) -> Path:
     """Force and compression/gap of every saddle over one period, linear vs nonlinear."""
     n = ds.sizes["saddle"]
-    fig, axes = plt.subplots(2, n, figsize=(3.2 * n + 1, 5.5), squeeze=False, sharex=True)
+    fig, axes = plt.subplots(2, n, figsize=(3.2 * n + 2.2, 5.5), squeeze=False, sharex=True)
     s = ds["period_fraction"].values
     for j in range(n):
-        for mdl in ("linear", "nonlinear"):
+        for mdl in _MODELS:
             sel = ds.sel(load_case="dynamic", model=mdl, saddle=j)
-            axes[0, j].plot(s, sel["saddle_force_N"].values / 1e6, color=_COLORS[mdl], label=mdl)
-            axes[1, j].plot(s, sel["saddle_compression_m"].values * 1e3, color=_COLORS[mdl], label=mdl)
+            axes[0, j].plot(s, sel["saddle_force_N"].values / 1e6, **MODEL_LINES[mdl], label=mdl)
+            axes[1, j].plot(s, sel["saddle_compression_m"].values * 1e3, **MODEL_LINES[mdl], label=mdl)
         axes[0, j].set_title(f"saddle {j} at x = {float(ds['saddle_x_m'][j]):.1f} m")
         axes[1, j].axhline(0.0, color="k", lw=0.8)
         axes[1, j].set_xlabel("period fraction t/T [-]")
@@ -152,30 +164,42 @@ def plot_saddle_time_histories(ds: xr.Dataset, path: Path) -> Path:
             ax.grid(alpha=0.3)
     axes[0, 0].set_ylabel("saddle force [MN]")
     axes[1, 0].set_ylabel("compression [mm] (negative = gap)")
-    axes[0, 0].legend(fontsize=8)
+    legend_outside(axes[0, -1])
     return _save(fig, path)
 
 
 def plot_saddle_surfaces(ds: xr.Dataset, path: Path) -> Path:
-    """Surfaces of nonlinear saddle force and compression over saddle position x period."""
-    fig = plt.figure(figsize=(11, 4.8))
-    s = ds["period_fraction"].values
-    xs = ds["saddle_x_m"].values
-    X, S = np.meshgrid(xs, s)
+    """Nonlinear saddle force and compression over saddle x period fraction, as heat maps.
+
+    One column per saddle (what is computed; nothing is interpolated between saddles), the
+    period fraction upwards, colour bars in MN and mm; the compression's colour scale is centred
+    on 0 (red: gap, the saddle lifted off). The file keeps its name, ``saddle_surfaces.png``.
+    """
+    from matplotlib.colors import TwoSlopeNorm
+
     sel = ds.sel(load_case="dynamic", model="nonlinear")
-    for i, (var, scale, label) in enumerate(
-        (("saddle_force_N", 1e-6, "saddle force [MN]"), ("saddle_compression_m", 1e3, "compression [mm]"))
-    ):
-        ax = fig.add_subplot(1, 2, i + 1, projection="3d")
-        Z = sel[var].values * scale
-        if xs.size > 1:
-            ax.plot_surface(X, S, Z, cmap="viridis", edgecolor="k", linewidth=0.2, alpha=0.9)
-        else:
-            ax.plot(X[:, 0], S[:, 0], Z[:, 0])
-        ax.set_xlabel("x along cargo [m]")
-        ax.set_ylabel("period fraction [-]")
-        ax.set_zlabel(label)
-        ax.set_title(f"nonlinear {label.split(' [')[0]}")
+    s = ds["period_fraction"].values
+    n = ds.sizes["saddle"]
+    step = float(np.diff(s).mean()) if s.size > 1 else 1.0
+    s_edges = np.concatenate([s - step / 2, [s[-1] + step / 2]])
+    j_edges = np.arange(n + 1) - 0.5
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    panels = (
+        ("saddle_force_N", 1e-6, "saddle force [MN]", "viridis", False),
+        ("saddle_compression_m", 1e3, "compression [mm] (negative = gap)", "RdBu", True),
+    )
+    for ax, (var, scale, label, cmap, centred) in zip(axes, panels, strict=True):
+        z = sel[var].transpose("period_fraction", "saddle").values * scale
+        norm = None
+        if centred:
+            reach = max(float(np.abs(z).max()), 1e-12)
+            norm = TwoSlopeNorm(0.0, vmin=min(float(z.min()), -1e-3 * reach), vmax=max(float(z.max()), 1e-3 * reach))
+        mesh = ax.pcolormesh(j_edges, s_edges, z, cmap=cmap, norm=norm, shading="flat")
+        fig.colorbar(mesh, ax=ax, label=label)
+        ax.set_xticks(range(n), [f"{j}\nx = {float(ds['saddle_x_m'][j]):.1f} m" for j in range(n)])
+        ax.set_xlabel("saddle [-] (x along the cargo)")
+        ax.set_ylabel("period fraction t/T [-]")
+        ax.set_title(f"nonlinear {label.split(' [')[0]}, dynamic")
     return _save(fig, path)
 
 
@@ -190,16 +214,16 @@ def plot_aft_picture(ds: xr.Dataset, path: Path) -> Path:
     spec = np.fft.rfft(force)
     spec[H + 1 :] = 0.0
     recon = np.fft.irfft(spec, n=force.size)
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(11, 6), sharex=True)
     ax1.plot(s, comp * 1e3, "k.-", ms=3)
     ax1.axhline(0.0, color="0.5", lw=0.8)
     ax1.set_ylabel("compression delta(t) [mm]")
     ax1.set_title(f"AFT, saddle {j} (x = {float(ds['saddle_x_m'][j]):.1f} m): harmonics -> time samples -> contact law -> harmonics")
-    ax2.plot(s, force / 1e6, "r.", ms=4, label="contact force f(delta(t_n)) at the N samples")
-    ax2.plot(s, recon / 1e6, "b-", label=f"reconstruction from H = {H} harmonics")
+    ax2.plot(s, recon / 1e6, "-", color="tab:blue", lw=3, alpha=0.45, zorder=2, label=f"reconstruction from H = {H} harmonics")
+    ax2.plot(s, force / 1e6, ".", color="tab:red", ms=2.5, zorder=3, label=f"contact force f(delta(t_n)) at the {s.size} time samples")
     ax2.set_xlabel("period fraction t/T [-]")
     ax2.set_ylabel("saddle force [MN]")
-    ax2.legend(fontsize=8)
+    legend_outside(ax2)
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3)
     return _save(fig, path)
@@ -238,7 +262,7 @@ def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
     solid) and two-way coupled (dashed).
     """
     x = ds["hull_x_m"].values
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(12, 7.5), sharex=True)
     coupled = _hull_lines(ds, "_coupled")
     variants = [("", "-", " (one-way)" if coupled else "")]
     if coupled:
@@ -262,7 +286,7 @@ def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
     ax2.set_ylabel("hull bending moment [MN m] (sagging +)")
     ax2.set_xlabel("x along the ship from the aft perpendicular [m]")
     for ax in (ax1, ax2):
-        ax.legend(fontsize=7 if coupled else 8)
+        legend_outside(ax, fontsize=7 if coupled else 8)
         ax.grid(alpha=0.3)
     ax1.set_title("Hull girder: one-way (solid) and two-way coupled (dashed)" if coupled else "Hull girder")
     return _save(fig, path)
@@ -274,7 +298,8 @@ def plot_raos(ds: xr.Dataset, path: Path) -> Path:
     dofs = [("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m")]
     if "surge_rao_real" in ds:
         dofs.insert(0, ("surge", 1.0, "m/m"))
-    fig, axes = plt.subplots(2, len(dofs), figsize=(4.5 * len(dofs), 6), sharex=True, squeeze=False)
+    fig, axes = plt.subplots(2, len(dofs), figsize=(4.5 * len(dofs), 6.4), sharex=True, squeeze=False)
+    omega = float(ds.attrs.get("wave_frequency_rad_s", np.nan))
     for col, (name, scale, unit) in enumerate(dofs):
         z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
         axes[0, col].plot(w, np.abs(z) * scale, "k.-")
@@ -283,38 +308,50 @@ def plot_raos(ds: xr.Dataset, path: Path) -> Path:
         axes[1, col].set_ylabel(f"{name} phase [deg]")
         axes[1, col].set_xlabel("wave frequency [rad/s]")
         for ax in axes[:, col]:
-            ax.axvline(float(ds.attrs.get("wave_frequency_rad_s", np.nan)), color="tab:red", ls=":")
+            if np.isfinite(omega):
+                ax.axvline(omega, color="tab:red", ls=":")
             ax.grid(alpha=0.3)
     titles = {"surge": "Surge (forward positive, head seas)", "heave": "Heave (head seas)", "pitch": "Pitch (bow up positive, head seas)"}
     for col, (name, _, _) in enumerate(dofs):
         axes[0, col].set_title(titles[name])
+    if np.isfinite(omega):  # said once, above the panels: no label inside an axes can cover a title or data
+        fig.suptitle(f"Rigid-body motion RAOs; red dotted: the case's wave, {omega:.3f} rad/s", fontsize=11)
     return _save(fig, path)
 
 
 def plot_stick_slip(ds: xr.Dataset, path: Path) -> Path:
-    """Axial stick-slip over one period: displacement, friction against its capacity, sliding phases."""
+    """Axial stick-slip over one period: displacement, friction against its capacity, sliding phases.
+
+    The displacement axis takes the unit that suits the data (mm, or µm while the cargo sticks:
+    the elastic creep of a stuck cargo is a fraction of a micrometre), with plain-number ticks.
+    """
     s = ds["period_fraction"].values
-    fig, (ax_u, ax_f) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
-    for mdl in ("linear", "nonlinear"):
+    fig, (ax_u, ax_f) = plt.subplots(2, 1, figsize=(12, 7), sharex=True)
+    u_factor, u_unit = scaled_unit(ds["axial_displacement_m"].sel(load_case="dynamic").values.ravel(), "m")
+    for mdl in _MODELS:
         sel = ds.sel(load_case="dynamic", model=mdl)
-        c = _COLORS[mdl]
-        ax_u.plot(s, sel["axial_displacement_m"].values * 1e3, color=c, label=f"{mdl}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period")
-        ax_f.plot(s, -sel["friction_force_N"].values / 1e6, color=c, label=f"{mdl}: friction force (resisting u)")
+        style = MODEL_LINES[mdl]
+        slip = float(sel["slip_m"])
+        ax_u.plot(s, sel["axial_displacement_m"].values * u_factor, **style, label=f"{mdl}: slip {slip * 1e3:.3g} mm per period")
+        ax_f.plot(s, -sel["friction_force_N"].values / 1e6, **style, label=f"{mdl}: friction force (resisting u)")
         cap = sel["friction_capacity_N"].values / 1e6
-        ax_f.plot(s, cap, color=c, ls="--", lw=0.8, label=f"{mdl}: friction available")
-        ax_f.plot(s, -cap, color=c, ls="--", lw=0.8)
+        ax_f.plot(s, cap, color=style["color"], ls=":", lw=1.0, zorder=1, label=f"{mdl}: friction available (±)")
+        ax_f.plot(s, -cap, color=style["color"], ls=":", lw=1.0, zorder=1)
         sliding = sel["sliding"].values.astype(bool)
         if sliding.any():
-            ax_u.fill_between(s, 0, 1, where=sliding, transform=ax_u.get_xaxis_transform(), color=c, alpha=0.08, lw=0)
+            ax_u.fill_between(s, 0, 1, where=sliding, transform=ax_u.get_xaxis_transform(), color=style["color"], alpha=0.08, lw=0)
     load = ds["axial_load_N"].sel(load_case="dynamic", model="nonlinear").values / 1e6
-    ax_f.plot(s, load, color="k", lw=1.2, label="axial load F(t) (inertia + gravity)")
+    # where the cargo sticks the friction equals the load: the load as a thin line on top of both
+    ax_f.plot(s, load, color="k", lw=0.8, zorder=4, label="axial load F(t) (inertia + gravity)")
     ax_u.axhline(0.0, color="k", lw=0.8)
-    ax_u.set_ylabel("axial displacement u [mm] (forward +)")
+    ax_u.set_ylabel(f"axial displacement u [{u_unit}] (forward +)")
     ax_u.set_title("Axial stick-slip of the cargo (shaded: sliding)")
-    ax_u.legend(fontsize=8)
+    plain_tick_labels(ax_u.yaxis)
+    legend_outside(ax_u)
     ax_f.set_xlabel("period fraction t/T [-]")
     ax_f.set_ylabel("axial force [MN] (forward +)")
-    ax_f.legend(fontsize=8, ncol=2)
+    plain_tick_labels(ax_f.yaxis)
+    legend_outside(ax_f)
     for ax in (ax_u, ax_f):
         ax.grid(alpha=0.3)
     return _save(fig, path)

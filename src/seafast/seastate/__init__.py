@@ -1,4 +1,4 @@
-"""Irregular head seas: spectra, transfer functions, linear spectral extremes, Monte Carlo (issue 14).
+"""Irregular head seas: spectra, transfer functions, linear spectral extremes, Monte Carlo.
 
 * :mod:`~seafast.seastate.spectrum` - JONSWAP / Pierson-Moskowitz / tabulated spectra and the grid.
 * :mod:`~seafast.seastate.transfer` - transfer functions per metre of wave amplitude.
@@ -10,19 +10,33 @@
 Theory and verification: ``docs/seastate.md``.
 """
 
-from seafast.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis, SpectralExtremes, spectral_analysis
-from seafast.seastate.spectrum import WaveSpectrum, sea_state_spectrum
-from seafast.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
+from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+from seafast.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from seafast.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis, SpectralExtremes, spectral_analysis
+    from seafast.seastate.spectrum import WaveSpectrum, sea_state_spectrum
+    from seafast.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
+
+# imported on first use (seafast.lazy), so the command line's parser does not load numpy/xarray
+EXPORTS = {
+    "seafast.seastate.spectral": ("SEASTATE_COLUMNS", "SpectralAnalysis", "SpectralExtremes", "spectral_analysis"),
+    "seafast.seastate.spectrum": ("WaveSpectrum", "sea_state_spectrum"),
+    "seafast.seastate.transfer": ("StillWater", "TransferFunctions", "still_water", "transfer_functions"),
+}
 __all__ = [
     "SEASTATE_COLUMNS",
     "SpectralAnalysis",
     "SpectralExtremes",
-    "StillWater",
-    "TransferFunctions",
+    "spectral_analysis",
     "WaveSpectrum",
     "sea_state_spectrum",
-    "spectral_analysis",
+    "StillWater",
+    "TransferFunctions",
     "still_water",
     "transfer_functions",
 ]
+lazy_exports(__name__, EXPORTS)

@@ -10,6 +10,8 @@
   (when the Monte Carlo engine ran).
 
 Figures are built from the seastate.nc Dataset (and the Monte Carlo result for the two last).
+Legends stand outside the axes and curves that coincide keep distinct styles
+(:mod:`seafast.output.style`).
 """
 
 from __future__ import annotations
@@ -19,6 +21,8 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
+
+from seafast.output.style import legend_outside
 
 __all__ = ["write_seastate_figures", "FIGURE_DPI"]
 
@@ -41,25 +45,29 @@ def _spectrum_figure(ds: xr.Dataset, path: Path) -> Path:
 
     w = ds["omega_rad_s"].values
     s, x = _governing(ds)
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.plot(w, ds["wave_spectrum_m2_s_per_rad"].values, "k-", lw=2, label=f"wave: {ds.attrs.get('spectrum', '')}")
+    fig, ax = plt.subplots(figsize=(11, 4.8))
+    ax.plot(w, ds["wave_spectrum_m2_s_per_rad"].values, "k-", lw=2, label="wave spectrum")
     ax.set_xlabel("wave frequency ω [rad/s]")
     ax.set_ylabel("wave spectral density S(ω) [m² s/rad]")
     ax2 = ax.twinx()
+    # the two normalised response spectra nearly coincide: a wide light line under a thin dashed one
+    wide: dict[str, Any] = {"color": "C0", "lw": 4, "alpha": 0.45}
+    thin: dict[str, Any] = {"color": "C3", "lw": 1.2, "ls": "--"}
     for name, idx, label, style in (
-        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}", "C0--"),
-        ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment, x = {float(ds['x_moment_m'][x]):.1f} m", "C3-."),
+        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}", wide),
+        ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment, x = {float(ds['x_moment_m'][x]):.1f} m", thin),
     ):
         r = ds[name].isel(idx).values
-        ax2.plot(w, r / max(float(r.max()), 1e-300), style, label=f"response: {label}")
+        ax2.plot(w, r / max(float(r.max()), 1e-300), **style, label=f"response: {label}")
     ax2.set_ylabel("response spectrum / its peak [-]")
     ax2.set_ylim(0, 1.05)
     lines = ax.get_legend_handles_labels()[0] + ax2.get_legend_handles_labels()[0]
-    ax.legend(lines, ax.get_legend_handles_labels()[1] + ax2.get_legend_handles_labels()[1], fontsize=8, loc="upper right")
+    labels = ax.get_legend_handles_labels()[1] + ax2.get_legend_handles_labels()[1]
+    legend_outside(ax2, lines, labels, bbox_to_anchor=(1.1, 1.0))
     ax.set_xlim(0, float(w[-1]))
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.set_title(f"Sea state, duration {float(ds.attrs.get('duration_s', np.nan)) / 3600:g} h")
+    ax.set_title(f"Sea state: {ds.attrs.get('spectrum', '')}, duration {float(ds.attrs.get('duration_s', np.nan)) / 3600:g} h")
     fig.tight_layout()
     fig.savefig(path, dpi=FIGURE_DPI)
     plt.close(fig)
@@ -71,12 +79,14 @@ def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
 
     w = ds["omega_rad_s"].values
     _, x = _governing(ds)
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    fig, axes = plt.subplots(2, 2, figsize=(13, 7), sharex=True)
     force = _abs(ds, "saddle_force_transfer_N_per_m")
     deck = _abs(ds, "deck_deflection_transfer_m_per_m")
     for i in range(force.shape[1]):
-        axes[0, 0].plot(w, force[:, i] / 1e6, label=f"saddle {i} (x = {float(ds['saddle_x_m'][i]):.1f} m)")
-        axes[1, 0].plot(w, deck[:, i] * 1e3, label=f"saddle {i}")
+        # saddles with mirror-image responses coincide: each a line style of its own, later ones thinner
+        style: dict[str, Any] = {"ls": ("-", "--", "-.", ":")[i % 4], "lw": max(2.4 - 0.5 * i, 0.8), "color": f"C{i}"}
+        axes[0, 0].plot(w, force[:, i] / 1e6, **style, label=f"saddle {i} (x = {float(ds['saddle_x_m'][i]):.1f} m)")
+        axes[1, 0].plot(w, deck[:, i] * 1e3, **style, label=f"saddle {i}")
     axes[0, 0].set_ylabel("|saddle force| [MN per m of wave]")
     axes[1, 0].set_ylabel("|hull deck deflection| [mm per m of wave]")
     moment = _abs(ds, "bending_moment_transfer_Nm_per_m")[:, x]
@@ -88,8 +98,11 @@ def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
     axes[1, 1].set_ylabel("|heave| [m/m], |pitch| / k [-]")
     for ax in axes.ravel():
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
         ax.set_xlim(0, float(w[-1]))
+    for ax in axes[:, 0]:  # the saddle legends, between the columns
+        legend_outside(ax, fontsize=7)
+    for ax in axes[:, 1]:
+        legend_outside(ax, fontsize=7)
     for ax in axes[1]:
         ax.set_xlabel("wave frequency ω [rad/s]")
     fig.suptitle("Transfer functions per metre of wave amplitude (linear model, head seas)")
@@ -115,14 +128,17 @@ def _realisation_figure(example: Any, path: Path) -> Path:
     lift_times = np.flatnonzero(lifted.any(axis=1))
     centre = t[lift_times[np.argmin(np.abs(lift_times - peak))]] if lift_times.size else t[int(np.argmax(nonlinear.max(axis=1)))]
     zoom = (t >= centre - 45.0) & (t <= centre + 45.0)
-    fig, (ax0, ax1, ax2) = plt.subplots(3, 1, figsize=(11, 8.5), gridspec_kw={"height_ratios": [1, 2, 2]})
+    fig, (ax0, ax1, ax2) = plt.subplots(3, 1, figsize=(13, 8.5), gridspec_kw={"height_ratios": [1, 2, 2]})
     ax0.plot(t, np.asarray(example.wave_elevation_m, dtype=float), "k", lw=0.4)
     ax0.set_ylabel("wave at midship ζ [m]")
     for ax, sel in ((ax1, slice(None)), (ax2, zoom)):
         for i in range(nonlinear.shape[1]):
             colour = f"C{i}"
-            ax.plot(t[sel], linear[sel, i] / 1e6, color=colour, lw=0.6, ls="--", alpha=0.7, label=f"saddle {i}, linear")
-            ax.plot(t[sel], nonlinear[sel, i] / 1e6, color=colour, lw=0.8, label=f"saddle {i}, nonlinear")
+            # where the models agree the thin dashed linear line lies on the wider nonlinear one
+            ax.plot(t[sel], nonlinear[sel, i] / 1e6, color=colour, lw=1.4, zorder=2, label=f"saddle {i}, nonlinear")
+            ax.plot(
+                t[sel], linear[sel, i] / 1e6, color="k", lw=0.6, ls="--", zorder=3, label="linear model (each saddle)" if i == 0 else None
+            )
             mark = lifted[sel, i]
             if np.any(mark):
                 ax.plot(t[sel][mark], np.zeros(int(mark.sum())), "|", color=colour, ms=12, mew=1.5, label=f"saddle {i} lifted off")
@@ -131,10 +147,12 @@ def _realisation_figure(example: Any, path: Path) -> Path:
     ax1.axvspan(centre - 45.0, centre + 45.0, color="0.85", zorder=0)
     ax2.set_xlabel("time t [s]")
     ax2.set_title(f"t = {centre - 45:.0f} to {centre + 45:.0f} s (shaded above)", fontsize=9)
-    ax2.legend(fontsize=7, ncol=3)
+    legend_outside(ax2, fontsize=7)
     for ax in (ax0, ax1, ax2):
         ax.grid(alpha=0.3)
-    fig.suptitle(f"Realisation {getattr(example, 'index', '')}: saddle forces (nonlinear solid, linear dashed), lift-off marked | on F = 0")
+    fig.suptitle(
+        f"Realisation {getattr(example, 'index', '')}: saddle forces (nonlinear solid, linear dashed black), lift-off marked | on F = 0"
+    )
     fig.tight_layout()
     fig.savefig(path, dpi=FIGURE_DPI)
     plt.close(fig)
@@ -147,7 +165,7 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
 
     from seafast.seastate.extremes import gumbel_fit  # the engine's fit: its mode is the MPM reported
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.5))
+    fig, axes = plt.subplots(2, 1, figsize=(10, 8))
     for ax, q, scale, unit in ((axes[0], "F_N", 1e-6, "MN"), (axes[1], "M_b_Nm", 1e-6, "MN m")):
         for stats, colour, marker in ((monte_carlo.linear, "C0", "o"), (monte_carlo.nonlinear, "C3", "x")):
             m = np.sort(np.asarray(stats.maxima[q], dtype=float))
@@ -167,7 +185,7 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
         ax.set_xlabel(f"{'saddle force F' if q == 'F_N' else 'bending moment M_b'} maximum over the duration [{unit}]")
         ax.set_ylabel("non-exceedance probability [-]")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        legend_outside(ax, fontsize=7)
     fig.suptitle("Distribution of the maxima (MPM: dotted = Gumbel mode, dashed = spectral)")
     fig.tight_layout()
     fig.savefig(path, dpi=FIGURE_DPI)

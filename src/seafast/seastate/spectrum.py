@@ -45,6 +45,7 @@ __all__ = [
     "pierson_moskowitz_density",
     "jonswap_density",
     "jonswap_normalisation",
+    "shortest_peak_period_s",
     "read_spectrum_table",
     "sea_state_spectrum",
     "spectrum_grid",
@@ -229,6 +230,15 @@ def _parametric_share_below(u_floor: float, gamma: float) -> float:
     return 16.0 * jonswap_normalisation(gamma) * quad(_shape, 1e-3, u_floor, args=(gamma,), limit=200)[0]
 
 
+def shortest_peak_period_s(gamma: float) -> float:
+    """Shortest peak period [s] whose JONSWAP spectrum the transfer functions resolve.
+
+    At it :data:`MAX_VARIANCE_OUTSIDE` of the variance lies above :data:`OMEGA_MAX_RAD_S`
+    (4.72 s for ``gamma`` = 3.3, 5.25 s for Pierson-Moskowitz, ``gamma`` = 1); independent of Hs.
+    """
+    return 2.0 * math.pi / OMEGA_MAX_RAD_S * brentq(lambda u: _parametric_share_above(u, gamma) - MAX_VARIANCE_OUTSIDE, 1.01, 100.0)
+
+
 def sea_state_spectrum(case: Case, n_points: int = DEFAULT_GRID_POINTS) -> WaveSpectrum:
     """The case's wave spectrum on its sea-state grid (one-sided, Hs = 4 sqrt(m0)).
 
@@ -249,9 +259,7 @@ def sea_state_spectrum(case: Case, n_points: int = DEFAULT_GRID_POINTS) -> WaveS
         wp = 2.0 * math.pi / tp
         above = _parametric_share_above(OMEGA_MAX_RAD_S / wp, gamma)
         if above > MAX_VARIANCE_OUTSIDE:
-            tp_min = (
-                2.0 * math.pi / OMEGA_MAX_RAD_S * brentq(lambda u: _parametric_share_above(u, gamma) - MAX_VARIANCE_OUTSIDE, 1.01, 100.0)
-            )
+            tp_min = shortest_peak_period_s(gamma)
             raise _refuse(
                 "sea_state.peak_period_s",
                 tp,

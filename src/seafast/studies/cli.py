@@ -18,8 +18,6 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from seafast.config.loader import CaseError, parse_overrides
-
 __all__ = ["add_study_subcommand", "build_study_parser", "cmd_study", "main", "EXIT_OK", "EXIT_INVALID_INPUT"]
 
 EXIT_OK = 0
@@ -110,6 +108,7 @@ def _error(message: str) -> int:
 
 def cmd_study(args: argparse.Namespace) -> int:
     """Handler of ``seafast study``; returns the exit code."""
+    from seafast.config.loader import CaseError, parse_overrides
     from seafast.studies.limits import (
         COMPLIANCE_COLUMNS,
         RANKING_COLUMNS,

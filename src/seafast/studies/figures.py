@@ -7,6 +7,12 @@
 - 1-D studies: the same quantities as lines.
 - Studies with more than two axes: the surface over the first two axes with the other axes held at
   their base-case value (or the middle value when the base value is off the grid).
+
+What is drawn is what was computed: one cell per study point, the contact-preserved cells
+hatched and the design limits drawn along the cell edges between points within and beyond them
+(nothing interpolated between saddle counts). Axis units are scaled to the data (a stiffness axis
+in GN/m, ticks 0.01 ... 10) with plain-number ticks, and an axis of a few integers (saddle counts)
+has its ticks at its values (:mod:`seafast.output.style`).
 """
 
 from __future__ import annotations
@@ -23,8 +29,9 @@ import numpy as np
 import xarray as xr
 from matplotlib.artist import Artist
 from matplotlib.colors import ListedColormap
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 
+from seafast.output.style import MODEL_LINES, cell_boundary, legend_outside, plain_tick_labels, scaled_axis_label, value_ticks
 from seafast.studies.limits import DesignLimits, compliance
 
 __all__ = ["plot_study", "plot_surfaces", "plot_compliance_map", "plot_profiles", "study_slice"]
@@ -47,9 +54,17 @@ def _total(ds: xr.Dataset) -> xr.Dataset:
     return ds.sel(load_case="dynamic" if "dynamic" in labels else labels[-1])
 
 
-def _label(ds: xr.Dataset, key: str) -> str:
-    unit = ds[key].attrs.get("units", "1")
-    return f"{key} [{'-' if unit in ('1', '') else unit}]"
+def _scaled(ds: xr.Dataset, key: str) -> tuple[np.ndarray, float, str]:
+    """A study axis in its plotting unit: the scaled values, the factor applied and the axis label."""
+    values = np.asarray(ds[key].values, dtype=float)
+    factor, label = scaled_axis_label(key, values.tolist(), str(ds[key].attrs.get("units", "1")))
+    return values * factor, factor, label
+
+
+def _is_discrete(ds: xr.Dataset, key: str) -> bool:
+    """A short axis of integers (saddle counts): ticks at its values."""
+    values = np.asarray(ds[key].values)
+    return values.size <= 15 and bool(np.all(np.isfinite(values.astype(float)))) and bool(np.all(values.astype(float) % 1 == 0))
 
 
 def _is_log(ds: xr.Dataset, key: str) -> bool:
@@ -96,19 +111,34 @@ def _edges(values: np.ndarray, log: bool) -> np.ndarray:
     return np.exp(e) if log else e
 
 
+def _setup_axis(ax: Any, which: str, ds: xr.Dataset, key: str) -> None:
+    """Label, scale and ticks of the study axis ``key`` on ``ax``'s ``which`` ("x" or "y") axis."""
+    values, _, label = _scaled(ds, key)
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    axis.set_label_text(label)
+    if _is_log(ds, key):
+        (ax.set_xscale if which == "x" else ax.set_yscale)("log")
+    if _is_discrete(ds, key):
+        value_ticks(axis, values.tolist())
+    else:
+        plain_tick_labels(axis)
+
+
 def _setup_axes(ax: Any, ds: xr.Dataset, xkey: str, ykey: str) -> None:
-    ax.set_xlabel(_label(ds, xkey))
-    ax.set_ylabel(_label(ds, ykey))
-    if _is_log(ds, xkey):
-        ax.set_xscale("log")
-    if _is_log(ds, ykey):
-        ax.set_yscale("log")
+    _setup_axis(ax, "x", ds, xkey)
+    _setup_axis(ax, "y", ds, ykey)
 
 
 def _mark_base(ax: Any, ds: xr.Dataset, xkey: str, ykey: str) -> None:
-    bx, by = _base_value(ds, xkey), _base_value(ds, ykey)
+    bx, by = _base_value(ds, xkey) * _scaled(ds, xkey)[1], _base_value(ds, ykey) * _scaled(ds, ykey)[1]
     if math.isfinite(bx) and math.isfinite(by):
         ax.plot([bx], [by], marker="*", markersize=14, color="white", markeredgecolor="black", linestyle="none", label="base case")
+
+
+def _hatch_cells(ax: Any, xe: np.ndarray, ye: np.ndarray, mask: np.ndarray) -> None:
+    """Hatch the cells where ``mask`` (rows along y) holds."""
+    for i, j in zip(*np.nonzero(mask), strict=True):
+        ax.add_patch(Rectangle((xe[j], ye[i]), xe[j + 1] - xe[j], ye[i + 1] - ye[i], fill=False, hatch="//", lw=0, edgecolor="black"))
 
 
 def _title_suffix(held: dict[str, Any]) -> str:
@@ -125,22 +155,21 @@ def plot_surfaces(ds: xr.Dataset, path: str | Path, model: str = "nonlinear", li
     limits = limits or DesignLimits.from_attrs(ds.attrs)
     sliced, held = study_slice(ds, 2)
     xkey, ykey = _axis_keys(sliced)[1], _axis_keys(sliced)[0]
-    total = _total(sliced)
-    x, y = sliced[xkey].values.astype(float), sliced[ykey].values.astype(float)
+    total = _total(sliced).transpose(ykey, xkey, ...)
+    x, y = _scaled(sliced, xkey)[0], _scaled(sliced, ykey)[0]
     xe, ye = _edges(x, _is_log(sliced, xkey)), _edges(y, _is_log(sliced, ykey))
-    contact = total["contact_preserved"].sel(model="nonlinear" if "nonlinear" in total["model"] else model).values.astype(float)
+    contact = total["contact_preserved"].sel(model="nonlinear" if "nonlinear" in total["model"] else model).values.astype(bool)
     limit_of = {"F_N": limits.max_saddle_force_N, "sigma_b_Pa": limits.max_bending_stress_Pa}
     fig, axes = plt.subplots(1, 3, figsize=(17, 4.8), constrained_layout=True)
     for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES, strict=True):
         z = total[name].sel(model=model).values * scale
         mesh = ax.pcolormesh(xe, ye, np.ma.masked_invalid(z), shading="flat", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=f"{title} [{unit}]")
-        if len(x) > 1 and len(y) > 1:
-            if np.any(contact > 0.5):
-                ax.contourf(x, y, contact, levels=[0.5, 1.5], colors="none", hatches=["//"])
-                ax.contour(x, y, contact, levels=[0.5], colors="white", linewidths=1.0)
-            if name in limit_of and np.nanmin(z) < limit_of[name] * scale < np.nanmax(z):
-                ax.contour(x, y, z, levels=[limit_of[name] * scale], colors="red", linestyles="--", linewidths=1.5)
+        _hatch_cells(ax, xe, ye, contact)
+        ax.plot(*cell_boundary(xe, ye, contact), color="white", lw=1.0)
+        if name in limit_of:
+            beyond = np.nan_to_num(z, nan=-np.inf) > limit_of[name] * scale
+            ax.plot(*cell_boundary(xe, ye, beyond), color="red", ls="--", lw=1.8)
         _setup_axes(ax, sliced, xkey, ykey)
         _mark_base(ax, sliced, xkey, ykey)
         ax.set_title(f"{title}, {model}")
@@ -164,7 +193,8 @@ def plot_compliance_map(ds: xr.Dataset, path: str | Path, limits: DesignLimits |
     comp = compliance(sliced, limits)
     keys = _axis_keys(sliced)
     xkey, ykey = keys[1], keys[0]
-    x, y = sliced[xkey].values.astype(float), sliced[ykey].values.astype(float)
+    comp = comp.transpose(ykey, xkey, ...)
+    x, y = _scaled(sliced, xkey)[0], _scaled(sliced, ykey)[0]
     models = [str(m) for m in comp["model"].values]
     lin = comp["complies"].sel(model="linear").values if "linear" in models else np.zeros((len(y), len(x)), bool)
     non = comp["complies"].sel(model="nonlinear").values if "nonlinear" in models else np.zeros((len(y), len(x)), bool)
@@ -212,30 +242,28 @@ def plot_profiles(ds: xr.Dataset, path: str | Path, limits: DesignLimits | None 
     sliced, held = study_slice(ds, 1)
     key = _axis_keys(sliced)[0]
     total = _total(sliced)
-    x = sliced[key].values.astype(float)
+    x, x_factor, _ = _scaled(sliced, key)
     contact = total["contact_preserved"].sel(model="nonlinear").values if "nonlinear" in total["model"] else None
     limit_of = {"F_N": limits.max_saddle_force_N, "sigma_b_Pa": limits.max_bending_stress_Pa}
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.5), constrained_layout=True)
     xe = _edges(x, _is_log(sliced, key))
     for ax, (name, title, scale, unit) in zip(axes, _QUANTITIES, strict=True):
-        for model, style in (("linear", "--"), ("nonlinear", "-")):
+        for model in ("nonlinear", "linear"):
             if model in total["model"]:
-                ax.plot(x, total[name].sel(model=model).values * scale, style, marker="o", markersize=3, label=model)
+                ax.plot(x, total[name].sel(model=model).values * scale, **MODEL_LINES[model], marker="o", markersize=4, label=model)
         if name in limit_of:
             ax.axhline(limit_of[name] * scale, color="red", linestyle=":", label="design limit")
         if contact is not None:
             for i, ok in enumerate(contact):
                 if ok:
                     ax.axvspan(xe[i], xe[i + 1], color="tab:green", alpha=0.12, linewidth=0)
-        base = _base_value(sliced, key)
+        base = _base_value(sliced, key) * x_factor
         if math.isfinite(base):
             ax.axvline(base, color="black", linewidth=0.8, label="base case")
-        ax.set_xlabel(_label(sliced, key))
         ax.set_ylabel(f"{title} [{unit}]")
-        if _is_log(sliced, key):
-            ax.set_xscale("log")
+        _setup_axis(ax, "x", sliced, key)
         ax.set_title(title)
-        ax.legend(fontsize=8)
+    legend_outside(axes[-1])
     fig.suptitle(f"study {ds.attrs.get('study', '')}: total (dynamic) response; shaded: contact preserved{_title_suffix(held)}")
     path = Path(path)
     fig.savefig(path, dpi=110, bbox_inches="tight")

@@ -36,69 +36,106 @@ Modules
 
 from __future__ import annotations
 
-from seafast.output.report.cli import REPORT_EXAMPLES, add_report_subcommand
-from seafast.output.report.common import (
-    FIGURES_DIRNAME,
-    PDF_FILENAME,
-    PNG_DPI,
-    REPORT_FILENAME,
-    Finding,
-    ReportError,
-    ReportFigure,
-    ReportOutputs,
-)
-from seafast.output.report.figures import (
-    contact_timeline_figure,
-    deck_motion_figure,
-    deflection_moment_figure,
-    hull_girder_figure,
-    rao_figure,
-    run_figures,
-    saddle_time_history_figure,
-    stick_slip_figure,
-)
-from seafast.output.report.findings import TENSILE_NOTE_FRACTION, TRUNCATION_LIMIT, run_findings, study_findings
-from seafast.output.report.html import build_report_html, render_html
-from seafast.output.report.print_figures import plot_contact_timeline, write_print_figures
-from seafast.output.report.study_figures import compliance_map_figure, study_figures, study_profile_figure, study_surface_figure
-from seafast.output.report.tables import diagnostics_rows, flatten_case, input_rows, ranking_rows, summary_table_rows
-from seafast.output.report.write import write_report
+from typing import TYPE_CHECKING
 
+from seafast.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from seafast.output.report.cli import REPORT_EXAMPLES, add_report_subcommand
+    from seafast.output.report.common import (
+        FIGURES_DIRNAME,
+        PDF_FILENAME,
+        PNG_DPI,
+        REPORT_FILENAME,
+        Finding,
+        ReportError,
+        ReportFigure,
+        ReportOutputs,
+    )
+    from seafast.output.report.figures import (
+        contact_timeline_figure,
+        deck_motion_figure,
+        deflection_moment_figure,
+        hull_girder_figure,
+        rao_figure,
+        run_figures,
+        saddle_time_history_figure,
+        stick_slip_figure,
+    )
+    from seafast.output.report.findings import TENSILE_NOTE_FRACTION, TRUNCATION_LIMIT, run_findings, study_findings
+    from seafast.output.report.html import build_report_html, render_html
+    from seafast.output.report.print_figures import plot_contact_timeline, write_print_figures
+    from seafast.output.report.study_figures import compliance_map_figure, study_figures, study_profile_figure, study_surface_figure
+    from seafast.output.report.tables import diagnostics_rows, flatten_case, input_rows, ranking_rows, summary_table_rows
+    from seafast.output.report.write import write_report
+
+# imported on first use (seafast.lazy): the command line's parser imports the report's
+# subcommand without loading xarray, plotly or matplotlib
+EXPORTS = {
+    "seafast.output.report.cli": ("REPORT_EXAMPLES", "add_report_subcommand"),
+    "seafast.output.report.common": (
+        "FIGURES_DIRNAME",
+        "PDF_FILENAME",
+        "PNG_DPI",
+        "REPORT_FILENAME",
+        "Finding",
+        "ReportError",
+        "ReportFigure",
+        "ReportOutputs",
+    ),
+    "seafast.output.report.figures": (
+        "contact_timeline_figure",
+        "deck_motion_figure",
+        "deflection_moment_figure",
+        "hull_girder_figure",
+        "rao_figure",
+        "run_figures",
+        "saddle_time_history_figure",
+        "stick_slip_figure",
+    ),
+    "seafast.output.report.findings": ("TENSILE_NOTE_FRACTION", "TRUNCATION_LIMIT", "run_findings", "study_findings"),
+    "seafast.output.report.html": ("build_report_html", "render_html"),
+    "seafast.output.report.print_figures": ("plot_contact_timeline", "write_print_figures"),
+    "seafast.output.report.study_figures": ("compliance_map_figure", "study_figures", "study_profile_figure", "study_surface_figure"),
+    "seafast.output.report.tables": ("diagnostics_rows", "flatten_case", "input_rows", "ranking_rows", "summary_table_rows"),
+    "seafast.output.report.write": ("write_report",),
+}
 __all__ = [
-    "REPORT_FILENAME",
+    "REPORT_EXAMPLES",
+    "add_report_subcommand",
     "FIGURES_DIRNAME",
     "PDF_FILENAME",
     "PNG_DPI",
-    "TRUNCATION_LIMIT",
-    "TENSILE_NOTE_FRACTION",
-    "ReportError",
+    "REPORT_FILENAME",
     "Finding",
+    "ReportError",
     "ReportFigure",
     "ReportOutputs",
-    "flatten_case",
-    "input_rows",
-    "summary_table_rows",
-    "diagnostics_rows",
-    "run_findings",
-    "study_findings",
+    "contact_timeline_figure",
+    "deck_motion_figure",
+    "deflection_moment_figure",
     "hull_girder_figure",
     "rao_figure",
-    "deck_motion_figure",
-    "saddle_time_history_figure",
-    "deflection_moment_figure",
-    "contact_timeline_figure",
-    "stick_slip_figure",
     "run_figures",
-    "study_surface_figure",
-    "study_profile_figure",
-    "compliance_map_figure",
-    "study_figures",
-    "ranking_rows",
-    "render_html",
+    "saddle_time_history_figure",
+    "stick_slip_figure",
+    "TENSILE_NOTE_FRACTION",
+    "TRUNCATION_LIMIT",
+    "run_findings",
+    "study_findings",
     "build_report_html",
+    "render_html",
     "plot_contact_timeline",
     "write_print_figures",
+    "compliance_map_figure",
+    "study_figures",
+    "study_profile_figure",
+    "study_surface_figure",
+    "diagnostics_rows",
+    "flatten_case",
+    "input_rows",
+    "ranking_rows",
+    "summary_table_rows",
     "write_report",
-    "add_report_subcommand",
-    "REPORT_EXAMPLES",
 ]
+lazy_exports(__name__, EXPORTS)

@@ -6,8 +6,7 @@ import argparse
 import sys
 from typing import Any
 
-from seafast.output.report.common import FIGURES_DIRNAME, REPORT_FILENAME, ReportError
-from seafast.output.report.write import write_report
+from seafast.output.report.common import REPORT_FILENAME
 
 __all__ = ["REPORT_EXAMPLES", "add_report_subcommand"]
 
@@ -23,6 +22,9 @@ Print figures: report_figures/*.png (200 dpi) and report_figures.pdf next to the
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
+    from seafast.output.report.common import FIGURES_DIRNAME, ReportError
+    from seafast.output.report.write import write_report
+
     try:
         result = write_report(args.directory, args.output, figures=not args.no_figures)
     except ReportError as exc:

@@ -12,9 +12,10 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import xarray as xr
+if TYPE_CHECKING:  # annotations only: the report's subcommand imports this module for its parser
+    import xarray as xr
 
 __all__ = [
     "REPORT_FILENAME",

@@ -17,6 +17,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import ReportFigure, attr_float, coord_labels, has_variables, saddle_label, total_load_case
+from seafast.output.style import scaled_unit
 
 __all__ = [
     "hull_girder_figure",
@@ -28,12 +29,19 @@ __all__ = [
     "stick_slip_figure",
     "run_figures",
     "MODEL_COLORS",
+    "model_line",
+    "model_order",
     "plotly_go",
     "subplots",
     "style_figure",
 ]
 
 MODEL_COLORS = {"linear": "#1f77b4", "nonlinear": "#d62728"}
+# where the models agree both stay visible: a thick solid nonlinear line under a thin dashed linear one
+_MODEL_LINES: dict[str, dict[str, Any]] = {
+    "nonlinear": {"color": MODEL_COLORS["nonlinear"], "width": 3.2},
+    "linear": {"color": MODEL_COLORS["linear"], "width": 1.6, "dash": "dash"},
+}
 _FILL = {"linear": "rgba(31,119,180,0.18)", "nonlinear": "rgba(214,39,40,0.18)"}
 _SADDLE_COLORS = ("#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#ff7f0e")
 
@@ -53,16 +61,33 @@ def subplots(**kwargs: Any) -> Any:
     return make_subplots(**kwargs)
 
 
+def model_line(model: str) -> dict[str, Any]:
+    """The plotly ``line`` of a model's trace (:data:`MODEL_COLORS`; linear dashed and thinner)."""
+    return dict(_MODEL_LINES.get(model, {"color": "black"}))
+
+
+def model_order(models: list[str]) -> list[str]:
+    """The models in drawing order: nonlinear first, so the thin dashed linear trace lies on top."""
+    return sorted(models, key=lambda m: 0 if m == "nonlinear" else 1)
+
+
 def style_figure(fig: Any, title: str, height: int) -> Any:
-    """The report's common layout (title, white template, legend on top); ``height`` in pixels."""
+    """The report's common layout; ``height`` in pixels.
+
+    The legend stands to the right of the plot area (plotly widens the right margin for it), so
+    it covers neither data nor titles; axis ticks never use SI letters ("200µ", "1B"): numbers in
+    the unit of the axis title, with a power of ten where one is needed.
+    """
     fig.update_layout(
         title=dict(text=title, x=0.01, xanchor="left"),
         height=height,
         template="plotly_white",
         margin=dict(l=70, r=30, t=70, b=60),
-        legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="right", x=1.0, font=dict(size=11)),
+        legend=dict(font=dict(size=11), tracegroupgap=2),
         hovermode="closest",
     )
+    for each in (fig.for_each_xaxis, fig.for_each_yaxis):  # an axis that chose its own format keeps it
+        each(lambda axis: axis.update(exponentformat="power") if axis.exponentformat is None else None)
     return fig
 
 
@@ -229,15 +254,13 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
         for r in (1, 2):
             for c in range(1, len(dofs) + 1):
                 fig.add_vline(x=omega, line=dict(color="#d62728", dash="dot"), row=r, col=c)
-        fig.add_annotation(
-            x=omega,
-            y=1.0,
-            xref="x",
-            yref="paper",
-            text=f"wave: {omega:.3f} rad/s",
-            showarrow=False,
-            font=dict(color="#d62728"),
-            yanchor="bottom",
+        # named in the legend (beside the plot), not by a label that would sit on a subplot title
+        fig.add_trace(
+            go.Scatter(
+                x=[None], y=[None], mode="lines", line=dict(color="#d62728", dash="dot"), name=f"the case's wave, {omega:.3f} rad/s"
+            ),
+            row=1,
+            col=1,
         )
     names = " and ".join(n for n, _, _ in dofs) if len(dofs) == 2 else "surge, heave and pitch"
     return style_figure(fig, f"Rigid-body motions: {names} RAOs (head seas)", 560)
@@ -296,9 +319,8 @@ def saddle_time_history_figure(ds: xr.Dataset) -> Any:
     s = ds["period_fraction"].values
     lc = total_load_case(ds)
     for j in range(n):
-        for m in coord_labels(ds["model"]):
+        for m in model_order(coord_labels(ds["model"])):
             sel = ds.sel(load_case=lc, model=m).isel(saddle=j)
-            c = MODEL_COLORS.get(m, "black")
             fig.add_trace(
                 go.Scatter(
                     x=s,
@@ -306,7 +328,7 @@ def saddle_time_history_figure(ds: xr.Dataset) -> Any:
                     name=m,
                     legendgroup=m,
                     showlegend=j == 0,
-                    line=dict(color=c),
+                    line=model_line(m),
                     hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>F %{{y:.3f}} MN<extra></extra>",
                 ),
                 row=1,
@@ -319,7 +341,7 @@ def saddle_time_history_figure(ds: xr.Dataset) -> Any:
                     name=m,
                     legendgroup=m,
                     showlegend=False,
-                    line=dict(color=c),
+                    line=model_line(m),
                     hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>compression %{{y:.2f}} mm<extra></extra>",
                 ),
                 row=2,
@@ -339,7 +361,7 @@ def _envelope(fig: Any, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, model: st
         go.Scatter(
             x=x,
             y=lo,
-            line=dict(width=0.5, color=MODEL_COLORS.get(model, "gray")),
+            line=dict(model_line(model), width=0.8),
             legendgroup=f"{model}-env",
             showlegend=False,
             hovertemplate=f"{model} dynamic min<br>x %{{x:.1f}} m<br>%{{y:.2f}} {unit}<extra></extra>",
@@ -351,7 +373,7 @@ def _envelope(fig: Any, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, model: st
         go.Scatter(
             x=x,
             y=hi,
-            line=dict(width=0.5, color=MODEL_COLORS.get(model, "gray")),
+            line=dict(model_line(model), width=0.8),
             fill="tonexty",
             fillcolor=_FILL.get(model, "rgba(0,0,0,0.1)"),
             name=f"{model}, dynamic envelope",
@@ -370,8 +392,7 @@ def deflection_moment_figure(ds: xr.Dataset) -> Any:
     fig = subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     lcs = coord_labels(ds["load_case"])
     xc, xm = ds["x_cargo_m"].values, ds["x_moment_m"].values
-    for m in coord_labels(ds["model"]):
-        c = MODEL_COLORS.get(m, "black")
+    for m in model_order(coord_labels(ds["model"])):
         if "dynamic" in lcs:
             d = ds["cargo_deflection_m"].sel(load_case="dynamic", model=m).values * 1e3
             _envelope(fig, xc, d.min(axis=0), d.max(axis=0), m, 1, True, "mm")
@@ -385,7 +406,7 @@ def deflection_moment_figure(ds: xr.Dataset) -> Any:
                     y=st,
                     name=f"{m}, static",
                     legendgroup=f"{m}-st",
-                    line=dict(color=c, width=2.5),
+                    line=model_line(m),
                     hovertemplate=f"{m} static<br>x %{{x:.1f}} m<br>%{{y:.2f}} mm<extra></extra>",
                 ),
                 row=1,
@@ -399,7 +420,7 @@ def deflection_moment_figure(ds: xr.Dataset) -> Any:
                     name=f"{m}, static",
                     legendgroup=f"{m}-st",
                     showlegend=False,
-                    line=dict(color=c, width=2.5),
+                    line=model_line(m),
                     hovertemplate=f"{m} static<br>x %{{x:.1f}} m<br>%{{y:.2f}} MN m<extra></extra>",
                 ),
                 row=2,
@@ -474,7 +495,7 @@ def contact_timeline_figure(ds: xr.Dataset) -> Any:
 
 
 def stick_slip_figure(ds: xr.Dataset) -> Any | None:
-    """Axial stick-slip over one period: displacement [mm] and friction against its capacity [MN].
+    """Axial stick-slip over one period: displacement (mm, or µm while the cargo sticks) and friction against its capacity [MN].
 
     Returns ``None`` without the axial analysis (``seafastening.friction_coefficient`` not set).
     """
@@ -482,19 +503,20 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
         return None
     go = plotly_go()
     lc = "dynamic" if "dynamic" in [str(v) for v in ds["load_case"].values] else str(ds["load_case"].values[-1])
-    models = [str(v) for v in ds["model"].values]
+    models = model_order([str(v) for v in ds["model"].values])
     s = ds["period_fraction"].values
+    u_factor, u_unit = scaled_unit(ds["axial_displacement_m"].sel(load_case=lc).values.ravel(), "m")
     fig = subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
     for m in models:
         sel = ds.sel(load_case=lc, model=m)
-        c = MODEL_COLORS.get(m, "black")
+        line = model_line(m)
         fig.add_trace(
             go.Scatter(
                 x=s,
-                y=sel["axial_displacement_m"].values * 1e3,
-                name=f"{m}: slip {float(sel['slip_m']) * 1e3:.1f} mm per period",
-                line=dict(color=c),
-                hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>u %{{y:.2f}} mm<extra></extra>",
+                y=sel["axial_displacement_m"].values * u_factor,
+                name=f"{m}: slip {float(sel['slip_m']) * 1e3:.3g} mm per period",
+                line=line,
+                hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>u %{{y:.3g}} {u_unit}<extra></extra>",
             ),
             row=1,
             col=1,
@@ -504,7 +526,7 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
                 x=s,
                 y=-sel["friction_force_N"].values / 1e6,
                 name=f"{m}: friction (resisting u)",
-                line=dict(color=c),
+                line=line,
                 hovertemplate=f"{m}<br>t/T %{{x:.3f}}<br>%{{y:.3f}} MN<extra></extra>",
             ),
             row=2,
@@ -516,27 +538,28 @@ def stick_slip_figure(ds: xr.Dataset) -> Any | None:
                 go.Scatter(
                     x=s,
                     y=sign * cap,
-                    name=f"{m}: friction available",
+                    name=f"{m}: friction available (±)",
                     legendgroup=f"{m}-cap",
                     showlegend=show,
-                    line=dict(color=c, dash="dash", width=1),
+                    line=dict(color=line["color"], dash="dot", width=1),
                     hoverinfo="skip",
                 ),
                 row=2,
                 col=1,
             )
+    # while the cargo sticks the friction equals the load: the load thin, on top of both
     fig.add_trace(
         go.Scatter(
             x=s,
-            y=ds["axial_load_N"].sel(load_case=lc, model=models[-1]).values / 1e6,
+            y=ds["axial_load_N"].sel(load_case=lc, model=models[0]).values / 1e6,
             name="axial load F(t)",
-            line=dict(color="black"),
+            line=dict(color="black", width=1),
             hovertemplate="t/T %{x:.3f}<br>F %{y:.3f} MN<extra></extra>",
         ),
         row=2,
         col=1,
     )
-    fig.update_yaxes(title_text="axial displacement u [mm] (forward +)", row=1, col=1)
+    fig.update_yaxes(title_text=f"axial displacement u [{u_unit}] (forward +)", row=1, col=1)
     fig.update_yaxes(title_text="axial force [MN] (forward +)", row=2, col=1)
     fig.update_xaxes(title_text="period fraction t/T [-]", row=2, col=1)
     return style_figure(fig, f"Axial stick-slip over one wave period ({lc})", 620)

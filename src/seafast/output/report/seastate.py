@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import html
 import math
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -99,6 +100,40 @@ def _abs(ds: xr.Dataset, name: str) -> np.ndarray:
     return np.hypot(ds[f"{name}_real"].values, ds[f"{name}_imag"].values)
 
 
+def _spectrum_figure(ds: xr.Dataset, s: int, x: int) -> Any:
+    """The wave spectrum and the normalised response spectra of saddle ``s``'s force and the moment at ``x_moment_m[x]``."""
+    import plotly.graph_objects as go
+    from plotly.subplots import make_subplots
+
+    w = ds["omega_rad_s"].values
+    spec = make_subplots(specs=[[{"secondary_y": True}]])
+    spec.add_trace(go.Scatter(x=w, y=ds["wave_spectrum_m2_s_per_rad"].values, name="wave S(ω)", line={"color": "black"}))
+    # the two normalised response spectra nearly coincide: a wide light line under a thin dashed one
+    for name, idx, label, line in (
+        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}", {"color": "rgba(31,119,180,0.45)", "width": 6}),
+        (
+            "bending_moment_spectrum_Nm2_s_per_rad",
+            {"x_moment_m": x},
+            f"bending moment at x = {float(ds['x_moment_m'][x]):.1f} m",
+            {"color": "#d62728", "width": 1.5, "dash": "dash"},
+        ),
+    ):
+        r = ds[name].isel(idx).values
+        spec.add_trace(go.Scatter(x=w, y=r / max(float(r.max()), 1e-300), name=f"response: {label}", line=line), secondary_y=True)
+    spec.update_xaxes(title_text="wave frequency ω [rad/s]")
+    spec.update_yaxes(title_text="wave spectral density S [m² s/rad]", rangemode="tozero", secondary_y=False)
+    spec.update_yaxes(title_text="response spectrum / its peak [-]", range=[0, 1.05], dtick=0.2, secondary_y=True)
+    # the right-hand axis carries the response scale: the legend goes below the plot, clear of it
+    spec.update_layout(
+        height=460,
+        template="plotly_white",
+        title=str(ds.attrs.get("spectrum", "")),
+        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom", "x": 0.0},
+        margin={"b": 110},
+    )
+    return spec
+
+
 def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
     """Interactive figures: spectra, transfer functions."""
     import plotly.graph_objects as go
@@ -107,24 +142,12 @@ def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
     w = ds["omega_rad_s"].values
     s = int(np.argmax(ds["still_water_saddle_force_N"].values + ds["saddle_force_mpm_dynamic_N"].values))
     x = int(np.argmax(np.abs(ds["still_water_bending_moment_Nm"].values) + ds["bending_moment_mpm_dynamic_Nm"].values))
-    spec = make_subplots(specs=[[{"secondary_y": True}]])
-    spec.add_trace(go.Scatter(x=w, y=ds["wave_spectrum_m2_s_per_rad"].values, name="wave S(ω)", line={"color": "black"}))
-    for name, idx, label in (
-        ("saddle_force_spectrum_N2_s_per_rad", {"saddle": s}, f"saddle force, saddle {s}"),
-        ("bending_moment_spectrum_Nm2_s_per_rad", {"x_moment_m": x}, f"bending moment at x = {float(ds['x_moment_m'][x]):.1f} m"),
-    ):
-        r = ds[name].isel(idx).values
-        spec.add_trace(
-            go.Scatter(x=w, y=r / max(float(r.max()), 1e-300), name=f"response: {label}", line={"dash": "dash"}), secondary_y=True
-        )
-    spec.update_xaxes(title_text="wave frequency ω [rad/s]")
-    spec.update_yaxes(title_text="wave spectral density S [m² s/rad]", secondary_y=False)
-    spec.update_yaxes(title_text="response spectrum / its peak [-]", secondary_y=True)
-    spec.update_layout(height=420, template="plotly_white", title=str(ds.attrs.get("spectrum", "")))
+    spec = _spectrum_figure(ds, s, x)
     tf = make_subplots(rows=1, cols=2, subplot_titles=("saddle forces", "bending moment (largest total)"))
     force = _abs(ds, "saddle_force_transfer_N_per_m")
-    for i in range(force.shape[1]):
-        tf.add_trace(go.Scatter(x=w, y=force[:, i] / 1e6, name=f"saddle {i}"), row=1, col=1)
+    for i in range(force.shape[1]):  # mirror-image saddles coincide: a dash and width of their own
+        line = {"dash": ("solid", "dash", "dashdot", "dot")[i % 4], "width": max(3.0 - 0.7 * i, 1.0)}
+        tf.add_trace(go.Scatter(x=w, y=force[:, i] / 1e6, name=f"saddle {i}", line=line), row=1, col=1)
     tf.add_trace(
         go.Scatter(x=w, y=_abs(ds, "bending_moment_transfer_Nm_per_m")[:, x] / 1e6, name=f"M at x = {float(ds['x_moment_m'][x]):.1f} m"),
         row=1,
@@ -162,6 +185,8 @@ def _maxima_figure(ds: xr.Dataset) -> ReportFigure:
     fig = make_subplots(rows=1, cols=2, subplot_titles=("saddle force F", "bending moment M_b"))
     colours = {"linear": "#1f77b4", "nonlinear": "#d62728"}
     for col, q in ((1, "F_N"), (2, "M_b_Nm")):
+        # where the two models' maxima coincide: an open circle around a cross
+        markers = {"linear": {"symbol": "circle-open", "size": 11}, "nonlinear": {"symbol": "x-thin-open", "size": 8}}
         for model in ("linear", "nonlinear"):
             m = np.sort(ds[f"mc_{q}"].sel(model=model).values.astype(float))
             m = m[np.isfinite(m)]
@@ -172,7 +197,7 @@ def _maxima_figure(ds: xr.Dataset) -> ReportFigure:
                     y=p,
                     mode="markers",
                     name=f"{model}: per-realisation maxima",
-                    marker={"color": colours[model]},
+                    marker={"color": colours[model], "line": {"width": 2, "color": colours[model]}, **markers[model]},
                     showlegend=col == 1,
                 ),
                 row=1,
@@ -209,11 +234,10 @@ def _example_figure(ds: xr.Dataset) -> ReportFigure:
     fig = go.Figure()
     for i in range(ds.sizes["saddle"]):
         colour = f"hsl({(i * 110) % 360},60%,45%)"
-        for model, dash in (("linear", "dash"), ("nonlinear", "solid")):
+        # nonlinear wide and solid underneath, linear thin and dashed black on top: both seen where they agree
+        for model, line in (("nonlinear", {"color": colour, "width": 2.5}), ("linear", {"color": "black", "dash": "dash", "width": 1})):
             f = ds["mc_example_saddle_force_N"].sel(model=model).isel(saddle=i).values[window] / 1e6
-            fig.add_trace(
-                go.Scattergl(x=t, y=f, mode="lines", name=f"saddle {i}, {model}", line={"color": colour, "dash": dash, "width": 1})
-            )
+            fig.add_trace(go.Scattergl(x=t, y=f, mode="lines", name=f"saddle {i}, {model}", line=line))
         if lifted[:, i].any():
             fig.add_trace(
                 go.Scattergl(
@@ -231,7 +255,7 @@ def _example_figure(ds: xr.Dataset) -> ReportFigure:
         "fig-seastate-realisation",
         f"One realisation ({ds['mc_example_time_s'].attrs.get('long_name', '')})",
         fig,
-        "Saddle forces, nonlinear (solid) and linear (dashed), over 300 s around the lift-off nearest the largest "
+        "Saddle forces, nonlinear (solid, per saddle colour) and linear (dashed black), over 300 s around the lift-off nearest the largest "
         "linear force; lift-off marked on F = 0 (the whole record: seastate.nc, seastate_realisation.png).",
     )
 

@@ -1,7 +1,10 @@
 """Interactive (plotly) figures of a study: response surfaces or profiles, and the compliance map.
 
 Every builder is a pure function ``Dataset -> plotly Figure`` (``None`` when the study has too
-few varying axes); :func:`study_figures` collects them in report order.
+few varying axes); :func:`study_figures` collects them in report order. A study axis is drawn in
+the unit that suits its values (a saddle stiffness in GN/m, ticks 0.01 ... 10, never "1B"), one
+cell per computed point, the design limits along the cell edges between points within and beyond
+them (nothing interpolated between saddle counts).
 """
 
 from __future__ import annotations
@@ -14,7 +17,8 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import ReportFigure, base_value, coord_labels, design_limits, study_keys, total_response
-from seafast.output.report.figures import MODEL_COLORS, plotly_go, style_figure, subplots
+from seafast.output.report.figures import model_line, model_order, plotly_go, style_figure, subplots
+from seafast.output.style import cell_boundary, scaled_axis_label
 
 __all__ = ["study_surface_figure", "study_profile_figure", "compliance_map_figure", "study_figures"]
 
@@ -24,9 +28,15 @@ def _is_log(sds: xr.Dataset, key: str) -> bool:
     return str(sds[key].attrs.get("scale", "")) == "log"
 
 
-def _key_label(sds: xr.Dataset, key: str) -> str:
-    unit = str(sds[key].attrs.get("units", "1"))
-    return f"{key} [{'-' if unit in ('1', '') else unit}]"
+def _axis(sds: xr.Dataset, key: str) -> tuple[np.ndarray, float, str]:
+    """A study axis in its plotting unit: the scaled values, the factor applied, the axis title."""
+    values = np.asarray(sds[key].values, dtype=float)
+    factor, label = scaled_axis_label(key, values.tolist(), str(sds[key].attrs.get("units", "1")))
+    return values * factor, factor, label
+
+
+def _unit(label: str) -> str:
+    return label.rsplit("[", 1)[-1].rstrip("]")
 
 
 def _edges(values: np.ndarray, log: bool) -> np.ndarray:
@@ -66,10 +76,10 @@ def _study_view(sds: xr.Dataset, keep: int) -> tuple[xr.Dataset, list[str], dict
 def _axis_ticks(sds: xr.Dataset, key: str) -> dict[str, Any]:
     """Axis options for a study key: log type, and ticks at the values of a short integer axis."""
     values = np.asarray(sds[key].values)
-    if _is_log(sds, key):
-        return {"type": "log"}
+    if _is_log(sds, key):  # decades only, as plain numbers of the scaled unit (0.01, 0.1, 1, 10)
+        return {"type": "log", "dtick": 1, "exponentformat": "none"}
     if values.dtype.kind in "iu" and values.size <= 15:
-        return {"type": "linear", "tickmode": "array", "tickvals": values.tolist()}
+        return {"type": "linear", "tickmode": "array", "tickvals": _axis(sds, key)[0].tolist()}
     return {"type": "linear"}
 
 
@@ -103,7 +113,7 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
     go = plotly_go()
     ykey, xkey = axes[0], axes[1]
     total = total_response(view).transpose(ykey, xkey, ...)
-    x, y = view[xkey].values.astype(float), view[ykey].values.astype(float)
+    (x, fx, xlabel), (y, fy, ylabel) = _axis(view, xkey), _axis(view, ykey)
     xlog, ylog = _is_log(view, xkey), _is_log(view, ykey)
     xe, ye = _edges(x, xlog), _edges(y, ylog)
     ref_model = "nonlinear" if "nonlinear" in coord_labels(total["model"]) else model
@@ -122,35 +132,31 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
                 z=z,
                 colorscale="Viridis",
                 colorbar=dict(x=dom[1] + 0.005, thickness=12, len=0.9, title=dict(text=unit, side="right")),
-                hovertemplate=f"{xkey} %{{x:.4g}}<br>{ykey} %{{y:.4g}}<br>{title} %{{z:.3f}} {unit}<extra>{model}</extra>",
+                hovertemplate=(
+                    f"{xkey} %{{x:.4g}} {_unit(xlabel)}<br>{ykey} %{{y:.4g}} {_unit(ylabel)}<br>{title} %{{z:.3f}} {unit}"
+                    f"<extra>{model}</extra>"
+                ),
             ),
             row=1,
             col=i,
         )
-        if name in lim and np.isfinite(z).any() and np.nanmin(z) < lim[name] * scale < np.nanmax(z):
-            fig.add_trace(
-                go.Contour(
-                    x=x,
-                    y=y,
-                    z=z,
-                    contours=dict(
-                        start=lim[name] * scale,
-                        end=lim[name] * scale,
-                        size=1,
-                        coloring="none",
-                        showlabels=True,
-                        labelfont=dict(color="#d62728"),
+        if name in lim:
+            bx_, by_ = cell_boundary(xe, ye, np.nan_to_num(z, nan=-np.inf) > lim[name] * scale)
+            if bx_:
+                fig.add_trace(
+                    go.Scatter(
+                        x=bx_,
+                        y=by_,
+                        mode="lines",
+                        line=dict(color="#d62728", width=2.5, dash="dash"),
+                        name="design limit (between the points within and beyond)",
+                        legendgroup="limit",
+                        showlegend=i == 1,
+                        hoverinfo="skip",
                     ),
-                    line=dict(color="#d62728", width=2, dash="dash"),
-                    showscale=False,
-                    name="design limit",
-                    legendgroup="limit",
-                    showlegend=i == 1,
-                    hoverinfo="skip",
-                ),
-                row=1,
-                col=i,
-            )
+                    row=1,
+                    col=i,
+                )
         if contact is not None and contact.any():
             fig.add_trace(
                 go.Scatter(
@@ -166,7 +172,7 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
                 row=1,
                 col=i,
             )
-        bx, by = base_value(view, xkey), base_value(view, ykey)
+        bx, by = base_value(view, xkey) * fx, base_value(view, ykey) * fy
         if math.isfinite(bx) and math.isfinite(by):
             fig.add_trace(
                 go.Scatter(
@@ -182,8 +188,8 @@ def study_surface_figure(sds: xr.Dataset, model: str = "nonlinear") -> Any | Non
                 row=1,
                 col=i,
             )
-        fig.update_xaxes(title_text=_key_label(view, xkey), **_axis_ticks(view, xkey), row=1, col=i)
-        fig.update_yaxes(title_text=_key_label(view, ykey) if i == 1 else None, **_axis_ticks(view, ykey), row=1, col=i)
+        fig.update_xaxes(title_text=xlabel, **_axis_ticks(view, xkey), row=1, col=i)
+        fig.update_yaxes(title_text=ylabel if i == 1 else None, **_axis_ticks(view, ykey), row=1, col=i)
     style_figure(fig, f"Study {sds.attrs.get('study', '')}: {model} model, total (dynamic) response{_held_text(held)}", 560)
     return _bottom_legend(fig, 560)
 
@@ -197,7 +203,7 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
     key = axes[0] if axes else keys[0]
     go = plotly_go()
     total = total_response(view)
-    x = view[key].values.astype(float)
+    x, fx, xlabel = _axis(view, key)
     lim = design_limits(sds)
     fig = subplots(rows=1, cols=3, horizontal_spacing=0.08, subplot_titles=[f"{t} [{u}]" for _, t, _, u in _STUDY_QUANTITIES])
     contact = (
@@ -206,7 +212,7 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
         else None
     )
     for i, (name, _title, scale, unit) in enumerate(_STUDY_QUANTITIES, start=1):
-        for m in coord_labels(total["model"]):
+        for m in model_order(coord_labels(total["model"])):
             fig.add_trace(
                 go.Scatter(
                     x=x,
@@ -215,8 +221,8 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
                     name=m,
                     legendgroup=m,
                     showlegend=i == 1,
-                    line=dict(color=MODEL_COLORS.get(m, "black"), dash="dash" if m == "linear" else "solid"),
-                    hovertemplate=f"{key} %{{x:.4g}}<br>%{{y:.3f}} {unit}<extra>{m}</extra>",
+                    line=model_line(m),
+                    hovertemplate=f"{key} %{{x:.4g}} {_unit(xlabel)}<br>%{{y:.3f}} {unit}<extra>{m}</extra>",
                 ),
                 row=1,
                 col=i,
@@ -239,10 +245,10 @@ def study_profile_figure(sds: xr.Dataset) -> Any | None:
                 row=1,
                 col=i,
             )
-        b = base_value(view, key)
+        b = base_value(view, key) * fx
         if math.isfinite(b):
             fig.add_vline(x=b, line=dict(color="black", width=1), row=1, col=i)
-        fig.update_xaxes(title_text=_key_label(view, key), **_axis_ticks(view, key), row=1, col=i)
+        fig.update_xaxes(title_text=xlabel, **_axis_ticks(view, key), row=1, col=i)
     fig.update_yaxes(title_text="total (dynamic) response", row=1, col=1)
     style_figure(
         fig,
@@ -280,14 +286,15 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
     cat = verdict("linear").astype(int) + 2 * verdict("nonlinear").astype(int)
     names = ["complies with neither", "linear model only", "nonlinear model only", "both models"]
     colors = ["#d9d9d9", "#fdb863", "#80cdc1", "#1a9850"]
-    x = view[xkey].values.astype(float)
+    x, fx, xlabel = _axis(view, xkey)
     xe = _edges(x, _is_log(view, xkey))
+    fy = 1.0
     if ykey is None:
         cat = cat[None, :]
         ye, yv, ylabel = np.array([0.0, 1.0]), np.array([0.5]), ""
     else:
-        yv = view[ykey].values.astype(float)
-        ye, ylabel = _edges(yv, _is_log(view, ykey)), _key_label(view, ykey)
+        yv, fy, ylabel = _axis(view, ykey)
+        ye = _edges(yv, _is_log(view, ykey))
     scale = []
     for i, c in enumerate(colors):
         scale += [[i / 4, c], [(i + 1) / 4, c]]
@@ -304,7 +311,7 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
             ygap=1,
             text=text,
             colorbar=dict(tickvals=[0.5, 1.5, 2.5, 3.5], ticktext=names, thickness=14),
-            hovertemplate="%{x:.4g}, %{y:.4g}<br>%{text}<extra></extra>",
+            hovertemplate=f"%{{x:.4g}} {_unit(xlabel)}, %{{y:.4g}} {_unit(ylabel) if ykey else ''}<br>%{{text}}<extra></extra>",
         )
     )
     if "error" in view:
@@ -317,7 +324,7 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
                 go.Scatter(x=x[xx], y=yv[yy], mode="markers", marker=dict(symbol="x", size=10, color="black"), name="evaluation failed")
             )
     if ykey is not None:
-        bx, by = base_value(view, xkey), base_value(view, ykey)
+        bx, by = base_value(view, xkey) * fx, base_value(view, ykey) * fy
         if math.isfinite(bx) and math.isfinite(by):
             fig.add_trace(
                 go.Scatter(
@@ -328,7 +335,7 @@ def compliance_map_figure(sds: xr.Dataset) -> Any | None:
                     marker=dict(symbol="star", size=16, color="white", line=dict(color="black", width=1.5)),
                 )
             )
-    fig.update_xaxes(title_text=_key_label(view, xkey), **_axis_ticks(view, xkey))
+    fig.update_xaxes(title_text=xlabel, **_axis_ticks(view, xkey))
     fig.update_yaxes(title_text=ylabel, showticklabels=ykey is not None, **(_axis_ticks(view, ykey) if ykey is not None else {}))
     lim = design_limits(sds)
     style_figure(
