@@ -76,7 +76,7 @@ def _runs(keys: NDArray) -> list[tuple[int, int, int]]:
 _STYLES = {  # stability -> format, colour, legend label
     Stability.STABLE: ("-", "k", "nonlinear, stable"),
     Stability.UNSTABLE: ("--", "tab:red", "nonlinear, unstable (Floquet multiplier > 1)"),
-    Stability.MARGINAL: ("-", "tab:orange", "nonlinear, marginal (multiplier within the fold's tolerance of 1)"),
+    Stability.MARGINAL: ("-", "tab:orange", "nonlinear, marginal (at a fold)"),
 }
 _ORDER = tuple(_STYLES)
 
@@ -85,16 +85,16 @@ def _branch(ax: plt.Axes, table: SweepTable, values: NDArray) -> None:
     """The nonlinear branch by stability (faded beyond the meaningful range); folds as triangles, too few harmonics as crosses."""
     omega, valid = table.omega_rad_s, table.valid
     stability = np.array([_ORDER.index(v) for v in table.stability], dtype=int)
-    labelled: set[tuple[int, bool]] = set()
+    labelled: set[int] = set()
     for start, stop, key in _runs(2 * stability + valid.astype(int)):
         style = (key // 2, bool(key % 2))
         ls, colour, label = _STYLES[_ORDER[style[0]]]
-        if not style[1]:
-            label += ", beyond the meaningful range"
         seg = slice(max(start - 1, 0), stop)  # joined to the previous run
-        alpha = 1.0 if style[1] else 0.3
-        ax.plot(omega[seg], values[seg], ls=ls, color=colour, lw=1.3, alpha=alpha, label=None if style in labelled else label)
-        labelled.add(style)
+        alpha = 1.0 if style[1] else 0.3  # faded beyond the meaningful range (one legend entry, see _legend)
+        ax.plot(omega[seg], values[seg], ls=ls, color=colour, lw=1.3, alpha=alpha, label=None if style[0] in labelled else label)
+        labelled.add(style[0])
+    if not valid.all():
+        ax.plot([], [], color="0.6", lw=1.3, alpha=0.4, label="faded: beyond the meaningful range")
     f = table.fold
     if np.any(f):
         ax.plot(omega[f], values[f], "^", color="tab:orange", ms=7, label="fold")
@@ -136,8 +136,7 @@ def structural_figure(table: SweepTable, model: Any, acceleration_limit_rad_s: f
     else:
         side = "above" if natural[0] > omega.max() else "outside"
         lines = f"natural frequencies on bilateral saddles {side} the sweep (the first {natural[0]:.3g} rad/s)"
-    axes[0].legend(fontsize=8, loc="best")
-    axes[1].legend(fontsize=8, loc="best")
+    _legend(fig, axes)
     axes[0].set_title(
         "Structural frequency response: the case's deck and rigid-body amplitudes held\n"
         + lines
@@ -145,7 +144,17 @@ def structural_figure(table: SweepTable, model: Any, acceleration_limit_rad_s: f
         fontsize=10,
     )
     axes[-1].set_xlabel("excitation frequency omega [rad/s]")
+    fig.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
     return fig
+
+
+def _legend(fig: plt.Figure, axes: Any) -> None:
+    """One legend for all panels, below them (inside, it covers the branch)."""
+    entries: dict[str, Any] = {}
+    for ax in axes:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            entries.setdefault(label, handle)
+    fig.legend(list(entries.values()), list(entries), loc="lower center", ncol=3, fontsize=7, frameon=False)
 
 
 def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
@@ -179,8 +188,7 @@ def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
                 zorder=0,
                 label=f"breaking waves (H / lambda > 1/{1 / table.limits.breaking_steepness:.0f})",
             )
-    axes[0].legend(fontsize=8)
-    axes[2].legend(fontsize=8)
+    _legend(fig, axes)
     top = axes[0].secondary_xaxis("top", functions=(lambda w: 2 * np.pi / np.maximum(w, 1e-9), lambda T: 2 * np.pi / np.maximum(T, 1e-9)))
     periods = np.array([40, 30, 20, 15, 12, 10, 8, 7, 6, 5, 4, 3.5, 3, 2.5, 2])
     lo, hi = 2 * np.pi / omega.max(), 2 * np.pi / omega.min()
@@ -189,11 +197,11 @@ def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
     amplitude = float(wave.wave_amplitude_m[0]) if wave.wave_amplitude_m.size else float("nan")
     axes[0].set_title(f"Response to regular head waves of amplitude {amplitude:g} m, per metre of wave amplitude (RAOs)", fontsize=10)
     axes[-1].set_xlabel("wave frequency omega [rad/s]")
+    fig.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
     return _save(fig, path)
 
 
 def _save(fig: plt.Figure, path: Path) -> Path:
-    fig.tight_layout()
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
     return path
