@@ -107,8 +107,13 @@ def test_the_deck_table_sweep_passes_both_folds_and_returns_to_the_linear_branch
     i_up, i_down = folds  # the lower branch ends at a maximum of omega; the upper starts at a minimum
     w_up, w_down = t.omega_rad_s[i_up], t.omega_rad_s[i_down]
     assert 4.4 < w_down < w_up < 5.3, figures  # softening: the resonance leans to lower frequencies
-    # the folds are located (the extreme of omega along the branch), and resolved: one turn each, no zigzag
-    assert b.at_fold[folds].all() and [len(c.turns) for c in t.folds] == [1, 1], figures
+    # the folds are located (the extreme of omega along the branch) and resolved: whatever zigzag the sampled
+    # contact leaves lies within 2e-4 of the fold's frequency (at N = 512 none, or 2e-5 in one of six round-off
+    # variants; N = 128 zigzags over 1.5e-3)
+    assert b.at_fold[folds].all(), figures
+    for c in t.folds:
+        turns = b.omega_rad_s[list(c.turns)]
+        assert np.ptp(np.append(turns, b.omega_rad_s[c.index])) < 2e-4 * b.omega_rad_s[c.index], figures
     w = t.omega_rad_s
     assert w[i_up] > max(w[i_up - 1], w[i_up + 1]) and w[i_down] < min(w[i_down - 1], w[i_down + 1]), figures
     assert_the_resonance_s_stability(t, figures)
