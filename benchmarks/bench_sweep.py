@@ -63,7 +63,7 @@ def hbm_median_ms(result, omega: float) -> float:
     H = int(branch.options["harmonics"])
     i = int(np.argmin(np.abs(branch.omega_rad_s - omega)))
     start = harmonics_to_time(real_to_complex_harmonics(branch.compression_harmonics_m[max(i - 1, 0)]), 128)
-    options = hbm_options(case, harmonics=H, formulation="condensed", solver="newton")
+    options = hbm_options(case, harmonics=H, time_samples=int(branch.options["time_samples"]), formulation="condensed", solver="newton")
     return timed(lambda: solve_hbm(model, excitation, options, initial_compression_m=start), 15)[1]
 
 
@@ -98,7 +98,8 @@ def main() -> None:
                 f"{name}: {n} points in {total:.2f} s ({per_point_ms:.1f} ms a point; the table {1e3 * table_s / n:.1f} ms of it); "
                 f"one warm-started HBM solve {hbm_ms:.2f} ms; a point costs {per_point_ms / hbm_ms:.1f} solves; "
                 f"folds at {np.round(result.table.fold_omegas_rad_s, 4).tolist()} rad/s; "
-                f"{int((~result.table.stable).sum())} unstable points"
+                f"{sum(v.value == 'unstable' for v in result.table.stability)} unstable and "
+                f"{int(result.table.marginal.sum())} marginal points"
             )
             figures.update(
                 {

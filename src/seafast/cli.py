@@ -272,7 +272,7 @@ def _warn_validity(result: CaseResult) -> bool:
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
-    from seafast.output.sweep import format_sweep_summary, range_warning, write_sweep_outputs
+    from seafast.output.sweep import fold_warning, format_sweep_summary, range_warning, truncation_warning, write_sweep_outputs
     from seafast.sweeps import SweepKind, frequency_sweep
 
     if not all(map(math.isfinite, (args.omega_min, args.omega_max))) or not (0 < args.omega_min < args.omega_max):
@@ -295,9 +295,9 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         for line in format_sweep_summary(result):
             print(line)
         print(f"first natural frequency on bilateral saddles {w1:.3g} rad/s; wrote {', '.join(str(p) for p in paths)}")
-    warning = range_warning(result)
-    if warning is not None:
-        print(f"seafast: warning: {warning}", file=sys.stderr)
+    for warning in (range_warning(result), truncation_warning(result), fold_warning(result)):
+        if warning is not None:
+            print(f"seafast: warning: {warning}", file=sys.stderr)
     if not result.converged:
         print("seafast: warning: some branch points did NOT converge (converged=false in frequency_response.csv)", file=sys.stderr)
     return EXIT_OK if result.converged else EXIT_NOT_CONVERGED

@@ -48,11 +48,16 @@ from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
 from seafast.solvers.continuation import DEFAULT_HARMONICS, frequency_response
 from seafast.solvers.hbm import condensed_operators, solve_condensed
+from seafast.solvers.hbm.options import samples_for
 
-__all__ = ["SWEEP_HARMONICS", "SweepKind", "SweepResult", "frequency_sweep", "wave_excitation"]
+__all__ = ["SWEEP_HARMONICS", "SWEEP_MIN_TIME_SAMPLES", "SweepKind", "SweepResult", "frequency_sweep", "wave_excitation"]
 
 SWEEP_HARMONICS = DEFAULT_HARMONICS
 """H (10) of a sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
+
+SWEEP_MIN_TIME_SAMPLES = 512
+"""AFT samples N of a sweep when the case leaves ``solver.time_samples`` unset (at least ``samples_for(H)``):
+with fewer, the sampled contact set's changes make the branch zigzag in omega at a fold (``docs/sweeps.md``)."""
 
 _GRID_STEP_RAD_S = 0.005  # spacing of the hull transfer-function grid of the wave sweep
 _GRID_MARGIN = 0.05  # the grid reaches this share of the span beyond each end (corrector excursions)
@@ -217,8 +222,9 @@ def frequency_sweep(
     model = build_model(case)
     # continuation runs on the condensed system with Newton correctors at a fixed H
     opts = hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    if opts.harmonics is None:
-        opts = opts.with_harmonics(SWEEP_HARMONICS)
+    H = SWEEP_HARMONICS if opts.harmonics is None else int(opts.harmonics)
+    # the case's N if it sets one, else at least SWEEP_MIN_TIME_SAMPLES (the sampled contact resolves the folds)
+    opts = opts.with_harmonics(H, case.solver.time_samples or max(SWEEP_MIN_TIME_SAMPLES, samples_for(H)))
     w_lo, w_hi = sorted((float(omega_start_rad_s), float(omega_end_rad_s)))
     stop_when: Callable[[float, NDArray[np.float64]], bool] | None = None
     limit_rad_s: float | None = None

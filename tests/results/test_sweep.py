@@ -1,4 +1,5 @@
-"""The sweep table's helpers: exact extremes of a harmonic series, fold detection, range limits."""
+"""The sweep table's helpers: exact extremes of a harmonic series, fold detection, the stability tolerance and
+verdicts, range limits."""
 
 from __future__ import annotations
 
@@ -8,7 +9,9 @@ import pytest
 from seafast.fourier import harmonics_to_time
 from seafast.results.sweep import significant_folds
 from seafast.results.sweep_range import RangeLimits, time_extremes
+from seafast.results.sweep_stability import FoldCluster, classify_stability, fold_clusters, stability_tolerances
 from seafast.solvers.branch import FrequencyResponseBranch
+from seafast.solvers.floquet import STABILITY_TOLERANCE, Stability
 
 
 def test_time_extremes_of_one_harmonic_are_exact_and_of_several_sampled_finely():
@@ -60,11 +63,29 @@ def test_folds_keep_real_turns_and_merge_the_zigzags_of_a_sharp_fold():
     folds = significant_folds(b)
     figures = f"raw turns at {b.turning_omegas_rad_s}; folds at {b.omega_rad_s[folds]}"
     assert b.omega_rad_s[folds] == pytest.approx([2.0, 1.4990]), figures  # the fold at the extreme omega of its zigzag
+    # the zigzag's five turns are the second fold's
+    assert [len(c.turns) for c in fold_clusters(b)] == [1, 5] and [c.maximum for c in fold_clusters(b)] == [True, False]
     # a pair of turns as close in omega but with a different response is a real fold pair (grazing), kept
     span2 = list(span)
     for i in range(31, 37):
         span2[i] = 1.5 + 0.1 * (i - 31)
     assert significant_folds(_branch(omega, span2)).size == 6
+
+
+def test_a_point_is_decided_within_the_deviation_of_its_neighbouring_confirmed_folds():
+    folds = (
+        FoldCluster(10, (10,), True, 0.004),
+        FoldCluster(20, (20,), False, 0.02),
+        FoldCluster(35, (35,), True, 0.6),  # no multiplier near +1: not a fold of the orbits, sets no tolerance
+    )
+    assert [c.confirmed for c in folds] == [True, True, False] and not FoldCluster(1, (1,), True).confirmed  # NaN: unknown
+    tolerance = stability_tolerances(folds, 50)
+    expected = np.full(50, 0.02)
+    expected[:11] = 0.004  # before the first fold and at it: its own deviation; between two folds the larger
+    np.testing.assert_array_equal(tolerance, expected)
+    assert stability_tolerances((), 3).tolist() == [STABILITY_TOLERANCE] * 3
+    verdicts = classify_stability(np.array([0.99, 0.99, 1.015, 1.03, 1.0]), np.array([0.004, 0.02, 0.02, 0.02, 0.0]))
+    assert verdicts == (Stability.STABLE, Stability.MARGINAL, Stability.MARGINAL, Stability.UNSTABLE, Stability.MARGINAL)
 
 
 def test_range_limits_name_the_bad_field():

@@ -84,6 +84,23 @@ def wave_excitation(
     return HarmonicExcitation(omega_rad_s, xo, load, line, source="test: parabolic hog/sag (k=1,2) + heave/pitch inertia")
 
 
+def uniform_heave(model: StructuralModel, amplitude_m: float):
+    """``omega -> excitation``: the deck under every saddle moving up and down together (excites the cargo's bounce mode)."""
+
+    def at(omega: float) -> HarmonicExcitation:
+        deck = np.zeros((2, model.deck_dof_count), complex)
+        deck[1, 0::2] = amplitude_m
+        return HarmonicExcitation(
+            omega,
+            deck,
+            np.zeros((2, model.cargo_dof_count), complex),
+            np.zeros((2, model.cargo.element_count), complex),
+            "uniform deck heave",
+        )
+
+    return at
+
+
 def static_excitation(model: StructuralModel) -> HarmonicExcitation:
     return wave_excitation(model).static_part()
 

@@ -1,4 +1,4 @@
-"""Frequency-response continuation: quasi-static far below resonance, linear peak, nonlinear pass."""
+"""Frequency-response continuation: quasi-static far below resonance, linear peak, nonlinear pass, folds located."""
 
 from __future__ import annotations
 
@@ -6,12 +6,14 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
+from seafast.solvers.contact import ContactLaw
 from seafast.solvers.continuation import BranchEnd, frequency_response
+from seafast.solvers.floquet import floquet_multipliers, stability_system
 from seafast.solvers.hbm import HBMOptions
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.periodic import harmonics_to_time
 from seafast.solvers.references import solve_quasi_static
-from solver_cases import base_model, wave_excitation
+from solver_cases import base_model, uniform_heave, wave_excitation
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -79,6 +81,27 @@ def test_nonlinear_resonance_is_passed_with_lift_off():
     assert branch.end is BranchEnd.REACHED_END
     assert not branch.contact_preserved.all() and branch.max_gap_m.max() > 1e-3
     assert 4.5 < branch.peak_omega_rad_s < 5.6
+
+
+def test_a_fold_is_located_at_the_extreme_of_omega_where_a_multiplier_is_plus_one():
+    """The bounce resonance's softening fold pair (uniform 20 mm deck heave, 1 % saddles, H = 16): each turn of
+    the branch is a located point beyond both neighbours in omega, and there a Floquet multiplier is +1, as at a
+    fold (to 1e-3; measured 3e-5 and 3e-4, against 2e-2 and 1e-3 to 5e-2 at the steps' points either side)."""
+    model = base_model(element_length_m=2.0, stiffness_scale=0.01)
+    opts = HBMOptions(harmonics=16, time_samples=512, contact_law="exact", tolerance=1e-8)
+    branch = frequency_response(model, uniform_heave(model, 0.02), 4.8, 6.0, opts)
+    assert branch.end is BranchEnd.REACHED_END and branch.converged.all()
+    turns = branch.turning_indices
+    w = branch.omega_rad_s
+    system = stability_system(model, 6.0, 16)
+    exact = ContactLaw("exact")
+    mu = [floquet_multipliers(model, w[i], branch.compression_harmonics_m[i], exact, system=system).multipliers for i in turns]
+    distance = [float(np.min(np.abs(m - 1.0))) for m in mu]
+    figures = f"turns at {w[turns]} rad/s, located {np.nonzero(branch.at_fold)[0]}, multipliers {distance} from +1"
+    assert turns.size == 2 and 5.1 < w[turns[0]] < 5.4 and 4.9 < w[turns[1]] < w[turns[0]], figures
+    np.testing.assert_array_equal(np.nonzero(branch.at_fold)[0], turns, err_msg=figures)
+    assert w[turns[0]] > max(w[turns[0] - 1], w[turns[0] + 1]) and w[turns[1]] < min(w[turns[1] - 1], w[turns[1] + 1]), figures
+    assert max(distance) < 1e-3, figures
 
 
 def test_invalid_sweep_is_rejected():

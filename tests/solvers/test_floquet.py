@@ -14,14 +14,13 @@ import pytest
 from scipy.linalg import eig
 from threadpoolctl import threadpool_limits
 
-from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, real_to_complex_harmonics
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.continuation import frequency_response
 from seafast.solvers.floquet import floquet_multipliers, stability_system
 from seafast.solvers.hbm import HBMOptions, condensed_operators
 from seafast.solvers.transient import MarchState, march_period, modal_correction
-from solver_cases import base_model, wave_excitation
+from solver_cases import base_model, uniform_heave, wave_excitation
 
 EXACT = ContactLaw("exact")
 
@@ -44,23 +43,6 @@ def _spectrum(model, K):
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(M, K), -np.linalg.solve(M, D)]])
     lam = eig(A, right=False)
     return lam[np.argsort(-lam.real)]
-
-
-def uniform_heave(model, amplitude_m):
-    """The deck under every saddle moving up and down together (excites the cargo's bounce mode)."""
-
-    def at(omega):
-        deck = np.zeros((2, model.deck_dof_count), complex)
-        deck[1, 0::2] = amplitude_m
-        return HarmonicExcitation(
-            omega,
-            deck,
-            np.zeros((2, model.cargo_dof_count), complex),
-            np.zeros((2, model.cargo.element_count), complex),
-            "uniform deck heave",
-        )
-
-    return at
 
 
 def test_contact_kept_all_period_gives_the_linear_multipliers(soft_model):

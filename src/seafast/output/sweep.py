@@ -3,8 +3,10 @@
 The CSV has one row per branch point in continuation order (omega is not monotonic past a fold),
 the columns of :data:`seafast.results.sweep.STRUCTURAL_COLUMNS` or
 :data:`~seafast.results.sweep.WAVE_COLUMNS` (the first six are the columns the file always had).
-The figure draws stable parts solid and unstable parts dashed red, marks the folds, shades what
-lies beyond the physically meaningful range, and puts the linear model beside the nonlinear one.
+The figure draws stable parts solid, unstable parts dashed red and marginal ones (within the
+stability tolerance of a fold) orange, marks the folds and the points with too few harmonics,
+shades what lies beyond the physically meaningful range, and puts the linear model beside the
+nonlinear one.
 """
 
 from __future__ import annotations
@@ -22,8 +24,18 @@ from numpy.typing import NDArray
 
 from seafast.results.sweep import BASE_COLUMNS, SweepTable
 from seafast.results.sweep_range import RangeLimit
+from seafast.solvers.floquet import Stability
 
-__all__ = ["COLUMNS", "write_csv", "write_sweep_outputs", "format_sweep_summary", "range_warning"]
+__all__ = [
+    "COLUMNS",
+    "write_csv",
+    "structural_figure",
+    "write_sweep_outputs",
+    "format_sweep_summary",
+    "range_warning",
+    "truncation_warning",
+    "fold_warning",
+]
 
 COLUMNS = BASE_COLUMNS
 """The first columns of every ``frequency_response.csv`` (kept for the scripts that read them)."""
@@ -61,30 +73,39 @@ def _runs(keys: NDArray) -> list[tuple[int, int, int]]:
     return out
 
 
-_STYLES = {  # (stable, valid) -> format, alpha, legend label
-    (True, True): ("k-", 1.0, "nonlinear, stable"),
-    (False, True): ("r--", 1.0, "nonlinear, unstable (Floquet multiplier > 1)"),
-    (True, False): ("k-", 0.3, "stable, beyond the meaningful range"),
-    (False, False): ("r--", 0.3, "unstable, beyond the meaningful range"),
+_STYLES = {  # stability -> format, colour, legend label
+    Stability.STABLE: ("-", "k", "nonlinear, stable"),
+    Stability.UNSTABLE: ("--", "tab:red", "nonlinear, unstable (Floquet multiplier > 1)"),
+    Stability.MARGINAL: ("-", "tab:orange", "nonlinear, marginal (at a fold)"),
 }
+_ORDER = tuple(_STYLES)
 
 
 def _branch(ax: plt.Axes, table: SweepTable, values: NDArray) -> None:
-    """The nonlinear branch: stable runs solid black, unstable dashed red, faded beyond the meaningful range; folds as triangles."""
-    omega, stable, valid = table.omega_rad_s, table.stable, table.valid
-    labelled: set[tuple[bool, bool]] = set()
-    for start, stop, key in _runs(2 * stable.astype(int) + valid.astype(int)):
-        style = (bool(key // 2), bool(key % 2))
-        fmt, alpha, label = _STYLES[style]
+    """The nonlinear branch by stability (faded beyond the meaningful range); folds as triangles, too few harmonics as crosses."""
+    omega, valid = table.omega_rad_s, table.valid
+    stability = np.array([_ORDER.index(v) for v in table.stability], dtype=int)
+    labelled: set[int] = set()
+    for start, stop, key in _runs(2 * stability + valid.astype(int)):
+        style = (key // 2, bool(key % 2))
+        ls, colour, label = _STYLES[_ORDER[style[0]]]
         seg = slice(max(start - 1, 0), stop)  # joined to the previous run
-        ax.plot(omega[seg], values[seg], fmt, lw=1.3, alpha=alpha, label=None if style in labelled else label)
-        labelled.add(style)
+        alpha = 1.0 if style[1] else 0.3  # faded beyond the meaningful range (one legend entry, see _legend)
+        ax.plot(omega[seg], values[seg], ls=ls, color=colour, lw=1.3, alpha=alpha, label=None if style[0] in labelled else label)
+        labelled.add(style[0])
+    if not valid.all():
+        ax.plot([], [], color="0.6", lw=1.3, alpha=0.4, label="faded: beyond the meaningful range")
     f = table.fold
     if np.any(f):
         ax.plot(omega[f], values[f], "^", color="tab:orange", ms=7, label="fold")
+    few = table.too_few_harmonics
+    if np.any(few):
+        label = f"truncation error > {table.truncation_tolerance:g} (too few harmonics)"
+        ax.plot(omega[few], values[few], "x", color="0.4", ms=3, lw=0.6, label=label)
 
 
-def _structural_figure(table: SweepTable, model: Any, path: Path, acceleration_limit_rad_s: float | None) -> Path:
+def structural_figure(table: SweepTable, model: Any, acceleration_limit_rad_s: float | None) -> plt.Figure:
+    """The structural sweep's figure: saddle force, gap and bending moment against omega, natural frequencies marked."""
     omega = table.omega_rad_s
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
     order = np.argsort(omega)
@@ -105,19 +126,35 @@ def _structural_figure(table: SweepTable, model: Any, path: Path, acceleration_l
         for ax in axes:
             ax.axvspan(acceleration_limit_rad_s, float(omega.max()), color="0.88", zorder=0)
         axes[2].text(acceleration_limit_rad_s, axes[2].get_ylim()[1], " deck acceleration > g", va="top", fontsize=8, color="0.3")
-    for w in model.natural_frequencies_rad_s(True, 3):
-        if omega.min() <= w <= omega.max():
-            for ax in axes:
-                ax.axvline(w, color="tab:blue", ls="-.", lw=0.8, alpha=0.6)
-    axes[0].legend(fontsize=8, loc="best")
-    axes[1].legend(fontsize=8, loc="best")
+    natural = np.asarray(model.natural_frequencies_rad_s(True, 3), dtype=float)
+    inside = natural[(natural >= omega.min()) & (natural <= omega.max())]
+    for w in inside:
+        for ax in axes:
+            ax.axvline(w, color="tab:blue", ls="-.", lw=0.8, alpha=0.6)
+    if inside.size:
+        lines = "dash-dot: natural frequencies on bilateral saddles (" + ", ".join(f"{w:.3g}" for w in inside) + " rad/s)"
+    else:
+        side = "above" if natural[0] > omega.max() else "outside"
+        lines = f"natural frequencies on bilateral saddles {side} the sweep (the first {natural[0]:.3g} rad/s)"
+    _legend(fig, axes)
     axes[0].set_title(
         "Structural frequency response: the case's deck and rigid-body amplitudes held\n"
-        "dash-dot: natural frequencies on bilateral saddles" + ("; grey: deck accelerating faster than g" if shaded else ""),
+        + lines
+        + ("; grey: deck accelerating faster than g" if shaded else ""),
         fontsize=10,
     )
     axes[-1].set_xlabel("excitation frequency omega [rad/s]")
-    return _save(fig, path)
+    fig.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
+    return fig
+
+
+def _legend(fig: plt.Figure, axes: Any) -> None:
+    """One legend for all panels, below them (inside, it covers the branch)."""
+    entries: dict[str, Any] = {}
+    for ax in axes:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            entries.setdefault(label, handle)
+    fig.legend(list(entries.values()), list(entries), loc="lower center", ncol=3, fontsize=7, frameon=False)
 
 
 def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
@@ -151,8 +188,7 @@ def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
                 zorder=0,
                 label=f"breaking waves (H / lambda > 1/{1 / table.limits.breaking_steepness:.0f})",
             )
-    axes[0].legend(fontsize=8)
-    axes[2].legend(fontsize=8)
+    _legend(fig, axes)
     top = axes[0].secondary_xaxis("top", functions=(lambda w: 2 * np.pi / np.maximum(w, 1e-9), lambda T: 2 * np.pi / np.maximum(T, 1e-9)))
     periods = np.array([40, 30, 20, 15, 12, 10, 8, 7, 6, 5, 4, 3.5, 3, 2.5, 2])
     lo, hi = 2 * np.pi / omega.max(), 2 * np.pi / omega.min()
@@ -161,11 +197,11 @@ def _wave_figure(table: SweepTable, limit_N: float, path: Path) -> Path:
     amplitude = float(wave.wave_amplitude_m[0]) if wave.wave_amplitude_m.size else float("nan")
     axes[0].set_title(f"Response to regular head waves of amplitude {amplitude:g} m, per metre of wave amplitude (RAOs)", fontsize=10)
     axes[-1].set_xlabel("wave frequency omega [rad/s]")
+    fig.tight_layout(rect=(0.0, 0.07, 1.0, 1.0))
     return _save(fig, path)
 
 
 def _save(fig: plt.Figure, path: Path) -> Path:
-    fig.tight_layout()
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
     return path
@@ -182,21 +218,44 @@ def write_sweep_outputs(result: Any, out_dir: str | Path, *, plots: bool = True)
         if result.table.wave is not None:
             paths.append(_wave_figure(result.table, float(result.case.limits.max_saddle_force_N), png))
         else:
-            paths.append(_structural_figure(result.table, result.model, png, result.acceleration_limit_rad_s))
+            paths.append(_save(structural_figure(result.table, result.model, result.acceleration_limit_rad_s), png))
     return paths
 
 
 def format_sweep_summary(result: Any) -> list[str]:
     """Lines for people: how the branch ended, its folds and stability, the deck-acceleration limit, the peak RAO."""
     t, b = result.table, result.branch
+    unstable = sum(v is Stability.UNSTABLE for v in t.stability)
     lines = [
         (
             f"{result.kind.value} sweep {result.omega_start_rad_s:g} -> {result.omega_end_rad_s:g} rad/s: {b.message}; "
-            f"{t.omega_rad_s.size} points ({int(np.count_nonzero(~t.stable))} unstable), H = {b.options.get('harmonics')}"
+            f"{t.omega_rad_s.size} points ({unstable} unstable, {int(np.count_nonzero(t.marginal))} marginal), "
+            f"H = {b.options.get('harmonics')}, N = {b.options.get('time_samples')}"
         )
     ]
-    if t.fold_omegas_rad_s.size:
-        lines.append("folds at " + ", ".join(f"{w:.4g}" for w in t.fold_omegas_rad_s) + " rad/s (unstable between a pair)")
+    confirmed = [c for c in t.folds if c.confirmed]
+    if confirmed:
+        lines.append(
+            "folds at "
+            + ", ".join(f"{t.omega_rad_s[c.index]:.6g}" for c in confirmed)
+            + " rad/s (unstable between a pair); a multiplier there within "
+            + ", ".join(f"{c.distance_to_one:.2g}" for c in confirmed)
+            + " of +1: the stability tolerance"
+        )
+    zigzag = [c for c in t.folds if len(c.turns) > 1]
+    if zigzag:
+        lines.append(
+            "the sampled contact makes the branch zigzag over the fold at "
+            + ", ".join(f"{t.omega_rad_s[c.index]:.4g} ({len(c.turns)} turns)" for c in zigzag)
+            + f" rad/s: more AFT samples (solver.time_samples, now {b.options.get('time_samples')}) resolve it"
+        )
+    few = t.too_few_harmonics
+    if np.any(few):
+        i = int(np.argmax(t.truncation_error))
+        lines.append(
+            f"{int(few.sum())} of {few.size} points leave more than {t.truncation_tolerance:g} of a peak saddle force to the "
+            f"harmonics above H (worst {t.truncation_error[i]:.2g} at {t.omega_rad_s[i]:.4g} rad/s): too_few_harmonics=true"
+        )
     lim = result.acceleration_limit_rad_s
     if lim is not None and lim < max(result.omega_start_rad_s, result.omega_end_rad_s):
         beyond = "the sweep stopped there" if result.stopped_beyond_range else "points beyond it are flagged valid=false"
@@ -226,4 +285,39 @@ def range_warning(result: Any) -> str | None:
         f"{int(out.sum())} of {out.size} branch points, between {w.min():.4g} and {w.max():.4g} rad/s, lie beyond the "
         f"physically meaningful range ({', '.join(reasons)}; gap limit {t.limits.max_gap_m:g} m): flagged valid=false "
         "in frequency_response.csv, faded in the figure"
+    )
+
+
+def truncation_warning(result: Any) -> str | None:
+    """One sentence when points' truncation error exceeds the tolerance (how many, the worst, what to do), else None."""
+    t = result.table
+    few = t.too_few_harmonics
+    if not np.any(few):
+        return None
+    i = int(np.argmax(t.truncation_error))
+    w = t.omega_rad_s[few]
+    H = result.branch.options.get("harmonics")
+    return (
+        f"{int(few.sum())} of {few.size} branch points, between {w.min():.4g} and {w.max():.4g} rad/s, have too few harmonics: "
+        f"H = {H} leaves an estimated {t.truncation_error[i]:.2g} of a saddle's peak force out at {t.omega_rad_s[i]:.4g} rad/s "
+        f"(tolerance solver.truncation_tolerance = {t.truncation_tolerance:g}); flagged too_few_harmonics=true in "
+        "frequency_response.csv. The sweep runs at a fixed H: raise it (--set solver.harmonics=..., cost about H^3), "
+        "or check single frequencies with seafast run (adaptive H)"
+    )
+
+
+def fold_warning(result: Any) -> str | None:
+    """One sentence when folds are not confirmed by the Floquet multipliers (no multiplier near +1), else None."""
+    t = result.table
+    unconfirmed = [c for c in t.folds if not c.confirmed]
+    if not unconfirmed:
+        return None
+    where = ", ".join(
+        f"{t.omega_rad_s[c.index]:.6g} rad/s (nearest multiplier {c.distance_to_one:.2g} from +1, truncation error "
+        f"{t.truncation_error[c.index]:.2g})"
+        for c in unconfirmed
+    )
+    return (
+        f"the branch folds at {where} without a Floquet multiplier at +1, which a fold has: an artefact of the "
+        f"discretisation (H = {result.branch.options.get('harmonics')}), not a jump of the response; raise solver.harmonics"
     )

@@ -4,9 +4,11 @@ A :class:`~seafast.solvers.continuation.FrequencyResponseBranch` holds the saddl
 each point; this module turns them into the columns of ``frequency_response.csv``
 (:class:`SweepTable`):
 
-* the nonlinear maxima (saddle force, gap, cargo deflection, bending moment) and the linear
-  (bilateral-saddle) model's at the same frequency;
-* stability (:func:`seafast.solvers.floquet.floquet_multipliers`) and the folds;
+* the nonlinear maxima (saddle force, gap, cargo deflection in two frames, bending moment) and the
+  linear (bilateral-saddle) model's at the same frequency;
+* stability (:func:`seafast.solvers.floquet.floquet_multipliers`), decided within the tolerance the
+  folds give (:mod:`seafast.results.sweep_stability`), and the folds;
+* the truncation estimate, and whether it exceeds the case's ``truncation_tolerance``;
 * the physically meaningful range (:mod:`seafast.results.sweep_range`): the deck under the saddles
   accelerating faster than g, a detachment gap beyond a stated size, and, for the wave sweep, a
   wave steeper than the breaking limit;
@@ -14,6 +16,10 @@ each point; this module turns them into the columns of ``frequency_response.csv`
   largest rise above the still-water value per metre of wave amplitude.
 
 Units: SI; the unit is in every name. Nothing here prints or writes files.
+
+Size: the column lists, the table and the one pass over the branch points that fills it belong
+together (the verdicts need every point's multipliers first); the fold and stability rules, and the
+range checks, are their own modules.
 """
 
 from __future__ import annotations
@@ -28,10 +34,21 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
+from seafast.results.dataset import seafastening_baseline
 from seafast.results.sweep_range import RangeLimit, RangeLimits, deck_acceleration_m_per_s2, time_extremes
+from seafast.results.sweep_stability import (
+    FOLD_RESPONSE_CHANGE,
+    FOLD_SEPARATION,
+    FoldCluster,
+    classify_stability,
+    fold_clusters,
+    significant_folds,
+    stability_tolerances,
+    with_multipliers,
+)
 from seafast.solvers.branch import FrequencyResponseBranch
 from seafast.solvers.contact import ContactLaw
-from seafast.solvers.floquet import floquet_multipliers, stability_system
+from seafast.solvers.floquet import Stability, floquet_multipliers, stability_system
 from seafast.solvers.hbm import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import truncation_error
 
@@ -43,23 +60,17 @@ __all__ = [
     "significant_folds",
     "sweep_table",
     "BASE_COLUMNS",
+    "ADDED_COLUMNS",
     "STRUCTURAL_COLUMNS",
     "WAVE_COLUMNS",
 ]
-
-FOLD_SEPARATION = 0.005
-"""Two turns of a branch closer than this share of omega ... """
-
-FOLD_RESPONSE_CHANGE = 0.02
-"""... and whose peak-to-peak compressions differ by less than this share are one fold (the small
-zigzags of the discrete AFT branch at a sharp fold, :func:`significant_folds`)."""
 
 _MOMENT_POINTS_PER_ELEMENT = 2  # as results.nc's x_moment_m
 
 BASE_COLUMNS = ("omega_rad_s", "max_saddle_force_N", "max_gap_m", "max_cargo_deflection_m", "converged", "contact_preserved")
 """The columns ``frequency_response.csv`` always had (users' scripts read them)."""
 
-STRUCTURAL_COLUMNS = BASE_COLUMNS + (
+_STRUCTURAL_CORE = BASE_COLUMNS + (
     "max_bending_moment_Nm",
     "linear_max_saddle_force_N",
     "linear_max_bending_moment_Nm",
@@ -71,18 +82,27 @@ STRUCTURAL_COLUMNS = BASE_COLUMNS + (
     "valid",
     "beyond_range",
 )
+
+ADDED_COLUMNS = ("u_c_m", "stability", "stability_tolerance", "too_few_harmonics")
+"""The last columns of both files (after the wave sweep's: the earlier columns keep their positions)."""
+
+STRUCTURAL_COLUMNS = _STRUCTURAL_CORE + ADDED_COLUMNS
 """Columns of the structural sweep's ``frequency_response.csv``."""
 
-WAVE_COLUMNS = STRUCTURAL_COLUMNS + (
-    "wave_length_m",
-    "wave_amplitude_m",
-    "wave_steepness",
-    "heave_rao_m_per_m",
-    "pitch_rao_rad_per_m",
-    "saddle_force_rao_N_per_m",
-    "linear_saddle_force_rao_N_per_m",
-    "bending_moment_rao_Nm_per_m",
-    "linear_bending_moment_rao_Nm_per_m",
+WAVE_COLUMNS = (
+    _STRUCTURAL_CORE
+    + (
+        "wave_length_m",
+        "wave_amplitude_m",
+        "wave_steepness",
+        "heave_rao_m_per_m",
+        "pitch_rao_rad_per_m",
+        "saddle_force_rao_N_per_m",
+        "linear_saddle_force_rao_N_per_m",
+        "bending_moment_rao_Nm_per_m",
+        "linear_bending_moment_rao_Nm_per_m",
+    )
+    + ADDED_COLUMNS
 )
 """Columns of the wave sweep's ``frequency_response.csv``."""
 
@@ -126,8 +146,15 @@ class SweepTable:
 
     Attributes
     ----------
-    omega_rad_s, max_saddle_force_N, max_gap_m, max_cargo_deflection_m, converged, contact_preserved
+    omega_rad_s, max_saddle_force_N, max_gap_m, converged, contact_preserved
         As :class:`~seafast.solvers.continuation.FrequencyResponseBranch`.
+    max_cargo_deflection_m
+        Largest |z| over the period and the cargo nodes, z relative to the vessel's rigid-body frame
+        (the hull chord): the hull's deflection under the cargo included, static part included [m]
+        (``results.nc``'s ``cargo_deflection_vessel_frame_m``).
+    u_c_m
+        Largest |z - z_baseline| over the period and the cargo nodes, relative to the sea-fastening
+        baseline (:func:`seafast.results.dataset.seafastening_baseline`): ``seafast run``'s u_c [m].
     max_bending_moment_Nm
         Largest |bending moment| over the cargo and the period, nonlinear model [N m].
     linear_max_saddle_force_N, linear_max_bending_moment_Nm
@@ -136,14 +163,23 @@ class SweepTable:
         Largest vertical acceleration of the deck under a saddle over the period (rigid-body heave and
         pitch plus the hull's deflection) [m/s^2].
     stable
-        Whether the point's Floquet multipliers all lie inside the unit circle.
+        Whether the point is :attr:`Stability.STABLE` (false for unstable and marginal points).
     floquet_max_modulus
         The largest multiplier modulus [-] (> 1: unstable; crosses 1 at folds).
+    stability
+        The verdict of each point within its tolerance (:func:`seafast.results.sweep_stability.classify_stability`).
+    stability_tolerance
+        The tolerance on ``|mu| - 1`` of each point [-]: the deviation from 1 of the multiplier at its
+        neighbouring folds (:func:`seafast.results.sweep_stability.stability_tolerances`).
     fold
         True at the point where the branch turns at a fold (:func:`significant_folds`).
     truncation_error
         Estimated error of the peak saddle force from the harmonics above H, relative to the force
         scale (:func:`seafast.solvers.hbm.harmonics.truncation_error`, largest over the saddles) [-].
+    truncation_tolerance
+        The case's ``solver.truncation_tolerance`` [-]: above it a point has too few harmonics.
+    folds
+        The folds, with the discrete turns merged into each (:func:`seafast.results.sweep_stability.fold_clusters`).
     beyond_range
         The :class:`RangeLimit` s each point breaks (empty inside the meaningful range).
     limits
@@ -167,8 +203,23 @@ class SweepTable:
     fold: NDArray[np.bool_]
     truncation_error: NDArray[np.float64]
     beyond_range: tuple[tuple[RangeLimit, ...], ...]
+    u_c_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    stability: tuple[Stability, ...] = ()
+    stability_tolerance: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    truncation_tolerance: float = 1e-3
+    folds: tuple[FoldCluster, ...] = ()
     limits: RangeLimits = field(default_factory=RangeLimits)
     wave: WaveColumns | None = None
+
+    @property
+    def too_few_harmonics(self) -> NDArray[np.bool_]:
+        """Whether each point's truncation error exceeds :attr:`truncation_tolerance` (``seafast run``'s ``too_few_harmonics``)."""
+        return np.asarray(self.truncation_error > self.truncation_tolerance, dtype=bool)
+
+    @property
+    def marginal(self) -> NDArray[np.bool_]:
+        """Whether each point is :attr:`Stability.MARGINAL`."""
+        return np.array([v is Stability.MARGINAL for v in self.stability], dtype=bool)
 
     @property
     def valid(self) -> NDArray[np.bool_]:
@@ -186,6 +237,10 @@ class SweepTable:
             return ["+".join(r.value for r in reasons) for reasons in self.beyond_range]
         if name == "valid":
             return self.valid
+        if name == "stability":
+            return [v.value for v in self.stability]
+        if name == "too_few_harmonics":
+            return self.too_few_harmonics
         if self.wave is not None and name in WaveColumns.__dataclass_fields__:
             return np.asarray(getattr(self.wave, name))
         if name not in STRUCTURAL_COLUMNS:
@@ -196,45 +251,6 @@ class SweepTable:
     def fold_omegas_rad_s(self) -> NDArray[np.float64]:
         """Frequencies of the folds [rad/s], in branch order."""
         return self.omega_rad_s[self.fold]
-
-
-def significant_folds(
-    branch: FrequencyResponseBranch, min_separation: float = FOLD_SEPARATION, min_response_change: float = FOLD_RESPONSE_CHANGE
-) -> NDArray[np.intp]:
-    """Indices of the branch points at its folds (omega extremes), small zigzags merged.
-
-    The discrete branch turns wherever the tangent's omega component changes sign. At a sharp fold
-    the AFT's sampled contact can make it zigzag: two neighbouring turns are merged (closest first)
-    when they are closer than ``min_separation`` of omega *and* their peak-to-peak saddle
-    compressions differ by less than ``min_response_change`` (a real fold pair, e.g. at grazing,
-    changes the response); each remaining fold is put at the extreme omega between its neighbours.
-    """
-    turns = [int(i) for i in branch.turning_indices]
-    w = branch.omega_rad_s
-    if not turns:
-        return np.zeros(0, dtype=np.intp)
-    upper = {i: bool(branch.tangent_omega[i - 1] > 0) for i in turns}  # a maximum of omega
-    value = {i: float(v) for i, v in zip(turns, branch.turning_omegas_rad_s, strict=True)}
-    U = branch.compression_harmonics_m
-    span = np.ptp(np.einsum("th,nhs->nts", real_dft_matrices(U.shape[1] // 2, 128)[0], U), axis=1).max(axis=1)
-
-    def close(a: int, b: int) -> bool:
-        near = abs(value[a] - value[b]) < min_separation * value[a]
-        return near and abs(span[a] - span[b]) < min_response_change * max(span[a], span[b], 1e-300)
-
-    while len(turns) >= 2:
-        pairs = [j for j in range(len(turns) - 1) if close(turns[j], turns[j + 1])]
-        if not pairs:
-            break
-        j = min(pairs, key=lambda j: abs(value[turns[j]] - value[turns[j + 1]]))
-        del turns[j : j + 2]
-    out = []
-    bounds = [0] + turns + [w.size - 1]
-    for j, i in enumerate(turns):
-        lo, hi = bounds[j], bounds[j + 2]
-        seg = w[lo : hi + 1]
-        out.append(lo + int(np.argmax(seg) if upper[i] else np.argmin(seg)))
-    return np.asarray(out, dtype=np.intp)
 
 
 def _cargo_harmonics(ops: CondensedOperators, U: NDArray, law: ContactLaw, time_samples: int) -> NDArray[np.complex128]:
@@ -263,6 +279,13 @@ def _moment_harmonics(model: StructuralModel, displacement: NDArray, excitation:
     return bending_moment_line(
         beam.node_x_m, displacement[:n_k], beam.element_bending_stiffness_Nm2, None, line, _MOMENT_POINTS_PER_ELEMENT
     )[1]
+
+
+def _max_deflection_from_baseline(model: StructuralModel, excitation: HarmonicExcitation, displacement: NDArray, samples: int) -> float:
+    """``seafast run``'s u_c [m]: max |z - z_baseline| over the period and the cargo nodes, of cargo harmonics (H+1, n_c)."""
+    z = harmonics_to_time(displacement[:, 0::2], samples)
+    deck = harmonics_to_time(excitation.deck_displacement[:, model.saddle_deck_dof], samples)
+    return float(np.max(np.abs(z - seafastening_baseline(model, excitation, deck))))
 
 
 def _still_water(
@@ -314,7 +337,7 @@ def sweep_table(
     system = stability_system(model, float(np.max(branch.omega_rad_s)) if n else 1.0, H)
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     inverse, _ = real_dft_matrices(H, N)
-    names = ("moment", "lin_force", "lin_moment", "accel", "stable", "mu", "trunc", "f_rao", "lf_rao", "m_rao", "lm_rao")
+    names = ("moment", "u_c", "lin_force", "lin_moment", "accel", "mu", "to_one", "trunc", "f_rao", "lf_rao", "m_rao", "lm_rao")
     cols: dict[str, list[float]] = {name: [] for name in names}
     sw = (
         _still_water(model, excitation_at(float(branch.omega_rad_s[0])), law, np.asarray(still_water_compression_m)) if wave_sweep else None
@@ -325,18 +348,20 @@ def sweep_table(
         ex = excitation_at(w)
         ops = condensed_operators(model, ex, H)
         n_k = ex.harmonic_count
-        moment = _moments(model, _cargo_harmonics(ops, U, law, N), ex, N)  # nonlinear: on the HBM's samples, as seafast run
+        X = _cargo_harmonics(ops, U, law, N)
+        moment = _moments(model, X, ex, N)  # nonlinear: on the HBM's samples, as seafast run
         # the linear model lives on the excitation's harmonics: its extremes exactly
         lin_force = k_u * real_to_complex_harmonics(ops.linear_compression_m)[:n_k]
         lin_moment = _moment_harmonics(model, ops.linear_cargo_displacement, ex)
         accel = deck_acceleration_m_per_s2(model, ex)
         floquet = floquet_multipliers(model, w, U, law, system=system)
         cols["moment"].append(float(np.max(np.abs(moment))))
+        cols["u_c"].append(_max_deflection_from_baseline(model, ex, X, N))
         cols["lin_force"].append(float(np.max(time_extremes(lin_force)[0])))
         cols["lin_moment"].append(float(np.max(time_extremes(lin_moment)[1])))
         cols["accel"].append(accel)
-        cols["stable"].append(floquet.stable)
         cols["mu"].append(floquet.max_modulus)
+        cols["to_one"].append(float(np.min(np.abs(floquet.multipliers - 1.0), initial=np.inf)))
         cols["trunc"].append(float(np.max(truncation_error(model, w, U, law))))
         why = []
         if accel > limits.gravity_m_per_s2:
@@ -355,8 +380,12 @@ def sweep_table(
             if steepness > limits.breaking_steepness:
                 why.append(RangeLimit.WAVE_BREAKING)
         reasons.append(tuple(why))
+    clusters = with_multipliers(fold_clusters(branch), np.array(cols["to_one"], dtype=float))
     fold = np.zeros(n, dtype=bool)
-    fold[significant_folds(branch)] = True
+    fold[[c.index for c in clusters]] = True
+    mu = np.array(cols["mu"], dtype=float)
+    tolerance = stability_tolerances(clusters, n)
+    stability = classify_stability(mu, tolerance)
     wave = None
     if wave_sweep and rao_at is not None and wave_amplitude_m is not None:
         omegas = branch.omega_rad_s
@@ -384,11 +413,16 @@ def sweep_table(
         linear_max_saddle_force_N=np.array(cols["lin_force"]),
         linear_max_bending_moment_Nm=np.array(cols["lin_moment"]),
         max_deck_acceleration_m_per_s2=np.array(cols["accel"]),
-        stable=np.array(cols["stable"], dtype=bool),
-        floquet_max_modulus=np.array(cols["mu"]),
+        stable=np.array([v is Stability.STABLE for v in stability], dtype=bool),
+        floquet_max_modulus=mu,
         fold=fold,
         truncation_error=np.array(cols["trunc"]),
         beyond_range=tuple(reasons),
+        u_c_m=np.array(cols["u_c"]),
+        stability=stability,
+        stability_tolerance=tolerance,
+        truncation_tolerance=float(branch.options.get("truncation_tolerance", 1e-3)),
+        folds=clusters,
         limits=limits,
         wave=wave,
     )

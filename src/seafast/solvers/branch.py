@@ -60,9 +60,13 @@ class FrequencyResponseBranch:
         Saddle compressions of each point, real harmonic layout (n_points, 2H+1, n_s) [m].
     tangent_omega
         Omega component of the unit tangent at each point, in the scaled variables [-]: positive
-        where omega grows along the branch; its sign changes at a fold.
+        where omega grows along the branch (near a fold, of the piece of the piecewise-linear
+        sampled contact the point lies on: see :attr:`turning_indices`).
     residual_norm
         Relative residual of each point (max |R| over the compression scale) [-].
+    at_fold
+        Whether each point was located at a fold: where omega turned over two steps, the extreme of
+        omega along the branch between them (:func:`seafast.solvers.continuation.frequency_response`).
     """
 
     omega_rad_s: NDArray[np.float64]
@@ -78,6 +82,7 @@ class FrequencyResponseBranch:
     compression_harmonics_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 1, 1)))
     tangent_omega: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     residual_norm: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    at_fold: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
 
     @property
     def peak_omega_rad_s(self) -> float:
@@ -86,19 +91,18 @@ class FrequencyResponseBranch:
 
     @property
     def turning_indices(self) -> NDArray[np.intp]:
-        """Indices i where the branch turns between points i-1 and i (the tangent's omega component changes sign).
+        """Indices i of the points where the branch turns: omega_i lies beyond both omega_(i-1) and omega_(i+1).
 
-        Every such turn is a fold of the discrete branch; a fold of the response is where the
-        turn is (:attr:`turning_omegas_rad_s`).
+        Every such turn is a fold of the discrete branch (continuation locates it: ``at_fold``).
+        The points' omega decides, not the tangent's omega component: with the exact contact law the
+        sampled contact set changes along the branch, the residual is piecewise linear in the
+        compressions, and near a fold the tangent of the piece a point lies on can point the other way
+        than the branch does over a step.
         """
-        s = np.sign(self.tangent_omega)
-        return np.nonzero(s[1:] * s[:-1] < 0)[0] + 1
+        dw = np.diff(self.omega_rad_s)
+        return np.nonzero(dw[1:] * dw[:-1] < 0)[0] + 1
 
     @property
     def turning_omegas_rad_s(self) -> NDArray[np.float64]:
-        """Frequency of each turn [rad/s]: the extreme omega of the two points it lies between."""
-        i = self.turning_indices
-        w = self.omega_rad_s
-        # a turn from increasing to decreasing omega is a maximum of omega, and the reverse a minimum
-        upper = self.tangent_omega[i - 1] > 0
-        return np.where(upper, np.maximum(w[i - 1], w[i]), np.minimum(w[i - 1], w[i]))
+        """Frequency of each turn [rad/s]."""
+        return np.asarray(self.omega_rad_s[self.turning_indices], dtype=float)

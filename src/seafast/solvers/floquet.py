@@ -39,6 +39,7 @@ dimensionless. Nothing here prints or reads files.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 
 import numpy as np
 from numpy.typing import NDArray
@@ -52,6 +53,7 @@ from seafast.solvers.modal_correction import ModalCorrectionSystem, modal_correc
 
 __all__ = [
     "STABILITY_TOLERANCE",
+    "Stability",
     "FloquetMultipliers",
     "stability_system",
     "floquet_multipliers",
@@ -59,7 +61,22 @@ __all__ = [
 
 STABILITY_TOLERANCE = 1e-6
 """An orbit is called stable when its largest multiplier modulus is at most ``1 + STABILITY_TOLERANCE``
-(a neutral mode, e.g. a free rigid-body motion with every saddle detached, has a multiplier of exactly 1)."""
+(a neutral mode, e.g. a free rigid-body motion with every saddle detached, has a multiplier of exactly 1).
+It knows nothing of the orbit's discretisation: a sweep decides with the tolerance its folds give
+(:mod:`seafast.results.sweep_stability`), of which this is the floor."""
+
+
+class Stability(Enum):
+    """A periodic orbit's stability verdict, within a tolerance on its largest multiplier modulus ``|mu|``."""
+
+    STABLE = "stable"
+    """``|mu| < 1 - tolerance``: every perturbation decays."""
+    UNSTABLE = "unstable"
+    """``|mu| > 1 + tolerance``: a perturbation grows; the cargo leaves this orbit."""
+    MARGINAL = "marginal"
+    """``| |mu| - 1 | <= tolerance``: at a fold (or another bifurcation, or a neutral mode) to within what the
+    discretisation can tell."""
+
 
 _CUTOFF_FACTOR = 4.0  # modes kept up to this multiple of the n_s-th natural frequency (and of 2 H omega)
 _ROOT_SAMPLES = 64  # samples per harmonic when looking for the sign changes of a saddle's compression
