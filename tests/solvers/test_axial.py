@@ -352,7 +352,7 @@ def test_den_hartog_at_large_friction(beta, ratio):
     """Friction 0.45 to 0.6 of the force amplitude, still sliding all period (no stops, Den Hartog's
     motion without stops): the stuck start has a smaller residual than the frictionless one but is the
     wrong state; the HBM converges from the sliding start (describing function) or the
-    contact-stiffness continuation to the closed form within 2 % at H = 100 (1.4 % measured at most: the friction's reversals are
+    contact-stiffness continuation to the closed form within 2 % at H = 100 (1.1 % measured at most: the friction's reversals are
     resolved more slowly than at small friction), the time domain within 1e-4."""
     x0 = _den_hartog_amplitude(beta, ratio * 1e6)
     load = AxialLoad(beta, np.array([0.0, P0], dtype=complex))
