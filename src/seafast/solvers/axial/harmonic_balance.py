@@ -119,15 +119,14 @@ def _run(p: AxialProblem, start: str, X0: NDArray, options: AxialHBMOptions, fir
 def _continuation(p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, options: AxialHBMOptions) -> _Attempt | None:
     """Newton along a contact stiffness rising from ``m (H w)^2`` (no stick chatter) to ``k_t``, from the sliding start.
 
-    Steps of a factor 3, shortened (square root of the factor) where Newton fails, at most
-    :data:`_CONTINUATION_STEPS` solves.
+    Only where the cargo can slide all period (the sliding start exists): long stick phases defeat
+    it at every stiffness. Steps of a factor 3, shortened (square root of the factor) where Newton
+    fails, at most :data:`_CONTINUATION_STEPS` solves; none if the softest problem fails.
     """
     kt = restraint.cargo_mass_kg * (p.H * p.omega_rad_s) ** 2
     if not kt < p.kt:
         return None
-    q = AxialProblem(restraint, load, p.capacity, p.H, p.N, kt)
-    X = q.sliding_guess()
-    X = q.free_guess() if X is None else X
+    X = AxialProblem(restraint, load, p.capacity, p.H, p.N, kt).sliding_guess()
     if X is None:
         return None
     factor, target = 1.0, kt
@@ -139,6 +138,8 @@ def _continuation(p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, o
             if kt >= p.kt:
                 return _run(p, "contact-stiffness continuation", X, options)
             factor = 3.0 if factor == 1.0 else min(3.0, factor**1.5)
+        elif factor == 1.0:
+            return None  # the softest, regularised problem already fails
         else:
             factor = math.sqrt(factor)
             if factor < 1.05:

@@ -8,11 +8,15 @@ step ends and the scheme keeps its 4th order); the event ``u' = 0`` is located i
 on the cubic Hermite interpolant of the velocity, and there the cargo sticks if
 ``|F - r(u)| <= C`` and reverses otherwise. A stuck cargo breaks loose at the first instant
 ``|F(t) - r(u)| > C(t)``, located by Brent's method. Periods are integrated from the as-placed
-state (``u = u' = 0``, stuck) until the state at the period's start repeats. While the cargo
-walks (its start position converging geometrically as the lashings take the walk up), the start
-position is extrapolated to its limit (Aitken's delta-squared) every three periods: a shorter
-path, the same periodic state. A cargo that nothing restrains walks for ever: the message gives
-its drift per period. ``C(t)`` is the linear interpolation of the vertical solution's samples, as
+state (``u = u' = 0``, stuck) until the state at the period's start repeats and the distance
+still to go, extrapolated from the last two periods' changes (:func:`remaining_distance`), is
+within the tolerance too: a walk into shakedown converges like ``1/n``, and its last step is far
+smaller than the distance left. While the cargo walks, the start position is extrapolated to its
+limit: Aitken's delta-squared every three periods when the walk is geometric, the edge of the
+lock range (:func:`~seafast.solvers.axial.response.lock_range_m`) when it heads there at the
+rate of the ``1/n`` law (:class:`_Walk`): a shorter path, the same periodic state. The estimated
+distance left is reported (``residual_drift_m``). A cargo that nothing restrains walks for ever:
+the message gives its drift per period. ``C(t)`` is the linear interpolation of the vertical solution's samples, as
 in the harmonic balance.
 
 Independent of the harmonic balance (no harmonics, no AFT, no Jenkins spring): the reference the
