@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -129,14 +129,16 @@ def _continuation(p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, o
     X = AxialProblem(restraint, load, p.capacity, p.H, p.N, kt).sliding_guess()
     if X is None:
         return None
-    factor, target = 1.0, kt
+    factor, target, iterations = 1.0, kt, 0
     for _ in range(_CONTINUATION_STEPS):
         q = AxialProblem(restraint, load, p.capacity, p.H, p.N, target)
-        X_new, _, _, ok, _ = newton(q, X, p.capacity, options.tolerance, options.max_iterations)
+        X_new, _, its, ok, _ = newton(q, X, p.capacity, options.tolerance, options.max_iterations)
+        iterations += its
         if ok:
             X, kt = X_new, target
             if kt >= p.kt:
-                return _run(p, "contact-stiffness continuation", X, options)
+                last = _run(p, "contact-stiffness continuation", X, options)
+                return replace(last, iterations=iterations + last.iterations)
             factor = 3.0 if factor == 1.0 else min(3.0, factor**1.5)
         elif factor == 1.0:
             return None  # the softest, regularised problem already fails
