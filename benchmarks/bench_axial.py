@@ -7,7 +7,7 @@ sticks; 0.02: it slides metres per period; 0.05, just below the critical coeffic
 phases, solved by the time-domain reference), and the axial solvers alone on the base case's
 nonlinear contact forces. Prints the figures; the last line is ``key=value`` pairs: ``axial_ms``
 is what the axial analysis adds to the base case (mu = 0.3), ``axial_hbm_ms`` its two HBM solves
-(issue 16 target: the axial HBM adds at most 1 ms).
+(the target: the axial HBM adds at most 1 ms).
 """
 
 from __future__ import annotations

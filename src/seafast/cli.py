@@ -218,6 +218,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         for status in result.coupling.values():
             print(status.message)
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    if result.axial is not None:
+        for line in result.axial.warning_lines():
+            print(f"seafast: warning: {line}", file=sys.stderr)
     orbit = getattr(result.responses.get("nonlinear_dynamic"), "orbit", None)
     if orbit is not None and orbit.same_as_start is False:
         print(

@@ -140,6 +140,30 @@ class AxialRestraint:
         g, k = float(self.stopper_gap_m), float(self.stopper_stiffness_N_per_m)
         return lashing, k * (np.maximum(u - g, 0.0) + np.minimum(u + g, 0.0))
 
+    def displacement_range_m(self, low_N: float, high_N: float) -> tuple[float, float]:
+        """The displacements at which the lashings' and stoppers' force lies in ``[low_N, high_N]`` [m].
+
+        The force ``r(u)`` resisting ``u`` (:meth:`restoring_force_N`: ``k_a u`` plus the
+        stoppers') is continuous and non-decreasing, so ``{u : low <= r(u) <= high}`` is an
+        interval ``[u_low, u_high]`` (``u_low > u_high`` when it is empty; infinite ends where
+        nothing restrains the cargo that way: no lashings, no stoppers).
+        """
+        return self._inverse_restoring(float(low_N), lower=True), self._inverse_restoring(float(high_N), lower=False)
+
+    def _inverse_restoring(self, force_N: float, lower: bool) -> float:
+        """``min {u : r(u) >= f}`` (lower) or ``max {u : r(u) <= f}`` (upper) [m]."""
+        ka = float(self.lashing_axial_stiffness_N_per_m)
+        gap = math.inf if self.stopper_gap_m is None else float(self.stopper_gap_m)
+        if ka == 0.0 and (force_N == 0.0 or gap == math.inf):
+            if force_N == 0.0 and gap < math.inf:
+                return -gap if lower else gap  # the free play between the stoppers
+            # nothing restrains the cargo: r = 0 everywhere
+            inside = force_N <= 0.0 if lower else force_N >= 0.0
+            return (-math.inf if lower else math.inf) if inside else (math.inf if lower else -math.inf)
+        if abs(force_N) <= ka * gap:
+            return force_N / ka
+        return math.copysign(gap + (abs(force_N) - ka * gap) / (ka + float(self.stopper_stiffness_N_per_m)), force_N)
+
     def stopper_tangent_N_per_m(self, u_m: ArrayLike) -> NDArray[np.float64]:
         """d(stopper force)/du [N/m]: ``k_s`` where a stopper is engaged, else 0."""
         u = np.asarray(u_m, dtype=float)

@@ -9,28 +9,34 @@ harmonic balance, or by the rigid-Coulomb time-domain reference where the HBM do
 (long stick phases, docs/axial.md; the row's message says so) or when ``solver.method =
 time_domain``.
 The coupling is one way (the friction does not change the normal forces); its size is estimated
-per row (``friction_moment_saddle_force_change_N``).
+per row (``friction_moment_saddle_force_change_N``). Each row carries typed warnings
+(:class:`~seafast.solvers.axial.AxialWarning`): ``friction_carries_load`` where the friction
+carries more of the axial load than the lashings and stoppers, with what the lashings and
+stoppers alone would do (``frictionless_axial_force_N``, docs/axial.md#friction-credit).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 import xarray as xr
-from scipy.linalg import solveh_banded
 
 from seafast.config.schema import Case
 from seafast.excitation.axial import AxialLoad, axial_load_of
+from seafast.fourier import harmonics_to_time
 from seafast.model.axial import AxialRestraint
 from seafast.model.from_case import axial_restraint
 from seafast.model.structure import StructuralModel
+from seafast.results.axial_coupling import friction_moment_effect_N, saddle_moment_flexibility
 from seafast.results.timeseries import PeriodTimeSeries
 from seafast.solvers.axial import (
     AxialHBMOptions,
     AxialResponse,
+    AxialWarning,
     axial_time_samples,
     critical_friction_coefficient,
     solve_axial_hbm,
@@ -40,15 +46,19 @@ from seafast.solvers.axial import (
 
 __all__ = [
     "AXIAL_SUMMARY_COLUMNS",
+    "AXIAL_WARNINGS",
     "AxialCaseArrays",
     "run_axial_analysis",
     "axial_case_arrays",
-    "friction_moment_effect_N",
-    "saddle_moment_flexibility",
+    "frictionless_extremes",
+    "row_warnings",
 ]
 
 #: Columns ``summary.csv`` gains (after ``converged``) when the axial analysis runs.
-AXIAL_SUMMARY_COLUMNS = ("slip_m", "friction_utilisation", "axial_force_N")
+AXIAL_SUMMARY_COLUMNS = ("slip_m", "friction_utilisation", "axial_force_N", "axial_warnings")
+
+#: The typed axial warnings, in the order of the ``axial_warning`` coordinate of ``results.nc``.
+AXIAL_WARNINGS = tuple(w.value for w in AxialWarning)
 
 _LOAD_CASES = ("static", "dynamic")
 _MODELS = ("linear", "nonlinear")
@@ -74,7 +84,16 @@ _ROW_VARS: dict[str, tuple[str, str]] = {
         ),
         "N",
     ),
+    "frictionless_axial_force_N": (
+        "largest axial force of the lashings and stoppers without friction (what they alone would carry; inf: nothing restrains)",
+        "N",
+    ),
+    "frictionless_axial_displacement_m": ("largest axial displacement of the cargo without friction (inf: nothing restrains it)", "m"),
     "axial_residual_norm": ("axial solver residual (HBM: relative; time domain: last period change)", "1"),
+    "axial_residual_drift_m": (
+        "time domain: estimated distance of the state it stopped at from the periodic state (0 for the HBM)",
+        "m",
+    ),
     "axial_iterations": ("axial solver iterations (HBM: Newton; time domain: periods)", "1"),
 }
 
@@ -93,11 +112,43 @@ class AxialCaseArrays:
     messages: np.ndarray  # (2, 2) str
     friction_coefficient: np.ndarray  # (n_s,)
     attrs: dict[str, Any] = field(default_factory=dict)
+    warnings: np.ndarray = field(default_factory=lambda: np.zeros((2, 2, len(AXIAL_WARNINGS)), dtype=bool))  # (2, 2, n_w)
+
+    def row_warnings(self, load_case: str, model: str) -> tuple[AxialWarning, ...]:
+        """The typed warnings of one row."""
+        flags = self.warnings[_LOAD_CASES.index(load_case), _MODELS.index(model)]
+        return tuple(w for w, on in zip(AxialWarning, flags, strict=True) if on)
+
+    def warning_lines(self) -> list[str]:
+        """One line per row and warning, for people (the CLI prints them on stderr)."""
+        out = []
+        for i, lc in enumerate(_LOAD_CASES):
+            for j, m in enumerate(_MODELS):
+                for w in self.row_warnings(lc, m):
+                    out.append(f"{lc} {m}: {w.value}: {self._explain(w, i, j)}")
+        return out
+
+    def _explain(self, warning: AxialWarning, i: int, j: int) -> str:
+        friction = float(np.max(np.abs(self.time["friction_force_N"][i, j])))
+        held = float(self.rows["axial_force_N"][i, j])
+        alone, moves = float(self.rows["frictionless_axial_force_N"][i, j]), float(self.rows["frictionless_axial_displacement_m"][i, j])
+        without = (
+            "nothing else restrains the cargo axially"
+            if math.isinf(moves)
+            else f"without friction the lashings and stoppers alone would let it move {moves:.3g} m and carry {alone / 1e3:.1f} kN"
+        )
+        return (
+            f"the friction carries up to {friction / 1e3:.1f} kN of the axial load, the lashings and stoppers {held / 1e3:.1f} kN; "
+            f"{without}. Check that this friction may be credited (contact materials, vertical acceleration; "
+            "docs/axial.md#friction-credit)"
+        )
 
     def summary_columns(self, load_case: str, model: str) -> dict[str, Any]:
         """The axial columns of one summary row (plus ``critical_friction_coefficient`` and ``axial_converged``)."""
         i, j = _LOAD_CASES.index(load_case), _MODELS.index(model)
-        out: dict[str, Any] = {name: float(self.rows[name][i, j]) for name in (*AXIAL_SUMMARY_COLUMNS, "critical_friction_coefficient")}
+        names = (*AXIAL_SUMMARY_COLUMNS[:-1], "critical_friction_coefficient")
+        out: dict[str, Any] = {name: float(self.rows[name][i, j]) for name in names}
+        out["axial_warnings"] = ";".join(w.value for w in self.row_warnings(load_case, model))
         out["axial_converged"] = bool(self.converged[i, j])
         return out
 
@@ -147,42 +198,14 @@ class AxialCaseArrays:
         data["friction_coefficient"] = xr.Variable(
             ("saddle",), self.friction_coefficient, {"long_name": "Coulomb friction coefficient of each saddle", "units": "1"}
         )
-        return xr.Dataset(data, attrs=self.attrs)
-
-
-def saddle_moment_flexibility(model: StructuralModel) -> np.ndarray:
-    """Saddle compression change per unit moment at each saddle, quasi-static, bilateral saddles [m/(N m)], (n_s, n_s).
-
-    ``G[i, j]``: ``-dz_i`` at saddle i for a unit bow-up moment on the cargo at saddle j, from one
-    banded Cholesky solve of ``K dq = M`` (the cargo's first natural frequency, 44 rad/s on the
-    base case, is far above the wave's 0.6 rad/s).
-    """
-    K = model.cargo.stiffness + model.spring_matrices(True)[0]
-    n = K.shape[0]
-    band = 3  # Hermite beam elements couple the (z, theta) pairs of neighbouring nodes; springs are diagonal
-    ab = np.zeros((band + 1, n))
-    for d in range(band + 1):
-        ab[band - d, d:] = np.diagonal(K, d)
-    rhs = np.zeros((n, model.saddle_count))
-    rhs[model.saddle_cargo_dof + 1, np.arange(model.saddle_count)] = 1.0
-    dq = solveh_banded(ab, rhs)
-    return -dq[model.saddle_cargo_dof]
-
-
-def friction_moment_effect_N(
-    model: StructuralModel, friction_per_saddle_N: np.ndarray, lever_m: np.ndarray, flexibility: np.ndarray | None = None
-) -> float:
-    """Largest change of the saddle forces [N] by the friction's moment, quasi-static, bilateral saddles.
-
-    Friction ``f_i`` (forward +) at the contact line ``lever_i`` (D/2) below the cargo's axis
-    puts the moment ``+f_i lever_i`` (bow up) on the cargo at saddle ``i``; the saddle forces
-    change by ``k_u G M`` (:func:`saddle_moment_flexibility`).
-    """
-    moments = np.asarray(friction_per_saddle_N, dtype=float) * np.asarray(lever_m, dtype=float)  # (N, n_s)
-    if not np.any(moments):
-        return 0.0
-    G = saddle_moment_flexibility(model) if flexibility is None else flexibility
-    return float(np.max(np.abs(model.saddle_unilateral_stiffness_N_per_m[:, None] * (G @ moments.T))))
+        data["axial_warning_flag"] = xr.Variable(
+            ("load_case", "model", "axial_warning"),
+            self.warnings.astype(np.int8),
+            {"long_name": "typed axial warning raised (1) or not (0), one per axial_warning", "units": "1"},
+        )
+        label = {"long_name": "axial warning (AxialWarning value)", "units": "1"}
+        coords = {"axial_warning": ("axial_warning", list(AXIAL_WARNINGS), label)}
+        return xr.Dataset(data, coords=coords, attrs=self.attrs)
 
 
 def _row(
@@ -196,28 +219,7 @@ def _row(
     start: np.ndarray | None = None,
 ) -> AxialResponse:
     if static:
-        f0 = float(load.force_N[0].real)
-        cap = float(restraint.capacity_N(normal[0]))
-        if abs(f0) > cap:
-            z = np.zeros(N)
-            return AxialResponse(
-                "statics",
-                load.omega_rad_s,
-                z,
-                z.copy(),
-                -np.sign(f0) * cap * np.ones(N),
-                cap * np.ones(N),
-                z.copy(),
-                z.copy(),
-                f0 * np.ones(N),
-                np.ones(N, dtype=bool),
-                float("inf"),
-                False,
-                float("nan"),
-                0,
-                "the still-water axial load exceeds the friction: the cargo slides in still water",
-            )
-        return static_response(restraint, f0, cap, load.omega_rad_s, N)
+        return static_response(restraint, float(load.force_N[0].real), float(restraint.capacity_N(normal[0])), load.omega_rad_s, N)
     if method == "time_domain":
         return solve_axial_time_domain(restraint, load, normal, time_samples=options.time_samples).on_grid(N)
     hbm = solve_axial_hbm(restraint, load, normal, options, initial_harmonics=start)
@@ -226,6 +228,35 @@ def _row(
     # long stick phases defeat the truncated Fourier series (docs/axial.md): the reference solves the row
     td = solve_axial_time_domain(restraint, load, normal, time_samples=options.time_samples)
     return replace(td, message=f"{hbm.message}; row solved by the time-domain reference: {td.message}").on_grid(N)
+
+
+def frictionless_extremes(restraint: AxialRestraint, load: AxialLoad, options: AxialHBMOptions) -> tuple[float, float]:
+    """What the lashings and stoppers alone do under the dynamic load: their largest force [N] and the largest displacement [m].
+
+    The friction credit's counterpart (docs/axial.md#friction-credit): the same cargo and
+    load with friction coefficient 0 (linear with lashings only; the stoppers' free play solved by
+    the HBM). ``(0, inf)`` when nothing restrains the cargo axially, ``(nan, nan)`` when that solve
+    fails.
+    """
+    if restraint.lashing_axial_stiffness_N_per_m == 0.0 and not restraint.has_stoppers:
+        return 0.0, math.inf
+    if not restraint.has_stoppers:  # a linear oscillator: per harmonic
+        k = np.arange(load.force_N.size)
+        w = load.omega_rad_s
+        Z = restraint.lashing_axial_stiffness_N_per_m - restraint.cargo_mass_kg * (k * w) ** 2 + 1j * restraint.damping_N_s_per_m * k * w
+        u = harmonics_to_time(load.force_N / Z, options.time_samples)
+        return restraint.lashing_axial_stiffness_N_per_m * float(np.max(np.abs(u))), float(np.max(np.abs(u)))
+    free = replace(restraint, friction_coefficient=np.zeros(restraint.saddle_count))
+    resp = solve_axial_hbm(free, load, np.zeros((options.time_samples, restraint.saddle_count)), options)
+    if not resp.converged:
+        return math.nan, math.nan
+    return resp.axial_force_N, float(np.max(np.abs(resp.displacement_m)))
+
+
+def row_warnings(resp: AxialResponse) -> tuple[AxialWarning, ...]:
+    """The typed warnings of one row's response (docs/axial.md#friction-credit)."""
+    friction = float(np.max(np.abs(resp.friction_force_N))) if resp.friction_force_N.size else 0.0
+    return (AxialWarning.FRICTION_CARRIES_LOAD,) if friction > 0.0 and friction > resp.axial_force_N else ()
 
 
 def axial_case_arrays(
@@ -253,47 +284,71 @@ def axial_case_arrays(
     """
     N = next(iter(series.values())).saddle_force_N.shape[0]
     n_s = restraint.saddle_count
-    time = {name: np.zeros((2, 2, N)) for name in _TIME_VARS}
-    per_saddle = np.zeros((2, 2, N, n_s))
-    normal_all = np.zeros((2, 2, N, n_s))
-    sliding = np.zeros((2, 2, N), dtype=bool)
-    rows = {name: np.zeros((2, 2)) for name in _ROW_VARS}
-    converged = np.zeros((2, 2), dtype=bool)
-    messages = np.empty((2, 2), dtype=object)
+    out = AxialCaseArrays(
+        np.arange(N) / N,
+        {name: np.zeros((2, 2, N)) for name in _TIME_VARS},
+        np.zeros((2, 2, N, n_s)),
+        np.zeros((2, 2, N, n_s)),
+        np.zeros((2, 2, N), dtype=bool),
+        {name: np.zeros((2, 2)) for name in _ROW_VARS},
+        np.zeros((2, 2), dtype=bool),
+        np.empty((2, 2), dtype=object),
+        np.asarray(restraint.friction_coefficient),
+        _attrs(restraint, load, options, method),
+    )
     nodes = model.saddle_node
     d_el = model.cargo.element_outer_diameter_m
     lever = 0.5 * 0.5 * (d_el[np.maximum(nodes - 1, 0)] + d_el[np.minimum(nodes, d_el.size - 1)])
     start = None
     flexibility = saddle_moment_flexibility(model)
+    alone = frictionless_extremes(restraint, load, options)
     for i, lc in enumerate(_LOAD_CASES):
         for j, mdl in enumerate(_MODELS):
             normal = np.maximum(np.asarray(series[(lc, mdl)].saddle_force_N, dtype=float), 0.0)
             resp = _row(restraint, load, normal, lc == "static", method, options, N, start)
             if resp.harmonics is not None and resp.converged:
                 start = resp.harmonics  # the next row (nonlinear after linear) starts from it
-            for name, attr in (
-                ("axial_displacement_m", "displacement_m"),
-                ("axial_velocity_m_per_s", "velocity_m_per_s"),
-                ("friction_force_N", "friction_force_N"),
-                ("friction_capacity_N", "capacity_N"),
-                ("lashing_axial_force_N", "lashing_force_N"),
-                ("stopper_force_N", "stopper_force_N"),
-                ("axial_load_N", "load_N"),
-            ):
-                time[name][i, j] = getattr(resp, attr)
-            per_saddle[i, j] = resp.friction_force_N[:, None] * restraint.saddle_shares(normal)
-            normal_all[i, j] = normal
-            sliding[i, j] = resp.sliding
-            rows["slip_m"][i, j] = resp.slip_m
-            rows["friction_utilisation"][i, j] = resp.friction_utilisation
-            rows["axial_force_N"][i, j] = resp.axial_force_N
-            rows["critical_friction_coefficient"][i, j] = critical_friction_coefficient(resp.load_N, normal)
-            rows["friction_moment_saddle_force_change_N"][i, j] = friction_moment_effect_N(model, per_saddle[i, j], lever, flexibility)
-            rows["axial_residual_norm"][i, j] = resp.residual_norm
-            rows["axial_iterations"][i, j] = resp.iterations
-            converged[i, j] = resp.converged
-            messages[i, j] = resp.message
-    attrs = {
+            _store(out, i, j, replace(resp, warnings=row_warnings(resp)), normal, restraint)
+            out.rows["friction_moment_saddle_force_change_N"][i, j] = friction_moment_effect_N(
+                model, out.friction_force_per_saddle_N[i, j], lever, flexibility
+            )
+            static = lc == "static"
+            out.rows["frictionless_axial_force_N"][i, j] = 0.0 if static else alone[0]
+            out.rows["frictionless_axial_displacement_m"][i, j] = 0.0 if static else alone[1]
+    return replace(out, messages=out.messages.astype(str))
+
+
+def _store(out: AxialCaseArrays, i: int, j: int, resp: AxialResponse, normal: np.ndarray, restraint: AxialRestraint) -> None:
+    """One row's response into the case arrays."""
+    for name, attr in (
+        ("axial_displacement_m", "displacement_m"),
+        ("axial_velocity_m_per_s", "velocity_m_per_s"),
+        ("friction_force_N", "friction_force_N"),
+        ("friction_capacity_N", "capacity_N"),
+        ("lashing_axial_force_N", "lashing_force_N"),
+        ("stopper_force_N", "stopper_force_N"),
+        ("axial_load_N", "load_N"),
+    ):
+        out.time[name][i, j] = getattr(resp, attr)
+    out.friction_force_per_saddle_N[i, j] = resp.friction_force_N[:, None] * restraint.saddle_shares(normal)
+    out.normal_force_N[i, j] = normal
+    out.sliding[i, j] = resp.sliding
+    rows = out.rows
+    rows["slip_m"][i, j] = resp.slip_m
+    rows["friction_utilisation"][i, j] = resp.friction_utilisation
+    rows["axial_force_N"][i, j] = resp.axial_force_N
+    rows["critical_friction_coefficient"][i, j] = critical_friction_coefficient(resp.load_N, normal)
+    rows["axial_residual_norm"][i, j] = resp.residual_norm
+    rows["axial_residual_drift_m"][i, j] = resp.residual_drift_m
+    rows["axial_iterations"][i, j] = resp.iterations
+    out.converged[i, j] = resp.converged
+    out.messages[i, j] = resp.message
+    out.warnings[i, j] = [w in resp.warnings for w in AxialWarning]
+
+
+def _attrs(restraint: AxialRestraint, load: AxialLoad, options: AxialHBMOptions, method: str) -> dict[str, Any]:
+    """The axial settings as ``results.nc`` attributes."""
+    return {
         "axial_method": method,
         "axial_harmonics": options.harmonics,
         "axial_time_samples": options.time_samples,
@@ -309,18 +364,6 @@ def axial_case_arrays(
         "axial_load_pitch_inertia_amplitude_N": abs(load.pitch_inertia_N),
         "axial_load_gravity_amplitude_N": abs(load.gravity_N),
     }
-    return AxialCaseArrays(
-        np.arange(N) / N,
-        time,
-        per_saddle,
-        normal_all,
-        sliding,
-        rows,
-        converged,
-        messages.astype(str),
-        np.asarray(restraint.friction_coefficient),
-        attrs,
-    )
 
 
 def axial_options(case: Case, vertical_samples: int) -> AxialHBMOptions:

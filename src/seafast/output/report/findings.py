@@ -161,6 +161,19 @@ def _axial_findings(ds: xr.Dataset, lcs: list[str], models: list[str]) -> list[F
                         str(sel["axial_solver_message"].values.item()) if "axial_solver_message" in sel else "",
                     )
                 )
+            carries = "axial_warning_flag" in sel and bool(sel["axial_warning_flag"].sel(axial_warning="friction_carries_load"))
+            if carries:
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{lc} {m}: the friction carries more of the axial load than the lashings and stoppers",
+                        f"friction up to {float(np.max(np.abs(sel['friction_force_N'].values))) / 1e3:.1f} kN, lashings and stoppers "
+                        f"{float(sel['axial_force_N']) / 1e3:.1f} kN; without friction they alone would carry "
+                        f"{float(sel['frictionless_axial_force_N']) / 1e3:.1f} kN and let the cargo move "
+                        f"{float(sel['frictionless_axial_displacement_m']):.3g} m. Check that the friction may be credited "
+                        "(docs/axial.md#friction-credit).",
+                    )
+                )
             slip = float(sel["slip_m"])
             if slip > 0 and m == "nonlinear":
                 out.append(

@@ -1,48 +1,39 @@
 """Harmonic balance with AFT for the cargo's axial stick-slip (docs/axial.md).
 
-Unknowns: the 2H+1 real harmonic coefficients ``X = [a0, a1, b1, ..., aH, bH]`` of the axial
-displacement ``u(t)`` (layout of :func:`seafast.solvers.hbm.real_dft_matrices`): the problem is
-condensed onto the rigid cargo's single axial DOF. Residual::
-
-    R(X) = Z X + DFT[ f_J(IDFT X) + f_s(IDFT X) ] - F,
-
-``Z`` the linear part per harmonic (``k_a - (k w)^2 m``, and ``c k w`` between cosine and sine),
-``f_J`` the friction as a Jenkins element (the contacts' tangential stiffness ``k_t`` in series
-with the Coulomb slider of capacity ``C(t) = sum_i mu_i max(N_i(t), 0)``) marched over the N
-samples until the period closes (:func:`~seafast.solvers.axial.jenkins.march_jenkins`), ``f_s``
-the stoppers. The Jenkins spring is what the AFT needs to march the hysteresis; at the default
+The problem (:class:`~seafast.solvers.axial.problem.AxialProblem`): the 2H+1 real harmonic
+coefficients of the axial displacement ``u(t)``, the residual ``Z X + DFT[f_J + f_s] - F`` of the
+rigid cargo's single axial DOF with the friction as a Jenkins element (the contacts' tangential
+stiffness ``k_t`` in series with the Coulomb slider of capacity ``C(t)``). At the default
 stiffness (1e12 N/m per saddle, a rigid contact) the periodic solution does not depend on it
 (tests: 1e11 to 1e13 N/m agree to 1e-4) and converges to the rigid-Coulomb time-domain reference.
 
-Analytic Jacobian ``Z + DFT (k_t (I - S) + diag f_s') IDFT`` (``S`` picks each sample's last
-slip). Damped Newton with a backtracking line search from the best of the stuck, the
-frictionless and a given solution. Limitation (docs/axial.md): a truncated Fourier series cannot
-hold the cargo exactly still, so long stick phases between slips (friction coefficients just
-below the critical one) make the stick state chatter at the samples and Newton may fail; that is
-reported (``converged=False`` and the residual), never raised, and the case pipeline then solves
-the row with the time-domain reference.
+Damped Newton from several starts, one after the other until one converges to a real periodic
+state: stuck (exact when the friction holds: zero iterations), locked at the edge of the lock
+range (shakedown), a given neighbouring solution, sliding all period (the describing function)
+and frictionless, then a continuation in the contact stiffness from a soft (regularised) law to
+the rigid one. A slip-free solution must pass the rigid-Coulomb check
+(:func:`~seafast.solvers.axial.problem.lock_check`): the truncated series can balance the
+harmonics on a locked state whose friction demand exceeds the capacity between them. Limitation
+(docs/axial.md): a truncated Fourier series cannot hold the cargo exactly still, so long stick
+phases between slips (friction coefficients just below the critical one) defeat every start;
+that is reported (``converged=False``, the residual and each start's outcome), never raised, and
+the case pipeline then solves the row with the time-domain reference.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from collections.abc import Callable
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.axial import AxialLoad
-from seafast.fourier import (
-    complex_to_real_harmonics,
-    real_dft_matrices,
-    real_harmonics_to_time,
-    real_to_complex_harmonics,
-    time_to_real_harmonics,
-)
+from seafast.fourier import complex_to_real_harmonics, real_to_complex_harmonics
 from seafast.model.axial import AxialRestraint
-from seafast.solvers.axial.jenkins import march_jenkins
-from seafast.solvers.axial.response import AxialResponse, periodic_interpolation
+from seafast.solvers.axial.problem import AxialProblem, Evaluation, evaluation_arrays, lock_check, newton
+from seafast.solvers.axial.response import AxialResponse, LockCheck, periodic_interpolation
 
 __all__ = ["AxialHBMOptions", "solve_axial_hbm", "axial_time_samples"]
 
@@ -90,119 +81,113 @@ def axial_time_samples(harmonics: int, vertical_samples: int, minimum: int = 512
     return int(vertical_samples * math.ceil(need / vertical_samples))
 
 
-class _Problem:
-    """Residual and Jacobian of one axial HBM problem (Jenkins element of stiffness ``kt``)."""
+@dataclass(frozen=True)
+class _Attempt:
+    """One Newton run from one start."""
 
-    def __init__(self, restraint: AxialRestraint, load: AxialLoad, capacity: NDArray, H: int, N: int):
-        self.r = restraint
-        self.H, self.N = H, N
-        w = load.omega_rad_s
-        f = np.zeros(H + 1, dtype=complex)
-        n = min(H + 1, load.force_N.size)
-        f[:n] = load.force_N[:n]
-        self.F = complex_to_real_harmonics(f)
-        self.load_t = real_harmonics_to_time(self.F, N)
-        self.capacity = capacity
-        k = np.arange(1, H + 1)
-        k_restore = restraint.lashing_axial_stiffness_N_per_m
-        m = restraint.cargo_mass_kg
-        self.inertia_N_per_m = m * w**2
-        self.kt = restraint.stick_stiffness_N_per_m
-        # nothing but friction restrains the cargo's mean position: pin it (docs/axial.md)
-        self.gauge = k_restore == 0.0 and not restraint.has_stoppers
-        # the linear part Z is block diagonal: Z[0, 0], then [[d_k, c_k], [-c_k, d_k]] per harmonic, applied
-        # and solved block by block; the dense matrix only for the Jacobian
-        self.mean_stiffness_N_per_m = k_restore if not self.gauge else 1e-9 * max(self.inertia_N_per_m, 1.0)
-        self.harmonic_diagonal_N_per_m = k_restore - m * (k * w) ** 2
-        self.harmonic_coupling_N_per_m = restraint.damping_N_s_per_m * k * w
-        self.scale = max(float(np.max(np.abs(self.load_t))), float(np.max(capacity)) if capacity.size else 0.0, 1e-300)
-
-    def evaluate(self, X: NDArray, capacity: NDArray) -> tuple[NDArray, Any, NDArray]:
-        # the transforms by FFT (O(N log N)); the dense E and D only for the Jacobian
-        u = real_harmonics_to_time(X, self.N)
-        _, stop = self.r.restoring_force_N(u)
-        jen = march_jenkins(u, capacity, self.kt)
-        R = self.apply_linear(X) + time_to_real_harmonics(jen.force_N + stop, self.H) - self.F
-        return R, jen, u
-
-    def jacobian(self, jen: Any, u: NDArray) -> NDArray:
-        E, D = real_dft_matrices(self.H, self.N)
-        gathered = np.where((jen.last_slip >= 0)[:, None], E[np.maximum(jen.last_slip, 0)], 0.0)
-        dfe = self.kt * (E - gathered) + self.r.stopper_tangent_N_per_m(u)[:, None] * E
-        return self.Z + D @ dfe
+    start: str
+    X: NDArray
+    norm: float
+    iterations: int
+    converged: bool
+    evaluation: Evaluation
+    check: LockCheck
+    excess_N: float
+    sample: int
 
     @property
-    def Z(self) -> NDArray:
-        """The linear part as a dense (2H+1, 2H+1) matrix [N/m]."""
-        k = np.arange(1, self.H + 1)
-        d, c = self.harmonic_diagonal_N_per_m, self.harmonic_coupling_N_per_m
-        Z = np.zeros((2 * self.H + 1, 2 * self.H + 1))
-        Z[0, 0] = self.mean_stiffness_N_per_m
-        Z[2 * k - 1, 2 * k - 1] = d
-        Z[2 * k, 2 * k] = d
-        Z[2 * k - 1, 2 * k] = c
-        Z[2 * k, 2 * k - 1] = -c
-        return Z
+    def accepted(self) -> bool:
+        return self.converged and self.check is not LockCheck.VIOLATED
 
-    def apply_linear(self, X: NDArray) -> NDArray:
-        """``Z X`` block by block [N]."""
-        d, c = self.harmonic_diagonal_N_per_m, self.harmonic_coupling_N_per_m
-        a, b = X[1::2], X[2::2]
-        out = np.empty_like(X)
-        out[0] = self.mean_stiffness_N_per_m * X[0]
-        out[1::2] = d * a + c * b
-        out[2::2] = -c * a + d * b
-        return out
-
-    def solve_linear(self, added_stiffness_N_per_m: float) -> NDArray:
-        """``(Z + k I)^-1 F`` block by block; inf or NaN where a block is singular."""
-        d = self.harmonic_diagonal_N_per_m + added_stiffness_N_per_m
-        c = self.harmonic_coupling_N_per_m
-        fa, fb = self.F[1::2], self.F[2::2]
-        X = np.empty_like(self.F)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            X[0] = self.F[0] / (self.mean_stiffness_N_per_m + added_stiffness_N_per_m)
-            det = d * d + c * c
-            X[1::2] = (d * fa - c * fb) / det
-            X[2::2] = (c * fa + d * fb) / det
-        return X
-
-    def stick_guess(self) -> NDArray:
-        return self.solve_linear(self.kt)
-
-    def free_guess(self) -> NDArray | None:
-        X = self.solve_linear(0.0)
-        return X if np.all(np.isfinite(X)) else None
+    def describe(self, N: int) -> str:
+        if self.check is LockCheck.VIOLATED:
+            return (
+                f"{self.start}: converged on a locked state the friction cannot hold (needs {self.excess_N:.3g} N more than "
+                f"available at t/T = {self.sample / N:.3f}): rejected"
+            )
+        if self.converged:
+            return f"{self.start}: converged, {self.iterations} Newton iterations"
+        return f"{self.start}: did not converge (residual {self.norm:.2e} after {self.iterations} iterations)"
 
 
-def _newton(
-    p: _Problem, X: NDArray, capacity: NDArray, tol: float, max_iter: int, first: tuple[NDArray, Any, NDArray] | None = None
-) -> tuple[NDArray, float, int, bool, tuple[NDArray, Any, NDArray]]:
-    """Damped Newton; returns the iterate, its relative residual, iterations, success and its evaluation."""
-    ev = first if first is not None else p.evaluate(X, capacity)
-    R, jen, u = ev
-    norm = float(np.max(np.abs(R))) / p.scale
-    for it in range(1, max_iter + 1):
-        if norm <= tol:
-            return X, norm, it - 1, True, ev
-        J = p.jacobian(jen, u)
-        try:
-            dX = np.linalg.solve(J, -R)
-        except np.linalg.LinAlgError:
-            dX = np.linalg.lstsq(J, -R, rcond=None)[0]
-        step = 1.0
-        for _ in range(30):
-            X_try = X + step * dX
-            ev_try = p.evaluate(X_try, capacity)
-            n_try = float(np.max(np.abs(ev_try[0]))) / p.scale
-            if n_try < (1.0 - 1e-4 * step) * norm or n_try <= tol:
-                break
-            step *= 0.5
+def _run(p: AxialProblem, start: str, X0: NDArray, options: AxialHBMOptions, first: Evaluation | None = None) -> _Attempt:
+    X, norm, iters, ok, ev = newton(p, X0, p.capacity, options.tolerance, options.max_iterations, first)
+    check, excess, sample = lock_check(p, ev[1], ev[2], options.tolerance) if ok else (LockCheck.NOT_LOCKED, 0.0, -1)
+    return _Attempt(start, X, norm, iters, ok, ev, check, excess, sample)
+
+
+def _continuation(p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, options: AxialHBMOptions) -> _Attempt | None:
+    """Newton along a contact stiffness rising from ``m (H w)^2`` (no stick chatter) to ``k_t``, from the sliding start.
+
+    Only where the cargo can slide all period (the sliding start exists): long stick phases defeat
+    it at every stiffness. Steps of a factor 3, shortened (square root of the factor) where Newton
+    fails, at most :data:`_CONTINUATION_STEPS` solves; none if the softest problem fails.
+    """
+    kt = restraint.cargo_mass_kg * (p.H * p.omega_rad_s) ** 2
+    if not kt < p.kt:
+        return None
+    X = AxialProblem(restraint, load, p.capacity, p.H, p.N, kt).sliding_guess()
+    if X is None:
+        return None
+    factor, target, iterations = 1.0, kt, 0
+    for _ in range(_CONTINUATION_STEPS):
+        q = AxialProblem(restraint, load, p.capacity, p.H, p.N, target)
+        X_new, _, its, ok, _ = newton(q, X, p.capacity, options.tolerance, options.max_iterations)
+        iterations += its
+        if ok:
+            X, kt = X_new, target
+            if kt >= p.kt:
+                last = _run(p, "contact-stiffness continuation", X, options)
+                return replace(last, iterations=iterations + last.iterations)
+            factor = 3.0 if factor == 1.0 else min(3.0, factor**1.5)
+        elif factor == 1.0:
+            return None  # the softest, regularised problem already fails
         else:
-            return X, norm, it, False, ev
-        X, ev, norm = X_try, ev_try, n_try
-        R, jen, u = ev
-    return X, norm, max_iter, norm <= tol, ev
+            factor = math.sqrt(factor)
+            if factor < 1.05:
+                return None
+        target = min(p.kt, kt * factor)
+    return None
+
+
+#: Newton solves the contact-stiffness continuation may take.
+_CONTINUATION_STEPS = 24
+
+
+def _attempts(
+    p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, options: AxialHBMOptions, given: NDArray | None
+) -> list[_Attempt]:
+    """Newton from each start in turn, smallest residual first, until one is accepted (then the last attempt).
+
+    The stuck start first on its own: when the friction holds it is the answer (zero iterations).
+    """
+    stuck = p.stick_guess()
+    ev = p.evaluate(stuck, p.capacity)
+    if float(np.max(np.abs(ev[0]))) <= options.tolerance * p.scale:
+        first = _run(p, "stuck", stuck, options, ev)
+        if first.accepted:
+            return [first]
+    makers: list[tuple[str, Callable[[], NDArray | None]]] = [
+        ("locked at the lock range's edge", p.locked_guess),
+        ("given", lambda: given),
+        ("sliding (describing function)", p.sliding_guess),
+        ("frictionless", p.free_guess),
+    ]
+    starts: list[tuple[float, str, NDArray, Evaluation]] = [(float(np.max(np.abs(ev[0]))), "stuck", stuck, ev)]
+    for name, make in makers:
+        X0 = make()
+        if X0 is not None:
+            ev0 = p.evaluate(X0, p.capacity)
+            starts.append((float(np.max(np.abs(ev0[0]))), name, X0, ev0))
+    out: list[_Attempt] = []
+    for _, name, X0, ev0 in sorted(starts, key=lambda s: s[0]):
+        out.append(_run(p, name, X0, options, ev0))
+        if out[-1].accepted:
+            return out
+    attempt = _continuation(p, restraint, load, options)
+    if attempt is not None:
+        out.append(attempt)
+    return out
 
 
 def solve_axial_hbm(
@@ -226,75 +211,56 @@ def solve_axial_hbm(
     options
         Harmonics, samples, tolerance.
     initial_harmonics
-        Complex harmonics of ``u`` of a neighbouring solution to start from (a third start).
+        Complex harmonics of ``u`` of a neighbouring solution to start from (one of the starts).
 
     Returns
     -------
     AxialResponse
-        On ``options.time_samples`` samples; ``converged=False`` (with the residual) when
-        Newton fails, never an exception.
+        On ``options.time_samples`` samples; ``converged=False`` (with the residual) when no
+        start converges to a real periodic state, never an exception. ``lock_check`` says
+        whether a slip-free answer was checked (``HOLDS``) or a converged locked state was
+        rejected (``VIOLATED``, then ``converged=False``).
     """
     H, N = options.harmonics, options.time_samples
     normal = periodic_interpolation(np.asarray(normal_force_N, dtype=float).reshape(np.shape(normal_force_N)[0], -1), N)
     capacity = restraint.capacity_N(normal)
-    p = _Problem(restraint, load, capacity, H, N)
-
-    def given() -> NDArray | None:
-        if initial_harmonics is None:
-            return None
+    p = AxialProblem(restraint, load, capacity, H, N)
+    given = None
+    if initial_harmonics is not None:
         x0 = np.zeros(H + 1, dtype=complex)
         n0 = min(H + 1, len(initial_harmonics))
         x0[:n0] = np.asarray(initial_harmonics)[:n0]
-        return complex_to_real_harmonics(x0)
-
-    # the candidates are built lazily: when the friction holds, the stick solution is the answer
-    starts = (("stuck", p.stick_guess), ("frictionless", p.free_guess), ("given", given))
-    best = None
-    for name, make in starts:
-        X_start = make()
-        if X_start is None:
-            continue
-        ev = p.evaluate(X_start, capacity)
-        r = float(np.max(np.abs(ev[0])))
-        if best is None or r < best[0]:
-            best = (r, name, X_start, ev)
-        if r <= options.tolerance * p.scale:
-            break
-    assert best is not None
-    _, start_name, X0, ev0 = best
-    X, norm, iters, ok, (_, jen, u) = _newton(p, X0, capacity, options.tolerance, options.max_iterations, ev0)
-    path = f"from the {start_name} solution" if ok else f"did not converge (Newton from the {start_name} solution)"
-    lam = jen.force_N
-    lashing, stop = restraint.restoring_force_N(u)
-    V = np.zeros_like(X)
-    k = np.arange(1, H + 1)
-    V[1::2] = k * load.omega_rad_s * X[2::2]
-    V[2::2] = -k * load.omega_rad_s * X[1::2]
-    msg = f"axial HBM (H = {H}, N = {N}): {path}, {iters} Newton iterations, residual {norm:.2e}"
+        given = complex_to_real_harmonics(x0)
+    attempts = _attempts(p, restraint, load, options, given)
+    chosen = attempts[-1] if attempts[-1].accepted else min(attempts, key=lambda a: (a.check is LockCheck.VIOLATED, a.norm))
+    ok = chosen.accepted
+    rejected = any(a.check is LockCheck.VIOLATED for a in attempts)
+    check = chosen.check if ok else (LockCheck.VIOLATED if rejected else LockCheck.NOT_LOCKED)
+    path = f"from the {chosen.start} start" if ok else "did not converge to a periodic state"
+    msg = f"axial HBM (H = {H}, N = {N}): {path}, {chosen.iterations} Newton iterations, residual {chosen.norm:.2e}"
+    if check is LockCheck.HOLDS:
+        msg += "; locked, the friction law checked at every sample"
+    if len(attempts) > 1:
+        msg += " (starts: " + "; ".join(a.describe(N) for a in attempts) + ")"
     if p.gauge:
         msg += "; no lashing or stopper restrains the cargo axially: its mean position is pinned"
     return AxialResponse(
         "hbm",
         load.omega_rad_s,
-        u,
-        real_harmonics_to_time(V, N),
-        -lam,
-        capacity,
-        -lashing,
-        -stop,
-        p.load_t,
-        jen.slipped,
-        jen.slip_path_m,
-        bool(ok),
-        norm,
-        int(iters),
-        msg,
-        real_to_complex_harmonics(X),
-        {
+        capacity_N=capacity,
+        load_N=p.load_t,
+        converged=bool(ok),
+        residual_norm=chosen.norm,
+        iterations=int(sum(a.iterations for a in attempts)),
+        message=msg,
+        harmonics=real_to_complex_harmonics(chosen.X),
+        options={
             "harmonics": H,
             "time_samples": N,
             "tolerance": options.tolerance,
             "max_iterations": options.max_iterations,
             "tangential_stiffness_N_per_m": p.kt,
         },
+        lock_check=check,
+        **evaluation_arrays(p, chosen.X, chosen.evaluation),
     )

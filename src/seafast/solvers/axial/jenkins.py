@@ -16,7 +16,10 @@ period's start is ``w_0 = clip(w_init, A, B)`` and marching another period from 
 
 Jacobian (for Newton): ``w_n`` equals ``u_s -+ C_s / k`` at the last sample ``s(n)`` where it
 slipped (within the period, or the last slip of the previous period), so
-``df_n/du_m = k (delta_nm - delta_m,s(n))``; without any slip ``df_n/du_m = k delta_nm``.
+``df_n/du_m = k (delta_nm - delta_m,s(n))``. Without any slip, the slider either keeps its
+initial position (``df_n/du_m = k delta_nm``) or, when that position was clamped into the
+period's band (a cargo locked off its as-placed position, at the edge of its lock range), sits
+at the band's edge ``w = u_s -+ C_s / k`` of the sample ``s`` that bounds it, and follows it.
 """
 
 from __future__ import annotations
@@ -63,7 +66,8 @@ class JenkinsPeriod:
         Where the slider moved at the sample (gross slip).
     last_slip
         ``s(n)``: index of the last slip sample at or before ``n`` (wrapping to the previous
-        period), -1 where the slider never moves.
+        period); without slip the sample whose band edge holds the clamped start, or -1 where
+        the slider keeps its initial position.
     slip_path_m
         Distance the slider travels over the period ``sum |w_n - w_(n-1)|`` [m] (0 when stuck).
     """
@@ -105,4 +109,8 @@ def march_jenkins(
     last = np.maximum.accumulate(idx)
     if slipped.any():
         last = np.where(last < 0, idx.max(), last)
+    elif w0 != float(w_init_m):
+        # no sample slips, but the start was clamped into the period's band [A, B] = [max lo, min hi]:
+        # the slider sits at the edge of the band it touches, w = hi_s (or lo_s), and follows u_s
+        last = np.full(u.size, int(np.argmin(hi)) if w0 < float(w_init_m) else int(np.argmax(lo)))
     return JenkinsPeriod(float(stiffness_N_per_m) * (u - w), w, slipped, last, float(np.sum(np.abs(w - prev))))

@@ -7,7 +7,9 @@ load in the ship's frame (:mod:`seafast.excitation.axial`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
+from enum import Enum
 from typing import Any
 
 import numpy as np
@@ -15,7 +17,47 @@ from numpy.typing import NDArray
 
 from seafast.model.axial import AxialRestraint
 
-__all__ = ["AxialResponse", "critical_friction_coefficient", "periodic_interpolation"]
+__all__ = ["AxialResponse", "AxialWarning", "LockCheck", "critical_friction_coefficient", "lock_range_m", "periodic_interpolation"]
+
+
+class LockCheck(Enum):
+    """A slip-free solution checked against the rigid-Coulomb friction law (docs/axial.md).
+
+    ``NOT_LOCKED``
+        The cargo slides (beyond the contacts' elastic range): no lock to check.
+    ``HOLDS``
+        Locked, and the friction it needs, ``|F(t) - r(u)|``, stays within the friction available
+        ``C(t)`` at every sample (to the margin of the discretisation): a real periodic state.
+    ``VIOLATED``
+        Locked, but the friction needed exceeds the friction available at some samples: the
+        truncated Fourier series hid short slips. Not a periodic state of the cargo; never
+        reported as converged.
+    """
+
+    NOT_LOCKED = "not_locked"
+    HOLDS = "holds"
+    VIOLATED = "violated"
+
+
+class AxialWarning(Enum):
+    """A converged axial result that needs a second look (docs/axial.md#friction-credit).
+
+    ``FRICTION_CARRIES_LOAD``
+        The friction carries more of the axial load than the lashings and stoppers together
+        (at its peak): the answer relies on friction credit, which design standards restrict.
+    """
+
+    FRICTION_CARRIES_LOAD = "friction_carries_load"
+
+    @property
+    def description(self) -> str:
+        """One line for people (CLI, report)."""
+        return _WARNING_DESCRIPTIONS[self]
+
+
+_WARNING_DESCRIPTIONS = {
+    AxialWarning.FRICTION_CARRIES_LOAD: "the friction carries more of the axial load than the lashings and stoppers (friction credit)",
+}
 
 
 def periodic_interpolation(samples: NDArray[np.float64], time_samples: int) -> NDArray[np.float64]:
@@ -44,6 +86,27 @@ def critical_friction_coefficient(load_N: NDArray[np.float64], normal_force_N: N
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(f > 0, f / n, 0.0)
     return float(np.max(ratio)) if ratio.size else 0.0
+
+
+def lock_range_m(restraint: AxialRestraint, load_N: NDArray[np.float64], capacity_N: NDArray[np.float64]) -> tuple[float, float] | None:
+    """The cargo positions at which it stays locked (never slides) all period, rigid Coulomb [m].
+
+    Locked at ``u`` (constant), the friction must carry ``F(t) - r(u)`` (``r`` the lashings' and
+    stoppers' force resisting ``u``), so the cargo holds while ``|F(t) - r(u)| <= C(t)`` at every
+    instant: ``max_t (F - C) <= r(u) <= min_t (F + C)``. The samples of ``F`` and ``C`` stand for
+    the period (``C`` is linear between its samples, so its extrema are on them). ``None`` when no
+    position holds (the cargo slides every period); ``u = 0`` is in the range exactly when the
+    friction coefficient is at least :func:`critical_friction_coefficient` (with one coefficient
+    for all saddles). Between the two the range lies off ``u = 0`` (shakedown): a cargo set down
+    at ``u = 0`` walks to its nearer end, where the lashings take up the difference, and stays.
+    """
+    f = np.asarray(load_N, dtype=float)
+    c = np.asarray(capacity_N, dtype=float)
+    low, high = float(np.max(f - c)), float(np.min(f + c))
+    if low > high:
+        return None
+    u_low, u_high = restraint.displacement_range_m(low, high)
+    return (u_low, u_high) if u_low <= u_high else None
 
 
 @dataclass(frozen=True)
@@ -77,6 +140,15 @@ class AxialResponse:
         Complex amplitudes of ``u`` (HBM), ``None`` for the time-domain reference.
     options
         The settings used.
+    lock_check
+        HBM: whether a slip-free solution was checked against the friction law
+        (:class:`LockCheck`); the time-domain reference obeys it by construction.
+    residual_drift_m
+        Time domain: the estimated distance [m] of the state it stopped at from the periodic
+        state (the remaining walk, extrapolated from the last periods' changes; 0 when a period
+        repeats exactly); 0 for the HBM and the statics.
+    warnings
+        Typed warnings (:class:`AxialWarning`), set by the case analysis.
     """
 
     method: str
@@ -96,6 +168,9 @@ class AxialResponse:
     message: str
     harmonics: NDArray[np.complex128] | None = None
     options: dict[str, Any] = field(default_factory=dict)
+    lock_check: LockCheck = LockCheck.NOT_LOCKED
+    residual_drift_m: float = 0.0
+    warnings: tuple[AxialWarning, ...] = ()
 
     @property
     def time_samples(self) -> int:
@@ -136,40 +211,32 @@ class AxialResponse:
                 "sliding",
             )
         }
-        return AxialResponse(
-            self.method,
-            self.omega_rad_s,
-            slip_m=self.slip_m,
-            converged=self.converged,
-            residual_norm=self.residual_norm,
-            iterations=self.iterations,
-            message=self.message,
-            harmonics=self.harmonics,
-            options=self.options,
-            **pick,
-        )
+        return replace(self, **pick)
 
 
 def static_response(restraint: AxialRestraint, load_N: float, capacity_N: float, omega_rad_s: float, time_samples: int) -> AxialResponse:
-    """A time-invariant state (still water): stuck if ``|F| <= C``; the rigid-Coulomb statics."""
-    if abs(load_N) > capacity_N:
-        raise ValueError("static_response: a constant load above the friction capacity has no static state")
+    """A time-invariant state (still water), the rigid-Coulomb statics: stuck if ``|F| <= C``.
+
+    A constant load above the friction has no static state: the cargo slides in still water
+    (then ``converged=False``, infinite slip, the friction at its capacity against the load).
+    """
     z = np.zeros(time_samples)
     full = np.full(time_samples, 1.0)
+    holds = abs(load_N) <= capacity_N
     return AxialResponse(
         "statics",
         omega_rad_s,
         z,
         z.copy(),
-        -load_N * full,
+        (-load_N if holds else -math.copysign(capacity_N, load_N)) * full,
         capacity_N * full,
         z.copy(),
         z.copy(),
         load_N * full,
-        np.zeros(time_samples, dtype=bool),
-        0.0,
-        True,
-        0.0,
+        np.full(time_samples, not holds),
+        0.0 if holds else math.inf,
+        holds,
+        0.0 if holds else math.nan,
         0,
-        "stuck (statics)",
+        "stuck (statics)" if holds else "the still-water axial load exceeds the friction: the cargo slides in still water",
     )

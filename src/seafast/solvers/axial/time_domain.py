@@ -8,11 +8,15 @@ step ends and the scheme keeps its 4th order); the event ``u' = 0`` is located i
 on the cubic Hermite interpolant of the velocity, and there the cargo sticks if
 ``|F - r(u)| <= C`` and reverses otherwise. A stuck cargo breaks loose at the first instant
 ``|F(t) - r(u)| > C(t)``, located by Brent's method. Periods are integrated from the as-placed
-state (``u = u' = 0``, stuck) until the state at the period's start repeats. While the cargo
-walks (its start position converging geometrically as the lashings take the walk up), the start
-position is extrapolated to its limit (Aitken's delta-squared) every three periods: a shorter
-path, the same periodic state. A cargo that nothing restrains walks for ever: the message gives
-its drift per period. ``C(t)`` is the linear interpolation of the vertical solution's samples, as
+state (``u = u' = 0``, stuck) until the state at the period's start repeats and the distance
+still to go, extrapolated from the last two periods' changes (:func:`remaining_distance`), is
+within the tolerance too: a walk into shakedown converges like ``1/n``, and its last step is far
+smaller than the distance left. While the cargo walks, the start position is extrapolated to its
+limit: Aitken's delta-squared every three periods when the walk is geometric, the edge of the
+lock range (:func:`~seafast.solvers.axial.response.lock_range_m`) when it heads there at the
+rate of the ``1/n`` law (:class:`_Walk`): a shorter path, the same periodic state. The estimated
+distance left is reported (``residual_drift_m``). A cargo that nothing restrains walks for ever:
+the message gives its drift per period. ``C(t)`` is the linear interpolation of the vertical solution's samples, as
 in the harmonic balance.
 
 Independent of the harmonic balance (no harmonics, no AFT, no Jenkins spring): the reference the
@@ -30,9 +34,9 @@ from scipy.optimize import brentq
 
 from seafast.excitation.axial import AxialLoad
 from seafast.model.axial import AxialRestraint
-from seafast.solvers.axial.response import AxialResponse
+from seafast.solvers.axial.response import AxialResponse, lock_range_m
 
-__all__ = ["solve_axial_time_domain"]
+__all__ = ["remaining_distance", "solve_axial_time_domain"]
 
 
 class _System:
@@ -148,6 +152,102 @@ def _aitken(x: list[float]) -> float | None:
     return x[2] + d2 * ratio / (1.0 - ratio)
 
 
+def remaining_distance(changes: list[float]) -> float:
+    """Estimated distance to the limit of a converging sequence from its last two steps (same units).
+
+    With ``rho`` the ratio of the last step to the one before, the remaining distance is
+    ``c rho / (1 - rho)`` for a geometric sequence and ``c (q + 1) / (q (1 - rho))`` for an
+    algebraic one whose distance decays like ``n^-q`` (``c`` the last step); ``2 c / (1 - rho)``
+    bounds both for ``q >= 1``, the walk into a shakedown state (``1/n``, docs/axial.md) included.
+    ``inf`` when the steps do not decrease (or fewer than two are known), 0 after a zero step.
+    """
+    if changes and changes[-1] == 0.0:
+        return 0.0
+    if len(changes) < 2 or changes[-2] <= 0.0:
+        return math.inf
+    rho = changes[-1] / changes[-2]
+    return 2.0 * changes[-1] / (1.0 - rho) if rho < 1.0 else math.inf
+
+
+class _Walk:
+    """The period-start states of a cargo settling towards its periodic state, and the jumps to its limit.
+
+    A cargo that starts its periods stuck and walks approaches its limit either geometrically
+    (Aitken's extrapolation finds it) or, when it walks into the edge of the range of positions
+    where it can stay locked (shakedown, :func:`~seafast.solvers.axial.response.lock_range_m`),
+    like ``1/n``: every period's slip shrinks with the square of the distance left. That limit
+    is the edge itself, a static quantity: once the walk is seen heading there at the rate of
+    that law, the start jumps to it.
+    """
+
+    def __init__(self, lock: tuple[float, float] | None, u_scale: float):
+        self.lock = lock
+        self.u_scale = u_scale
+        self.starts: list[float] = []  # start positions of periods that start stuck, since the last jump
+        self.changes: list[float] = []  # period-to-period changes (of the scales), since the last jump
+        self.jumps: list[str] = []
+
+    def reset(self) -> None:
+        self.starts.clear()
+        self.changes.clear()
+
+    def edge_jump(self) -> float | None:
+        """The lock range's edge when the last stuck starts walk into it at the rate of the ``1/n`` law."""
+        if self.lock is None or len(self.starts) < 3:
+            return None
+        x0, x1, x2 = self.starts[-3:]
+        lo, hi = self.lock
+        edge = hi if x2 > hi else (lo if x2 < lo else None)
+        d1, d2 = x1 - x0, x2 - x1
+        if edge is None or d1 == 0.0 or d2 * d1 <= 0.0 or (edge - x2) * d2 <= 0.0:
+            return None  # inside the range (it stays), or not walking towards the edge
+        rho = d2 / d1
+        if not 0.25 <= rho < 1.0:
+            return None  # not yet in the asymptotic walk (a large slip could still overshoot the edge)
+        # distance left by the 1/n law (slip ~ distance^2): d = |d2| sqrt(rho) / (1 - sqrt(rho))
+        predicted = abs(d2) * math.sqrt(rho) / (1.0 - math.sqrt(rho))
+        return edge if 0.25 <= predicted / abs(edge - x2) <= 4.0 else None
+
+    def next_start(self, s: _System, t0: float, u: float) -> float | None:
+        """The jumped start position for a period starting stuck at ``u`` (None: no jump)."""
+        self.starts.append(u)
+        edge = self.edge_jump()
+        if edge is not None:
+            self.jumps.append("edge of the lock range (shakedown)")
+            return edge
+        if len(self.starts) >= 3:
+            jump = _aitken(self.starts[-3:])
+            if jump is not None and self.lock is not None:  # a walk from outside the lock range ends at its near edge
+                lo, hi = self.lock
+                jump = hi if u > hi > jump else (lo if u < lo < jump else jump)
+            if jump is not None and abs(s.demand(t0, jump)) <= s.capacity(t0):
+                self.jumps.append("Aitken")
+                return jump  # the walk converges geometrically: jump to its limit
+        return None
+
+
+def _period(s: _System, state: list, t0: float, h: float, steps: int, record_every: int, rec: NDArray) -> float:
+    """Integrate one period from ``t0`` (``state`` updated in place, samples into ``rec``); returns the slip [m]."""
+    slip = 0.0
+    for j in range(steps):
+        if j % record_every == 0:
+            rec[j // record_every] = state
+        t, t_end = t0 + j * h, t0 + (j + 1) * h
+        while t < t_end - 1e-12 * h:
+            u_before = state[1]
+            moving = state[0] != 0
+            t = _advance(s, t, t_end - t, state)
+            if moving:
+                slip += abs(state[1] - u_before)
+    return slip
+
+
+def _lock_range(s: _System, restraint: AxialRestraint, steps: int) -> tuple[float, float] | None:
+    """:func:`lock_range_m` on the integration grid (the kinks of ``C(t)`` are on it)."""
+    t = np.arange(steps) * s.T / steps
+    return lock_range_m(restraint, np.array([s.force(x) for x in t]), np.array([s.capacity(x) for x in t]))
+
+
 def solve_axial_time_domain(
     restraint: AxialRestraint,
     load: AxialLoad,
@@ -172,7 +272,10 @@ def solve_axial_time_domain(
         Periods integrated at most before giving up (``converged=False``).
     tolerance
         The period closes when the start state repeats within ``tolerance`` times the
-        displacement scale ``max|F| / (m w^2)`` (and the velocity scale ``max|F| / (m w)``).
+        displacement scale ``max|F| / (m w^2)`` (and the velocity scale ``max|F| / (m w)``)
+        and the distance still to go, extrapolated from the last two periods' changes
+        (:func:`remaining_distance`: valid for the geometric and the ``1/n`` walk), is within
+        ``tolerance`` of the scales too. ``residual_drift_m`` reports that distance.
     """
     normal = np.asarray(normal_force_N, dtype=float).reshape(np.shape(normal_force_N)[0], -1)
     s = _System(restraint, load, normal)
@@ -182,56 +285,74 @@ def solve_axial_time_domain(
         raise ValueError(f"time_samples = {time_samples} and the {n_v} normal-force samples must divide one another")
     steps = grid * steps_per_sample
     h = s.T / steps
-    record_every = steps // time_samples
     f_max = max(abs(s.force(i * s.T / 256)) for i in range(256)) or 1.0
     u_scale, v_scale = f_max / (s.m * s.w**2), f_max / (s.m * s.w)
     state: list = [0, 0.0, 0.0]
-    converged, change, periods = False, math.inf, 0
+    converged, change, remaining, periods = False, math.inf, math.inf, 0
     rec = np.zeros((time_samples, 3))
     slip = 0.0
-    history: list[float] = []  # start positions of periods that start stuck (for the extrapolation)
+    walk = _Walk(_lock_range(s, restraint, steps), u_scale)
+    start: tuple = tuple(state)
     for periods in range(1, max_periods + 1):
         t0 = (periods - 1) * s.T
-        if state[0] == 0:
-            history.append(state[1])
-            if len(history) >= 3:
-                jump = _aitken(history[-3:])
-                if jump is not None and abs(s.demand(t0, jump)) <= s.capacity(t0):
-                    state[1] = jump  # the walk converges geometrically: jump to its limit
-                    history.clear()
-        else:
-            history.clear()
+        jump = walk.next_start(s, t0, state[1]) if state[0] == 0 else None
+        if state[0] != 0:
+            walk.starts.clear()
+        if jump is not None:
+            state[1] = jump
+            walk.reset()
         start = tuple(state)
-        slip = 0.0
-        for j in range(steps):
-            if j % record_every == 0:
-                rec[j // record_every] = state
-            t, t_end = t0 + j * h, t0 + (j + 1) * h
-            while t < t_end - 1e-12 * h:
-                u_before = state[1]
-                moving = state[0] != 0
-                t = _advance(s, t, t_end - t, state)
-                if moving:
-                    slip += abs(state[1] - u_before)
+        slip = _period(s, state, t0, h, steps, steps // time_samples, rec)
         change = max(abs(state[1] - start[1]) / u_scale, abs(state[2] - start[2]) / v_scale)
-        if change <= tolerance and (state[0] == start[0] or (state[0] != 0 and start[0] != 0)):
+        walk.changes.append(change)
+        remaining = remaining_distance(walk.changes)
+        settled = change <= 1e-3 * tolerance or remaining <= tolerance  # round-off, or the walk's rest is within tolerance
+        if change <= tolerance and settled and (state[0] == start[0] or (state[0] != 0 and start[0] != 0)):
             converged = True
             break
+    return _response(s, restraint, rec, state, start, periods, steps, converged, change, remaining, slip, walk, tolerance, max_periods)
+
+
+def _response(
+    s: _System,
+    restraint: AxialRestraint,
+    rec: NDArray,
+    state: list,
+    start: tuple,
+    periods: int,
+    steps: int,
+    converged: bool,
+    change: float,
+    remaining: float,
+    slip: float,
+    walk: _Walk,
+    tolerance: float,
+    max_periods: int,
+) -> AxialResponse:
+    """The last period as an :class:`AxialResponse`, with the message saying how it ended."""
+    time_samples = rec.shape[0]
     t_out = (periods - 1) * s.T + np.arange(time_samples) * s.T / time_samples
     sign, u, v = rec[:, 0].astype(int), rec[:, 1].copy(), rec[:, 2].copy()
     load_t = np.array([s.force(t) for t in t_out])
     cap = np.array([s.capacity(t) for t in t_out])
     lashing, stop = restraint.restoring_force_N(u)
     friction = np.where(sign == 0, lashing + stop - load_t, -sign * cap)
+    drift_m = state[1] - start[1]
+    if math.isfinite(remaining):
+        residual_m = remaining * walk.u_scale
+        where = f"estimated {residual_m:.3g} m from the periodic state"
+    else:  # the changes do not decrease: at round-off (converged) or not settling; the last change is all there is
+        residual_m = change * walk.u_scale
+        where = "the changes no longer decrease" if converged else "the changes do not decrease"
     msg = (
         f"axial time domain (rigid Coulomb, event-driven RK4, {steps} steps per period): "
         f"{'periodic' if converged else 'NOT periodic'} after {periods} periods, last change {change:.2e} "
-        f"of the displacement scale {u_scale:.3g} m"
+        f"of the displacement scale {walk.u_scale:.3g} m (drift {drift_m:+.3g} m in the last period, {where})"
     )
-    if not converged:
-        msg += (
-            f"; the cargo moves {state[1] - start[1]:+.4g} m per period (walks)" if abs(state[2] - start[2]) <= tolerance * v_scale else ""
-        )
+    if walk.jumps:
+        msg += f"; start extrapolated to the walk's limit {len(walk.jumps)} time(s) (last: {walk.jumps[-1]})"
+    if not converged and abs(state[2] - start[2]) <= tolerance * s.w * walk.u_scale:
+        msg += f"; the cargo moves {drift_m:+.4g} m per period (walks)"
     return AxialResponse(
         "time_domain",
         s.w,
@@ -250,4 +371,5 @@ def solve_axial_time_domain(
         msg,
         None,
         {"time_samples": time_samples, "steps_per_period": steps, "max_periods": max_periods, "tolerance": tolerance},
+        residual_drift_m=float(residual_m),
     )
