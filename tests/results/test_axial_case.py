@@ -204,10 +204,12 @@ def test_friction_carrying_the_load_is_warned(cases):
     assert list(ds["axial_warning"].values) == ["friction_carries_load"]
     assert int(ds["axial_warning_flag"].sel(load_case="dynamic", model="nonlinear", axial_warning="friction_carries_load")) == 1
     alone = float(ds["frictionless_axial_force_N"].sel(load_case="dynamic", model="nonlinear"))
-    assert alone == pytest.approx(_row(free)["axial_force_N"], rel=1e-6)
+    # two routes to one linear oscillator's peak, each read on its own time grid: a sampled sinusoid's maximum is
+    # within (pi / N)^2 / 2 (3e-6 at N = 1300) of the true one, whatever the phase
+    assert alone == pytest.approx(_row(free)["axial_force_N"], rel=1e-5)
     moves = float(ds["frictionless_axial_displacement_m"].sel(load_case="dynamic", model="nonlinear"))
     assert moves == pytest.approx(
-        np.max(np.abs(free.dataset["axial_displacement_m"].sel(load_case="dynamic", model="nonlinear").values)), rel=1e-6
+        np.max(np.abs(free.dataset["axial_displacement_m"].sel(load_case="dynamic", model="nonlinear").values)), rel=1e-5
     )
     lines = held.axial.warning_lines()
     assert len(lines) == 2 and not free.axial.warning_lines()
