@@ -1,4 +1,4 @@
-"""Design waves against the Monte Carlo reference: the table of docs/operability.md and the README.
+"""Design waves against the Monte Carlo reference: the table of docs/operability.md.
 
 Run as ``python benchmarks/design_wave_accuracy.py [--store DIR] [--only NAME ...]``. For each sea
 state below (base case Hs 1-6 m x Tp 6-16 s, uniform soft saddles, soft outer / middle saddles,

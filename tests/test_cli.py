@@ -59,7 +59,8 @@ def test_calibration_static_linear_base_case(tmp_path):
     assert float(row["F_N"]) == pytest.approx(6.3e6, rel=0.05)
     assert float(row["u_s_m"]) == pytest.approx(5.7e-3, rel=0.05)
     assert float(row["M_b_Nm"]) == pytest.approx(49.3e6, rel=0.05)
-    # u_c depends on the reference frame (README): the sea-fastening baseline gives 5.33 mm vs the source's 5.9 mm
+    # u_c depends on the reference frame (docs/limitations.md#5-calibration-against-the-source):
+    # the sea-fastening baseline gives 5.33 mm vs the source's 5.9 mm
     assert float(row["u_c_m"]) == pytest.approx(5.33e-3, rel=0.02)
     # sigma_b = M_b (D/2) / I with I = 15.6 m^4
     I_m4 = math.pi / 64 * (8**4 - (8 - 0.16) ** 4)

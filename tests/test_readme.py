@@ -1,4 +1,5 @@
-"""The README's examples are real: its case file and study file load, and its commands exist."""
+"""The README is a newcomer's page: short, without the project's history; its examples are real (its case file
+and study file load, its commands exist)."""
 
 from __future__ import annotations
 
@@ -46,3 +47,24 @@ def test_every_command_the_readme_names_exists():
     sub = build_parser()._subparsers._group_actions[0].choices  # argparse has no public accessor
     for name in set(re.findall(r"`seafast (\w+)", README)):
         assert name in sub, name
+
+
+MAX_README_LINES = 300
+ISSUE_NUMBER = re.compile(r"\bissue\s*#?\d+", re.IGNORECASE)
+
+
+def test_readme_is_at_most_300_lines():
+    lines = README.count("\n") + (not README.endswith("\n"))
+    assert lines <= MAX_README_LINES, f"README.md has {lines} lines; theory, tables and history belong in docs/ and CHANGELOG.md"
+
+
+def test_readme_cites_no_issue_number():
+    found = sorted({m.group(0) for m in ISSUE_NUMBER.finditer(README)})
+    assert not found, f"README.md cites issue numbers {found}: the history goes to CHANGELOG.md"
+
+
+def test_issue_number_pattern_catches_the_forms_used():
+    for text in ("issue 12", "Issue 13, item 6", "issue #4", "(issue12)"):
+        assert ISSUE_NUMBER.search(text), text
+    for text in ("issues", "the issue's target", "tissue 3", "issue-free"):
+        assert not ISSUE_NUMBER.search(text), text

@@ -107,7 +107,7 @@ def test_typed_outcomes_and_warnings_reach_results_nc(result, tmp_path):
 
 
 def test_sea_fastening_frame_deflection_is_fixed_by_the_saddle_reactions(tmp_path):
-    """Why the source's u_c = 5.9 mm is out of reach of any hull loading (README, calibration).
+    """Why the source's u_c = 5.9 mm is out of reach of any hull loading (docs/limitations.md#5-calibration-against-the-source).
 
     Measured from the deck line through the outer saddles, the cargo's deflection is its
     outer-saddle compression plus its elastic droop under known loads: statics fixes both once
