@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.seafastening import BASE_LASHING, SeaFastening, evenly_spaced_saddles
+from seafast.model.seafastening import BASE_LASHING, SeaFastening
 from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.structure import MechanismError, StructuralModel, build_structural_model
 from seafast.model.warning import ModelWarning
@@ -213,16 +213,6 @@ def test_pretension_adds_to_static_saddle_reactions() -> None:
         assert extra.sum() == pytest.approx(T_l, rel=1e-7)
         assert extra[0] == pytest.approx(extra[2], rel=1e-9)
         assert extra[0] > 0
-
-
-def test_arrangement_rule() -> None:
-    np.testing.assert_allclose(evenly_spaced_saddles(3, 74.0), [14.8, 37.0, 59.2], rtol=1e-14)
-    np.testing.assert_allclose(evenly_spaced_saddles(1, 74.0), [37.0])
-    xs = evenly_spaced_saddles(7, 100.0)
-    assert xs[0] == pytest.approx(20.0) and xs[-1] == pytest.approx(80.0)
-    np.testing.assert_allclose(np.diff(xs), 10.0, rtol=1e-12)
-    with pytest.raises(ValueError, match="saddle count = 0"):
-        evenly_spaced_saddles(0, 74.0)
 
 
 def _state_space_damping(model: StructuralModel, count: int = 2) -> np.ndarray:

@@ -10,8 +10,9 @@ from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 from threadpoolctl import threadpool_limits
 
+from seafast.config.arrangement import evenly_spaced_saddles
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
+from seafast.model.seafastening import SeaFastening
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_structural_model
 from seafast.solvers.contact import ContactLaw

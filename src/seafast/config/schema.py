@@ -19,7 +19,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
-from seafast.model.seafastening import evenly_spaced_saddles
+from seafast.config.arrangement import evenly_spaced_saddles
 
 __all__ = [
     "Case",

@@ -1,6 +1,6 @@
 """Model definition: cargo beam, sections, sea-fastening and the assembled linear system."""
 
-from seafast.model.seafastening import SeaFastening, evenly_spaced_saddles
+from seafast.model.seafastening import SeaFastening
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import CargoBeam, MechanismError, StructuralModel, build_structural_model
 
@@ -8,7 +8,6 @@ __all__ = [
     "CargoGeometry",
     "TubeSegment",
     "SeaFastening",
-    "evenly_spaced_saddles",
     "CargoBeam",
     "StructuralModel",
     "MechanismError",

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["SeaFastening", "evenly_spaced_saddles", "BASE_LASHING"]
+__all__ = ["SeaFastening", "BASE_LASHING"]
 
 
 @dataclass(frozen=True)
@@ -20,15 +20,6 @@ class LashingReference:
 
 
 BASE_LASHING = LashingReference()
-
-
-def evenly_spaced_saddles(count: int, cargo_length_m: float) -> NDArray[np.float64]:
-    """The arrangement rule: ``count`` saddles evenly from 0.2 L to 0.8 L inclusive [m]."""
-    if count < 1:
-        raise ValueError(f"saddle count = {count}; must be >= 1")
-    if count == 1:
-        return np.array([0.5 * cargo_length_m])
-    return np.linspace(0.2 * cargo_length_m, 0.8 * cargo_length_m, count)
 
 
 @dataclass(frozen=True)
