@@ -63,7 +63,7 @@ def test_cli_sets_one_blas_thread_before_numpy_and_main_limits_blas_to_one():
     env["MKL_NUM_THREADS"] = "2"  # the user's
     code = """
 import json, os, sys
-import seafast.cli as cli
+import seafast.cli.command as cli
 before = {k: os.environ.get(k) for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
 seen = {}
 def probe(args):

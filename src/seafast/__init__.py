@@ -25,7 +25,7 @@ from typing import Any
 __version__ = "0.1.0"
 
 # A library logs and lets the application decide what to show: nothing, unless it configures
-# logging (the ``seafast`` command does, see :func:`seafast.cli.main`).
+# logging (the ``seafast`` command does, see :func:`seafast.cli.command.main`).
 logging.getLogger(__name__).addHandler(logging.NullHandler())
 
 __all__ = ["__version__", "load_case", "run_case", "Case", "CaseError", "CaseResult"]

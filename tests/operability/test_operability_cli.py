@@ -11,8 +11,8 @@ import pytest
 import xarray as xr
 
 from seafast.cli import main
+from seafast.cli.operability import default_peak_periods, parse_peak_periods
 from seafast.config import CaseError, load_case
-from seafast.operability.cli import default_peak_periods, parse_peak_periods
 from seafast.operability.outputs import OPERABILITY_COLUMNS
 from seafast.operability.scatter import assess_scatter, read_scatter_diagram
 

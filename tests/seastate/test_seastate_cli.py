@@ -128,7 +128,7 @@ def test_monte_carlo_rows_and_dataset_are_written_from_the_engine(tmp_path, monk
 
     import numpy as np
 
-    import seafast.seastate.cli as seastate_cli
+    import seafast.cli.seastate as seastate_cli
 
     calls = {}
 

@@ -31,7 +31,7 @@ def _command(study: Path, out: Path, workers: int = 2) -> list[str]:
     return [
         sys.executable,
         "-m",
-        "seafast.studies.cli",
+        "seafast.cli.study",
         str(study),
         "-o",
         str(out),

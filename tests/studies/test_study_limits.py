@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from seafast.studies.cli import main as study_main
+from seafast.cli.study import main as study_main
 from seafast.studies.figures import plot_study
 from seafast.studies.limits import DesignLimits, compliance, compliance_rows, format_table, rank_compliant
 

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from seafast.cli.study import main as study_main
 from seafast.config import CaseError
-from seafast.studies.cli import main as study_main
 from seafast.studies.spec import (
     BUILTIN_STUDIES,
     StudyError,

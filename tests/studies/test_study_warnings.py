@@ -145,7 +145,7 @@ def test_verbose_prints_each_points_messages_naming_the_point(fake_study: Path, 
 @pytest.mark.parametrize("level", [logging.INFO, logging.DEBUG], ids=["default", "verbose"])
 def test_forked_workers_print_no_point_message_and_verbose_ones_come_back_named(small_grid, tmp_path: Path, capsys, level: int):
     """Forked workers inherit the command's stderr handler: without the capture they would print every note."""
-    from seafast.console import command_logging
+    from seafast.cli.console import command_logging
 
     options = ExecutionOptions(workers=2, batch_size=3, progress=False, start_method="fork")
     with command_logging(level):

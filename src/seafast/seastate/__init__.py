@@ -4,7 +4,6 @@
 * :mod:`~seafast.seastate.transfer` - transfer functions per metre of wave amplitude.
 * :mod:`~seafast.seastate.spectral` - response spectra, moments, Rayleigh most probable maxima, uplift rate.
 * :mod:`~seafast.seastate.outputs`, :mod:`~seafast.seastate.figures` - seastate.csv / .nc / PNGs.
-* :mod:`~seafast.seastate.cli` - the ``seafast seastate`` command.
 * :mod:`~seafast.seastate.monte_carlo` - the nonlinear Monte Carlo reference.
 
 Theory and verification: ``docs/seastate.md``.

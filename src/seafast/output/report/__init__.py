@@ -31,7 +31,6 @@ Modules
 * :mod:`~seafast.output.report.print_figures`: matplotlib PNG/PDF print figures.
 * :mod:`~seafast.output.report.write`: :func:`write_report` (reads the directory, writes the
   page and the print figures).
-* :mod:`~seafast.output.report.cli`: the ``seafast report`` subcommand.
 """
 
 from __future__ import annotations
@@ -41,7 +40,6 @@ from typing import TYPE_CHECKING
 from seafast.lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from seafast.output.report.cli import REPORT_EXAMPLES, add_report_subcommand
     from seafast.output.report.common import (
         FIGURES_DIRNAME,
         PDF_FILENAME,
@@ -72,7 +70,6 @@ if TYPE_CHECKING:
 # imported on first use (seafast.lazy): the command line's parser imports the report's
 # subcommand without loading xarray, plotly or matplotlib
 EXPORTS = {
-    "seafast.output.report.cli": ("REPORT_EXAMPLES", "add_report_subcommand"),
     "seafast.output.report.common": (
         "FIGURES_DIRNAME",
         "PDF_FILENAME",
@@ -101,8 +98,6 @@ EXPORTS = {
     "seafast.output.report.write": ("write_report",),
 }
 __all__ = [
-    "REPORT_EXAMPLES",
-    "add_report_subcommand",
     "FIGURES_DIRNAME",
     "PDF_FILENAME",
     "PNG_DPI",

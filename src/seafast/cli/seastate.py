@@ -14,6 +14,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, error
+
 __all__ = ["add_seastate_subcommand", "SEASTATE_EXAMPLES"]
 
 SEASTATE_EXAMPLES = """examples:
@@ -28,13 +30,6 @@ rows linear/spectral, linear/monte_carlo, nonlinear/monte_carlo, nonlinear/desig
 probable maxima over sea_state.duration_s, still water included; empty cells = not computed),
 seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
 """
-
-EXIT_OK, EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED = 0, 2, 3
-
-
-def _error(message: str) -> int:
-    print(f"seafast: error: {message}", file=sys.stderr)
-    return EXIT_INVALID_INPUT
 
 
 def _monte_carlo_engine() -> tuple[Any, str]:
@@ -56,11 +51,11 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     from seafast.seastate.spectral import spectral_analysis
 
     if args.workers is not None and args.workers < 1:
-        return _error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")
+        return error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")
     try:
         case = load_case(args.case, parse_overrides(args.overrides))
     except CaseError as exc:
-        return _error(str(exc))
+        return error(str(exc))
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     t0 = time.perf_counter()
     say(f"seafast seastate: '{case.name}'" + (f" from {args.case}" if args.case else " (built-in base case)"))
@@ -68,7 +63,7 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         say("spectrum, transfer functions and linear spectral extremes")
         analysis = spectral_analysis(case)
     except (CaseError, ValueError) as exc:
-        return _error(str(exc))
+        return error(str(exc))
     say(
         f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
         f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)"
@@ -95,7 +90,7 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         try:
             monte_carlo = engine(case, Path(args.output), workers=args.workers, scheduler=args.scheduler, progress=not args.quiet)
         except (CaseError, ValueError) as exc:
-            return _error(str(exc))
+            return error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
     rows.append(design.row())
     paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design)

@@ -18,11 +18,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["add_study_subcommand", "build_study_parser", "cmd_study", "main", "EXIT_OK", "EXIT_INVALID_INPUT"]
+from seafast.cli.common import EXIT_INTERRUPTED, EXIT_OK, error
 
-EXIT_OK = 0
-EXIT_INVALID_INPUT = 2
-EXIT_INTERRUPTED = 130
+__all__ = ["add_study_subcommand", "build_study_parser", "cmd_study", "main"]
+
 
 STUDY_EXAMPLES = """built-in studies: saddles, lashing, cargo, cargo-saddles-8m, cargo-saddles-12m
 
@@ -91,7 +90,7 @@ def add_study_subcommand(subparsers: Any) -> argparse.ArgumentParser:
 
 
 def build_study_parser() -> argparse.ArgumentParser:
-    """A stand-alone parser for ``python -m seafast.studies.cli``."""
+    """A stand-alone parser for ``python -m seafast.cli.study``."""
     parser = argparse.ArgumentParser(
         prog="seafast study",
         description="Run a parametric study over case keys, check the design limits and rank compliant arrangements.",
@@ -99,11 +98,6 @@ def build_study_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     return _configure(parser)
-
-
-def _error(message: str) -> int:
-    print(f"seafast: error: {message}", file=sys.stderr)
-    return EXIT_INVALID_INPUT
 
 
 def cmd_study(args: argparse.Namespace) -> int:
@@ -123,9 +117,9 @@ def cmd_study(args: argparse.Namespace) -> int:
 
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     if args.workers is not None and args.workers < 1:
-        return _error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")
+        return error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")
     if args.batch_size is not None and args.batch_size < 1:
-        return _error(f"--batch-size {args.batch_size}: allowed: 1 or more points per task")
+        return error(f"--batch-size {args.batch_size}: allowed: 1 or more points per task")
     try:
         overrides = parse_overrides(args.overrides)
         spec, directory = load_study_spec(args.study)
@@ -135,7 +129,7 @@ def cmd_study(args: argparse.Namespace) -> int:
             )
         grid = build_grid(spec, directory, overrides)
     except CaseError as exc:
-        return _error(str(exc))
+        return error(str(exc))
     out = Path(args.output or f"study-{spec.name}")
     execution = ExecutionOptions(args.workers, args.scheduler, args.batch_size, progress=not (args.no_progress or args.quiet))
     where = {"serial": "serially", "processes": f"on {execution.worker_count()} local processes", "dask": f"on Dask at {args.scheduler}"}
@@ -143,7 +137,7 @@ def cmd_study(args: argparse.Namespace) -> int:
     try:
         run = run_study(grid, out, execution=execution)
     except CaseError as exc:
-        return _error(str(exc))
+        return error(str(exc))
     except KeyboardInterrupt:
         print(f"seafast: interrupted; finished points are kept in {out}; rerun the same command to resume", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -190,10 +184,10 @@ def cmd_study(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m seafast.studies.cli``: the ``seafast study`` command on its own (messages as ``seafast study``'s)."""
+    """``python -m seafast.cli.study``: the ``seafast study`` command on its own (messages as ``seafast study``'s)."""
     import logging
 
-    from seafast.console import command_logging
+    from seafast.cli.console import command_logging
 
     args = build_study_parser().parse_args(argv)
     with command_logging(logging.WARNING if args.quiet else logging.INFO):

@@ -1,6 +1,6 @@
 """How a command prints the package's messages: its log records on stderr for the command's duration.
 
-``seafast`` (:func:`seafast.cli.main`) and ``python -m seafast.studies.cli`` route the records
+``seafast`` (:func:`seafast.cli.command.main`) and ``python -m seafast.cli.study`` route the records
 of the ``seafast.*`` loggers to stderr while the command runs (:func:`command_logging`):
 progress at INFO as plain lines, warnings and errors as ``seafast: warning: ...``, debug lines
 with their logger's name (:class:`CliFormatter`).

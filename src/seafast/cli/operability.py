@@ -20,6 +20,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, error
+
 if TYPE_CHECKING:
     from seafast.config import Case
 
@@ -49,13 +51,6 @@ case.yaml, and with --scatter scatter.csv. The spectrum shape, gamma and duratio
 (its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa.
 'seafast report DIR' adds the operability section.
 """
-
-EXIT_OK, EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED = 0, 2, 3
-
-
-def _error(message: str) -> int:
-    print(f"seafast: error: {message}", file=sys.stderr)
-    return EXIT_INVALID_INPUT
 
 
 def parse_peak_periods(text: str) -> list[float]:
@@ -108,9 +103,9 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     try:
         tps = parse_peak_periods(args.tp) if args.tp is not None else None
     except ValueError as exc:
-        return _error(str(exc))
+        return error(str(exc))
     if args.scatter and Path(args.scatter).resolve() == (Path(args.output) / "scatter.csv").resolve():
-        return _error(
+        return error(
             f"--scatter {args.scatter}: it is the output scatter.csv of -o {args.output}; allowed: a file outside it, "
             "or another output directory"
         )
@@ -118,7 +113,7 @@ def _cmd_operability(args: argparse.Namespace) -> int:
         case = load_case(args.case, parse_overrides(args.overrides))
         scatter = read_scatter_diagram(args.scatter) if args.scatter else None
     except CaseError as exc:
-        return _error(str(exc))
+        return error(str(exc))
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     t0 = time.perf_counter()
     default = tps is None
@@ -136,9 +131,9 @@ def _cmd_operability(args: argparse.Namespace) -> int:
         message = str(exc)
         if "sea_state.peak_period_s" in message:
             message = f"--tp / --scatter: a peak period is outside what the transfer functions resolve: {message}"
-        return _error(message)
+        return error(message)
     except ValueError as exc:
-        return _error(str(exc))
+        return error(str(exc))
     say(f"transfer functions on {family.master_omega_rad_s.size} frequencies ({time.perf_counter() - t0:.2f} s)")
 
     def progress(done: int, total: int) -> None:
