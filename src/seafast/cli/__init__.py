@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from seafast.cli.common import EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED, EXIT_OK, EXIT_OUTSIDE_VALIDITY
 from seafast.cli.command import build_parser, main
+from seafast.cli.common import EXIT_INVALID_INPUT, EXIT_NOT_CONVERGED, EXIT_OK, EXIT_OUTSIDE_VALIDITY
 
 __all__ = ["main", "build_parser", "EXIT_OK", "EXIT_INVALID_INPUT", "EXIT_NOT_CONVERGED", "EXIT_OUTSIDE_VALIDITY"]
