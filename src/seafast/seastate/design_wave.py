@@ -5,24 +5,28 @@ practice: the regular wave at the peak of a response's transfer or response spec
 linear response equals the target linear extreme, e.g. DNV-RP-C103 and DNV-CG-0130's design
 waves, Lloyd's Register's characteristic wave), per reported quantity q:
 
-1. the governing location of the linear spectral extreme: the saddle with the largest
-   still-water + MPM force (``F_N``) or compression (``u_s_m``), the moment point with the largest
-   ``|M_0| + MPM`` (``M_b_Nm``, ``sigma_b_Pa``), the saddle with the smallest still-water
-   compression minus its MPM, the one nearest to lifting off (``u_d_m``);
-2. that response's spectrum ``S_r = |H_r|^2 S``, its peak frequency, and the band around it where
-   ``S_r`` is at least :attr:`DesignWaveSettings.band_fraction` of the peak; the design
-   frequencies are the peak and the band's two ends;
+1. the locations designed for: every saddle for the saddle quantities (``F_N``, ``u_s_m``,
+   ``u_d_m``; the saddle of the linear extreme first), the moment point of the largest linear
+   ``|M_0| + MPM`` for ``M_b_Nm`` and ``sigma_b_Pa`` (a field of 228 points: its governing point only);
+2. at each location, the response's spectrum ``S_r = |H_r|^2 S``, its peak frequency, and the band
+   around it where ``S_r`` is at least :attr:`DesignWaveSettings.band_fraction` of the peak; the
+   design frequencies are the peak and the band's two ends;
 3. at each design frequency the regular wave of amplitude ``a = MPM_r / |H_r(omega)|``, whose
-   linear dynamic response equals the linear spectral MPM (Rayleigh);
+   linear dynamic response at that location equals its linear spectral MPM (Rayleigh);
 4. the harmonic balance of that wave, still water included (exact contact law, fixed H), gives
-   the nonlinear maxima; the estimate of q is the largest q over q's own design waves.
+   the nonlinear response; each wave is read only for the quantity and at the location it is
+   designed for (elsewhere the same wave is not an MPM wave: at another saddle its linear
+   response can exceed that saddle's MPM); the estimate of q is the largest over q's locations of
+   the largest over each location's waves, as the spectral total is the largest over locations
+   of still water + MPM.
 
 Where no saddle lifts off in a design wave its nonlinear answer equals the linear one, so the
-method returns the linear spectral MPM there exactly. Waves that coincide (same frequency and
-amplitude, e.g. F and u_s at one saddle) are solved once; waves at one frequency share their
-operators (:mod:`seafast.seastate.wave_response`). ``uplift_per_hour`` is Rice's rate of the
-linear compressions (the nonlinear model equals the linear one until a saddle separates, so the
-rate of first separations is the same; bounces after a re-contact are not counted).
+method returns the linear spectral total there (to the solvers' round-off, ~1e-8). Waves that
+coincide (same frequency and amplitude: ``F_N``, ``u_s_m`` and ``u_d_m`` at one saddle) are solved
+once; waves at one frequency share their operators (:mod:`seafast.seastate.wave_response`).
+``uplift_per_hour`` is Rice's rate of the linear compressions (the nonlinear model equals the
+linear one until a saddle separates, so the rate of first separations is the same; bounces after
+a re-contact are not counted).
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.seastate.spectral import ResponseStatistics, SpectralAnalysis
 from seafast.seastate.transfer import TransferFunctions
+from seafast.seastate.wave_maxima import SADDLE_QUANTITIES
 from seafast.seastate.wave_response import (
     RESPONSE_QUANTITIES,
     MomentMap,
@@ -119,7 +124,8 @@ class DesignWave:
     quantity
         The quantity it is designed for (``F_N``, ``M_b_Nm``, ``sigma_b_Pa``, ``u_s_m``, ``u_d_m``).
     location
-        Saddle index (``F_N``, ``u_s_m``, ``u_d_m``) or moment-point index (``M_b_Nm``, ``sigma_b_Pa``).
+        The location it is designed for, where it is read: saddle index (``F_N``, ``u_s_m``,
+        ``u_d_m``) or moment-point index (``M_b_Nm``, ``sigma_b_Pa``).
     frequency_index
         Index of its frequency on the sea-state grid.
     omega_rad_s
@@ -141,27 +147,38 @@ class DesignWave:
     role: str
 
 
-def _statistics(analysis: SpectralAnalysis, quantities: Sequence[str]) -> dict[str, tuple[ResponseStatistics, NDArray[np.complex128], int]]:
-    """Per quantity: the response statistics, its transfer function at the governing location, the location."""
+def _governing_saddle(analysis: SpectralAnalysis, quantity: str) -> int:
+    """The saddle of the linear spectral extreme of a saddle quantity (``u_d_m``: the one nearest to lifting off)."""
+    e = analysis.extremes
+    sw = e.still_water
+    if quantity == "F_N":
+        return int(np.argmax(sw.saddle_force_N + e.saddle_force.mpm))
+    if quantity == "u_s_m":
+        return int(np.argmax(sw.saddle_compression_m + e.saddle_compression.mpm))
+    return int(np.argmin(sw.saddle_compression_m - e.saddle_compression.mpm))
+
+
+def _targets(analysis: SpectralAnalysis, quantities: Sequence[str]) -> list[tuple[str, ResponseStatistics, NDArray[np.complex128], int]]:
+    """Per quantity and location designed for: (quantity, response statistics, transfer function there, location).
+
+    Saddle quantities at every saddle, the linear governing saddle first (it starts the chain of
+    warm starts); moment quantities at the moment point of the linear spectral extreme.
+    """
     e, tf = analysis.extremes, analysis.transfer
     sw = e.still_water
-    out: dict[str, tuple[ResponseStatistics, NDArray[np.complex128], int]] = {}
+    out: list[tuple[str, ResponseStatistics, NDArray[np.complex128], int]] = []
     for q in quantities:
-        if q == "F_N":
-            loc = int(np.argmax(sw.saddle_force_N + e.saddle_force.mpm))
-            out[q] = (e.saddle_force, tf.saddle_force_N[:, loc], loc)
-        elif q == "u_s_m":
-            loc = int(np.argmax(sw.saddle_compression_m + e.saddle_compression.mpm))
-            out[q] = (e.saddle_compression, tf.saddle_compression_m[:, loc], loc)
+        if q in SADDLE_QUANTITIES:
+            first = _governing_saddle(analysis, q)
+            stats, transfer = (e.saddle_force, tf.saddle_force_N) if q == "F_N" else (e.saddle_compression, tf.saddle_compression_m)
+            for loc in (first, *(s for s in range(analysis.model.saddle_count) if s != first)):
+                out.append((q, stats, transfer[:, loc], loc))
         elif q == "M_b_Nm":
             loc = int(np.argmax(np.abs(sw.bending_moment_Nm) + e.bending_moment.mpm))
-            out[q] = (e.bending_moment, tf.bending_moment_Nm[:, loc], loc)
-        elif q == "sigma_b_Pa":
+            out.append((q, e.bending_moment, tf.bending_moment_Nm[:, loc], loc))
+        else:  # sigma_b_Pa
             loc = int(np.argmax(np.abs(sw.bending_stress_Pa) + e.bending_stress.mpm))
-            out[q] = (e.bending_stress, tf.bending_moment_Nm[:, loc] / tf.bending_section_modulus_m3[loc], loc)
-        else:  # u_d_m: the saddle nearest to lifting off
-            loc = int(np.argmin(sw.saddle_compression_m - e.saddle_compression.mpm))
-            out[q] = (e.saddle_compression, tf.saddle_compression_m[:, loc], loc)
+            out.append((q, e.bending_stress, tf.bending_moment_Nm[:, loc] / tf.bending_section_modulus_m3[loc], loc))
     return out
 
 
@@ -188,7 +205,7 @@ def select_design_waves(
     hs = float(analysis.spectrum.significant_height_m)
     w = analysis.spectrum.omega_rad_s
     waves: list[DesignWave] = []
-    for quantity, (stats, transfer, loc) in _statistics(analysis, quantities).items():
+    for quantity, stats, transfer, loc in _targets(analysis, quantities):
         mpm = float(stats.mpm[loc])
         s_r = stats.spectrum[:, loc]
         if not (mpm > 0.0 and np.max(s_r) > 0.0):
@@ -232,10 +249,12 @@ class DesignWaveExtremes:
     solutions
         One :class:`~seafast.seastate.wave_response.WaveSolution` per wave, same order.
     totals
-        Per quantity, the largest nonlinear maximum over its own design waves, still water
-        included [N, N m, Pa, m, m], and ``uplift_per_hour`` (Rice, linear; see the module docstring).
+        Per quantity, the largest over its design waves of the nonlinear maximum at the wave's own
+        location, still water included (at least the still-water value) [N, N m, Pa, m, m], and
+        ``uplift_per_hour`` (Rice, linear; see the module docstring).
     governing
-        Per quantity, the index in :attr:`waves` of the wave that gave the total (-1: no wave).
+        Per quantity, the index in :attr:`waves` of the wave that gave the total (-1: none did,
+        the still water governs).
     converged
         Every harmonic-balance solve converged.
     settings
@@ -348,8 +367,9 @@ def design_wave_extremes(
     governing = dict.fromkeys(RESPONSE_QUANTITIES, -1)
     for i, (wave, sol) in enumerate(zip(waves, solutions, strict=True)):
         q = wave.quantity
-        if governing[q] < 0 or sol.maxima[q] > totals[q]:
-            totals[q], governing[q] = sol.maxima[q], i
+        value = sol.maximum_at(q, wave.location)  # read where, and for what, the wave is designed
+        if value > totals[q] or (governing[q] < 0 and value == totals[q]):
+            totals[q], governing[q] = value, i
     totals["uplift_per_hour"] = float(analysis.extremes.totals["uplift_per_hour"])
     converged = all(s.converged for s in solved.values())
     return DesignWaveExtremes(waves, tuple(solutions), totals, governing, converged, settings)
