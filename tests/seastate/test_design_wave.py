@@ -13,6 +13,7 @@ from seafast.seastate.conditioned_wave import conditioned_wave, solve_conditione
 from seafast.seastate.design_wave import (
     DesignWaveSettings,
     design_wave_extremes,
+    read_locations,
     sea_state_design_waves,
     select_design_waves,
     still_water_excitation,
@@ -193,6 +194,28 @@ def test_a_wave_is_read_only_where_it_is_designed_so_without_lift_off_the_row_is
         if w.quantity == "F_N":
             own = e.still_water.saddle_force_N[w.location] + e.saddle_force.mpm[w.location]
             assert s.maximum_at("F_N", w.location) == pytest.approx(own, rel=1e-7), (w.location, w.role)
+
+
+def test_a_moment_wave_is_read_where_it_is_at_most_an_mpm_wave_and_catches_a_peak_that_lift_off_moves():
+    # four saddles, Hs 8.13 m, Tp 14 s (heavy lift-off): in the upper band wave designed for the
+    # governing point (over saddle 1) the largest moment is over saddle 2, 3 % above the governing
+    # point's, where that wave is slightly below the point's own MPM wave: it is read there
+    an = analysis_of(**{"seafastening.saddle_count": 4, "sea_state.significant_height_m": 8.13, "sea_state.peak_period_s": 14.0})
+    dw = sea_state_design_waves(an)
+    assert dw.converged
+    e, tf = an.extremes, an.transfer
+    waves = [(i, w, s) for i, (w, s) in enumerate(zip(dw.waves, dw.solutions, strict=True)) if w.quantity == "M_b_Nm"]
+    at_point = max(s.maximum_at("M_b_Nm", w.location) for _, w, s in waves)
+    assert dw.totals["M_b_Nm"] > 1.01 * at_point
+    for i, w, _ in waves:
+        read = dw.read[i]
+        severity = w.amplitude_m * np.abs(tf.bending_moment_Nm[w.frequency_index]) / e.bending_moment.mpm
+        assert w.location in read and np.all(severity[read] <= 1.0 + 1e-9)  # never more than an MPM wave where read
+        assert np.array_equal(read, read_locations(an, w))
+        unread = np.setdiff1d(np.arange(severity.size), read)
+        assert np.all(severity[unread] > 1.0)
+    best = dw.governing["M_b_Nm"]
+    assert dw.read[best].size > 1 and dw.solutions[best].maximum_at("M_b_Nm", dw.read[best]) == dw.totals["M_b_Nm"]
 
 
 def test_with_lift_off_the_design_wave_estimate_is_below_the_linear_one_and_a_gap_opens(base):

@@ -56,7 +56,7 @@ def test_seastate_nc_labels_every_variable_and_the_figures_exist(spectral_run):
         # band), the saddle quantities at each of the 3 saddles, the moment ones at their governing point
         assert ds.sizes["design_wave"] == 3 * (3 * 3 + 2) and set(ds["design_wave_role"].values) == {"peak", "band_low", "band_high"}
         for q in ("F_N", "M_b_Nm", "u_d_m"):  # each quantity from its own waves, read where they are designed
-            own = ds[f"design_wave_{q}_at_location"].where(ds["design_wave_quantity"] == q)
+            own = ds[f"design_wave_{q}_read"].where(ds["design_wave_quantity"] == q)
             assert float(own.max()) == pytest.approx(float(ds[q].sel(model="nonlinear", estimate_method="design_wave")), rel=1e-12)
             assert np.all(own.fillna(0.0) <= ds[f"design_wave_{q}"].fillna(0.0) + 1e-12 * abs(float(own.max())))
         assert ds.attrs["significant_height_m"] == 3.0 and ds.attrs["duration_s"] == 10800.0

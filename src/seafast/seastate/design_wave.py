@@ -14,11 +14,11 @@ waves, Lloyd's Register's characteristic wave), per reported quantity q:
 3. at each design frequency the regular wave of amplitude ``a = MPM_r / |H_r(omega)|``, whose
    linear dynamic response at that location equals its linear spectral MPM (Rayleigh);
 4. the harmonic balance of that wave, still water included (exact contact law, fixed H), gives
-   the nonlinear response; each wave is read only for the quantity and at the location it is
-   designed for (elsewhere the same wave is not an MPM wave: at another saddle its linear
-   response can exceed that saddle's MPM); the estimate of q is the largest over q's locations of
-   the largest over each location's waves, as the spectral total is the largest over locations
-   of still water + MPM.
+   the nonlinear response; each wave is read only for its quantity, at its saddle, or for a
+   moment quantity at the moment points where it is at most an MPM wave (:func:`read_locations`;
+   elsewhere the same wave is not an MPM event: at another saddle its linear response can exceed
+   that saddle's MPM); the estimate of q is the largest of these readings over q's waves, as the
+   spectral total is the largest over locations of still water + MPM.
 
 Where no saddle lifts off in a design wave its nonlinear answer equals the linear one, so the
 method returns the linear spectral total there (to the solvers' round-off, ~1e-8). Waves that
@@ -59,6 +59,7 @@ __all__ = [
     "DesignWave",
     "DesignWaveExtremes",
     "select_design_waves",
+    "read_locations",
     "unit_wave_excitation",
     "design_wave_extremes",
     "static_totals",
@@ -259,6 +260,8 @@ class DesignWaveExtremes:
         Every harmonic-balance solve converged.
     settings
         The settings used.
+    read
+        Per wave, the locations it is read at for its quantity (:func:`read_locations`).
     """
 
     waves: tuple[DesignWave, ...]
@@ -267,6 +270,7 @@ class DesignWaveExtremes:
     governing: Mapping[str, int]
     converged: bool
     settings: DesignWaveSettings = field(default_factory=DesignWaveSettings)
+    read: tuple[NDArray[np.int64], ...] = ()
 
     def row(self) -> dict[str, Any]:
         """The (nonlinear, design_wave) row of seastate.csv."""
@@ -365,14 +369,38 @@ def design_wave_extremes(
         solutions.append(solved[key])
     totals = static_totals(analysis)
     governing = dict.fromkeys(RESPONSE_QUANTITIES, -1)
+    read = tuple(read_locations(analysis, wave) for wave in waves)
     for i, (wave, sol) in enumerate(zip(waves, solutions, strict=True)):
         q = wave.quantity
-        value = sol.maximum_at(q, wave.location)  # read where, and for what, the wave is designed
+        value = sol.maximum_at(q, read[i])  # read for its quantity, where it is designed (read_locations)
         if value > totals[q] or (governing[q] < 0 and value == totals[q]):
             totals[q], governing[q] = value, i
     totals["uplift_per_hour"] = float(analysis.extremes.totals["uplift_per_hour"])
     converged = all(s.converged for s in solved.values())
-    return DesignWaveExtremes(waves, tuple(solutions), totals, governing, converged, settings)
+    return DesignWaveExtremes(waves, tuple(solutions), totals, governing, converged, settings, read)
+
+
+def read_locations(analysis: SpectralAnalysis, wave: DesignWave) -> NDArray[np.int64]:
+    """Where a design wave is read for its quantity: saddle indices or moment-point indices.
+
+    A saddle quantity's wave: its own saddle (every saddle has its own waves). A moment quantity's
+    wave (designed for the governing point only): every moment point where it is at most an MPM
+    wave, ``a |H_x(omega)| <= MPM_x`` (1e-9 relative slack; the governing point itself is at 1).
+    Where the wave is more severe than a location's MPM its response there is not that location's
+    MPM event and is not read; where it is less severe, its nonlinear maximum there estimates from
+    below what that point's own waves would give, and catches a moment peak that lift-off moves
+    away from the governing point. In the linear model every reading is at most the location's
+    still water + MPM, so the method returns the linear spectral total where nothing lifts off.
+    """
+    if wave.quantity in SADDLE_QUANTITIES:
+        return np.array([wave.location], dtype=np.int64)
+    e, tf = analysis.extremes, analysis.transfer
+    stats = e.bending_moment if wave.quantity == "M_b_Nm" else e.bending_stress
+    field_tf = tf.bending_moment_Nm if wave.quantity == "M_b_Nm" else tf.bending_stress_Pa
+    response = wave.amplitude_m * np.abs(field_tf[wave.frequency_index])
+    covered = (stats.mpm > 0.0) & (response <= stats.mpm * (1.0 + 1e-9))
+    covered[wave.location] = True
+    return np.asarray(np.flatnonzero(covered), dtype=np.int64)
 
 
 def still_water_excitation(analysis: SpectralAnalysis) -> HarmonicExcitation:

@@ -152,6 +152,10 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
         "design_wave_harmonics": _var(d, [s.harmonics for s in sols], "harmonics H of the harmonic balance that solved the wave", "1"),
     }
     saddle_wave = np.array([w.quantity in SADDLE_QUANTITIES for w in waves], dtype=bool)
+    read = design.read
+    v["design_wave_read_locations"] = _var(
+        d, [r.size for r in read], "number of locations the wave is read at for its quantity (saddle: 1; moment points)", "1"
+    )
     for q, what in _DESIGN_WAVE_MAXIMA.items():
         v[f"design_wave_{q}"] = _var(
             d,
@@ -159,13 +163,13 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
             f"{what} over the cargo and the design wave's period (nonlinear, still water included)",
             QUANTITIES[q][1],
         )
-        # what the design-wave row reads: each wave at the location it is designed for (NaN where the
-        # wave's location is of the other kind, a saddle for a moment quantity or a moment point for a saddle one)
+        # what the design-wave row reads: each wave where it is read (its saddle; for a moment wave the
+        # moment points where it is at most an MPM wave); NaN for a quantity of the other kind
         same_kind = saddle_wave == (q in SADDLE_QUANTITIES)
-        v[f"design_wave_{q}_at_location"] = _var(
+        v[f"design_wave_{q}_read"] = _var(
             d,
-            [s.maximum_at(q, w.location) if k else np.nan for w, s, k in zip(waves, sols, same_kind, strict=True)],
-            f"{what} at the design wave's location over its period (nonlinear, still water included; NaN: location of the other kind)",
+            [s.maximum_at(q, r) if k else np.nan for s, r, k in zip(sols, read, same_kind, strict=True)],
+            f"{what} where the design wave is read, over its period (nonlinear, still water included; NaN: other kind of location)",
             QUANTITIES[q][1],
         )
     return v

@@ -110,7 +110,7 @@ def period_maxima(
 
 def location_maximum(
     quantity: str,
-    location: int,
+    location: int | NDArray[np.int64],
     compression: NDArray[np.float64],
     moment: NDArray[np.float64],
     inverse: NDArray[np.float64],
@@ -119,30 +119,38 @@ def location_maximum(
     modulus: NDArray[np.float64],
     nonlinear: bool = True,
 ) -> float:
-    """The maximum over the period of one quantity at one location (arguments as :func:`period_maxima`).
+    """The maximum over the period of one quantity at one location, or over several (arguments as :func:`period_maxima`).
 
-    ``location`` is a saddle index for :data:`SADDLE_QUANTITIES`, a moment-point index for
-    :data:`MOMENT_QUANTITIES`. ``F_N`` [N] the contact force, ``u_s_m`` [m] the compression (>= 0),
-    ``u_d_m`` [m] the gap (>= 0), ``M_b_Nm`` [N m] the absolute moment, ``sigma_b_Pa`` [Pa] the
-    absolute stress; ``u_d_m`` is 0 for the linear model (``nonlinear=False``: bilateral saddles).
+    ``location`` is a saddle index (or indices) for :data:`SADDLE_QUANTITIES`, a moment-point index
+    (or indices) for :data:`MOMENT_QUANTITIES`. ``F_N`` [N] the contact force, ``u_s_m`` [m] the
+    compression (>= 0), ``u_d_m`` [m] the gap (>= 0), ``M_b_Nm`` [N m] the absolute moment,
+    ``sigma_b_Pa`` [Pa] the absolute stress; ``u_d_m`` is 0 for the linear model
+    (``nonlinear=False``: bilateral saddles). Over several locations the peak is located on the
+    samples and read between them at the location it is found at, as in :func:`period_maxima`.
     """
     N = inverse.shape[0]
-    i = int(location)
+    idx = np.atleast_1d(np.asarray(location, dtype=np.int64))
     if quantity in SADDLE_QUANTITIES:
-        delta = inverse @ compression[:, i]
+        delta = inverse @ compression[:, idx]
         if quantity == "u_d_m":
-            n = int(np.argmin(delta))
-            return max(refined_peak(compression[:, i], n, N, -1.0), 0.0) if nonlinear and delta[n] < 0.0 else 0.0
-        top = refined_peak(compression[:, i], int(np.argmax(delta)), N, 1.0)
+            n, j = np.unravel_index(int(np.argmin(delta)), delta.shape)
+            if not nonlinear or delta[n, j] >= 0.0:
+                return 0.0
+            return max(refined_peak(compression[:, idx[j]], int(n), N, -1.0), 0.0)
+        n, j = np.unravel_index(int(np.argmax(delta * stiffness[idx] if quantity == "F_N" else delta)), delta.shape)
+        i = int(idx[j])
+        top = refined_peak(compression[:, i], int(n), N, 1.0)
         if quantity == "u_s_m":
             return max(top, 0.0)
         return float(law.force(np.array([top]), stiffness[i : i + 1])[0]) if nonlinear else top * float(stiffness[i])
     if quantity not in MOMENT_QUANTITIES:
         raise ValueError(f"location_maximum: quantity {quantity!r}; allowed: {', '.join(SADDLE_QUANTITIES + MOMENT_QUANTITIES)}")
-    m_time = inverse @ moment[:, i]
-    n = int(np.argmax(np.abs(m_time)))
-    peak = refined_peak(moment[:, i], n, N, float(np.sign(m_time[n]) or 1.0))
-    return peak / float(modulus[i]) if quantity == "sigma_b_Pa" else peak
+    m_time = inverse @ moment[:, idx]
+    stress = quantity == "sigma_b_Pa"
+    n, j = np.unravel_index(int(np.argmax(np.abs(m_time) / modulus[idx] if stress else np.abs(m_time))), m_time.shape)
+    i = int(idx[j])
+    peak = refined_peak(moment[:, i], int(n), N, float(np.sign(m_time[n, j]) or 1.0))
+    return peak / float(modulus[i]) if stress else peak
 
 
 def location_maxima(

@@ -260,12 +260,12 @@ class WaveSolution:
     law: ContactLaw = field(default_factory=ContactLaw)
     time_samples: int = 0
 
-    def maximum_at(self, quantity: str, location: int) -> float:
-        """The nonlinear maximum over the period of ``quantity`` at one location, still water included.
+    def maximum_at(self, quantity: str, location: int | NDArray[np.int64]) -> float:
+        """The nonlinear maximum over the period of ``quantity`` at one location (or the largest over several), still water included.
 
         ``location``: the saddle index (``F_N`` [N], ``u_s_m`` [m], ``u_d_m`` [m]) or the index of
-        the moment sample point (``M_b_Nm`` [N m], ``sigma_b_Pa`` [Pa]); read between the samples
-        as :attr:`maxima` (:func:`~seafast.seastate.wave_maxima.location_maximum`).
+        the moment sample point (``M_b_Nm`` [N m], ``sigma_b_Pa`` [Pa]), or an array of them; read
+        between the samples as :attr:`maxima` (:func:`~seafast.seastate.wave_maxima.location_maximum`).
         """
         if self.moment_harmonics_Nm is None or self.saddle_stiffness_N_per_m is None or self.section_modulus_m3 is None:
             raise ValueError("WaveSolution.maximum_at: this solution does not carry its harmonics")
