@@ -13,6 +13,7 @@ from seafast.seastate.conditioned_wave import conditioned_wave, solve_conditione
 from seafast.seastate.design_wave import (
     DesignWaveSettings,
     design_wave_extremes,
+    read_locations,
     sea_state_design_waves,
     select_design_waves,
     still_water_excitation,
@@ -65,28 +66,45 @@ def test_the_rule_picks_the_response_spectrum_peak_and_its_half_peak_band(base):
             assert s_r[outer] < 0.5 * s_r.max()
         assert wv.omega_rad_s == w[wv.frequency_index]
         assert wv.amplitude_per_hs * 3.0 == pytest.approx(wv.amplitude_m, rel=1e-12)
-    # governing locations: the middle saddle for the force, the one nearest to lifting off for the gap
+    # locations: every saddle for the saddle quantities, the linear extreme's saddle first (the middle
+    # one for the force, the one nearest to lifting off for the gap); the governing point for the moment
     force = [wv for wv in waves if wv.quantity == "F_N"]
     assert force[0].location == int(np.argmax(e.still_water.saddle_force_N + e.saddle_force.mpm)) == 1
+    assert {wv.location for wv in force} == {0, 1, 2}
     gap = [wv for wv in waves if wv.quantity == "u_d_m"]
     assert gap[0].location == int(np.argmin(e.still_water.saddle_compression_m - e.saddle_compression.mpm)) in (0, 2)
-    assert len(select_design_waves(an, DesignWaveSettings(band_points=1))) == 5
+    moment = [wv for wv in waves if wv.quantity == "M_b_Nm"]
+    assert {wv.location for wv in moment} == {int(np.argmax(np.abs(e.still_water.bending_moment_Nm) + e.bending_moment.mpm))}
+    # one wave per location with band_points = 1: three saddle quantities at 3 saddles, two moment quantities
+    assert len(select_design_waves(an, DesignWaveSettings(band_points=1))) == 3 * 3 + 2
 
 
 def test_each_design_wave_makes_the_linear_response_equal_the_linear_mpm(base):
     # the amplitude rule: in each design wave, the linear (bilateral) model's maximum of the
-    # quantity the wave is designed for is the still water plus the Rayleigh MPM, exactly
+    # quantity the wave is designed for, at its location, is that location's still water plus its
+    # Rayleigh MPM, exactly; for the linear extreme's location that is the spectral total
     an, static = base
     opts = HBMOptions(harmonics=16)
-    tot = an.extremes.totals
+    e, tot = an.extremes, an.extremes.totals
+    sw = e.still_water
+    own = {
+        "F_N": sw.saddle_force_N + e.saddle_force.mpm,
+        "u_s_m": sw.saddle_compression_m + e.saddle_compression.mpm,
+        "M_b_Nm": np.abs(sw.bending_moment_Nm) + e.bending_moment.mpm,
+        "sigma_b_Pa": np.abs(sw.bending_stress_Pa) + e.bending_stress.mpm,
+    }
     for wv in select_design_waves(an):
         if wv.quantity == "u_d_m":
             continue
         sol = solve_wave(
             wave_operators(an.model, unit_wave_excitation(static, an.transfer, wv.frequency_index), opts), wv.amplitude_m, opts, linear=True
         )
-        assert sol.linear_maxima[wv.quantity] == pytest.approx(tot[wv.quantity], rel=1e-7), (wv.quantity, wv.role)
-        assert sol.linear_maxima["u_d_m"] == 0.0
+        at = sol.linear_location_maxima[wv.quantity][wv.location]
+        assert at == pytest.approx(own[wv.quantity][wv.location], rel=1e-7), (wv.quantity, wv.location, wv.role)
+        assert at <= tot[wv.quantity] * (1.0 + 1e-7)
+        assert sol.linear_maxima["u_d_m"] == 0.0 and np.all(sol.linear_location_maxima["u_d_m"] == 0.0)
+        # the per-location maxima are those of the whole cargo where they are largest
+        assert np.max(sol.linear_location_maxima[wv.quantity]) == pytest.approx(sol.linear_maxima[wv.quantity], rel=1e-12)
 
 
 def test_wave_solution_equals_solve_hbm_and_the_run_summary(base):
@@ -140,6 +158,64 @@ def test_without_lift_off_the_design_wave_estimate_is_the_linear_spectral_mpm():
         assert dw.totals[q] == pytest.approx(an.extremes.totals[q], rel=1e-6, abs=1e-12), q
     assert dw.totals["uplift_per_hour"] == an.extremes.totals["uplift_per_hour"]
     assert dw.row()["method"] == "design_wave" and dw.row()["model"] == "nonlinear"
+
+
+def test_a_wave_is_read_only_where_it_is_designed_so_without_lift_off_the_row_is_the_spectral_row():
+    # four soft saddles (1.1e8 N/m), Hs 5 m: no saddle lifts off, but the band-low wave designed for
+    # saddle 1 loads saddle 3 beyond saddle 3's own MPM (its linear response there is not an MPM
+    # event); read at every saddle it made the row 2.8e-3 above the spectral one
+    an = analysis_of(
+        **{
+            "seafastening.saddle_count": 4,
+            "seafastening.saddle_stiffness_N_per_m": 1.1e8,
+            "sea_state.significant_height_m": 5.0,
+            "sea_state.peak_period_s": 10.0,
+        }
+    )
+    dw = sea_state_design_waves(an)
+    assert dw.converged and not any(s.lifted_off for s in dw.solutions)
+    e, tf = an.extremes, an.transfer
+    misread = [
+        (w, s)
+        for w, s in zip(dw.waves, dw.solutions, strict=True)
+        if w.quantity == "F_N" and s.maxima["F_N"] > e.totals["F_N"] * (1.0 + 1e-6)
+    ]
+    assert misread, "the case no longer shows a wave loading another saddle beyond the spectral total"
+    for w, _ in misread:  # the saddle loaded hardest in that wave is another, beyond its own MPM
+        linear = e.still_water.saddle_force_N + w.amplitude_m * np.abs(tf.saddle_force_N[w.frequency_index])
+        other = int(np.argmax(linear))
+        assert other != w.location
+        assert w.amplitude_m * abs(tf.saddle_force_N[w.frequency_index, other]) > e.saddle_force.mpm[other]
+    # linear solves by two routes (banded transfer functions, condensed harmonic balance): ~1e-9 apart
+    for q in QUANTITIES:
+        assert dw.totals[q] == pytest.approx(e.totals[q], rel=1e-7, abs=1e-12), q
+    # every saddle has its own waves, each reaching that saddle's own spectral total where it is read
+    for w, s in zip(dw.waves, dw.solutions, strict=True):
+        if w.quantity == "F_N":
+            own = e.still_water.saddle_force_N[w.location] + e.saddle_force.mpm[w.location]
+            assert s.maximum_at("F_N", w.location) == pytest.approx(own, rel=1e-7), (w.location, w.role)
+
+
+def test_a_moment_wave_is_read_where_it_is_at_most_an_mpm_wave_and_catches_a_peak_that_lift_off_moves():
+    # four saddles, Hs 8.13 m, Tp 14 s (heavy lift-off): in the upper band wave designed for the
+    # governing point (over saddle 1) the largest moment is over saddle 2, 3 % above the governing
+    # point's, where that wave is slightly below the point's own MPM wave: it is read there
+    an = analysis_of(**{"seafastening.saddle_count": 4, "sea_state.significant_height_m": 8.13, "sea_state.peak_period_s": 14.0})
+    dw = sea_state_design_waves(an)
+    assert dw.converged
+    e, tf = an.extremes, an.transfer
+    waves = [(i, w, s) for i, (w, s) in enumerate(zip(dw.waves, dw.solutions, strict=True)) if w.quantity == "M_b_Nm"]
+    at_point = max(s.maximum_at("M_b_Nm", w.location) for _, w, s in waves)
+    assert dw.totals["M_b_Nm"] > 1.01 * at_point
+    for i, w, _ in waves:
+        read = dw.read[i]
+        severity = w.amplitude_m * np.abs(tf.bending_moment_Nm[w.frequency_index]) / e.bending_moment.mpm
+        assert w.location in read and np.all(severity[read] <= 1.0 + 1e-9)  # never more than an MPM wave where read
+        assert np.array_equal(read, read_locations(an, w))
+        unread = np.setdiff1d(np.arange(severity.size), read)
+        assert np.all(severity[unread] > 1.0)
+    best = dw.governing["M_b_Nm"]
+    assert dw.read[best].size > 1 and dw.solutions[best].maximum_at("M_b_Nm", dw.read[best]) == dw.totals["M_b_Nm"]
 
 
 def test_with_lift_off_the_design_wave_estimate_is_below_the_linear_one_and_a_gap_opens(base):

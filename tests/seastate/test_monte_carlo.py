@@ -18,8 +18,9 @@ import seafast
 from seafast.seastate.extremes import gumbel_fit, most_probable_maximum
 from seafast.seastate.monte_carlo import MonteCarloSettings, build_plan, run_monte_carlo
 from seafast.seastate.realisation import QUANTITIES, evaluate_realisation
-from seafast.seastate.spectral import spectral_analysis
-from seafast.seastate.synthesis import realisation_phases, synthesis_grid, synthesise
+from seafast.seastate.spectral import rayleigh_mpm, spectral_analysis
+from seafast.seastate.spectrum import jonswap_density
+from seafast.seastate.synthesis import amplitude_factors, realisation_phases, synthesis_grid, synthesise
 from seafast.seastate.task_store import StoreError, TaskStore
 from seafast.seastate.transfer import transfer_functions
 
@@ -61,6 +62,83 @@ def test_phases_are_reproducible_per_realisation_in_any_order():
     assert a.min() >= 0.0 and a.max() < 2 * math.pi
 
 
+def test_random_amplitudes_are_rayleigh_with_the_same_phases_and_make_the_records_gaussian():
+    # Tucker, Challenor & Carter (1984): with Rayleigh amplitudes a_j r_j (r_j^2 standard exponential) and
+    # uniform phases the coefficients are complex Gaussian: a record's variance then scatters between
+    # records as sum_j (a_j^2 / 2)^2 / m0^2 (relative variance), and its maxima scatter more than with
+    # deterministic amplitudes, whose records all have the spectral variance
+    count = 20000
+    r = amplitude_factors(5, 2, count, True)
+    assert np.array_equal(amplitude_factors(5, 2, count, True), r) and not np.allclose(amplitude_factors(5, 1, count, True), r)
+    assert np.array_equal(amplitude_factors(5, 2, count, False), np.ones(count))
+    assert np.mean(r**2) == pytest.approx(1.0, abs=3.0 / math.sqrt(count))  # E r^2 = 1, sd(r^2) = 1
+    assert stats.kstest(r**2, "expon").pvalue > 1e-3
+    assert np.array_equal(realisation_phases(5, 2, count), realisation_phases(5, 2, count))  # phases drawn first, unchanged
+    grid = synthesis_grid((0.3, 2.0), lambda w: jonswap_density(w, 3.0, 10.0, 3.3), 1800.0, 0.25)
+    n, unit = 6000, np.ones(grid.omega_rad_s.size)
+    maxima, variance = np.empty((2, n)), np.empty((2, n))
+    for i in range(n):
+        phases = realisation_phases(3, i, grid.omega_rad_s.size)
+        for k, random in enumerate((False, True)):
+            x = synthesise(grid, phases, unit, amplitude_factors(3, i, grid.omega_rad_s.size, random))
+            maxima[k, i], variance[k, i] = x.max(), np.mean(x**2)
+    assert np.ptp(variance[0]) < 1e-12 * grid.variance_m2  # deterministic: every record has the spectral variance
+    rel = variance[1] / grid.variance_m2 - 1.0
+    expected = math.sqrt(np.sum((grid.amplitude_m**2 / 2) ** 2)) / grid.variance_m2  # 0.092
+    assert abs(rel.mean()) < 3.0 * expected / math.sqrt(n)
+    assert rel.std() == pytest.approx(expected, rel=3.0 / math.sqrt(2 * n) * 1.5)  # sd of a sample sd, a little kurtosis
+    # the maxima' scatter: wider with random amplitudes (8 % here, 30-minute records), beyond 3 paired-bootstrap errors
+    pick = np.random.default_rng(0).integers(0, n, (400, n))
+    ratio = maxima[1].std() / maxima[0].std()
+    error = np.std(maxima[1][pick].std(axis=1) / maxima[0][pick].std(axis=1))
+    assert ratio - 1.0 > 3.0 * error, (ratio, error)
+
+
+def test_deterministic_amplitudes_give_every_record_the_spectral_variance(plan3):
+    case, _ = plan3
+    off = case.model_copy(update={"sea_state": case.sea_state.model_copy(update={"random_amplitudes": False})})
+    plan = build_plan(off)
+    assert not plan.random_amplitudes and plan.describe()["random_amplitudes"] is False
+    spec = spectral_analysis(off).extremes.saddle_force
+    for i in (0, 1):
+        record, _ = evaluate_realisation(plan, i)
+        # synthesis grid (5.8e-4 rad/s, splined transfer functions) against the 256-point trapezoid: 3e-4 measured
+        assert np.allclose(record["std_saddle_force_N"], spec.sigma, rtol=1e-3)
+
+
+def _below_rayleigh(grid, transfer, n):
+    """z-score of the count of maxima below the Rayleigh MPM (binomial(n, 1/e) if it is their 1/e quantile), quantile ratio, bandwidth q."""
+    w, p = grid.omega_rad_s, math.exp(-1.0)
+    maxima = np.empty(n)
+    for i in range(n):
+        x = synthesise(grid, realisation_phases(0, i, w.size), transfer, amplitude_factors(0, i, w.size, True))
+        k = int(np.argmax(x))
+        y0, y1, y2 = x[k - 1], x[k], x[(k + 1) % x.size]  # the peak between samples (a parabola): sampled, 0.3 % short
+        maxima[i] = y1 - (y2 - y0) ** 2 / (8.0 * (y0 - 2.0 * y1 + y2))
+    a2 = (grid.amplitude_m * np.abs(transfer)) ** 2 / 2.0
+    m0, m1, m2 = (float(np.sum(w**j * a2)) for j in (0, 1, 2))
+    mpm = float(rayleigh_mpm(np.array(m0), np.array(m2), grid.duration_s))
+    z = (np.count_nonzero(maxima < mpm) - n * p) / math.sqrt(n * p * (1 - p))
+    return z, float(np.quantile(maxima, p) / mpm), math.sqrt(1.0 - m1**2 / (m0 * m2))
+
+
+def test_rayleigh_mpm_is_the_quantile_of_the_maximum_for_a_broad_band_and_conservative_for_a_narrow_one(plan3):
+    # sigma sqrt(2 ln(D / Tz)) counts zero up-crossings as independent chances (Poisson): then it is exactly
+    # the 1/e quantile of the maximum over D (the Gumbel mode the Monte Carlo reports). Under that hypothesis
+    # the number of records whose maximum is below it is binomial(n, 1/e): z-scores from the sample itself.
+    # A Pierson-Moskowitz wave elevation over 3 h (bandwidth q = sqrt(1 - m1^2 / (m0 m2)) = 0.37) bears it
+    # out; the base case's saddle force (q = 0.12, a narrow response) has its large peaks in groups, fewer
+    # independent chances: its maximum's 1/e quantile is about 3 % below Rayleigh over one hour (1.6-1.8 %
+    # over three, docs/monte_carlo.md), the formula's conservatism, not sampling
+    _, plan = plan3
+    s = 1  # the middle saddle: the force's linear extreme
+    z, ratio, q = _below_rayleigh(plan.grid, plan.transfer[:, s] * plan.stiffness_N_per_m[s], 2000)
+    assert q < 0.15 and z > 6.0 and 0.96 < ratio < 0.99, (q, z, ratio)  # measured q 0.117, z 9.2, 0.971
+    wave = synthesis_grid((0.2, 4.0), lambda w: jonswap_density(w, 3.0, 10.0, 1.0), 10800.0, 0.25)
+    z, ratio, q = _below_rayleigh(wave, np.ones(wave.omega_rad_s.size), 3000)
+    assert q > 0.3 and abs(z) < 3.5 and abs(ratio - 1.0) < 0.005, (q, z, ratio)
+
+
 def test_plan_grid_does_not_repeat_within_the_duration(plan3):
     case, plan = plan3
     grid = plan.grid
@@ -91,25 +169,29 @@ def test_linear_monte_carlo_reproduces_the_spectral_method(tmp_path):
     mc = run_monte_carlo(case, tmp_path, workers=1, progress=False)
     assert mc.linear.converged and mc.nonlinear.converged
     # standard deviations: a Gaussian record of duration T estimates sigma with relative standard error
-    # sqrt(pi int S_r^2 dw / T) / (2 m0); random-phase records with deterministic amplitudes do far better
+    # sqrt(2 pi int S_r^2 dw / T) / (2 m0) (4-5 % here); the records (random amplitudes: Gaussian) scatter so
     w = spectral_analysis(case).spectrum.omega_rad_s
+    n = mc.std_saddle_force_N.shape[0]
     for stat, mc_std in ((spec.saddle_force, mc.std_saddle_force_N), (spec.bending_moment, mc.std_bending_moment_Nm)):
-        sampling = np.sqrt(math.pi * np.trapezoid(stat.spectrum**2, w, axis=0) / case.sea_state.duration_s) / (2 * stat.m0)
+        sampling = np.sqrt(2 * math.pi * np.trapezoid(stat.spectrum**2, w, axis=0) / case.sea_state.duration_s) / (2 * stat.m0)
         loc = np.flatnonzero(stat.sigma > 0.05 * stat.sigma.max())
         rel = mc_std[:, loc] / stat.sigma[loc] - 1.0
-        assert np.all(np.abs(rel) < sampling[loc])
-        assert np.max(np.abs(rel)) < 5e-3
+        assert np.all(np.abs(rel.mean(axis=0)) < 3.0 * sampling[loc] / math.sqrt(n))  # unbiased
+        scatter = np.sqrt(np.mean(rel**2, axis=0)) / sampling[loc]  # sqrt(chi2_20 / 20): 0.5-1.6 at 99.9 %
+        assert np.all((0.5 < scatter) & (scatter < 1.6)), scatter
     # most probable maxima over the hour within 5 %
     for q in ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m"):
         assert mc.linear.mpm[q] == pytest.approx(spec.totals[q], rel=0.05), q
         lo, hi = mc.linear.mpm_interval[q]
         assert lo <= mc.linear.mpm[q] <= hi
     assert mc.linear.mpm["u_d_m"] == 0.0 and mc.linear.mpm_method["u_d_m"] == "constant"
-    # uplift rate: downward zero crossings counted in the records against Rice's formula (Poisson, 3 sigma)
+    # uplift rate: downward zero crossings counted in the records against Rice's formula, within 3 standard
+    # errors of the mean count (the counts' own scatter: Poisson, and the records' variance in a Gaussian sea)
     expected = spec.totals["uplift_per_hour"]
-    hours = 20 * case.sea_state.duration_s / 3600.0
+    hours = case.sea_state.duration_s / 3600.0
+    counts = mc.linear.uplift_events / hours
     assert expected > 1.0
-    assert abs(mc.linear.uplift_per_hour - expected) < 3.0 * math.sqrt(expected * hours) / hours
+    assert abs(mc.linear.uplift_per_hour - expected) < 3.0 * max(counts.std(ddof=1), math.sqrt(expected / hours)) / math.sqrt(n)
     # lift-off lowers the nonlinear saddle force and moment below the linear ones
     assert mc.nonlinear.mpm["F_N"] < mc.linear.mpm["F_N"]
     assert mc.nonlinear.mpm["M_b_Nm"] < mc.linear.mpm["M_b_Nm"]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 
+import numpy as np
 import pytest
 import xarray as xr
 
@@ -51,10 +52,13 @@ def test_seastate_nc_labels_every_variable_and_the_figures_exist(spectral_run):
         assert bool(ds["F_N"].sel(model="nonlinear", estimate_method="monte_carlo").isnull())
         assert ds["F_N"].sel(model="nonlinear", estimate_method="design_wave") < ds["F_N"].sel(model="linear", estimate_method="spectral")
         assert bool(ds["F_N"].sel(model="linear", estimate_method="design_wave").isnull())
-        # the design waves: 3 per quantity (the spectral peak and the ends of its half-peak band)
-        assert ds.sizes["design_wave"] == 15 and set(ds["design_wave_role"].values) == {"peak", "band_low", "band_high"}
-        own = ds["design_wave_F_N"].where(ds["design_wave_quantity"] == "F_N")  # each quantity from its own waves
-        assert float(own.max()) == pytest.approx(float(ds["F_N"].sel(model="nonlinear", estimate_method="design_wave")), rel=1e-12)
+        # the design waves: 3 per quantity and location (the spectral peak and the ends of its half-peak
+        # band), the saddle quantities at each of the 3 saddles, the moment ones at their governing point
+        assert ds.sizes["design_wave"] == 3 * (3 * 3 + 2) and set(ds["design_wave_role"].values) == {"peak", "band_low", "band_high"}
+        for q in ("F_N", "M_b_Nm", "u_d_m"):  # each quantity from its own waves, read where they are designed
+            own = ds[f"design_wave_{q}_read"].where(ds["design_wave_quantity"] == q)
+            assert float(own.max()) == pytest.approx(float(ds[q].sel(model="nonlinear", estimate_method="design_wave")), rel=1e-12)
+            assert np.all(own.fillna(0.0) <= ds[f"design_wave_{q}"].fillna(0.0) + 1e-12 * abs(float(own.max())))
         assert ds.attrs["significant_height_m"] == 3.0 and ds.attrs["duration_s"] == 10800.0
         for name in ("wave_spectrum_m2_s_per_rad", "saddle_force_transfer_N_per_m_real", "bending_moment_spectrum_Nm2_s_per_rad"):
             assert name in ds

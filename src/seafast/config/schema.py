@@ -421,6 +421,12 @@ class SeaStateConfig(_Strict):
         20, description="Random-phase realisations of the nonlinear Monte Carlo reference"
     )
     seed: Annotated[int, Field(ge=0), NotBool] = Field(0, description="Seed of the random phases (reproducible realisations)")
+    random_amplitudes: bool = Field(
+        True,
+        description="Monte Carlo components with Rayleigh-distributed amplitudes (a Gaussian sea, true) or the "
+        "deterministic amplitudes sqrt(2 S d_omega) (false: every record has the spectral variance, but the maxima "
+        "vary less between records than in a Gaussian sea); the phases are the same either way",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> SeaStateConfig:

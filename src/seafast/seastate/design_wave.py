@@ -5,24 +5,29 @@ practice: the regular wave at the peak of a response's transfer or response spec
 linear response equals the target linear extreme, e.g. DNV-RP-C103 and DNV-CG-0130's design
 waves, Lloyd's Register's characteristic wave), per reported quantity q:
 
-1. the governing location of the linear spectral extreme: the saddle with the largest
-   still-water + MPM force (``F_N``) or compression (``u_s_m``), the moment point with the largest
-   ``|M_0| + MPM`` (``M_b_Nm``, ``sigma_b_Pa``), the saddle with the smallest still-water
-   compression minus its MPM, the one nearest to lifting off (``u_d_m``);
-2. that response's spectrum ``S_r = |H_r|^2 S``, its peak frequency, and the band around it where
-   ``S_r`` is at least :attr:`DesignWaveSettings.band_fraction` of the peak; the design
-   frequencies are the peak and the band's two ends;
+1. the locations designed for: every saddle for the saddle quantities (``F_N``, ``u_s_m``,
+   ``u_d_m``; the saddle of the linear extreme first), the moment point of the largest linear
+   ``|M_0| + MPM`` for ``M_b_Nm`` and ``sigma_b_Pa`` (a field of 228 points: its governing point only);
+2. at each location, the response's spectrum ``S_r = |H_r|^2 S``, its peak frequency, and the band
+   around it where ``S_r`` is at least :attr:`DesignWaveSettings.band_fraction` of the peak; the
+   design frequencies are the peak and the band's two ends;
 3. at each design frequency the regular wave of amplitude ``a = MPM_r / |H_r(omega)|``, whose
-   linear dynamic response equals the linear spectral MPM (Rayleigh);
+   linear dynamic response at that location equals its linear spectral MPM (Rayleigh);
 4. the harmonic balance of that wave, still water included (exact contact law, fixed H), gives
-   the nonlinear maxima; the estimate of q is the largest q over q's own design waves.
+   the nonlinear response; each wave is read only for its quantity, at its saddle, or for a
+   moment quantity at the moment points where it is at most an MPM wave (:func:`read_locations`;
+   elsewhere the same wave is not an MPM event: at another saddle its linear response can exceed
+   that saddle's MPM); the estimate of q is the largest of these readings over q's waves, as the
+   spectral total is the largest over locations of still water + MPM.
 
 Where no saddle lifts off in a design wave its nonlinear answer equals the linear one, so the
-method returns the linear spectral MPM there exactly. Waves that coincide (same frequency and
-amplitude, e.g. F and u_s at one saddle) are solved once; waves at one frequency share their
-operators (:mod:`seafast.seastate.wave_response`). ``uplift_per_hour`` is Rice's rate of the
-linear compressions (the nonlinear model equals the linear one until a saddle separates, so the
-rate of first separations is the same; bounces after a re-contact are not counted).
+method returns the linear spectral total there (to the solvers' round-off, ~1e-8). Waves that
+coincide (same frequency and amplitude: ``F_N``, ``u_s_m`` and ``u_d_m`` at one saddle) are solved
+once; waves at one frequency share their operators (:mod:`seafast.seastate.wave_response`).
+``uplift_per_hour`` is Rice's rate of the linear compressions (the nonlinear model equals the
+linear one until a saddle separates, so the rate of first separations is the same; bounces after
+a re-contact are not counted). The rule itself (steps 1-3 and where a wave is read) is
+:mod:`seafast.seastate.design_wave_rule`, re-exported here.
 """
 
 from __future__ import annotations
@@ -35,7 +40,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.seastate.spectral import ResponseStatistics, SpectralAnalysis
+from seafast.seastate.design_wave_rule import DEFAULT_HARMONICS, DesignWave, DesignWaveSettings, read_locations, select_design_waves
+from seafast.seastate.spectral import SpectralAnalysis
 from seafast.seastate.transfer import TransferFunctions
 from seafast.seastate.wave_response import (
     RESPONSE_QUANTITIES,
@@ -47,13 +53,13 @@ from seafast.seastate.wave_response import (
     solve_wave_adaptive,
     wave_operators,
 )
-from seafast.solvers.hbm import HBMOptions
 
 __all__ = [
     "DesignWaveSettings",
     "DesignWave",
     "DesignWaveExtremes",
     "select_design_waves",
+    "read_locations",
     "unit_wave_excitation",
     "design_wave_extremes",
     "static_totals",
@@ -61,153 +67,6 @@ __all__ = [
     "sea_state_design_waves",
     "DEFAULT_HARMONICS",
 ]
-
-DEFAULT_HARMONICS = 16
-"""H of the design-wave harmonic balance: within 0.3 % of the adaptive H on the measured sea states (docs/operability.md)."""
-
-
-@dataclass(frozen=True)
-class DesignWaveSettings:
-    """Settings of the design-wave rule and its harmonic balance (not case keys; defaults verified).
-
-    Attributes
-    ----------
-    band_fraction
-        Design frequencies span the band where the response spectrum is at least this share of its peak [-].
-    band_points
-        Design frequencies per quantity: 1 (the peak), 3 (peak and band ends) or more (also evenly inside).
-    harmonics
-        H of the harmonic balance (fixed: the amplitude searches reuse the operators), or None:
-        each wave by the package's adaptive harmonic balance (the converged periodic answer, at
-        tens to hundreds of times the cost; docs/operability.md).
-    fallback_harmonics
-        Fewer harmonics tried in turn when the solve at ``harmonics`` does not converge: with the
-        exact contact law a truncated harmonic balance of heavy lift-off can have no solution near
-        its start (the residual stalls near 1e-3), while fewer harmonics converge in a few Newton
-        steps (docs/operability.md); the H used is recorded per wave.
-    time_samples
-        N, or None for the default of H.
-    tolerance
-        Relative residual of the harmonic balance.
-    """
-
-    band_fraction: float = 0.5
-    band_points: int = 3
-    harmonics: int | None = DEFAULT_HARMONICS
-    fallback_harmonics: tuple[int, ...] = (12, 8)
-    time_samples: int | None = None
-    tolerance: float = 1e-10
-
-    def __post_init__(self) -> None:
-        if not (0.0 < self.band_fraction <= 1.0):
-            raise ValueError(f"DesignWaveSettings.band_fraction = {self.band_fraction!r}; allowed: (0, 1]")
-        if int(self.band_points) < 1:
-            raise ValueError(f"DesignWaveSettings.band_points = {self.band_points!r}; allowed: an integer >= 1")
-
-    def hbm_options(self, harmonics: int | None = -1) -> HBMOptions:
-        """The harmonic-balance options (exact contact law, condensed, Newton) at ``harmonics`` (default: this H)."""
-        H = self.harmonics if harmonics == -1 else harmonics
-        return HBMOptions(harmonics=None if H is None else int(H), time_samples=self.time_samples, tolerance=float(self.tolerance))
-
-
-@dataclass(frozen=True)
-class DesignWave:
-    """One design wave: a regular head wave designed for one quantity.
-
-    Attributes
-    ----------
-    quantity
-        The quantity it is designed for (``F_N``, ``M_b_Nm``, ``sigma_b_Pa``, ``u_s_m``, ``u_d_m``).
-    location
-        Saddle index (``F_N``, ``u_s_m``, ``u_d_m``) or moment-point index (``M_b_Nm``, ``sigma_b_Pa``).
-    frequency_index
-        Index of its frequency on the sea-state grid.
-    omega_rad_s
-        Wave frequency [rad/s].
-    amplitude_m
-        Wave amplitude [m]: the linear MPM of the response over its transfer function's modulus.
-    amplitude_per_hs
-        ``amplitude_m`` per metre of significant height [m/m] (the linear MPM is proportional to Hs).
-    role
-        ``peak``, ``band_low``, ``band_high`` or ``band``.
-    """
-
-    quantity: str
-    location: int
-    frequency_index: int
-    omega_rad_s: float
-    amplitude_m: float
-    amplitude_per_hs: float
-    role: str
-
-
-def _statistics(analysis: SpectralAnalysis, quantities: Sequence[str]) -> dict[str, tuple[ResponseStatistics, NDArray[np.complex128], int]]:
-    """Per quantity: the response statistics, its transfer function at the governing location, the location."""
-    e, tf = analysis.extremes, analysis.transfer
-    sw = e.still_water
-    out: dict[str, tuple[ResponseStatistics, NDArray[np.complex128], int]] = {}
-    for q in quantities:
-        if q == "F_N":
-            loc = int(np.argmax(sw.saddle_force_N + e.saddle_force.mpm))
-            out[q] = (e.saddle_force, tf.saddle_force_N[:, loc], loc)
-        elif q == "u_s_m":
-            loc = int(np.argmax(sw.saddle_compression_m + e.saddle_compression.mpm))
-            out[q] = (e.saddle_compression, tf.saddle_compression_m[:, loc], loc)
-        elif q == "M_b_Nm":
-            loc = int(np.argmax(np.abs(sw.bending_moment_Nm) + e.bending_moment.mpm))
-            out[q] = (e.bending_moment, tf.bending_moment_Nm[:, loc], loc)
-        elif q == "sigma_b_Pa":
-            loc = int(np.argmax(np.abs(sw.bending_stress_Pa) + e.bending_stress.mpm))
-            out[q] = (e.bending_stress, tf.bending_moment_Nm[:, loc] / tf.bending_section_modulus_m3[loc], loc)
-        else:  # u_d_m: the saddle nearest to lifting off
-            loc = int(np.argmin(sw.saddle_compression_m - e.saddle_compression.mpm))
-            out[q] = (e.saddle_compression, tf.saddle_compression_m[:, loc], loc)
-    return out
-
-
-def _band(spectrum: NDArray[np.float64], fraction: float) -> tuple[int, int, int]:
-    """(low, peak, high) grid indices of the contiguous band around the peak where S >= fraction * peak."""
-    peak = int(np.argmax(spectrum))
-    above = spectrum >= fraction * spectrum[peak]
-    low = peak
-    while low > 0 and above[low - 1]:
-        low -= 1
-    high = peak
-    while high < spectrum.size - 1 and above[high + 1]:
-        high += 1
-    return low, peak, high
-
-
-def select_design_waves(
-    analysis: SpectralAnalysis, settings: DesignWaveSettings = DesignWaveSettings(), quantities: Sequence[str] = RESPONSE_QUANTITIES
-) -> tuple[DesignWave, ...]:
-    """The design waves of the given quantities of a sea state (rule in the module docstring).
-
-    A quantity whose response is zero in the sea (no dynamic part) gets no wave.
-    """
-    hs = float(analysis.spectrum.significant_height_m)
-    w = analysis.spectrum.omega_rad_s
-    waves: list[DesignWave] = []
-    for quantity, (stats, transfer, loc) in _statistics(analysis, quantities).items():
-        mpm = float(stats.mpm[loc])
-        s_r = stats.spectrum[:, loc]
-        if not (mpm > 0.0 and np.max(s_r) > 0.0):
-            continue
-        low, peak, high = _band(s_r, settings.band_fraction)
-        picks: list[tuple[int, str]] = [(peak, "peak")]
-        if settings.band_points >= 3:
-            picks += [(low, "band_low"), (high, "band_high")]
-        if settings.band_points > 3:
-            inner = np.linspace(w[low], w[high], int(settings.band_points) - 1)[1:-1]
-            picks += [(int(np.argmin(np.abs(w - x))), "band") for x in inner]
-        seen: set[int] = set()
-        for index, role in picks:
-            if index in seen:
-                continue
-            seen.add(index)
-            amplitude = mpm / float(np.abs(transfer[index]))
-            waves.append(DesignWave(quantity, loc, index, float(w[index]), amplitude, amplitude / hs if hs > 0 else float("nan"), role))
-    return tuple(waves)
 
 
 def unit_wave_excitation(static: HarmonicExcitation, transfer: TransferFunctions, index: int) -> HarmonicExcitation:
@@ -232,14 +91,18 @@ class DesignWaveExtremes:
     solutions
         One :class:`~seafast.seastate.wave_response.WaveSolution` per wave, same order.
     totals
-        Per quantity, the largest nonlinear maximum over its own design waves, still water
-        included [N, N m, Pa, m, m], and ``uplift_per_hour`` (Rice, linear; see the module docstring).
+        Per quantity, the largest over its design waves of the nonlinear maximum at the wave's own
+        location, still water included (at least the still-water value) [N, N m, Pa, m, m], and
+        ``uplift_per_hour`` (Rice, linear; see the module docstring).
     governing
-        Per quantity, the index in :attr:`waves` of the wave that gave the total (-1: no wave).
+        Per quantity, the index in :attr:`waves` of the wave that gave the total (-1: none did,
+        the still water governs).
     converged
         Every harmonic-balance solve converged.
     settings
         The settings used.
+    read
+        Per wave, the locations it is read at for its quantity (:func:`read_locations`).
     """
 
     waves: tuple[DesignWave, ...]
@@ -248,6 +111,7 @@ class DesignWaveExtremes:
     governing: Mapping[str, int]
     converged: bool
     settings: DesignWaveSettings = field(default_factory=DesignWaveSettings)
+    read: tuple[NDArray[np.int64], ...] = ()
 
     def row(self) -> dict[str, Any]:
         """The (nonlinear, design_wave) row of seastate.csv."""
@@ -346,13 +210,15 @@ def design_wave_extremes(
         solutions.append(solved[key])
     totals = static_totals(analysis)
     governing = dict.fromkeys(RESPONSE_QUANTITIES, -1)
+    read = tuple(read_locations(analysis, wave) for wave in waves)
     for i, (wave, sol) in enumerate(zip(waves, solutions, strict=True)):
         q = wave.quantity
-        if governing[q] < 0 or sol.maxima[q] > totals[q]:
-            totals[q], governing[q] = sol.maxima[q], i
+        value = sol.maximum_at(q, read[i])  # read for its quantity, where it is designed (read_locations)
+        if value > totals[q] or (governing[q] < 0 and value == totals[q]):
+            totals[q], governing[q] = value, i
     totals["uplift_per_hour"] = float(analysis.extremes.totals["uplift_per_hour"])
     converged = all(s.converged for s in solved.values())
-    return DesignWaveExtremes(waves, tuple(solutions), totals, governing, converged, settings)
+    return DesignWaveExtremes(waves, tuple(solutions), totals, governing, converged, settings, read)
 
 
 def still_water_excitation(analysis: SpectralAnalysis) -> HarmonicExcitation:

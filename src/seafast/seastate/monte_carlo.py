@@ -183,6 +183,9 @@ class MonteCarloResult:
         n_r = self.linear.time_lifted_fraction.size
         dv: dict[str, Any] = {}
         stats = (self.linear, self.nonlinear)
+        random_amplitudes = bool(self.settings.get("random_amplitudes", True))
+        # deterministic amplitudes: the maxima scatter less between records than in a Gaussian sea (docs/monte_carlo.md)
+        caveat = "" if random_amplitudes else " (deterministic amplitudes: narrower than for a Gaussian sea)"
         for q in QUANTITIES:
             u, ln = _UNITS[q], _LONG[q]
             dv[f"mc_{q}"] = (
@@ -198,12 +201,18 @@ class MonteCarloResult:
             dv[f"mc_mpm_low_{q}"] = (
                 ("model",),
                 np.array([s.mpm_interval[q][0] for s in stats]),
-                {"units": u, "long_name": f"lower bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}"},
+                {
+                    "units": u,
+                    "long_name": f"lower bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}{caveat}",
+                },
             )
             dv[f"mc_mpm_high_{q}"] = (
                 ("model",),
                 np.array([s.mpm_interval[q][1] for s in stats]),
-                {"units": u, "long_name": f"upper bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}"},
+                {
+                    "units": u,
+                    "long_name": f"upper bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}{caveat}",
+                },
             )
         dv["mc_time_lifted_fraction"] = (
             ("model", "realisation"),
@@ -276,6 +285,7 @@ class MonteCarloResult:
                 "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); "
                 "percentile bootstrap interval"
             ),
+            "mc_random_amplitudes": int(random_amplitudes),
             "mc_example_realisation": -1 if ex is None else ex.index,
             "mc_settings_json": json.dumps(dict(self.settings)),
         }

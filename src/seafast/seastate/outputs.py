@@ -26,6 +26,7 @@ import yaml
 import seafast
 from seafast.results.labelled import labelled_variable as _var
 from seafast.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
+from seafast.seastate.wave_maxima import SADDLE_QUANTITIES
 
 __all__ = [
     "ROWS",
@@ -138,7 +139,7 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
         "design_wave_location": _var(
             d,
             [w.location for w in waves],
-            "governing location: saddle index (F_N, u_s_m, u_d_m) or x_moment_m index (M_b_Nm, sigma_b_Pa)",
+            "location the wave is designed for and read at: saddle index (F_N, u_s_m, u_d_m) or x_moment_m index (M_b_Nm, sigma_b_Pa)",
             "1",
         ),
         "design_wave_omega_rad_s": _var(d, [w.omega_rad_s for w in waves], "design wave frequency", "rad/s"),
@@ -150,9 +151,26 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
         ),
         "design_wave_harmonics": _var(d, [s.harmonics for s in sols], "harmonics H of the harmonic balance that solved the wave", "1"),
     }
+    saddle_wave = np.array([w.quantity in SADDLE_QUANTITIES for w in waves], dtype=bool)
+    read = design.read
+    v["design_wave_read_locations"] = _var(
+        d, [r.size for r in read], "number of locations the wave is read at for its quantity (saddle: 1; moment points)", "1"
+    )
     for q, what in _DESIGN_WAVE_MAXIMA.items():
         v[f"design_wave_{q}"] = _var(
-            d, [s.maxima[q] for s in sols], f"{what} over the design wave's period (nonlinear, still water included)", QUANTITIES[q][1]
+            d,
+            [s.maxima[q] for s in sols],
+            f"{what} over the cargo and the design wave's period (nonlinear, still water included)",
+            QUANTITIES[q][1],
+        )
+        # what the design-wave row reads: each wave where it is read (its saddle; for a moment wave the
+        # moment points where it is at most an MPM wave); NaN for a quantity of the other kind
+        same_kind = saddle_wave == (q in SADDLE_QUANTITIES)
+        v[f"design_wave_{q}_read"] = _var(
+            d,
+            [s.maximum_at(q, r) if k else np.nan for s, r, k in zip(sols, read, same_kind, strict=True)],
+            f"{what} where the design wave is read, over its period (nonlinear, still water included; NaN: other kind of location)",
+            QUANTITIES[q][1],
         )
     return v
 

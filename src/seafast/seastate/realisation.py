@@ -30,7 +30,6 @@ Per realisation
 
 Why a coarse and a fine grid: a 3-hour record at the integrator's step is ~10^6 samples per
 channel; the linear parts vary at wave frequencies (< 4 rad/s) and are exact on the coarse grid.
-(Slightly over the house's ~400 lines: the plan and the realisation that reads it stay together.)
 
 Size: over 400 lines because one realisation's synthesis, linear maxima, windowed nonlinear march and
 statistics share one plan and one time grid; they are pure functions of it.
@@ -54,6 +53,7 @@ from seafast.model.structure import StructuralModel
 from seafast.seastate.spectrum import WaveSpectrum, jonswap_density
 from seafast.seastate.synthesis import (
     SynthesisGrid,
+    amplitude_factors,
     interpolate_transfer,
     low_rank,
     realisation_phases,
@@ -127,6 +127,8 @@ class RealisationPlan:
     ----------
     seed, duration_s
         Phase seed and record length [s].
+    random_amplitudes
+        Rayleigh-distributed component amplitudes (``sea_state.random_amplitudes``; :mod:`seafast.seastate.synthesis`).
     grid
         The synthesis grid (frequencies, amplitudes, coarse sampling).
     transfer
@@ -166,6 +168,7 @@ class RealisationPlan:
     ratio: int
     tolerance_m: float
     settings: MonteCarloSettings = field(default_factory=MonteCarloSettings)
+    random_amplitudes: bool = True
 
     @property
     def saddle_count(self) -> int:
@@ -190,6 +193,7 @@ class RealisationPlan:
             "window_tolerance_m": self.tolerance_m,
             "steps_per_period": self.settings.steps_per_period,
             "decay_tolerance": self.settings.decay_tolerance,
+            "random_amplitudes": self.random_amplitudes,
         }
 
 
@@ -324,6 +328,7 @@ def realisation_plan(
         ratio=int(ratio),
         tolerance_m=settings.decay_tolerance * scale,
         settings=settings,
+        random_amplitudes=bool(ss.random_amplitudes),
     )
 
 
@@ -386,7 +391,8 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
     grid, n_s, ratio = plan.grid, plan.saddle_count, plan.ratio
     n_tc = grid.samples
     phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
-    X = synthesise(grid, phases, plan.transfer)  # (n_tc, n_s + n_r)
+    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
+    X = synthesise(grid, phases, plan.transfer, factors)  # (n_tc, n_s + n_r)
     k = plan.stiffness_N_per_m
     d_tot = plan.compression_static_m + X[:, :n_s]
     g = X[:, n_s:]
@@ -408,7 +414,7 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
     cov = np.cov(g, rowvar=False, bias=True).reshape(g.shape[1], g.shape[1])
     std_moment = np.sqrt(np.maximum(np.einsum("xr,rs,xs->x", U, cov, U), 0.0))
     # ------------------------------------------------------------ nonlinear model: windows
-    abs_spec = np.abs(plan.transfer[:, :n_s]) * grid.amplitude_m[:, None]
+    abs_spec = np.abs(plan.transfer[:, :n_s]) * (grid.amplitude_m * factors)[:, None]  # this record's amplitudes
     margin = grid.time_step_s**2 / 8.0 * (grid.omega_rad_s**2 @ abs_spec)  # largest dip between samples
     trigger = np.any(d_tot < margin, axis=1)
     n_fine = n_tc * ratio
@@ -482,7 +488,7 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
         rows = np.arange(n_b) * every
         lin_force = k * d_tot[rows]
         nl_comp = np.where(covered[rows][:, None], cap_comp, d_tot[rows])
-        wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size))[rows]
+        wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size), factors)[rows]
         series = RealisationTimeSeries(
             int(index),
             np.asarray(rows * grid.time_step_s, dtype=np.float64),

@@ -10,9 +10,16 @@ response ``x(t) = Re sum_j a_j H_x(omega_j) exp(i (omega_j t + phi_j))`` (transf
 H_x per metre of wave amplitude, convention of :mod:`seafast.seastate.transfer`) is one inverse
 real FFT. The phases phi_j are uniform on [0, 2 pi), drawn by ``numpy.random.default_rng`` from
 ``SeedSequence(seed, spawn_key=(index,))`` (the ``index``-th child of ``SeedSequence(seed)``), so
-realisation ``index`` is reproducible on its own, in any order, on any worker. The amplitudes
-are deterministic (random phase, deterministic amplitude): each record's variance equals the
-spectral variance sum_j a_j^2 / 2 to round-off, while its maxima vary from record to record.
+realisation ``index`` is reproducible on its own, in any order, on any worker.
+
+Amplitudes (:func:`amplitude_factors`): with random amplitudes (the default) each component's
+amplitude is ``a_j r_j`` with ``r_j^2`` standard exponential (r_j Rayleigh, mean square 1),
+drawn from the same generator after the phases: ``a_j r_j e^{i phi_j}`` is then a complex
+Gaussian coefficient and the record a sample of the stationary Gaussian sea the spectral method
+assumes (Tucker, Challenor & Carter, Applied Ocean Research 6, 1984: deterministic amplitudes
+misrepresent the variability between records). With deterministic amplitudes (``r_j = 1``) each
+record's variance equals the spectral variance ``sum_j a_j^2 / 2`` to round-off and its maxima
+vary less from record to record. The phases are the same either way.
 
 Transfer functions are computed on a coarser uniform grid (``transfer_step_rad_s``) and
 interpolated to the synthesis grid by cubic splines on their real and imaginary parts; the
@@ -35,6 +42,7 @@ __all__ = [
     "SynthesisGrid",
     "synthesis_grid",
     "realisation_phases",
+    "amplitude_factors",
     "synthesise",
     "interpolate_transfer",
     "low_rank",
@@ -124,20 +132,35 @@ def realisation_phases(seed: int, index: int, count: int) -> NDArray[np.float64]
     return rng.uniform(0.0, 2.0 * math.pi, int(count))
 
 
-def synthesise(grid: SynthesisGrid, phases_rad: NDArray, transfer: NDArray) -> NDArray[np.float64]:
+def amplitude_factors(seed: int, index: int, count: int, random_amplitudes: bool) -> NDArray[np.float64]:
+    """Amplitude factors r_j [-] of realisation ``index`` (see the module docstring): Rayleigh with mean square 1, or ones.
+
+    Drawn from the same generator as :func:`realisation_phases`, after its ``count`` phases.
+    """
+    if not random_amplitudes:
+        return np.ones(int(count))
+    rng = np.random.default_rng(np.random.SeedSequence(int(seed), spawn_key=(int(index),)))
+    rng.uniform(0.0, 2.0 * math.pi, int(count))  # the phases come first
+    return np.sqrt(rng.standard_exponential(int(count)))
+
+
+def synthesise(grid: SynthesisGrid, phases_rad: NDArray, transfer: NDArray, factors: NDArray | None = None) -> NDArray[np.float64]:
     """Records of the responses with transfer functions ``transfer`` (n_f, n_ch) per metre of wave.
+
+    ``factors``: the amplitude factors r_j of :func:`amplitude_factors` (default 1: deterministic amplitudes).
 
     Returns
     -------
     (samples, n_ch) real records at ``t_n = n T / samples``:
-    ``x(t_n) = Re sum_j a_j H(omega_j) exp(i (omega_j t_n + phi_j))``.
+    ``x(t_n) = Re sum_j r_j a_j H(omega_j) exp(i (omega_j t_n + phi_j))``.
     """
     H = np.asarray(transfer)
     squeeze = H.ndim == 1
     H = H.reshape(H.shape[0], -1)
     spectrum = np.zeros((grid.samples // 2 + 1, H.shape[1]), dtype=complex)
     # irfft(norm="forward") of X gives X_0 + 2 Re sum_k X_k e^{2 pi i k n / N}: X_j = A_j H_j / 2
-    A = grid.amplitude_m * np.exp(1j * np.asarray(phases_rad))
+    r = 1.0 if factors is None else np.asarray(factors, dtype=float)
+    A = grid.amplitude_m * r * np.exp(1j * np.asarray(phases_rad))
     spectrum[grid.first_index : grid.first_index + grid.omega_rad_s.size] = 0.5 * A[:, None] * H
     x = irfft(spectrum, n=grid.samples, axis=0, norm="forward")
     return x[:, 0] if squeeze else x

@@ -12,22 +12,18 @@ Everything that does not depend on the amplitude is formed once per wave shape
 unit amplitude, and the bending moment's influence lines. A solve at amplitude A
 (:func:`solve_wave`) only scales the linear solution's dynamic harmonics and runs Newton, started
 from a neighbouring amplitude's solution when one is given (warm start). The maxima are taken
-over the N time samples of the period: ``F_N`` the largest saddle contact force (compression-only
-part), ``u_s_m`` the largest compression, ``u_d_m`` the largest gap, ``M_b_Nm`` and ``sigma_b_Pa``
-the largest absolute bending moment and stress over the moment sample points of the cargo
-(element ends and midpoints, as ``seafast run``), still water included. Units SI; compression
-positive when compressed; sagging moment positive.
-
-Size: just over 400 lines as ruff formats it (one keyword argument a line in a call that does not
-fit on one line; about 390 lines before); the operators, the solves and the maxima share the wave's
-harmonic layout.
+over the period (:mod:`seafast.seastate.wave_maxima`): ``F_N`` the largest saddle contact force
+(compression-only part), ``u_s_m`` the largest compression, ``u_d_m`` the largest gap, ``M_b_Nm``
+and ``sigma_b_Pa`` the largest absolute bending moment and stress over the moment sample points of
+the cargo (element ends and midpoints, as ``seafast run``), still water included; and, on request,
+each at one location (:meth:`WaveSolution.maximum_at`). Units SI; compression positive when
+compressed; sagging moment positive.
 """
 
 from __future__ import annotations
 
-import functools
 import weakref
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -38,6 +34,8 @@ from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_t
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.seastate.transfer import MOMENT_POINTS_PER_ELEMENT
+from seafast.seastate.wave_maxima import location_maxima, location_maximum, period_maxima
+from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, HBMOptions, condensed_operators, solve_condensed, solve_hbm
 
 __all__ = [
@@ -220,16 +218,30 @@ class WaveSolution:
         period, still water included (see the module docstring).
     linear_maxima
         The same of the linear (bilateral-saddle) model in the same wave (``u_d_m`` = 0), when asked for.
+    linear_location_maxima
+        With :attr:`linear_maxima`: the linear model's maximum of each quantity at each location,
+        (n_s,) per saddle quantity and (n_x,) per moment quantity (:func:`~seafast.seastate.wave_maxima.location_maxima`).
     converged
         Whether the harmonic balance met its tolerance (never raised).
     residual_norm, iterations
         The solver's relative residual and Newton iterations.
     compression_harmonics_m
-        Real-layout saddle-compression harmonics (2H+1, n_s) [m]: a warm start for a neighbouring amplitude.
+        Real-layout saddle-compression harmonics (2H+1, n_s) [m]: a warm start for a neighbouring
+        amplitude, and the saddle maxima of :meth:`maximum_at`.
     lifted_off
         Whether some saddle detaches in this wave.
     harmonics
         H of the harmonic balance that gave it.
+    moment_harmonics_Nm
+        Real-layout bending-moment harmonics (2H+1, n_x) of the nonlinear response, still water included [N m].
+    saddle_stiffness_N_per_m
+        (n_s,) compression-only saddle stiffness [N/m].
+    section_modulus_m3
+        (n_x,) section modulus at the moment points [m^3].
+    law
+        The contact law of the solve.
+    time_samples
+        N of the solve (the maxima are located on its samples).
     """
 
     amplitude: float
@@ -241,63 +253,33 @@ class WaveSolution:
     compression_harmonics_m: NDArray[np.float64]
     lifted_off: bool
     harmonics: int = -1
+    linear_location_maxima: dict[str, NDArray[np.float64]] | None = None
+    moment_harmonics_Nm: NDArray[np.float64] | None = None
+    saddle_stiffness_N_per_m: NDArray[np.float64] | None = None
+    section_modulus_m3: NDArray[np.float64] | None = None
+    law: ContactLaw = field(default_factory=ContactLaw)
+    time_samples: int = 0
 
+    def maximum_at(self, quantity: str, location: int | NDArray[np.int64]) -> float:
+        """The nonlinear maximum over the period of ``quantity`` at one location (or the largest over several), still water included.
 
-_REFINE_POINTS = 33  # evaluations between the neighbours of the largest sample, then a parabola: the peak to ~1e-12
-
-
-@functools.lru_cache(maxsize=512)
-def _refine_basis(sample: int, time_samples: int, harmonics: int) -> NDArray[np.float64]:
-    """Rows [1, cos k theta, sin k theta] at 33 times over the two sample intervals around ``sample``."""
-    theta = 2.0 * np.pi * (sample + np.linspace(-1.0, 1.0, _REFINE_POINTS)) / time_samples
-    k = np.arange(1, harmonics + 1)
-    basis = np.empty((_REFINE_POINTS, 2 * harmonics + 1))
-    basis[:, 0] = 1.0
-    basis[:, 1::2] = np.cos(np.outer(theta, k))
-    basis[:, 2::2] = np.sin(np.outer(theta, k))
-    basis.setflags(write=False)
-    return basis
-
-
-def _refined(coefficients: NDArray[np.float64], sample: int, time_samples: int, sign: float) -> float:
-    """Largest ``sign * x(t)`` of one real-layout series (2H+1,) over the two sample intervals around ``sample``."""
-    y = sign * (_refine_basis(int(sample), int(time_samples), (coefficients.size - 1) // 2) @ coefficients)
-    i = int(np.argmax(y))
-    if 0 < i < y.size - 1:  # the parabola through the best point and its neighbours (its error ~ step^4)
-        curvature = y[i - 1] - 2.0 * y[i] + y[i + 1]
-        if curvature < 0.0:
-            return float(y[i] - (y[i + 1] - y[i - 1]) ** 2 / (8.0 * curvature))
-    return float(y[i])
-
-
-def _maxima(
-    compression: NDArray, moment: NDArray, inverse: NDArray, stiffness: NDArray, law: Any, modulus: NDArray, nonlinear: bool
-) -> dict[str, float]:
-    """Maxima over the period from real-layout compression (2H+1, n_s) [m] and moment (2H+1, n_x) [N m] harmonics.
-
-    Located on the N samples, then read between the neighbouring samples (a sampled peak falls
-    short by up to ``1 - cos(pi / N)``, 3e-4 at N = 128): 33 evaluations of the series and a
-    parabola through the best three.
-    """
-    N = inverse.shape[0]
-    delta = inverse @ compression
-    force = law.force(delta, stiffness) if nonlinear else delta * stiffness
-    m_time = inverse @ moment
-    n, s = np.unravel_index(int(np.argmax(force)), force.shape)
-    top = _refined(compression[:, s], int(n), N, 1.0)
-    F = float(law.force(np.array([top]), stiffness[s : s + 1])[0]) if nonlinear else top * float(stiffness[s])
-    n, s = np.unravel_index(int(np.argmax(delta)), delta.shape)
-    u_s = max(_refined(compression[:, s], int(n), N, 1.0), 0.0)
-    u_d = 0.0
-    if nonlinear and np.min(delta) < 0.0:
-        n, s = np.unravel_index(int(np.argmin(delta)), delta.shape)
-        u_d = max(_refined(compression[:, s], int(n), N, -1.0), 0.0)
-    n, x = np.unravel_index(int(np.argmax(np.abs(m_time))), m_time.shape)
-    M_b = _refined(moment[:, x], int(n), N, float(np.sign(m_time[n, x]) or 1.0))
-    stress = np.abs(m_time / modulus)
-    n, x = np.unravel_index(int(np.argmax(stress)), stress.shape)
-    sigma_b = _refined(moment[:, x], int(n), N, float(np.sign(m_time[n, x]) or 1.0)) / float(modulus[x])
-    return {"F_N": float(F), "M_b_Nm": float(M_b), "sigma_b_Pa": float(sigma_b), "u_s_m": float(u_s), "u_d_m": float(u_d)}
+        ``location``: the saddle index (``F_N`` [N], ``u_s_m`` [m], ``u_d_m`` [m]) or the index of
+        the moment sample point (``M_b_Nm`` [N m], ``sigma_b_Pa`` [Pa]), or an array of them; read
+        between the samples as :attr:`maxima` (:func:`~seafast.seastate.wave_maxima.location_maximum`).
+        """
+        if self.moment_harmonics_Nm is None or self.saddle_stiffness_N_per_m is None or self.section_modulus_m3 is None:
+            raise ValueError("WaveSolution.maximum_at: this solution does not carry its harmonics")
+        inverse, _ = real_dft_matrices(self.harmonics, self.time_samples)
+        return location_maximum(
+            quantity,
+            location,
+            self.compression_harmonics_m,
+            self.moment_harmonics_Nm,
+            inverse,
+            self.saddle_stiffness_N_per_m,
+            self.law,
+            self.section_modulus_m3,
+        )
 
 
 def solve_wave(
@@ -338,12 +320,14 @@ def solve_wave(
     C = real_to_complex_harmonics(sol.correction_force)  # (H+1, n_s) upward on the cargo [N]
     moment = complex_to_real_harmonics(moment_lin + (wave.moment_influence_Nm_per_N @ C[:, :, None])[:, :, 0])
     modulus = wave.section_modulus_m3
-    linear_maxima = None
+    linear_maxima, linear_locations = None, None
     if linear:
-        linear_maxima = _maxima(ops.linear_compression_m, complex_to_real_harmonics(moment_lin), inverse, k_u, fixed.law, modulus, False)
+        moment_linear = complex_to_real_harmonics(moment_lin)
+        linear_maxima = period_maxima(ops.linear_compression_m, moment_linear, inverse, k_u, fixed.law, modulus, False)
+        linear_locations = location_maxima(ops.linear_compression_m, moment_linear, inverse, k_u, fixed.law, modulus, False)
     return WaveSolution(
         amplitude=float(amplitude),
-        maxima=_maxima(sol.saddle_compression, moment, inverse, k_u, fixed.law, modulus, True),
+        maxima=period_maxima(sol.saddle_compression, moment, inverse, k_u, fixed.law, modulus, True),
         linear_maxima=linear_maxima,
         converged=bool(sol.converged),
         residual_norm=float(sol.residual_norm),
@@ -351,6 +335,12 @@ def solve_wave(
         compression_harmonics_m=sol.saddle_compression,
         lifted_off=bool(np.any(inverse @ sol.saddle_compression < 0.0)),
         harmonics=H,
+        linear_location_maxima=linear_locations,
+        moment_harmonics_Nm=moment,
+        saddle_stiffness_N_per_m=np.asarray(k_u, dtype=float),
+        section_modulus_m3=modulus,
+        law=fixed.law,
+        time_samples=N,
     )
 
 
@@ -385,22 +375,21 @@ def solve_wave_adaptive(
     C[1:] = 2.0 * spectrum[1 : H + 1]
     inverse, _ = real_dft_matrices(H, N)
     law = opts.law
+    compression, moment_real = complex_to_real_harmonics(C), complex_to_real_harmonics(moment)
+    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     return WaveSolution(
         amplitude=float(amplitude),
-        maxima=_maxima(
-            complex_to_real_harmonics(C),
-            complex_to_real_harmonics(moment),
-            inverse,
-            np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float),
-            law,
-            mm.section_modulus_m3,
-            True,
-        ),
+        maxima=period_maxima(compression, moment_real, inverse, k_u, law, mm.section_modulus_m3, True),
         linear_maxima=None,
         converged=bool(r.converged),
         residual_norm=float(r.residual_norm),
         iterations=int(r.iterations),
-        compression_harmonics_m=complex_to_real_harmonics(C),
+        compression_harmonics_m=compression,
         lifted_off=bool(np.any(r.saddle_compression_time_m < 0.0)),
         harmonics=H,
+        moment_harmonics_Nm=moment_real,
+        saddle_stiffness_N_per_m=k_u,
+        section_modulus_m3=mm.section_modulus_m3,
+        law=law,
+        time_samples=N,
     )

@@ -1,0 +1,208 @@
+"""The design-wave rule: which regular waves a sea state's design waves are, and where each is read.
+
+Per reported quantity (``docs/operability.md`` section 1): the locations designed for (every
+saddle for the saddle quantities, the linear extreme's first; the moment field's governing
+point), at each location the peak of its response spectrum and the ends of the band where the
+spectrum is at least :attr:`DesignWaveSettings.band_fraction` of the peak, and at each such
+frequency the regular wave whose linear response there equals the location's linear spectral
+MPM (:func:`select_design_waves`); a wave is read for its quantity only where it is at most an
+MPM wave (:func:`read_locations`). The harmonic balance of the waves and the estimates are in
+:mod:`seafast.seastate.design_wave`. Units SI.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.seastate.spectral import ResponseStatistics, SpectralAnalysis
+from seafast.seastate.wave_maxima import SADDLE_QUANTITIES
+from seafast.seastate.wave_response import RESPONSE_QUANTITIES
+from seafast.solvers.hbm import HBMOptions
+
+__all__ = ["DEFAULT_HARMONICS", "DesignWaveSettings", "DesignWave", "select_design_waves", "read_locations"]
+
+DEFAULT_HARMONICS = 16
+"""H of the design-wave harmonic balance: within 0.3 % of the adaptive H in mild lift-off, 2.7 % low at worst (docs/operability.md)."""
+
+
+@dataclass(frozen=True)
+class DesignWaveSettings:
+    """Settings of the design-wave rule and its harmonic balance (not case keys; defaults verified).
+
+    Attributes
+    ----------
+    band_fraction
+        Design frequencies span the band where the response spectrum is at least this share of its peak [-].
+    band_points
+        Design frequencies per quantity: 1 (the peak), 3 (peak and band ends) or more (also evenly inside).
+    harmonics
+        H of the harmonic balance (fixed: the amplitude searches reuse the operators), or None:
+        each wave by the package's adaptive harmonic balance (the converged periodic answer, at
+        tens to hundreds of times the cost; docs/operability.md).
+    fallback_harmonics
+        Fewer harmonics tried in turn when the solve at ``harmonics`` does not converge: with the
+        exact contact law a truncated harmonic balance of heavy lift-off can have no solution near
+        its start (the residual stalls near 1e-3), while fewer harmonics converge in a few Newton
+        steps (docs/operability.md); the H used is recorded per wave.
+    time_samples
+        N, or None for the default of H.
+    tolerance
+        Relative residual of the harmonic balance.
+    """
+
+    band_fraction: float = 0.5
+    band_points: int = 3
+    harmonics: int | None = DEFAULT_HARMONICS
+    fallback_harmonics: tuple[int, ...] = (12, 8)
+    time_samples: int | None = None
+    tolerance: float = 1e-10
+
+    def __post_init__(self) -> None:
+        if not (0.0 < self.band_fraction <= 1.0):
+            raise ValueError(f"DesignWaveSettings.band_fraction = {self.band_fraction!r}; allowed: (0, 1]")
+        if int(self.band_points) < 1:
+            raise ValueError(f"DesignWaveSettings.band_points = {self.band_points!r}; allowed: an integer >= 1")
+
+    def hbm_options(self, harmonics: int | None = -1) -> HBMOptions:
+        """The harmonic-balance options (exact contact law, condensed, Newton) at ``harmonics`` (default: this H)."""
+        H = self.harmonics if harmonics == -1 else harmonics
+        return HBMOptions(harmonics=None if H is None else int(H), time_samples=self.time_samples, tolerance=float(self.tolerance))
+
+
+@dataclass(frozen=True)
+class DesignWave:
+    """One design wave: a regular head wave designed for one quantity.
+
+    Attributes
+    ----------
+    quantity
+        The quantity it is designed for (``F_N``, ``M_b_Nm``, ``sigma_b_Pa``, ``u_s_m``, ``u_d_m``).
+    location
+        The location it is designed for, where it is read: saddle index (``F_N``, ``u_s_m``,
+        ``u_d_m``) or moment-point index (``M_b_Nm``, ``sigma_b_Pa``).
+    frequency_index
+        Index of its frequency on the sea-state grid.
+    omega_rad_s
+        Wave frequency [rad/s].
+    amplitude_m
+        Wave amplitude [m]: the linear MPM of the response over its transfer function's modulus.
+    amplitude_per_hs
+        ``amplitude_m`` per metre of significant height [m/m] (the linear MPM is proportional to Hs).
+    role
+        ``peak``, ``band_low``, ``band_high`` or ``band``.
+    """
+
+    quantity: str
+    location: int
+    frequency_index: int
+    omega_rad_s: float
+    amplitude_m: float
+    amplitude_per_hs: float
+    role: str
+
+
+def _governing_saddle(analysis: SpectralAnalysis, quantity: str) -> int:
+    """The saddle of the linear spectral extreme of a saddle quantity (``u_d_m``: the one nearest to lifting off)."""
+    e = analysis.extremes
+    sw = e.still_water
+    if quantity == "F_N":
+        return int(np.argmax(sw.saddle_force_N + e.saddle_force.mpm))
+    if quantity == "u_s_m":
+        return int(np.argmax(sw.saddle_compression_m + e.saddle_compression.mpm))
+    return int(np.argmin(sw.saddle_compression_m - e.saddle_compression.mpm))
+
+
+def _targets(analysis: SpectralAnalysis, quantities: Sequence[str]) -> list[tuple[str, ResponseStatistics, NDArray[np.complex128], int]]:
+    """Per quantity and location designed for: (quantity, response statistics, transfer function there, location).
+
+    Saddle quantities at every saddle, the linear governing saddle first (it starts the chain of
+    warm starts); moment quantities at the moment point of the linear spectral extreme.
+    """
+    e, tf = analysis.extremes, analysis.transfer
+    sw = e.still_water
+    out: list[tuple[str, ResponseStatistics, NDArray[np.complex128], int]] = []
+    for q in quantities:
+        if q in SADDLE_QUANTITIES:
+            first = _governing_saddle(analysis, q)
+            stats, transfer = (e.saddle_force, tf.saddle_force_N) if q == "F_N" else (e.saddle_compression, tf.saddle_compression_m)
+            for loc in (first, *(s for s in range(analysis.model.saddle_count) if s != first)):
+                out.append((q, stats, transfer[:, loc], loc))
+        elif q == "M_b_Nm":
+            loc = int(np.argmax(np.abs(sw.bending_moment_Nm) + e.bending_moment.mpm))
+            out.append((q, e.bending_moment, tf.bending_moment_Nm[:, loc], loc))
+        else:  # sigma_b_Pa
+            loc = int(np.argmax(np.abs(sw.bending_stress_Pa) + e.bending_stress.mpm))
+            out.append((q, e.bending_stress, tf.bending_moment_Nm[:, loc] / tf.bending_section_modulus_m3[loc], loc))
+    return out
+
+
+def _band(spectrum: NDArray[np.float64], fraction: float) -> tuple[int, int, int]:
+    """(low, peak, high) grid indices of the contiguous band around the peak where S >= fraction * peak."""
+    peak = int(np.argmax(spectrum))
+    above = spectrum >= fraction * spectrum[peak]
+    low = peak
+    while low > 0 and above[low - 1]:
+        low -= 1
+    high = peak
+    while high < spectrum.size - 1 and above[high + 1]:
+        high += 1
+    return low, peak, high
+
+
+def select_design_waves(
+    analysis: SpectralAnalysis, settings: DesignWaveSettings = DesignWaveSettings(), quantities: Sequence[str] = RESPONSE_QUANTITIES
+) -> tuple[DesignWave, ...]:
+    """The design waves of the given quantities of a sea state (rule in the module docstring).
+
+    A quantity whose response is zero in the sea (no dynamic part) gets no wave.
+    """
+    hs = float(analysis.spectrum.significant_height_m)
+    w = analysis.spectrum.omega_rad_s
+    waves: list[DesignWave] = []
+    for quantity, stats, transfer, loc in _targets(analysis, quantities):
+        mpm = float(stats.mpm[loc])
+        s_r = stats.spectrum[:, loc]
+        if not (mpm > 0.0 and np.max(s_r) > 0.0):
+            continue
+        low, peak, high = _band(s_r, settings.band_fraction)
+        picks: list[tuple[int, str]] = [(peak, "peak")]
+        if settings.band_points >= 3:
+            picks += [(low, "band_low"), (high, "band_high")]
+        if settings.band_points > 3:
+            inner = np.linspace(w[low], w[high], int(settings.band_points) - 1)[1:-1]
+            picks += [(int(np.argmin(np.abs(w - x))), "band") for x in inner]
+        seen: set[int] = set()
+        for index, role in picks:
+            if index in seen:
+                continue
+            seen.add(index)
+            amplitude = mpm / float(np.abs(transfer[index]))
+            waves.append(DesignWave(quantity, loc, index, float(w[index]), amplitude, amplitude / hs if hs > 0 else float("nan"), role))
+    return tuple(waves)
+
+
+def read_locations(analysis: SpectralAnalysis, wave: DesignWave) -> NDArray[np.int64]:
+    """Where a design wave is read for its quantity: saddle indices or moment-point indices.
+
+    A saddle quantity's wave: its own saddle (every saddle has its own waves). A moment quantity's
+    wave (designed for the governing point only): every moment point where it is at most an MPM
+    wave, ``a |H_x(omega)| <= MPM_x`` (1e-9 relative slack; the governing point itself is at 1).
+    Where the wave is more severe than a location's MPM its response there is not that location's
+    MPM event and is not read; where it is less severe, its nonlinear maximum there estimates from
+    below what that point's own waves would give, and catches a moment peak that lift-off moves
+    away from the governing point. In the linear model every reading is at most the location's
+    still water + MPM, so the method returns the linear spectral total where nothing lifts off.
+    """
+    if wave.quantity in SADDLE_QUANTITIES:
+        return np.array([wave.location], dtype=np.int64)
+    e, tf = analysis.extremes, analysis.transfer
+    stats = e.bending_moment if wave.quantity == "M_b_Nm" else e.bending_stress
+    field_tf = tf.bending_moment_Nm if wave.quantity == "M_b_Nm" else tf.bending_stress_Pa
+    response = wave.amplitude_m * np.abs(field_tf[wave.frequency_index])
+    covered = (stats.mpm > 0.0) & (response <= stats.mpm * (1.0 + 1e-9))
+    covered[wave.location] = True
+    return np.asarray(np.flatnonzero(covered), dtype=np.int64)
