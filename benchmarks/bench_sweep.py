@@ -48,10 +48,10 @@ def deck_case(directory: Path):
 
 def hbm_median_ms(result, omega: float) -> float:
     """Median condensed HBM solve [ms] at ``omega`` on the sweep's model and H, started from the branch's nearest point."""
+    from seafast.analyses.sweep.frequency import SweepKind, wave_excitation
     from seafast.fourier import harmonics_to_time, real_to_complex_harmonics
     from seafast.pipeline import hbm_options
     from seafast.solvers.hbm import solve_hbm
-    from seafast.sweeps import SweepKind, wave_excitation
 
     case, model, branch = result.case, result.model, result.branch
     if result.kind is SweepKind.WAVE:
@@ -68,7 +68,7 @@ def hbm_median_ms(result, omega: float) -> float:
 
 
 def sweep(case, w0: float, w1: float, wave: bool):
-    from seafast.sweeps import SweepKind, frequency_sweep
+    from seafast.analyses.sweep.frequency import SweepKind, frequency_sweep
 
     t0 = time.perf_counter()
     result = frequency_sweep(case, w0, w1, kind=SweepKind.WAVE if wave else SweepKind.STRUCTURAL)
@@ -129,10 +129,10 @@ def main() -> None:
 
 def _table_again(result):
     """The sweep's table (stability, moments, linear model, truncation, range) rebuilt for its branch."""
+    from seafast.analyses.sweep.frequency import SweepKind, wave_excitation
+    from seafast.analyses.sweep.table import sweep_table
     from seafast.pipeline import hbm_options
-    from seafast.results.sweep import sweep_table
     from seafast.solvers.hbm import condensed_operators, solve_condensed
-    from seafast.sweeps import SweepKind, wave_excitation
 
     case, model, branch = result.case, result.model, result.branch
     law = hbm_options(case).law

@@ -150,10 +150,10 @@ def test_every_case_key_is_documented():
 
 
 def test_every_output_column_is_documented_exactly():
+    from seafast.analyses.sweep.table import STRUCTURAL_COLUMNS, WAVE_COLUMNS
     from seafast.excitation.deck_table import DECK_TABLE_COLUMNS
     from seafast.output.sweep import COLUMNS as SWEEP_COLUMNS
     from seafast.results.dataset import SUMMARY_COLUMNS
-    from seafast.results.sweep import STRUCTURAL_COLUMNS, WAVE_COLUMNS
     from seafast.studies.limits import COMPLIANCE_COLUMNS, RANKING_COLUMNS
     from seafast.studies.runner import CORE_COLUMNS
 

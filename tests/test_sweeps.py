@@ -13,6 +13,9 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
+from seafast.analyses.sweep.frequency import SweepKind, frequency_sweep, wave_excitation
+from seafast.analyses.sweep.range import RangeLimit, deck_acceleration_m_per_s2
+from seafast.analyses.sweep.table import STRUCTURAL_COLUMNS, WAVE_COLUMNS
 from seafast.cli import main
 from seafast.config import load_case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
@@ -20,14 +23,11 @@ from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import real_dft_matrices
 from seafast.output.sweep import structural_figure
 from seafast.pipeline import build_model, hbm_options, run_case
-from seafast.results.sweep import STRUCTURAL_COLUMNS, WAVE_COLUMNS
-from seafast.results.sweep_range import RangeLimit, deck_acceleration_m_per_s2
 from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd
 from seafast.solvers.floquet import Stability
 from seafast.solvers.hbm import solve_hbm
 from seafast.solvers.stepped_sine import stepped_sine_sweep
-from seafast.sweeps import SweepKind, frequency_sweep, wave_excitation
 
 ROOT = Path(__file__).resolve().parents[1]
 SOFT = {"seafastening.saddle_stiffness_N_per_m": 1.1e7}  # 1 % of the base saddles: bounce mode at 4.5 rad/s

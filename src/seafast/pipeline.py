@@ -5,7 +5,7 @@ the previous one's output. Nothing here prints or writes files (see :mod:`seafas
 
 Size: over 400 lines because it is the only module that knows the order of the stages, for a run, a
 study point's short path and the two-way coupling; each is a short function of the stages below
-(frequency sweeps: :mod:`seafast.sweeps`).
+(frequency sweeps: :mod:`seafast.analyses.sweep.frequency`).
 """
 
 from __future__ import annotations

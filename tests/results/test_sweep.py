@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from seafast.analyses.sweep.range import RangeLimits, time_extremes
+from seafast.analyses.sweep.stability import FoldCluster, classify_stability, fold_clusters, stability_tolerances
+from seafast.analyses.sweep.table import significant_folds
 from seafast.fourier import harmonics_to_time
-from seafast.results.sweep import significant_folds
-from seafast.results.sweep_range import RangeLimits, time_extremes
-from seafast.results.sweep_stability import FoldCluster, classify_stability, fold_clusters, stability_tolerances
 from seafast.solvers.branch import FrequencyResponseBranch
 from seafast.solvers.floquet import STABILITY_TOLERANCE, Stability
 

@@ -17,8 +17,8 @@ from seafast.config import load_case
 from seafast.output.report.findings import run_findings
 from seafast.pipeline import evaluate_summary, run_case
 from seafast.results.dataset import SUMMARY_COLUMNS
-from seafast.results.sweep_range import DEFAULT_MAX_GAP_M
 from seafast.results.validity import (
+    DEFAULT_MAX_GAP_M,
     DISPLACEMENT_SHARE_OF_DIAMETER,
     MAX_ROTATION_RAD,
     ValidityLimit,

@@ -54,9 +54,9 @@ def add_sweep_subcommand(subparsers: Any) -> argparse.ArgumentParser:
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
+    from seafast.analyses.sweep.frequency import SweepKind, frequency_sweep
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.output.sweep import fold_warning, format_sweep_summary, range_warning, truncation_warning, write_sweep_outputs
-    from seafast.sweeps import SweepKind, frequency_sweep
 
     if not all(map(math.isfinite, (args.omega_min, args.omega_max))) or not (0 < args.omega_min < args.omega_max):
         return error(f"--omega-min = {args.omega_min}, --omega-max = {args.omega_max}: need 0 < omega-min < omega-max (rad/s)")

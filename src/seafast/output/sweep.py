@@ -1,8 +1,8 @@
 """Outputs of ``seafast sweep``: ``frequency_response.csv`` and ``frequency_response.png``.
 
 The CSV has one row per branch point in continuation order (omega is not monotonic past a fold),
-the columns of :data:`seafast.results.sweep.STRUCTURAL_COLUMNS` or
-:data:`~seafast.results.sweep.WAVE_COLUMNS` (the first six are the columns the file always had).
+the columns of :data:`seafast.analyses.sweep.table.STRUCTURAL_COLUMNS` or
+:data:`~seafast.analyses.sweep.table.WAVE_COLUMNS` (the first six are the columns the file always had).
 The figure draws stable parts solid, unstable parts dashed red and marginal ones (within the
 stability tolerance of a fold) orange, marks the folds and the points with too few harmonics,
 shades what lies beyond the physically meaningful range, and puts the linear model beside the
@@ -22,8 +22,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.results.sweep import BASE_COLUMNS, SweepTable
-from seafast.results.sweep_range import RangeLimit
+from seafast.analyses.sweep.range import RangeLimit
+from seafast.analyses.sweep.table import BASE_COLUMNS, SweepTable
 from seafast.solvers.floquet import Stability
 
 __all__ = [
@@ -209,7 +209,7 @@ def _save(fig: plt.Figure, path: Path) -> Path:
 
 def write_sweep_outputs(result: Any, out_dir: str | Path, *, plots: bool = True) -> list[Path]:
     """Write ``frequency_response.csv`` (and ``frequency_response.png`` with ``plots``) of a
-    :class:`~seafast.sweeps.SweepResult`; return their paths."""
+    :class:`~seafast.analyses.sweep.frequency.SweepResult`; return their paths."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [write_csv(result.table, out / "frequency_response.csv")]

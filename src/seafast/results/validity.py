@@ -11,7 +11,7 @@ its saddles. Each row of a run is checked against three lines, drawn here once:
   saddles, and fixed contact points with linear springs do not describe it;
 * **rotation**: the cargo's largest slope at most 0.1 rad (:data:`MAX_ROTATION_RAD`), where the small-angle
   kinematics (sin, tan and 1 - cos against the angle) are within 0.5 %;
-* **lift-off gap**: at most 0.1 m (:data:`~seafast.results.sweep_range.DEFAULT_MAX_GAP_M`, the line the
+* **lift-off gap**: at most 0.1 m (:data:`DEFAULT_MAX_GAP_M`, the line the
   frequency sweeps draw): a monopile lifted further has left the sea-fastening's design state.
 
 The numbers of a row beyond a line are written (nothing computed is lost) and flagged: ``within_validity``
@@ -30,11 +30,11 @@ import numpy as np
 
 from seafast.config.schema import BASE_SADDLE_STIFFNESS_N_PER_M, Case
 from seafast.results.dataset import LOAD_CASES, MODELS
-from seafast.results.sweep_range import DEFAULT_MAX_GAP_M
 
 __all__ = [
     "DISPLACEMENT_SHARE_OF_DIAMETER",
     "MAX_ROTATION_RAD",
+    "DEFAULT_MAX_GAP_M",
     "ValidityLimit",
     "ValidityIssue",
     "validity_issues",
@@ -49,6 +49,11 @@ DISPLACEMENT_SHARE_OF_DIAMETER = 0.25
 MAX_ROTATION_RAD = 0.1
 """Largest cargo slope [rad]: sin, tan and 1 - cos are within 0.5 % of their small-angle forms."""
 
+DEFAULT_MAX_GAP_M = 0.1
+"""Largest detachment gap [m] inside the meaningful range (also the frequency sweeps', ``docs/sweeps.md``): a
+monopile lifted 10 cm off its saddles has left the sea-fastening's design state; the model's linear lashings,
+fixed saddle positions and undamped re-contact no longer describe what happens next."""
+
 
 class ValidityLimit(StrEnum):
     """Which line of the model's small-displacement validity a result is beyond."""
@@ -58,7 +63,7 @@ class ValidityLimit(StrEnum):
     ROTATION = "rotation_beyond_small_angle"
     """The cargo's slope exceeds :data:`MAX_ROTATION_RAD`."""
     LIFT_OFF_GAP = "lift_off_gap_beyond_meaningful_range"
-    """A saddle's lift-off gap exceeds :data:`~seafast.results.sweep_range.DEFAULT_MAX_GAP_M`."""
+    """A saddle's lift-off gap exceeds :data:`DEFAULT_MAX_GAP_M`."""
 
     @property
     def description(self) -> str:

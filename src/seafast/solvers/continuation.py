@@ -25,7 +25,7 @@ not a step stepped over. The points' omega decides, not the tangent's omega comp
 exact contact law the AFT's sampled contact set changes along the branch, the residual is
 piecewise linear in u, and near a fold the tangent of the piece a point lies on can point the
 other way than the branch goes over a step (with N = 128 the branch itself zigzags over a sharp
-fold: the sweep uses N >= 512, :data:`seafast.sweeps.SWEEP_MIN_TIME_SAMPLES`).
+fold: the sweep uses N >= 512, :data:`seafast.analyses.sweep.frequency.SWEEP_MIN_TIME_SAMPLES`).
 
 Each point records the compression harmonics (for stability, moments and post-processing) and
 the omega component of its unit tangent (:class:`~seafast.solvers.branch.FrequencyResponseBranch`).

@@ -63,7 +63,7 @@ STABILITY_TOLERANCE = 1e-6
 """An orbit is called stable when its largest multiplier modulus is at most ``1 + STABILITY_TOLERANCE``
 (a neutral mode, e.g. a free rigid-body motion with every saddle detached, has a multiplier of exactly 1).
 It knows nothing of the orbit's discretisation: a sweep decides with the tolerance its folds give
-(:mod:`seafast.results.sweep_stability`), of which this is the floor."""
+(:mod:`seafast.analyses.sweep.stability`), of which this is the floor."""
 
 
 class Stability(Enum):

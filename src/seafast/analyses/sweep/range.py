@@ -6,7 +6,7 @@ A sweep point lies outside the meaningful range (:class:`RangeLimit`) when
   reverses, it leaves its saddles whatever the sea-fastening, and the still-water contact model
   (saddles preloaded by the cargo's weight) no longer describes it -- the structural sweep holds the
   case's motion amplitudes, whose acceleration grows as omega^2 and passes g;
-* a saddle's detachment gap exceeds a stated size (default :data:`DEFAULT_MAX_GAP_M`): the
+* a saddle's detachment gap exceeds a stated size (default :data:`~seafast.results.validity.DEFAULT_MAX_GAP_M`): the
   model's linear lashings, fixed saddle positions and undamped re-contact describe small lift-offs,
   not a cargo bouncing out of its cradles;
 * (wave sweep) the wave is steeper than the breaking limit: no such regular wave exists.
@@ -27,13 +27,9 @@ from seafast.config.schema import BREAKING_STEEPNESS
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
+from seafast.results.validity import DEFAULT_MAX_GAP_M
 
-__all__ = ["DEFAULT_MAX_GAP_M", "BREAKING_STEEPNESS", "RangeLimit", "RangeLimits", "time_extremes", "deck_acceleration_m_per_s2"]
-
-DEFAULT_MAX_GAP_M = 0.1
-"""Largest detachment gap [m] inside the meaningful range (``docs/sweeps.md``): a monopile lifted
-10 cm off its saddles has left the sea-fastening's design state; the model's linear lashings,
-fixed saddle positions and undamped re-contact no longer describe what happens next."""
+__all__ = ["RangeLimit", "RangeLimits", "time_extremes", "deck_acceleration_m_per_s2"]
 
 
 class RangeLimit(Enum):
@@ -56,7 +52,7 @@ class RangeLimits:
     gravity_m_per_s2
         g [m/s^2]: the largest deck acceleration in range.
     max_gap_m
-        Largest detachment gap in range [m] (default :data:`DEFAULT_MAX_GAP_M`).
+        Largest detachment gap in range [m] (default :data:`~seafast.results.validity.DEFAULT_MAX_GAP_M`).
     breaking_steepness
         Largest wave height over wave length [-] (default :data:`BREAKING_STEEPNESS`).
     """

@@ -7,9 +7,9 @@ each point; this module turns them into the columns of ``frequency_response.csv`
 * the nonlinear maxima (saddle force, gap, cargo deflection in two frames, bending moment) and the
   linear (bilateral-saddle) model's at the same frequency;
 * stability (:func:`seafast.solvers.floquet.floquet_multipliers`), decided within the tolerance the
-  folds give (:mod:`seafast.results.sweep_stability`), and the folds;
+  folds give (:mod:`seafast.analyses.sweep.stability`), and the folds;
 * the truncation estimate, and whether it exceeds the case's ``truncation_tolerance``;
-* the physically meaningful range (:mod:`seafast.results.sweep_range`): the deck under the saddles
+* the physically meaningful range (:mod:`seafast.analyses.sweep.range`): the deck under the saddles
   accelerating faster than g, a detachment gap beyond a stated size, and, for the wave sweep, a
   wave steeper than the breaking limit;
 * for the wave sweep, the nonlinear and linear RAOs of saddle force and bending moment: the
@@ -30,13 +30,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
-from seafast.model.beam import bending_moment_line
-from seafast.model.structure import StructuralModel
-from seafast.results.dataset import seafastening_baseline
-from seafast.results.sweep_range import RangeLimit, RangeLimits, deck_acceleration_m_per_s2, time_extremes
-from seafast.results.sweep_stability import (
+from seafast.analyses.sweep.range import RangeLimit, RangeLimits, deck_acceleration_m_per_s2, time_extremes
+from seafast.analyses.sweep.stability import (
     FOLD_RESPONSE_CHANGE,
     FOLD_SEPARATION,
     FoldCluster,
@@ -46,6 +41,11 @@ from seafast.results.sweep_stability import (
     stability_tolerances,
     with_multipliers,
 )
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
+from seafast.model.beam import bending_moment_line
+from seafast.model.structure import StructuralModel
+from seafast.results.dataset import seafastening_baseline
 from seafast.solvers.branch import FrequencyResponseBranch
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.floquet import Stability, floquet_multipliers, stability_system
@@ -167,10 +167,10 @@ class SweepTable:
     floquet_max_modulus
         The largest multiplier modulus [-] (> 1: unstable; crosses 1 at folds).
     stability
-        The verdict of each point within its tolerance (:func:`seafast.results.sweep_stability.classify_stability`).
+        The verdict of each point within its tolerance (:func:`seafast.analyses.sweep.stability.classify_stability`).
     stability_tolerance
         The tolerance on ``|mu| - 1`` of each point [-]: the deviation from 1 of the multiplier at its
-        neighbouring folds (:func:`seafast.results.sweep_stability.stability_tolerances`).
+        neighbouring folds (:func:`seafast.analyses.sweep.stability.stability_tolerances`).
     fold
         True at the point where the branch turns at a fold (:func:`significant_folds`).
     truncation_error
@@ -179,7 +179,7 @@ class SweepTable:
     truncation_tolerance
         The case's ``solver.truncation_tolerance`` [-]: above it a point has too few harmonics.
     folds
-        The folds, with the discrete turns merged into each (:func:`seafast.results.sweep_stability.fold_clusters`).
+        The folds, with the discrete turns merged into each (:func:`seafast.analyses.sweep.stability.fold_clusters`).
     beyond_range
         The :class:`RangeLimit` s each point breaks (empty inside the meaningful range).
     limits

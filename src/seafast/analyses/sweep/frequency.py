@@ -3,7 +3,7 @@
 Both follow the nonlinear periodic response in frequency by pseudo-arclength continuation
 (:func:`seafast.solvers.continuation.frequency_response`, through folds), mark each point stable
 or unstable (Floquet multipliers), and say where the branch leaves the physically meaningful range
-(:mod:`seafast.results.sweep`); they differ in what is held while omega moves:
+(:mod:`seafast.analyses.sweep.table`); they differ in what is held while omega moves:
 
 ``structural``
     The case's excitation *shape*: deck-motion amplitudes and rigid-body displacement amplitudes
@@ -35,6 +35,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
+from seafast.analyses.sweep.range import RangeLimits, deck_acceleration_m_per_s2
+from seafast.analyses.sweep.table import SweepTable, sweep_table
 from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.harmonic import HarmonicExcitation
@@ -42,8 +44,6 @@ from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.vessel import vessel_excitation
 from seafast.model.structure import StructuralModel
 from seafast.pipeline import build_model, hbm_options
-from seafast.results.sweep import SweepTable, sweep_table
-from seafast.results.sweep_range import RangeLimits, deck_acceleration_m_per_s2
 from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
 from seafast.solvers.continuation import DEFAULT_HARMONICS, frequency_response
@@ -196,7 +196,7 @@ def frequency_sweep(
         :attr:`SweepKind.STRUCTURAL` (the case's motion amplitudes held) or :attr:`SweepKind.WAVE`.
     max_gap_m
         Largest detachment gap inside the meaningful range [m] (default
-        :data:`seafast.results.sweep.DEFAULT_MAX_GAP_M`).
+        :data:`seafast.results.validity.DEFAULT_MAX_GAP_M`).
     follow_beyond_range
         Structural sweep: go on past ``omega_g`` (where the held deck motion accelerates the deck
         by g) instead of stopping there.

@@ -1,0 +1,9 @@
+"""The analyses: each takes a case (and what it needs computed before) and returns typed records.
+
+* :mod:`~seafast.analyses.sweep` - the nonlinear frequency response by continuation: the branch, its
+  table per point, the stability of each point, the physically meaningful range.
+* :mod:`~seafast.analyses.axial` - the axial sliding of the cargo on friction.
+
+An analysis runs the solvers; it never prints, reads or writes files (the command line and
+:mod:`seafast.output` do). The labelled datasets of its records are :mod:`seafast.results`'.
+"""
