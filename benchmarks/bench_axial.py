@@ -32,11 +32,11 @@ def _series(result):
 
 
 def main() -> None:
+    from seafast.analyses.axial import axial_options, run_axial_analysis
     from seafast.config import load_case
     from seafast.excitation.axial import axial_load_of
     from seafast.model.from_case import axial_restraint
     from seafast.pipeline import run_case
-    from seafast.results.axial import axial_options, run_axial_analysis
     from seafast.solvers.axial import solve_axial_hbm, solve_axial_time_domain
 
     base = load_case()

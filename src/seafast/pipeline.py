@@ -329,7 +329,7 @@ def run_case(
     responses = {"linear_static": lin_static, "linear_dynamic": lin_dynamic, "nonlinear_static": nl_static, "nonlinear_dynamic": nl_dynamic}
     axial = None
     if case.seafastening.friction_coefficient is not None:  # the axial analysis (docs/axial.md), one way
-        from seafast.results.axial import run_axial_analysis
+        from seafast.analyses.axial import run_axial_analysis
 
         say("axial sliding (friction, lashings, stoppers)")
         axial = run_axial_analysis(case, model, vessel, series)

@@ -11,12 +11,13 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from seafast.analyses.axial import axial_options
 from seafast.cli import main
 from seafast.config import load_case
 from seafast.excitation.axial import axial_load_of
 from seafast.model.from_case import axial_restraint
 from seafast.pipeline import run_case, solve_nonlinear
-from seafast.results.axial import AXIAL_SUMMARY_COLUMNS, axial_options
+from seafast.results.axial import AXIAL_SUMMARY_COLUMNS
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.solvers.axial import LockCheck, solve_axial_hbm, solve_axial_time_domain
 from seafast.solvers.axial.harmonic_balance import axial_time_samples

@@ -2,7 +2,8 @@
 
 * :mod:`~seafast.analyses.sweep` - the nonlinear frequency response by continuation: the branch, its
   table per point, the stability of each point, the physically meaningful range.
-* :mod:`~seafast.analyses.axial` - the axial sliding of the cargo on friction.
+* :mod:`~seafast.analyses.axial` - the axial sliding of the cargo on friction (with
+  :mod:`~seafast.analyses.axial_coupling`, the friction's estimated effect on the saddle forces).
 
 An analysis runs the solvers; it never prints, reads or writes files (the command line and
 :mod:`seafast.output` do). The labelled datasets of its records are :mod:`seafast.results`'.
