@@ -13,8 +13,8 @@ import xarray as xr
 from seafast.cli import main
 from seafast.cli.operability import default_peak_periods, parse_peak_periods
 from seafast.config import CaseError, load_case
-from seafast.operability.outputs import OPERABILITY_COLUMNS
 from seafast.operability.scatter import assess_scatter, read_scatter_diagram
+from seafast.output.operability import OPERABILITY_COLUMNS
 
 RAISED = ["--set", "limits.max_saddle_force_N=11.5e6", "--set", "limits.max_bending_stress_Pa=28e6"]
 

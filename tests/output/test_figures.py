@@ -25,9 +25,9 @@ from seafast.output import plots
 from seafast.output.report.figures import rao_figure, run_figures, saddle_time_history_figure, stick_slip_figure
 from seafast.output.report.print_figures import plot_contact_timeline
 from seafast.output.report.study_figures import compliance_map_figure, study_surface_figure
+from seafast.output.study_plots import plot_compliance_map, plot_profiles, plot_surfaces
 from seafast.output.style import cell_boundary, scaled_unit
 from seafast.pipeline import run_case
-from seafast.studies.figures import plot_compliance_map, plot_profiles, plot_surfaces
 
 PLAIN_NUMBER = re.compile("^[\u2212-]?\\d+(\\.\\d+)?$")  # matplotlib writes U+2212 for minus
 
@@ -246,8 +246,8 @@ def test_legends_stand_outside_the_data_and_every_series_stays_visible(run_ds, c
 
 def test_sea_state_and_operability_legends_stand_outside_the_data(capture, tmp_path):
     from seafast.cli import main
-    from seafast.operability.outputs import plot_operability
-    from seafast.seastate.figures import write_seastate_figures
+    from seafast.output.operability import plot_operability
+    from seafast.output.seastate_plots import write_seastate_figures
 
     assert main(["seastate", "-o", str(tmp_path / "ss"), "--no-monte-carlo", "--no-plots", "-q"]) == 0
     assert main(["operability", "--tp", "8:12:1", "-o", str(tmp_path / "op"), "--no-plots", "-q"]) == 0

@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 from seafast.cli.study import main as study_main
-from seafast.studies.figures import plot_study
+from seafast.output.study_plots import plot_study
 from seafast.studies.limits import DesignLimits, compliance, compliance_rows, format_table, rank_compliant
 
 COUNT, STIFF = "seafastening.saddle_count", "seafastening.saddle_stiffness_N_per_m"

@@ -97,8 +97,8 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.operability.allowable import allowable_sea_states
     from seafast.operability.family import sea_state_family
-    from seafast.operability.outputs import format_operability_table, write_operability_outputs
     from seafast.operability.scatter import assess_scatter, read_scatter_diagram
+    from seafast.output.operability import format_operability_table, write_operability_outputs
 
     try:
         tps = parse_peak_periods(args.tp) if args.tp is not None else None

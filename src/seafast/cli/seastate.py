@@ -46,8 +46,8 @@ def _monte_carlo_engine() -> tuple[Any, str]:
 
 def _cmd_seastate(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
+    from seafast.output.seastate import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
     from seafast.seastate.design_wave import sea_state_design_waves
-    from seafast.seastate.outputs import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
     from seafast.seastate.spectral import spectral_analysis
 
     if args.workers is not None and args.workers < 1:

@@ -150,7 +150,7 @@ def cmd_study(args: argparse.Namespace) -> int:
     write_rows_csv(out / "ranking.csv", ranking, ranking_columns)
     figures = []
     if not args.no_figures:
-        from seafast.studies.figures import plot_study
+        from seafast.output.study_plots import plot_study
 
         # the figures lay out the study's axes, load case and model; the warning flags are not drawn
         figures = plot_study(run.dataset.drop_dims("warning", errors="ignore"), out, limits)

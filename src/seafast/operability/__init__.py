@@ -2,8 +2,8 @@
 
 * :mod:`~seafast.operability.allowable` - the allowable Hs per Tp (closed forms; bracketing with design waves).
 * :mod:`~seafast.operability.scatter` - a wave scatter diagram's share of sea states within the limits.
-* :mod:`~seafast.operability.outputs` - operability.csv / .nc and the chart.
 
+Its files (operability.csv / .nc, the chart): :mod:`seafast.output.operability`.
 Theory, rules and verification: ``docs/operability.md``.
 """
 

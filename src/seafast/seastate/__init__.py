@@ -3,9 +3,9 @@
 * :mod:`~seafast.seastate.spectrum` - JONSWAP / Pierson-Moskowitz / tabulated spectra and the grid.
 * :mod:`~seafast.seastate.transfer` - transfer functions per metre of wave amplitude.
 * :mod:`~seafast.seastate.spectral` - response spectra, moments, Rayleigh most probable maxima, uplift rate.
-* :mod:`~seafast.seastate.outputs`, :mod:`~seafast.seastate.figures` - seastate.csv / .nc / PNGs.
 * :mod:`~seafast.seastate.monte_carlo` - the nonlinear Monte Carlo reference.
 
+Its files (seastate.csv / .nc, the figures): :mod:`seafast.output.seastate`, :mod:`seafast.output.seastate_plots`.
 Theory and verification: ``docs/seastate.md``.
 """
 

@@ -9,7 +9,7 @@ Typical use::
     run = run_study(grid, "out/saddles")                   # all cores; resumable
     ranking = rank_compliant(run.dataset)
 
-Figures: :func:`seafast.studies.figures.plot_study` (imported on demand: matplotlib).
+Figures: :func:`seafast.output.study_plots.plot_study` (imported on demand: matplotlib).
 """
 
 from __future__ import annotations

@@ -16,7 +16,7 @@ Inputs
 Design: every figure and table is a pure function ``Dataset -> plotly Figure / rows``; reading
 files and writing the report happen only in :func:`write_report` and the command handler.
 The print (PNG/PDF) figures reuse :mod:`seafast.output.plots` (run) and
-:mod:`seafast.studies.figures` (study).
+:mod:`seafast.output.study_plots` (study).
 
 Modules
 -------

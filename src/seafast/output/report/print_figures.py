@@ -1,7 +1,7 @@
 """Print-quality figures of the report: PNGs (matplotlib, >= PNG_DPI dpi) and their PDF.
 
 The run figures reuse :mod:`seafast.output.plots`, the study figures
-:mod:`seafast.studies.figures`; :func:`_print_quality` raises their resolution and collects
+:mod:`seafast.output.study_plots`; :func:`_print_quality` raises their resolution and collects
 them into the PDF without changing those modules.
 """
 
@@ -31,7 +31,7 @@ def _print_quality(pdf: Any | None, min_dpi: int) -> Iterator[list[str]]:
     the figure is also appended to ``pdf`` (a ``PdfPages``). Yields the list of saved paths.
 
     This lets the report reuse the figure functions of :mod:`seafast.output.plots` and
-    :mod:`seafast.studies.figures` (which save and close their figures) unchanged.
+    :mod:`seafast.output.study_plots` (which save and close their figures) unchanged.
     """
     from matplotlib.figure import Figure
 
@@ -112,7 +112,7 @@ def _summary_page(pdf: Any, title: str, lines: Sequence[str]) -> None:
 def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_dir: Path, pdf_path: Path | None) -> list[Path]:
     """Print-quality PNGs (>= :data:`PNG_DPI` dpi) of the report's figures, and their PDF.
 
-    Run figures reuse :mod:`seafast.output.plots`; study figures :mod:`seafast.studies.figures`.
+    Run figures reuse :mod:`seafast.output.plots`; study figures :mod:`seafast.output.study_plots`.
     A figure that fails to draw is skipped (and named on stderr); the rest are written.
     """
     import matplotlib
@@ -171,7 +171,7 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
                     logger.warning("print figure %s skipped (%s: %s)", fname, type(exc).__name__, exc)
             if study is not None:
                 try:
-                    from seafast.studies.figures import plot_study
+                    from seafast.output.study_plots import plot_study
 
                     # the figures lay out the study's axes, load case and model; the warning flags are not drawn
                     paths += list(plot_study(study.drop_dims("warning", errors="ignore"), fig_dir))

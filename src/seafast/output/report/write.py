@@ -63,12 +63,12 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
     if figures:
         pngs = write_print_figures(run, study, fig_dir, pdf_path)
         if seastate is not None:
-            from seafast.seastate.figures import write_seastate_figures
+            from seafast.output.seastate_plots import write_seastate_figures
 
             fig_dir.mkdir(parents=True, exist_ok=True)
             pngs = list(pngs) + write_seastate_figures(seastate, fig_dir)
         if operability is not None:
-            from seafast.operability.outputs import plot_operability
+            from seafast.output.operability import plot_operability
 
             fig_dir.mkdir(parents=True, exist_ok=True)
             pngs = list(pngs) + [plot_operability(operability, fig_dir / "operability.png")]

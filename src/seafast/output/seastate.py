@@ -326,7 +326,7 @@ def write_seastate_outputs(
         nc.unlink()
     paths["seastate_nc"] = write_netcdf(ds, nc)
     if plots:
-        from seafast.seastate.figures import write_seastate_figures
+        from seafast.output.seastate_plots import write_seastate_figures
 
         for p in write_seastate_figures(ds, out, monte_carlo):
             paths[p.stem] = p
