@@ -26,8 +26,8 @@ def main() -> None:
     args = parser.parse_args()
 
     from seafast.config import load_case
-    from seafast.excitation.coupled_hull import coupled_hull
-    from seafast.excitation.coupling import hull_compliance
+    from seafast.coupling.deck import hull_compliance
+    from seafast.coupling.hull import coupled_hull
     from seafast.excitation.hull_girder import still_water_response, wave_response
     from seafast.excitation.vessel import _motions, hull_form_of, vessel_excitation
     from seafast.pipeline import build_model, run_case

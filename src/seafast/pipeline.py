@@ -20,8 +20,7 @@ import xarray as xr
 
 import seafast
 from seafast.config.schema import Case
-from seafast.excitation.coupled_hull import CoupledHull, coupled_hull
-from seafast.excitation.coupling import (
+from seafast.coupling.deck import (
     DeckCoupling,
     HullCompliance,
     couple_deck,
@@ -29,7 +28,8 @@ from seafast.excitation.coupling import (
     hull_compliance,
     linear_coupling_jacobians,
 )
-from seafast.excitation.coupling_status import CouplingStatus
+from seafast.coupling.hull import CoupledHull, coupled_hull
+from seafast.coupling.status import CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
@@ -350,11 +350,11 @@ def couple_hull_and_cargo(
 
     For each (load case, model) the deck under the sea-fastening is iterated until the hull
     girder, loaded by the cargo's deck forces in place of its spread load, and the cargo agree
-    (:func:`seafast.excitation.coupling.couple_deck`): the still-water state (harmonic 0) for
+    (:func:`seafast.coupling.deck.couple_deck`): the still-water state (harmonic 0) for
     the static rows, harmonics 0 .. H (the linear model: the excitation's harmonics) for the
-    dynamic rows. Returns :class:`~seafast.excitation.coupling.DeckCoupling` per row, keyed
+    dynamic rows. Returns :class:`~seafast.coupling.deck.DeckCoupling` per row, keyed
     ``(load_case, model)``; each carries the coupled excitation, the cargo's response and its
-    :class:`~seafast.excitation.coupling_status.CouplingStatus`. ``compliance``: the hull's
+    :class:`~seafast.coupling.status.CouplingStatus`. ``compliance``: the hull's
     (computed from ``vessel`` when omitted).
     """
     if compliance is None:

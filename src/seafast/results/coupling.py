@@ -8,7 +8,7 @@ in the same variables with ``_coupled`` before the unit (``hull_still_water_defl
 ...), on the same ``hull_x_m`` and ``hull_period_fraction``, with ``hull_coupling = "two_way"``.
 
 Coupling outcome, per ``(load_case, model)``: ``coupling_converged``, ``coupling_outcome`` (a
-:class:`~seafast.excitation.coupling_status.CouplingOutcome` value), ``coupling_residual_m``,
+:class:`~seafast.coupling.status.CouplingOutcome` value), ``coupling_residual_m``,
 ``coupling_tolerance_m``, ``coupling_deck_motion_scale_m``, ``coupling_iterations``,
 ``coupling_mean_deck_change_m`` (per saddle) and ``coupling_message`` (for people).
 """
@@ -22,8 +22,8 @@ import numpy as np
 import xarray as xr
 from numpy.typing import DTypeLike
 
-from seafast.excitation.coupled_hull import CoupledHull
-from seafast.excitation.coupling_status import CouplingStatus
+from seafast.coupling.hull import CoupledHull
+from seafast.coupling.status import CouplingStatus
 from seafast.results.dataset import LOAD_CASES, MODELS
 
 __all__ = ["COUPLED_HULL_VARIABLES", "coupling_dataset", "coupling_summary_fields"]

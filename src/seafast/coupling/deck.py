@@ -26,8 +26,8 @@ The hull girder is quasi-static and linear while no section emerges, so ``C`` is
 serves every harmonic. The moments of the rotational lashing springs (a few kN m) are not
 applied to the hull. Convergence is judged on the coupling's own residual, relative to the
 deck-motion scale (:data:`COUPLING_RELATIVE_TOLERANCE`), and reported as a
-:class:`~seafast.excitation.coupling_status.CouplingStatus`. The hull girder along the whole
-ship under the coupled cargo is :mod:`seafast.excitation.coupled_hull`. Theory and checks:
+:class:`~seafast.coupling.status.CouplingStatus`. The hull girder along the whole
+ship under the coupled cargo is :mod:`seafast.coupling.hull`. Theory and checks:
 ``docs/coupling.md``.
 
 Size: about 500 lines, the compliance, the exchanged loads, the linear Jacobians and the
@@ -43,7 +43,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.excitation.coupling_status import CouplingOutcome, CouplingStatus
+from seafast.coupling.status import CouplingOutcome, CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.hull_girder import HullGirder, deck_load_influence
 from seafast.fourier import harmonics_to_time

@@ -9,8 +9,8 @@ import pytest
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
 from seafast.config import CaseError, load_case
-from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
-from seafast.excitation.coupling_status import CouplingOutcome
+from seafast.coupling.deck import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
+from seafast.coupling.status import CouplingOutcome
 from seafast.excitation.hull_girder import deck_deflection_at, still_water_response
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import harmonics_to_time
@@ -95,7 +95,7 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
     stiffness and its beta K_beam damping have no resultant and no moment (rigid-body motions are in
     their null space). A wrong sign or a missing inertia term would leave 100-200 % of the inertia
     resultant."""
-    from seafast.excitation.coupling import spread_load_N
+    from seafast.coupling.deck import spread_load_N
 
     _, model, excitation, rows = coupled_in_waves
     xn = model.cargo.node_x_m
@@ -243,7 +243,7 @@ def test_a_tapered_pile_weighs_the_same_on_the_hull_and_in_the_cargo_model():
 
 def test_the_analytic_linear_jacobian_equals_finite_differences(coupled_in_waves):
     """``I - n C S_k`` per harmonic against finite differences of the linear model's residual."""
-    from seafast.excitation import coupling
+    from seafast.coupling import deck as coupling
 
     case, model, excitation, _ = coupled_in_waves
     vessel = vessel_excitation(case)

@@ -2,7 +2,7 @@
 
 With one-way coupling the hull carries each cargo unit as a weight spread over its length
 (:mod:`seafast.vessel.loading`). After a two-way coupling
-(:func:`seafast.excitation.coupling.couple_deck`) the cargo's converged deck forces replace it:
+(:func:`seafast.coupling.deck.couple_deck`) the cargo's converged deck forces replace it:
 on the hull, each unit's spread load ``Q_k`` is exchanged for its deck forces ``P_k`` at the
 sea-fastening points, harmonic by harmonic. The hull girder is linear while no section
 emerges, so the coupled hull is the one-way hull plus the hull's response to
@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.excitation.coupling import DeckCoupling, HullCompliance
+from seafast.coupling.deck import DeckCoupling, HullCompliance
 from seafast.excitation.hull_girder import HullGirder, HullGirderResponse, WaveHullResponse, patch_load_response
 from seafast.vessel.loading import VesselLoading
 
@@ -82,7 +82,7 @@ def coupled_hull(
     girder, loading
         The hull girder and the one-way loading it was solved with.
     compliance
-        The coupling's :class:`~seafast.excitation.coupling.HullCompliance` (cargo nodes on the
+        The coupling's :class:`~seafast.coupling.deck.HullCompliance` (cargo nodes on the
         ship, saddle nodes, units abreast).
     still_water
         The one-way still-water response (its nodes are the output grid).
