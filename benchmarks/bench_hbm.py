@@ -4,7 +4,7 @@ Run ``python benchmarks/bench_hbm.py`` (BEM in the disk cache; one BLAS thread; 
 process, so ratios hold while the machine is shared). It prints:
 
 1. the default nonlinear solve (exact law, H chosen adaptively until the saddle-force peaks settle to
-   0.1 %) in ms, against the issue's target (<= 20 ms), and where its time goes (a profile);
+   0.1 %) in ms, against its target (<= 20 ms), and where its time goes (a profile);
 2. the reference: the full-DOF time-domain integration (HHT-alpha on all cargo DOFs, exact unilateral
    saddle springs) at 16384 steps per period, 4096 output samples, shown converged in its step by the
    same run at 32768 steps;

@@ -2,7 +2,7 @@
 
 Run ``python benchmarks/bench_vessel.py`` (add ``--no-bem`` to skip the ~15 s BEM run). The BEM
 is timed on the production mesh with an empty temporary cache, as a first run on a new hull
-would be (issue target: under a minute). Prints the figures; the last line is ``key=value``
+would be (target: under a minute). Prints the figures; the last line is ``key=value``
 pairs (docs/interface.md).
 """
 

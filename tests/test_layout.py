@@ -16,7 +16,7 @@ from pathlib import Path
 SRC = Path(__file__).resolve().parents[1] / "src" / "seafast"
 MAX_LINES = 400
 SIZE_MARKER = "Size:"
-# Over MAX_LINES and being changed on other branches at the time of the split (issue 13): their
+# Over MAX_LINES and being changed on other branches when the package was split: their
 # owners add the "Size:" sentence or split them; this list must only shrink. Empty since
 # excitation/hydrodynamics.py and studies/spec.py became packages.
 SIZE_PENDING: set[str] = set()

@@ -41,7 +41,7 @@ def test_base_case_values() -> None:
     assert case.wave.amplitude_m == 3.0 and case.wave.length_m == 171.0
     assert case.vessel.length_m == 171.0 and case.vessel.hull_second_moment_m4 == 103.8
     assert case.cargo_position_m() == 85.5
-    # issue 12: exact contact and adaptive harmonics by default; the source's method is the 'source' preset
+    # exact contact and adaptive harmonics by default; the source's method is the 'source' preset
     assert case.solver.harmonics is None and case.solver.time_samples is None and case.solver.contact_law == "exact"
     source = load_case(overrides={"solver.preset": "source"}).solver
     assert (source.contact_law, source.regularisation_per_m, source.harmonics, source.time_samples, source.nonlinear_solver) == (
@@ -343,7 +343,7 @@ def test_top_level_not_a_mapping(tmp_path: Path, text: str, typename: str) -> No
 
 @pytest.mark.parametrize("text", ["", "# nothing\n", "\n  \n", "---\n# only a document marker\n"])
 def test_an_empty_file_is_refused(tmp_path: Path, text: str) -> None:
-    """Issue 13: an empty file ran the base case without a word; it now says what to do."""
+    """An empty file does not silently run the base case: it says what to do."""
     p = tmp_path / "empty.yaml"
     p.write_text(text, encoding="utf-8")
     with pytest.raises(CaseError) as exc:

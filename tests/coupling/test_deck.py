@@ -323,7 +323,7 @@ def test_the_coupled_still_water_hull_is_a_fresh_hull_solve_under_the_saddle_loa
 
 
 def test_the_coupled_midship_moment_is_the_statics_of_the_saddle_reactions(two_way_run):
-    """The issue's numbers (an outside coupled hull + four-pile model): midship moment -472.5
+    """An outside check's numbers (an independent coupled hull + four-pile model): midship moment -472.5
     MN m one-way, about -328 MN m coupled; deflection 71.2 -> 61.9 mm. Independent statics: the
     coupling moves the piles' weight from uniform (one-way) to the saddles, self-equilibrated
     (the deck forces sum to the weight and keep its moment), so the buoyancy does not change and

@@ -234,7 +234,7 @@ def _state_space_damping(model: StructuralModel, count: int = 2) -> np.ndarray:
 
 
 def test_rayleigh_damping_gives_the_modes_the_requested_ratio() -> None:
-    """Issue 12: beta multiplies the beam stiffness only, so the classic two-frequency formula realised about
+    """beta multiplies the beam stiffness only, so the classic two-frequency formula realised about
     1.1 % on the base case's first modes (the saddle springs carry most of their strain energy); the fitted
     coefficients give exactly the ratio, measured on the eigenvectors and on the complex modes of the model."""
     sf = SeaFastening(BASE_X, np.full(3, 1.1e9), np.array([True, False, True]))
@@ -245,7 +245,7 @@ def test_rayleigh_damping_gives_the_modes_the_requested_ratio() -> None:
         np.testing.assert_allclose(model.modal_damping_ratios(2), ratio, rtol=1e-9)
         # the complex modes of the non-proportionally damped model: the modal formula is first-order exact
         np.testing.assert_allclose(_state_space_damping(model), ratio, rtol=0.02)
-        # the classic formula would have realised about half of it (what the issue measured)
+        # the classic formula would have realised about half of it (as measured on the base case: 1.13 % and 1.10 %)
         from seafast.model.structure import rayleigh_coefficients
 
         w, kappa = model.first_modes_beam_share()

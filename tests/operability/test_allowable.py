@@ -115,7 +115,7 @@ def test_without_lift_off_below_the_limit_the_nonlinear_allowable_is_the_linear_
 
 
 def test_nonlinear_allowable_gives_the_limit_in_seafast_seastate_within_one_percent(raised):
-    # the consistency test: the design-wave row of `seafast seastate` at the reported
+    # consistency: the design-wave row of `seafast seastate` at the reported
     # allowable Hs reaches the governing limit (searched on interpolated transfer functions,
     # checked on directly computed ones)
     case, _, result = raised

@@ -59,7 +59,7 @@ def test_operability_csv_has_the_contract_columns_one_row_per_peak_period(run):
 
 
 def test_seafast_seastate_at_the_reported_allowable_hs_gives_the_limit_within_one_percent(run, tmp_path):
-    # the consistency test, command to command: the nonlinear design-wave row at the
+    # consistency, command to command: the nonlinear design-wave row at the
     # nonlinear allowable Hs, the linear spectral row at the linear one
     out, _ = run
     row = _rows(out / "operability.csv")[1]

@@ -292,7 +292,7 @@ def test_the_conditioned_wave_reaches_its_target_at_t0_and_equals_the_linear_mpm
     ids=["base-hs3", "base-hs5", "soft-outer"],
 )
 def test_design_wave_estimate_within_ten_percent_of_the_monte_carlo_reference(tmp_path, overrides, linear_off):
-    # the issue's target on F and M_b; a short reference (6 one-hour records; the design wave is
+    # the design waves' target on F and M_b (10 %); a short reference (6 one-hour records; the design wave is
     # computed for the same one-hour duration) keeps the test to tens of seconds
     from seafast.seastate.monte_carlo import run_monte_carlo
 
