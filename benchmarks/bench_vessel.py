@@ -28,8 +28,9 @@ def main() -> None:
     from seafast.config import load_case
     from seafast.excitation.coupled_hull import coupled_hull
     from seafast.excitation.coupling import hull_compliance
-    from seafast.excitation.hull_girder import still_water_response, wave_response
     from seafast.excitation.vessel import _motions, hull_form_of, vessel_excitation
+    from seafast.hull.still_water import still_water_response
+    from seafast.hull.wave import wave_response
     from seafast.pipeline import build_model, run_case
 
     one_way = load_case()

@@ -11,9 +11,10 @@ from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from seafast.config import CaseError, load_case
 from seafast.excitation.coupling import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
 from seafast.excitation.coupling_status import CouplingOutcome
-from seafast.excitation.hull_girder import deck_deflection_at, still_water_response
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import harmonics_to_time
+from seafast.hull.deck import deck_deflection_at
+from seafast.hull.still_water import still_water_response
 from seafast.pipeline import build_model, couple_hull_and_cargo, run_case, solve_nonlinear
 from seafast.solvers.linear import solve_linear
 from seafast.vessel.loading import WeightItem

@@ -85,7 +85,7 @@ def test_deck_excitation_from_the_cached_interpolants_equals_the_hull_response()
     """The vessel builds its deck interpolants once; they give deck_deflection_at / deck_harmonics_at."""
     import pickle
 
-    from seafast.excitation.hull_girder import deck_deflection_at, deck_harmonics_at
+    from seafast.hull.deck import deck_deflection_at, deck_harmonics_at
 
     case = load_case(overrides=NO_MOTIONS)
     vessel, model = vessel_excitation(case), build_model(case)
@@ -104,7 +104,7 @@ def test_deck_excitation_from_the_cached_interpolants_equals_the_hull_response()
 
 def test_still_water_state_taken_from_the_wave_balance_equals_a_still_water_solve():
     """The vessel balances the hull once (the wave response's first row is the still-water state)."""
-    from seafast.excitation.hull_girder import still_water_response
+    from seafast.hull.still_water import still_water_response
 
     vessel = vessel_excitation(load_case(overrides=NO_MOTIONS))
     fresh = still_water_response(vessel.girder, vessel.loading)

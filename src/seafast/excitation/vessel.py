@@ -43,16 +43,10 @@ from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.hull_girder import (
-    DEFAULT_SHEAR_AREA_M2,
-    HullGirder,
-    HullGirderResponse,
-    WaveHullResponse,
-    deflection_from_bending_moment,
-    still_water_response,
-    wave_response,
-)
 from seafast.excitation.rao_extension import extended_rao
+from seafast.hull.girder import DEFAULT_SHEAR_AREA_M2, HullGirder
+from seafast.hull.still_water import HullGirderResponse, deflection_from_bending_moment, still_water_response
+from seafast.hull.wave import WaveHullResponse, wave_response
 from seafast.model.from_case import cargo_geometry
 from seafast.model.structure import StructuralModel
 from seafast.vessel.hull_form import HullForm
