@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from seafast.excitation.hydrodynamics.capytaine_io import capytaine_rigid_coefficients, read_capytaine_netcdf
 from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coefficients
+from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.hull_mesh import hull_mesh_arrays
@@ -103,6 +104,7 @@ def compute_motions(
     water_depth_m: float = math.inf,
     cache_dir: str | os.PathLike | None = None,
     use_cache: bool = True,
+    memory_cache: HydrodynamicsCache | None = None,
 ) -> RigidBodyMotions:
     """Heave and pitch RAOs of the vessel in head seas from capytaine (BEM), cached on disk.
 
@@ -130,6 +132,9 @@ def compute_motions(
         Directory of cached capytaine datasets; default :func:`default_cache_dir`.
     use_cache
         Read and write the cache (default True).
+    memory_cache
+        Keeps the dataset read from the disk cache and its coefficients for the next call (a
+        study's next loading of the same hull); None: read and extracted at every call.
 
     Returns
     -------
@@ -183,7 +188,7 @@ def compute_motions(
     ds = None
     if use_cache and path.is_file():
         try:
-            ds = read_capytaine_netcdf(path)
+            ds = read_capytaine_netcdf(path) if memory_cache is None else memory_cache.dataset(path)
             logger.debug("BEM cache hit: %s", path)
         except Exception:  # noqa: BLE001 - a corrupt or foreign cache file, whatever the error: recompute it
             logger.warning("BEM cache file %s is unreadable; recomputing it", path)
@@ -202,15 +207,13 @@ def compute_motions(
             finally:
                 if os.path.exists(tmp):
                     os.remove(tmp)
-    # the coefficients depend on the hull alone: extracted from the dataset once per process (a
-    # cargo study changes the loading, hence mass and CoG, at every point, not the hull)
-    held = _CAPYTAINE_COEFFICIENTS.get(key)
-    if held is None or held[0] is not ds:  # extracted from this very dataset (a re-read or re-run dataset is new)
-        held = (ds, capytaine_rigid_coefficients(ds, x_mid, gravity_m_per_s2))
-        if len(_CAPYTAINE_COEFFICIENTS) >= 8:
-            _CAPYTAINE_COEFFICIENTS.pop(next(iter(_CAPYTAINE_COEFFICIENTS)))
-        _CAPYTAINE_COEFFICIENTS[key] = held
-    omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = held[1]
+    # the coefficients depend on the hull alone (a cargo study changes the loading, hence mass and
+    # CoG, at every point, not the hull): a memory cache extracts them once per dataset
+    if memory_cache is None:
+        coefficients = capytaine_rigid_coefficients(ds, x_mid, gravity_m_per_s2)
+    else:
+        coefficients = memory_cache.rigid_coefficients(ds, x_mid, gravity_m_per_s2)
+    omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = coefficients
     return motions_from_rigid_coefficients(
         omega_c,
         k_c,
@@ -228,8 +231,3 @@ def compute_motions(
         gravity_m_per_s2=gravity_m_per_s2,
         source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
     )
-
-
-# (dataset, its rigid-body coefficients) of BEM runs, by cache key (the key covers the hull,
-# frequencies, panel size, density, gravity, depth and the capytaine version)
-_CAPYTAINE_COEFFICIENTS: dict[str, tuple[xr.Dataset, tuple]] = {}

@@ -13,6 +13,7 @@ import numpy as np
 from seafast.excitation.hydrodynamics.capytaine_io import motions_from_capytaine, read_capytaine_netcdf
 from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coefficients
 from seafast.excitation.hydrodynamics.equations import wavenumber_rad_per_m
+from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.excitation.hydrodynamics.wamit import read_wamit_1, read_wamit_3, wamit_has_surge
 from seafast.vessel.hull_form import HullForm
@@ -34,6 +35,7 @@ def load_motions(
     gravity_m_per_s2: float = 9.81,
     water_depth_m: float = math.inf,
     frequency_column: Literal["period", "omega"] = "period",
+    memory_cache: HydrodynamicsCache | None = None,
 ) -> RigidBodyMotions:
     """Import hydrodynamic coefficients and solve heave and pitch with given mass properties.
 
@@ -62,6 +64,9 @@ def load_motions(
     frequency_column
         WAMIT: whether the first column holds periods [s] (default, WAMIT's usual output) or
         angular frequencies [rad/s].
+    memory_cache
+        Keeps a capytaine file's dataset for the next call (a study's next loading); None: read
+        at every call.
 
     Notes
     -----
@@ -80,7 +85,7 @@ def load_motions(
         fmt = "capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit"
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     if fmt == "capytaine":
-        ds = read_capytaine_netcdf(p)
+        ds = read_capytaine_netcdf(p) if memory_cache is None else memory_cache.dataset(p)
         return motions_from_capytaine(
             ds,
             hull,
