@@ -326,33 +326,43 @@ def _compute_vessel_excitation(case: Case, cache: VesselCache | None) -> VesselE
     motions = rigid_body_motions(case, hull, loading, None if cache is None else cache.hydrodynamics)
     rigid = None
     if motions is not None and amplitude > 0:
-        # BEM inside its grid, blended into the long-wave limits below it and decayed above it
-        heave_rao, pitch_rao = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
-        heave, pitch = complex(heave_rao), complex(pitch_rao)  # per metre of wave, at the one frequency
-        surge = coupled_pitch = None
-        inside = bool(motions.omega_rad_s[0] <= omega <= motions.omega_rad_s[-1])
-        if motions.has_surge and inside:
-            surge_c, heave_c, pitch_c = (complex(q) * amplitude for q in motions.coupled_at(omega))
-            surge, coupled_pitch = surge_c, pitch_c
-        vertical = "heave/pitch (2-DOF)"
-        if v.motion_coupling == "surge_heave_pitch" and motions.has_surge and inside:
-            heave, pitch = heave_c / amplitude, pitch_c / amplitude
-            vertical = "heave/pitch coupled with surge"
-        rigid = RigidBodyAmplitudes(
-            heave * amplitude,
-            pitch * amplitude,
-            float(motions.reference_x_m),
-            surge_m=surge,
-            reference_z_m=float(motions.reference_z_m),
-            coupled_pitch_rad=coupled_pitch,
-        )
-        axial = (
-            ("; surge (coupled) for the axial analysis" if inside else "; no surge outside the BEM grid")
-            if motions.has_surge
-            else "; no surge in the data"
-        )
-        parts.append(f"{vertical} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}{axial}")
+        rigid, description = _rigid_body_amplitudes(case, motions, omega, amplitude)
+        parts.append(description)
     elif v.motions == "none":
         parts.append("no rigid-body motion")
     girder_used = None if v.deck_deflection_table is not None else girder
     return VesselExcitation(omega, amplitude, aft, still, wave, curve, motions, rigid, loading, "; ".join(parts), girder_used)
+
+
+def _rigid_body_amplitudes(case: Case, motions: RigidBodyMotions, omega: float, amplitude: float) -> tuple[RigidBodyAmplitudes, str]:
+    """Heave, pitch (and surge, coupled, when the data hold it) at the case's wave, and a description of their source.
+
+    The RAOs are the BEM's inside its grid, blended into the long-wave limits below it and decayed
+    above it (:func:`~seafast.excitation.rao_extension.extended_rao`); surge only inside the grid.
+    """
+    v = case.vessel
+    heave_rao, pitch_rao = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
+    heave, pitch = complex(heave_rao), complex(pitch_rao)  # per metre of wave, at the one frequency
+    surge = coupled_pitch = None
+    inside = bool(motions.omega_rad_s[0] <= omega <= motions.omega_rad_s[-1])
+    if motions.has_surge and inside:
+        surge_c, heave_c, pitch_c = (complex(q) * amplitude for q in motions.coupled_at(omega))
+        surge, coupled_pitch = surge_c, pitch_c
+    vertical = "heave/pitch (2-DOF)"
+    if v.motion_coupling == "surge_heave_pitch" and motions.has_surge and inside:
+        heave, pitch = heave_c / amplitude, pitch_c / amplitude
+        vertical = "heave/pitch coupled with surge"
+    rigid = RigidBodyAmplitudes(
+        heave * amplitude,
+        pitch * amplitude,
+        float(motions.reference_x_m),
+        surge_m=surge,
+        reference_z_m=float(motions.reference_z_m),
+        coupled_pitch_rad=coupled_pitch,
+    )
+    axial = (
+        ("; surge (coupled) for the axial analysis" if inside else "; no surge outside the BEM grid")
+        if motions.has_surge
+        else "; no surge in the data"
+    )
+    return rigid, f"{vertical} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}{axial}"
