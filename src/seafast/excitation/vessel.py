@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import functools
 import json
+import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -199,6 +200,7 @@ class VesselCache:
         self.hydrodynamics = HydrodynamicsCache()
         self._excitations: dict[str, VesselExcitation] = {}
         self._hull_forms: dict[tuple[float, float, float, float], HullForm] = {}
+        self._lock = threading.Lock()  # Dask runs batches on threads: the bookkeeping, not the computing, is serialised
 
     def __len__(self) -> int:
         """Number of excitations kept."""
@@ -210,7 +212,7 @@ class VesselCache:
         held = self._excitations.get(key)
         if held is None:
             held = _compute_vessel_excitation(case, self)
-            _keep(self._excitations, key, held, self.max_vessels)
+            self._keep(self._excitations, key, held)
         return held
 
     def hull_form(self, case: Case) -> HullForm:
@@ -222,8 +224,15 @@ class VesselCache:
         held = self._hull_forms.get(key)
         if held is None:
             held = hull_form_of(case)
-            _keep(self._hull_forms, key, held, self.max_vessels)
+            self._keep(self._hull_forms, key, held)
         return held
+
+    def _keep(self, store: dict, key: object, value: object) -> None:
+        """Put ``value`` in ``store``, dropping the oldest entry when it holds ``max_vessels``."""
+        with self._lock:
+            if len(store) >= self.max_vessels:
+                store.pop(next(iter(store)))
+            store[key] = value
 
     @contextmanager
     def shared(self) -> Iterator[VesselCache]:
@@ -237,13 +246,6 @@ class VesselCache:
 
 _SHARED: ContextVar[VesselCache | None] = ContextVar("seafast_shared_vessel_cache", default=None)
 """The cache the innermost ``with cache.shared()`` block shares; None outside every such block."""
-
-
-def _keep(store: dict, key: object, value: object, limit: int) -> None:
-    """Put ``value`` in ``store``, dropping the oldest entry when ``store`` holds ``limit``."""
-    if len(store) >= limit:
-        store.pop(next(iter(store)))
-    store[key] = value
 
 
 def shared_vessel_cache() -> VesselCache | None:

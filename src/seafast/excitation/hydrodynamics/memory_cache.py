@@ -12,6 +12,7 @@ coefficients extracted once per dataset. Without one, every call reads and extra
 from __future__ import annotations
 
 import os
+import threading
 from pathlib import Path
 
 import xarray as xr
@@ -44,6 +45,7 @@ class HydrodynamicsCache:
         self.max_entries = int(max_entries)
         self.datasets: dict[tuple[str, int, int], xr.Dataset] = {}
         self.coefficients: dict[tuple[int, float, float], tuple[xr.Dataset, RigidCoefficients]] = {}
+        self._lock = threading.Lock()  # the bookkeeping of threads sharing it, not the reading
 
     def dataset(self, path: str | os.PathLike) -> xr.Dataset:
         """The capytaine dataset in ``path`` (:func:`read_capytaine_netcdf`), read once per file version."""
@@ -66,6 +68,8 @@ class HydrodynamicsCache:
         return held[1]
 
     def _keep(self, store: dict, key: object, value: object) -> None:
-        if len(store) >= self.max_entries:
-            store.pop(next(iter(store)))
-        store[key] = value
+        """Put ``value`` in ``store``, dropping the oldest entry when it holds ``max_entries``."""
+        with self._lock:
+            if len(store) >= self.max_entries:
+                store.pop(next(iter(store)))
+            store[key] = value
