@@ -29,8 +29,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import seafast
 from benchutil import timed
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
-from seafast.excitation.hull_girder import deck_harmonics_at, wave_response, wave_transfer_functions
 from seafast.excitation.vessel import vessel_excitation
+from seafast.hull.deck import deck_harmonics_at
+from seafast.hull.transfer import wave_transfer_functions
+from seafast.hull.wave import wave_response
 from seafast.pipeline import build_model
 from seafast.seastate.spectral import spectral_analysis
 from seafast.seastate.transfer import transfer_functions

@@ -26,17 +26,20 @@ def main() -> None:
     args = parser.parse_args()
 
     from seafast.config import load_case
-    from seafast.coupling.deck import hull_compliance
+    from seafast.coupling.deck_iteration import hull_compliance
     from seafast.coupling.hull import coupled_hull
-    from seafast.excitation.hull_girder import still_water_response, wave_response
-    from seafast.excitation.vessel import _motions, hull_form_of, vessel_excitation
+    from seafast.excitation.vessel import VesselCache, vessel_excitation
+    from seafast.excitation.vessel_inputs import hull_form_of, rigid_body_motions
+    from seafast.hull.still_water import still_water_response
+    from seafast.hull.wave import wave_response
     from seafast.pipeline import build_model, run_case
 
     one_way = load_case()
     two_way = load_case(overrides={"vessel.coupling": "two_way"})
     model = build_model(one_way)
-    vessel = vessel_excitation(one_way)  # BEM from the disk cache (computed on first use)
-    with threadpool_limits(1):
+    vessels = VesselCache()  # what a study keeps for its points
+    vessel = vessel_excitation(one_way, vessels)  # BEM from the disk cache (computed on first use)
+    with threadpool_limits(1), vessels.shared():
         _, t_still = timed(lambda: still_water_response(vessel.girder, vessel.loading), 20)
         _, t_wave = timed(lambda: wave_response(vessel.girder, vessel.loading, 171.0, 3.0), 5)
         _, t_comp = timed(lambda: hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, 4), 10)
@@ -93,7 +96,7 @@ def main() -> None:
             os.environ["SEAFAST_CACHE_DIR"] = cache  # an empty cache: a first run on a new hull
             try:
                 t0 = time.perf_counter()
-                m = _motions(one_way, hull, vessel.loading)
+                m = rigid_body_motions(one_way, hull, vessel.loading)
                 t_bem = time.perf_counter() - t0
             finally:
                 if previous is None:

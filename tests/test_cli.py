@@ -218,7 +218,7 @@ def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(
 
 def test_a_coupling_that_does_not_converge_is_named_in_the_warning(tmp_path, capsys, monkeypatch):
     """The warning is built from the coupling's typed outcome, not from a message."""
-    import seafast.coupling.deck as coupling
+    import seafast.coupling.deck_iteration as coupling
     import seafast.pipeline as pipeline
 
     original = coupling.couple_deck

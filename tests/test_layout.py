@@ -156,3 +156,12 @@ def test_long_modules_say_why():
     assert set(unexplained) - SIZE_PENDING == set(), f"over {MAX_LINES} lines with no '{SIZE_MARKER} ...' sentence: {unexplained}"
     # a module that no longer needs its exemption leaves the list
     assert SIZE_PENDING <= set(unexplained), f"remove from SIZE_PENDING: {SIZE_PENDING - set(unexplained)}"
+
+
+def test_the_hull_girder_imports_only_the_floors_below_it():
+    """``seafast.hull`` sits on ``fourier``, ``config``, ``model`` and ``vessel``; the excitation and everything above build on it."""
+    below = ("seafast.fourier", "seafast.config", "seafast.model", "seafast.vessel", "seafast.hull")
+    hull = [name for name in MODULES if name == "seafast.hull" or name.startswith("seafast.hull.")]
+    assert len(hull) >= 9
+    upward = {name: sorted(e for e in GRAPH[name][0] if not any(e == b or e.startswith(b + ".") for b in below)) for name in hull}
+    assert {name: edges for name, edges in upward.items() if edges} == {}

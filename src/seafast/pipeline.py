@@ -20,7 +20,7 @@ import xarray as xr
 
 import seafast
 from seafast.config.schema import Case
-from seafast.coupling.deck import (
+from seafast.coupling.deck_iteration import (
     DeckCoupling,
     HullCompliance,
     couple_deck,
@@ -350,9 +350,9 @@ def couple_hull_and_cargo(
 
     For each (load case, model) the deck under the sea-fastening is iterated until the hull
     girder, loaded by the cargo's deck forces in place of its spread load, and the cargo agree
-    (:func:`seafast.coupling.deck.couple_deck`): the still-water state (harmonic 0) for
+    (:func:`seafast.coupling.deck_iteration.couple_deck`): the still-water state (harmonic 0) for
     the static rows, harmonics 0 .. H (the linear model: the excitation's harmonics) for the
-    dynamic rows. Returns :class:`~seafast.coupling.deck.DeckCoupling` per row, keyed
+    dynamic rows. Returns :class:`~seafast.coupling.deck_iteration.DeckCoupling` per row, keyed
     ``(load_case, model)``; each carries the coupled excitation, the cargo's response and its
     :class:`~seafast.coupling.status.CouplingStatus`. ``compliance``: the hull's
     (computed from ``vessel`` when omitted).

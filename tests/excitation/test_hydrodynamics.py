@@ -9,6 +9,7 @@ import pytest
 import xarray as xr
 
 from seafast.excitation.hydrodynamics import (
+    HydrodynamicsCache,
     RigidBodyMotions,
     base_vessel_mass_properties,
     bem,
@@ -190,18 +191,26 @@ def test_cache_avoids_second_bem_run(hull, mass_props, cache_dir, coarse, monkey
         compute_motions(hull, **mass_props, omega_rad_s=OMEGA, panel_size_m=COARSE_M, water_density_kg_per_m3=1000.0, cache_dir=cache_dir)
 
 
-def test_another_loading_reuses_the_extracted_coefficients_and_equals_the_file_import(hull, mass_props, cache_dir, coarse, monkeypatch):
-    # a cargo study changes mass and CoG at every point: the coefficients are taken from the
-    # dataset once, and the motions of a second loading equal an import of the cache file
+def test_a_memory_cache_reads_the_bem_file_and_extracts_its_coefficients_once(hull, mass_props, cache_dir, coarse):
+    """A cargo study changes mass and CoG at every point: with a memory cache the BEM dataset is read and its
+    coefficients extracted once for both loadings; the motions equal those without it (to the bit) and an
+    import of the cache file (the loading matters)."""
+    memory = HydrodynamicsCache()
     mp2 = dict(mass_props, mass_kg=1.1 * mass_props["mass_kg"], centre_of_gravity_m=(mass_props["centre_of_gravity_m"][0] - 3.0, 0.0, 8.0))
-    compute_motions(hull, **mass_props, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
-    monkeypatch.setattr(bem, "capytaine_rigid_coefficients", lambda *a: (_ for _ in ()).throw(AssertionError("extracted twice")))
-    second = compute_motions(hull, **mp2, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir)
-    monkeypatch.undo()
-    imported = load_motions(sorted(cache_dir.glob("motions_*.nc"))[0], hull, **mp2)
+    first = compute_motions(hull, **mass_props, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir, memory_cache=memory)
+    second = compute_motions(hull, **mp2, omega_rad_s=OMEGA, panel_size_m=COARSE_M, cache_dir=cache_dir, memory_cache=memory)
+    assert len(memory.datasets) == 1 and len(memory.coefficients) == 1
+    (path,) = sorted(cache_dir.glob("motions_*.nc"))
+    (held,) = memory.datasets.values()
+    assert memory.dataset(path) is held and len(memory.datasets) == 1
+    np.testing.assert_array_equal(first.heave_rao_m_per_m, coarse.heave_rao_m_per_m)
+    np.testing.assert_array_equal(first.pitch_rao_rad_per_m, coarse.pitch_rao_rad_per_m)
+    imported = load_motions(path, hull, **mp2)
     np.testing.assert_allclose(second.heave_rao_m_per_m, imported.heave_rao_m_per_m, rtol=1e-12)
     np.testing.assert_allclose(second.pitch_rao_rad_per_m, imported.pitch_rao_rad_per_m, rtol=1e-12)
     assert not np.allclose(second.pitch_rao_rad_per_m, coarse.pitch_rao_rad_per_m, rtol=1e-3)  # the loading matters
+    with pytest.raises(ValueError, match="max_entries = 0"):
+        HydrodynamicsCache(max_entries=0)
 
 
 def test_cache_dir_from_environment(monkeypatch, tmp_path):

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from seafast.config import load_case
-from seafast.excitation.vessel import hull_form_of, vessel_excitation
+from seafast.excitation.vessel import VesselCache, shared_vessel_cache, vessel_excitation
+from seafast.excitation.vessel_inputs import hull_form_of
 from seafast.pipeline import build_model, run_case
 
 NO_MOTIONS = {"vessel.motions": "none"}
@@ -85,7 +86,7 @@ def test_deck_excitation_from_the_cached_interpolants_equals_the_hull_response()
     """The vessel builds its deck interpolants once; they give deck_deflection_at / deck_harmonics_at."""
     import pickle
 
-    from seafast.excitation.hull_girder import deck_deflection_at, deck_harmonics_at
+    from seafast.hull.deck import deck_deflection_at, deck_harmonics_at
 
     case = load_case(overrides=NO_MOTIONS)
     vessel, model = vessel_excitation(case), build_model(case)
@@ -104,7 +105,7 @@ def test_deck_excitation_from_the_cached_interpolants_equals_the_hull_response()
 
 def test_still_water_state_taken_from_the_wave_balance_equals_a_still_water_solve():
     """The vessel balances the hull once (the wave response's first row is the still-water state)."""
-    from seafast.excitation.hull_girder import still_water_response
+    from seafast.hull.still_water import still_water_response
 
     vessel = vessel_excitation(load_case(overrides=NO_MOTIONS))
     fresh = still_water_response(vessel.girder, vessel.loading)
@@ -113,3 +114,43 @@ def test_still_water_state_taken_from_the_wave_balance_equals_a_still_water_solv
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.max(np.abs(b)), err_msg=name)
     assert vessel.still_water.sinkage_m == pytest.approx(fresh.sinkage_m, abs=1e-12)
     assert np.max(np.abs(fresh.bending_moment_Nm)) > 1e8  # a hull in real hog, not a trivial zero
+
+
+def test_a_vessel_cache_keeps_each_vessel_once_and_nothing_is_kept_without_one():
+    """Explicit cache: a change of the sea-fastening finds the kept vessel, a change of the cargo computes
+    another on the same kept hull form and BEM data; without a cache every call computes afresh, to the
+    same bits."""
+    cache = VesselCache()
+    base = load_case()
+    kept = vessel_excitation(base, cache)
+    assert vessel_excitation(load_case(overrides={"seafastening.saddle_count": 4}), cache) is kept
+    fresh = vessel_excitation(base)
+    assert fresh is not kept and fresh is not vessel_excitation(base)
+    for name in ("deflection_m", "bending_moment_Nm", "slope_rad", "buoyancy_N_per_m"):
+        np.testing.assert_array_equal(getattr(fresh.still_water, name), getattr(kept.still_water, name))
+    np.testing.assert_array_equal(fresh.wave.deflection_harmonics_m, kept.wave.deflection_harmonics_m)
+    np.testing.assert_array_equal(fresh.motions.pitch_rao_rad_per_m, kept.motions.pitch_rao_rad_per_m)
+    assert fresh.rigid_body == kept.rigid_body
+    longer = vessel_excitation(load_case(overrides={"cargo.length_m": 90.0}), cache)
+    assert longer is not kept and len(cache) == 2
+    assert longer.girder.hull is kept.girder.hull  # one hull form for every loading
+    assert len(cache.hydrodynamics.datasets) == 1 and len(cache.hydrodynamics.coefficients) == 1
+    assert longer.motions.reference_x_m != kept.motions.reference_x_m  # the loading moved the centre of gravity
+
+
+def test_a_shared_vessel_cache_serves_the_calls_inside_its_block_only():
+    case = load_case(overrides=NO_MOTIONS)
+    outer, inner = VesselCache(), VesselCache(max_vessels=1)
+    assert shared_vessel_cache() is None
+    with outer.shared():
+        assert shared_vessel_cache() is outer
+        kept = vessel_excitation(case)
+        assert vessel_excitation(case) is kept and len(outer) == 1
+        with inner.shared():
+            assert vessel_excitation(case) is not kept and len(inner) == 1
+            other = vessel_excitation(load_case(overrides={**NO_MOTIONS, "wave.amplitude_m": 2.0}))
+            assert len(inner) == 1 and vessel_excitation(load_case(overrides={**NO_MOTIONS, "wave.amplitude_m": 2.0})) is other
+        assert shared_vessel_cache() is outer and vessel_excitation(case) is kept
+    assert shared_vessel_cache() is None and vessel_excitation(case) is not kept
+    with pytest.raises(ValueError, match="max_vessels = 0"):
+        VesselCache(max_vessels=0)

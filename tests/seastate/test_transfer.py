@@ -10,9 +10,10 @@ import pytest
 import seafast
 from seafast.cli import main
 from seafast.config import CaseError
-from seafast.excitation.hull_girder import wave_response, wave_transfer_functions
 from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.vessel import vessel_excitation
+from seafast.hull.transfer import wave_transfer_functions
+from seafast.hull.wave import wave_response
 from seafast.pipeline import build_model, run_case
 from seafast.seastate.spectrum import sea_state_spectrum
 from seafast.seastate.transfer import still_water, transfer_functions

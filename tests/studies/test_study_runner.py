@@ -268,3 +268,22 @@ def test_forkserver_workers_outlive_the_parent_watch_interval(small_grid, tmp_pa
         small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=2, batch_size=8, progress=False, start_method="forkserver")
     )
     assert run.computed == small_grid.size and run.failed == 0  # 8 x 0.05 s per task, beyond the 0.25 s tick
+
+
+def test_a_study_process_shares_one_vessel_cache_with_the_points_it_evaluates(small_grid):
+    """The evaluator finds the process's vessel cache (so the pipeline's and the sea-state analysis'
+    ``vessel_excitation(case)`` reuse one vessel across points), the same in every batch; outside a batch
+    nothing is shared."""
+    from seafast.excitation.vessel import VesselCache, shared_vessel_cache
+    from study_fakes import fake_evaluate
+
+    seen = []
+
+    def evaluate(case):
+        seen.append(shared_vessel_cache())
+        return fake_evaluate(case)
+
+    evaluate_batch(small_grid, [0, 1], evaluate, pin_threads=False)
+    evaluate_batch(small_grid, [2], evaluate, pin_threads=False)
+    assert len(seen) == 3 and isinstance(seen[0], VesselCache) and all(cache is seen[0] for cache in seen)
+    assert shared_vessel_cache() is None

@@ -2,13 +2,13 @@
 
 With one-way coupling the hull carries each cargo unit as a weight spread over its length
 (:mod:`seafast.vessel.loading`). After a two-way coupling
-(:func:`seafast.coupling.deck.couple_deck`) the cargo's converged deck forces replace it:
+(:func:`seafast.coupling.deck_iteration.couple_deck`) the cargo's converged deck forces replace it:
 on the hull, each unit's spread load ``Q_k`` is exchanged for its deck forces ``P_k`` at the
 sea-fastening points, harmonic by harmonic. The hull girder is linear while no section
 emerges, so the coupled hull is the one-way hull plus the hull's response to
 ``n (P_k - Q_k)`` (n units abreast) on the coupling's patches (``Q`` over each cargo node's
 tributary length, ``P`` over a patch of that length centred on its saddle), the ship
-re-balanced in sinkage and trim (:func:`seafast.excitation.hull_girder.patch_load_response`).
+re-balanced in sinkage and trim (:func:`seafast.hull.loads.patch_load_response`).
 Away from the saddle patches the lines are those of point loads at the saddles; within a patch
 (about one cargo element, 1 m) the moment is rounded off: under a saddle it is lower than a
 point load's peak by ``n P w / 8`` (w the patch length).
@@ -20,7 +20,7 @@ variables of ``results.nc`` are. Still water: the static row's ``P_0``. Wave-ind
 minus the still-water change, sampled at the one-way wave balance's period fractions with
 ``w(t) = Re sum_k W_k exp(i k omega t)``.
 
-Conventions as :mod:`seafast.excitation.hull_girder`: x from the AP [m], deflection up +
+Conventions as :mod:`seafast.hull`: x from the AP [m], deflection up +
 relative to the chord through AP and FP, ``V = dM/dx``, sagging moment +.
 """
 
@@ -31,8 +31,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.coupling.deck import DeckCoupling, HullCompliance
-from seafast.excitation.hull_girder import HullGirder, HullGirderResponse, WaveHullResponse, patch_load_response
+from seafast.coupling.deck_iteration import DeckCoupling, HullCompliance
+from seafast.hull.girder import HullGirder
+from seafast.hull.loads import patch_load_response
+from seafast.hull.still_water import HullGirderResponse
+from seafast.hull.wave import WaveHullResponse
 from seafast.vessel.loading import VesselLoading
 
 __all__ = ["CoupledHull", "coupled_hull"]
@@ -82,7 +85,7 @@ def coupled_hull(
     girder, loading
         The hull girder and the one-way loading it was solved with.
     compliance
-        The coupling's :class:`~seafast.coupling.deck.HullCompliance` (cargo nodes on the
+        The coupling's :class:`~seafast.coupling.deck_iteration.HullCompliance` (cargo nodes on the
         ship, saddle nodes, units abreast).
     still_water
         The one-way still-water response (its nodes are the output grid).

@@ -1,4 +1,4 @@
-"""The outcome of a two-way hull-cargo coupling, as values (:func:`seafast.coupling.deck.couple_deck`).
+"""The outcome of a two-way hull-cargo coupling, as values (:func:`seafast.coupling.deck_iteration.couple_deck`).
 
 A record per coupled row that the pipeline, the CLI and the report read field by field; the
 one-line message is derived from the fields for people and never parsed. Kept apart from the

@@ -1,6 +1,6 @@
 """Excitation: what the vessel does to the cargo (hull-girder deflection, rigid-body motions).
 
-* :mod:`~seafast.excitation.hull_girder` - still-water and quasi-static wave hull deflection.
+* :mod:`seafast.hull` (the layer below) - still-water and quasi-static wave hull deflection.
 * :mod:`~seafast.excitation.hydrodynamics` - heave and pitch RAOs from capytaine (BEM) or imported.
 * :mod:`~seafast.excitation.deck_table` - the user's own deck-deflection table.
 * :mod:`~seafast.excitation.deck_motion` - assembling the cargo model's harmonic excitation.

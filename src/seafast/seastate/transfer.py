@@ -3,7 +3,7 @@
 For each wave frequency omega (head seas, deep water, ``k = omega^2 / g``):
 
 1. the hull girder's quasi-static wave deflection and slope under each saddle, from
-   :func:`~seafast.excitation.hull_girder.wave_transfer_functions` (two real load cases per
+   :func:`~seafast.hull.transfer.wave_transfer_functions` (two real load cases per
    frequency; exact while no section emerges, see its ``emergence_amplitude_m``);
 2. heave and pitch from :func:`~seafast.excitation.rao_extension.extended_rao` (BEM inside its
    grid, the long-wave limits below it, decayed above it);
@@ -30,9 +30,9 @@ from scipy.linalg import solve_banded
 from seafast.config.loader import CaseError
 from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
-from seafast.excitation.hull_girder import wave_transfer_functions
 from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.vessel import vessel_excitation
+from seafast.hull.transfer import wave_transfer_functions
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import solve_harmonic, solve_linear

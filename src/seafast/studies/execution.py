@@ -13,7 +13,7 @@ The back-ends are generic: they need an object with ``size`` and ``point_case(in
 
 Local processes start by ``fork`` on Linux when this process runs no other Python thread: the
 workers then inherit the imported modules and the caches the coordinating process warmed on
-its first point (vessel excitation, hydrodynamic coefficients, cargo mesh), so a worker costs
+its first point (the vessel excitation and BEM data of its ``VesselCache``, the cargo mesh), so a worker costs
 milliseconds to start instead of a fresh interpreter's imports (about a second of CPU each).
 Otherwise (another thread runs here, e.g. after a Dask client; not Linux) they fork from a
 ``forkserver`` that imported the numerics once, or are spawned where there is none; any of the
@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 from seafast.config.schema import Case
+from seafast.excitation.vessel import VesselCache
 from seafast.studies.messages import point_log
 from seafast.studies.spec import StudyError
 from seafast.studies.store import PointRecord, stored_row
@@ -108,6 +109,12 @@ def resolve_evaluator(evaluator: Evaluator | str | None) -> Evaluator:
 
 
 _worker_ready = False
+
+_POINT_VESSELS = VesselCache()
+"""The vessel excitations this process keeps for the study points it evaluates (with the hull forms and BEM
+data behind them), shared with the evaluator while a batch runs (:meth:`VesselCache.shared`): a study over
+the sea-fastening computes its vessel once per process, one over the cargo reads the BEM data once. A forked
+worker inherits it warm from the coordinator's first point."""
 
 
 def _prepare_worker() -> None:
@@ -189,7 +196,7 @@ def evaluate_batch(
     records = []
     for index in indices:
         t0 = time.perf_counter()
-        with point_log(keep_messages) as messages:
+        with point_log(keep_messages) as messages, _POINT_VESSELS.shared():
             try:
                 case = grid.point_case(int(index))
                 rows = tuple(stored_row(row) for row in func(case))

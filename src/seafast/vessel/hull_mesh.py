@@ -172,6 +172,102 @@ def _x_breaks(hull: HullForm, h: float) -> NDArray[np.float64]:
     return np.concatenate(xs)
 
 
+def _girth(profile: NDArray[np.float64], half_breadth_m: float, h: float) -> NDArray[np.float64]:
+    """Points ``(eta, z)`` along the half girth of the section ``profile``, at most ``h`` apart at ``half_breadth_m``."""
+    pts = [profile[0]]
+    for p, q in pairwise(profile):
+        seg_len = math.hypot(half_breadth_m * (q[0] - p[0]), q[1] - p[1])
+        n = max(1, math.ceil(seg_len / h - 1e-9))
+        for s in np.linspace(0.0, 1.0, n + 1)[1:]:
+            pts.append(p + s * (q - p))
+    return np.array(pts)  # (n_g, 2)
+
+
+def _half_breadths(hull: HullForm, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Waterline half-breadths [m] at the stations ``x``, the end values those of the AP and FP stations."""
+    hb = 0.5 * hull.breadth_at(x)
+    hb[0] = 0.5 * hull.waterline_breadth_m[0]
+    hb[-1] = 0.5 * hull.waterline_breadth_m[-1]
+    return hb
+
+
+def _shell_panels(mesh: _Builder, xb: NDArray[np.float64], hb: NDArray[np.float64], girth: NDArray[np.float64], x_mid: float) -> None:
+    """Sides, chine and bottom between the stations ``xb``, ordered so that the normal points outward (+y on the side)."""
+
+    def point(i: int, j: int) -> NDArray[np.float64]:
+        return np.array([xb[i] - x_mid, girth[j, 0] * hb[i], girth[j, 1]])
+
+    for i in range(len(xb) - 1):
+        for j in range(len(girth) - 1):
+            mesh.quad(point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j))
+
+
+def _end_panels(
+    mesh: _Builder,
+    xb: NDArray[np.float64],
+    hb: NDArray[np.float64],
+    girth: NDArray[np.float64],
+    profile: NDArray[np.float64],
+    x_mid: float,
+    h: float,
+) -> None:
+    """The transom (x = x_0, normal -x) and a blunt bow (x = x_end, normal +x), where the breadth there is > 0."""
+    t = -float(profile[-1, 1])
+
+    # half-width at depth z of a section of half-breadth half_breadth_m, from the profile (eta as
+    # function of z; at -T use bottom eta)
+    def width(z: float, half_breadth_m: float) -> float:
+        eta = np.interp(-z, -profile[:-1, 1], profile[:-1, 0]) if z > -t else profile[-2, 0]
+        return float(eta * half_breadth_m)
+
+    for i_end, sign in ((0, -1.0), (len(xb) - 1, 1.0)):
+        if hb[i_end] <= 0:
+            continue
+        zl = np.unique(np.concatenate([girth[:, 1]]))[::-1]  # 0 .. -T
+        ny = max(1, math.ceil(hb[i_end] / h - 1e-9))
+        xi = np.linspace(0.0, 1.0, ny + 1)
+        x0 = xb[i_end] - x_mid
+        for k in range(len(zl) - 1):
+            wa, wb = width(zl[k], hb[i_end]), width(zl[k + 1], hb[i_end])
+            for m in range(ny):
+                a = (x0, xi[m] * wa, zl[k])
+                b = (x0, xi[m + 1] * wa, zl[k])
+                c = (x0, xi[m + 1] * wb, zl[k + 1])
+                d = (x0, xi[m] * wb, zl[k + 1])
+                if sign < 0:
+                    mesh.quad(a, b, c, d)
+                else:
+                    mesh.quad(a, d, c, b)
+
+
+def _lid_panels(
+    hull: HullForm, profile: NDArray[np.float64], h_lid: float, lid_z_m: float, x_mid: float
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """Vertices and faces of the interior waterplane lid at ``Z = lid_z_m``, normals pointing down."""
+    lid = _Builder()
+    xl = _x_breaks(hull, h_lid)
+    hl = _half_breadths(hull, xl)
+    # at a lid below the waterline the wall-sided hull has the same breadth unless the chine
+    # is reached: scale by the profile eta at that depth
+    eta_lid = float(np.interp(-lid_z_m, -profile[:-1, 1], profile[:-1, 0]))
+    hl = hl * eta_lid
+    nyl = max(1, math.ceil(0.5 * hull.breadth_m / h_lid - 1e-9))
+    eta = np.linspace(0.0, 1.0, nyl + 1)
+    for i in range(len(xl) - 1):
+        for m in range(nyl):
+            a = (xl[i] - x_mid, eta[m] * hl[i], lid_z_m)
+            b = (xl[i + 1] - x_mid, eta[m] * hl[i + 1], lid_z_m)
+            c = (xl[i + 1] - x_mid, eta[m + 1] * hl[i + 1], lid_z_m)
+            d = (xl[i] - x_mid, eta[m + 1] * hl[i], lid_z_m)
+            lid.quad(a, b, c, d)
+    lid_v, lid_f = lid.arrays()
+    # make lid normals point down (-z)
+    normals = _face_normals(lid_v, lid_f)
+    flip = normals[:, 2] > 0
+    lid_f[flip] = lid_f[flip][:, ::-1]
+    return lid_v, lid_f
+
+
 def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_size_m: float | None = None, lid_z_m: float = 0.0) -> HullMesh:
     """Generate the half mesh (``Y >= 0``) of the wetted hull (sides, bottom, transom) and lid.
 
@@ -201,84 +297,16 @@ def hull_mesh_arrays(hull: HullForm, panel_size_m: float = 3.0, *, lid_panel_siz
     t = hull.draft_m
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     prof = section_profile(hull.section_area_coefficient, t)
-    b_max = hull.breadth_m
-
-    # profile parametrisation: list of (eta, z) points along the half girth
-    pts = [prof[0]]
-    for p, q in pairwise(prof):
-        seg_len = math.hypot(0.5 * b_max * (q[0] - p[0]), q[1] - p[1])
-        n = max(1, math.ceil(seg_len / h - 1e-9))
-        for s in np.linspace(0.0, 1.0, n + 1)[1:]:
-            pts.append(p + s * (q - p))
-    girth = np.array(pts)  # (n_g, 2)
-
+    girth = _girth(prof, 0.5 * hull.breadth_m, h)
     xb = _x_breaks(hull, h)
-    hb = 0.5 * hull.breadth_at(xb)
-    hb[0] = 0.5 * hull.waterline_breadth_m[0]
-    hb[-1] = 0.5 * hull.waterline_breadth_m[-1]
-
-    def point(i: int, j: int) -> NDArray[np.float64]:
-        return np.array([xb[i] - x_mid, girth[j, 0] * hb[i], girth[j, 1]])
-
-    hb_mesh = _Builder()
-    # sides/chine/bottom: ordered so that the normal points outward (+y on the side)
-    for i in range(len(xb) - 1):
-        for j in range(len(girth) - 1):
-            hb_mesh.quad(point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j))
-
-    # half-width at depth z of a section of half-breadth half_breadth_m, from the profile (eta as
-    # function of z; at -T use bottom eta)
-    def width(z: float, half_breadth_m: float) -> float:
-        eta = np.interp(-z, -prof[:-1, 1], prof[:-1, 0]) if z > -t else prof[-2, 0]
-        return float(eta * half_breadth_m)
-
-    # transom (x = x_0, normal -x) and a blunt bow (x = x_end, normal +x) if breadth > 0
-    for i_end, sign in ((0, -1.0), (len(xb) - 1, 1.0)):
-        if hb[i_end] <= 0:
-            continue
-        zl = np.unique(np.concatenate([girth[:, 1]]))[::-1]  # 0 .. -T
-        ny = max(1, math.ceil(hb[i_end] / h - 1e-9))
-        xi = np.linspace(0.0, 1.0, ny + 1)
-        x0 = xb[i_end] - x_mid
-        for k in range(len(zl) - 1):
-            wa, wb = width(zl[k], hb[i_end]), width(zl[k + 1], hb[i_end])
-            for m in range(ny):
-                a = (x0, xi[m] * wa, zl[k])
-                b = (x0, xi[m + 1] * wa, zl[k])
-                c = (x0, xi[m + 1] * wb, zl[k + 1])
-                d = (x0, xi[m] * wb, zl[k + 1])
-                if sign < 0:
-                    hb_mesh.quad(a, b, c, d)
-                else:
-                    hb_mesh.quad(a, d, c, b)
-    hull_v, hull_f = hb_mesh.arrays()
+    hb = _half_breadths(hull, xb)
+    shell = _Builder()
+    _shell_panels(shell, xb, hb, girth, x_mid)
+    _end_panels(shell, xb, hb, girth, prof, x_mid, h)
+    hull_v, hull_f = shell.arrays()
     x_c = hull.centre_of_buoyancy_x_m() - x_mid
     hull_v, hull_f = _orient_outward(hull_v, hull_f, np.array([x_c, 0.0, -0.5 * t]))
-
-    # lid: waterplane at z = lid_z, normals down
-    lid = _Builder()
-    xl = _x_breaks(hull, h_lid)
-    hl = 0.5 * hull.breadth_at(xl)
-    hl[0] = 0.5 * hull.waterline_breadth_m[0]
-    hl[-1] = 0.5 * hull.waterline_breadth_m[-1]
-    # at a lid below the waterline the wall-sided hull has the same breadth unless the chine
-    # is reached: scale by the profile eta at that depth
-    eta_lid = float(np.interp(-lid_z_m, -prof[:-1, 1], prof[:-1, 0]))
-    hl = hl * eta_lid
-    nyl = max(1, math.ceil(0.5 * b_max / h_lid - 1e-9))
-    eta = np.linspace(0.0, 1.0, nyl + 1)
-    for i in range(len(xl) - 1):
-        for m in range(nyl):
-            a = (xl[i] - x_mid, eta[m] * hl[i], lid_z_m)
-            b = (xl[i + 1] - x_mid, eta[m] * hl[i + 1], lid_z_m)
-            c = (xl[i + 1] - x_mid, eta[m + 1] * hl[i + 1], lid_z_m)
-            d = (xl[i] - x_mid, eta[m + 1] * hl[i], lid_z_m)
-            lid.quad(a, b, c, d)
-    lid_v, lid_f = lid.arrays()
-    # make lid normals point down (-z)
-    normals = _face_normals(lid_v, lid_f)
-    flip = normals[:, 2] > 0
-    lid_f[flip] = lid_f[flip][:, ::-1]
+    lid_v, lid_f = _lid_panels(hull, prof, h_lid, lid_z_m, x_mid)
     return HullMesh(hull_v, hull_f, lid_v, lid_f, float(x_mid), float(lid_z_m))
 
 

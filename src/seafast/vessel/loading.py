@@ -379,29 +379,15 @@ def still_water_moment_even_keel_Nm(
 
 
 def _unit_tank_moments(hull: HullForm, tanks: tuple[tuple[float, float], ...], x_m: float, rho: float, g: float) -> NDArray[np.float64]:
-    """Still-water moment at ``x_m`` of 1 kg in each tank (weight only; the even-keel buoyancy is fixed) [N m/kg].
-
-    Depends on the hull and the tanks alone: kept for the next loading of the same ship (a
-    cargo study balances the ballast at every point).
-    """
-    key = (hull.station_x_m.tobytes(), hull.waterline_breadth_m.tobytes(), hull.draft_m, hull.section_area_coefficient, tanks, x_m, rho, g)
-    held = _UNIT_TANK_MOMENTS.get(key)
-    if held is None:
-        kw = dict(water_density_kg_per_m3=rho, gravity_m_per_s2=g)
-        buoy_only = still_water_moment_even_keel_Nm(hull, VesselLoading(None, ()), x_m, **kw)
-        held = np.array(
-            [
-                still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
-                for a, b in tanks
-            ]
-        )
-        if len(_UNIT_TANK_MOMENTS) >= 16:
-            _UNIT_TANK_MOMENTS.pop(next(iter(_UNIT_TANK_MOMENTS)))
-        _UNIT_TANK_MOMENTS[key] = held
-    return held
-
-
-_UNIT_TANK_MOMENTS: dict[tuple, NDArray[np.float64]] = {}
+    """Still-water moment at ``x_m`` of 1 kg in each tank (weight only; the even-keel buoyancy is fixed) [N m/kg]."""
+    kw = dict(water_density_kg_per_m3=rho, gravity_m_per_s2=g)
+    buoy_only = still_water_moment_even_keel_Nm(hull, VesselLoading(None, ()), x_m, **kw)
+    return np.array(
+        [
+            still_water_moment_even_keel_Nm(hull, VesselLoading(None, (WeightItem("unit", a, b, 1.0),)), x_m, **kw) - buoy_only
+            for a, b in tanks
+        ]
+    )
 
 
 def balance_ballast(

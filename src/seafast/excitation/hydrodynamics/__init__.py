@@ -51,9 +51,10 @@ or WAMIT's DOFs to seafast motions: sign of pitch, wave phase, reference point, 
 :mod:`~seafast.excitation.hydrodynamics.capytaine_io` (reading capytaine datasets),
 :mod:`~seafast.excitation.hydrodynamics.wamit` (WAMIT ``.1``/``.3`` readers),
 :mod:`~seafast.excitation.hydrodynamics.bem` (the capytaine run and its disk cache:
-:func:`compute_motions`), :mod:`~seafast.excitation.hydrodynamics.load` (:func:`load_motions`,
-importing a file) and :mod:`~seafast.excitation.hydrodynamics.strip_theory` (the independent
-strip-theory estimate).
+:func:`compute_motions`), :mod:`~seafast.excitation.hydrodynamics.memory_cache`
+(:class:`HydrodynamicsCache`: the datasets and coefficients a sequence of loadings shares),
+:mod:`~seafast.excitation.hydrodynamics.load` (:func:`load_motions`, importing a file) and
+:mod:`~seafast.excitation.hydrodynamics.strip_theory` (the independent strip-theory estimate).
 """
 
 from seafast.excitation.hydrodynamics.bem import BEM_DOFS, MESH_ALGORITHM_VERSION, compute_motions, default_cache_dir
@@ -66,12 +67,14 @@ from seafast.excitation.hydrodynamics.equations import (
     wavenumber_rad_per_m,
 )
 from seafast.excitation.hydrodynamics.load import load_motions
+from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.excitation.hydrodynamics.strip_theory import strip_theory_estimate
 from seafast.excitation.hydrodynamics.wamit import read_wamit_1, read_wamit_3
 
 __all__ = [
     "RigidBodyMotions",
+    "HydrodynamicsCache",
     "base_vessel_mass_properties",
     "compute_motions",
     "load_motions",

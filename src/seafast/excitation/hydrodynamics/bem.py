@@ -14,6 +14,7 @@ import math
 import os
 import tempfile
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +23,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from seafast.excitation.hydrodynamics.capytaine_io import capytaine_rigid_coefficients, read_capytaine_netcdf
 from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coefficients
+from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.hull_mesh import hull_mesh_arrays
@@ -90,6 +92,91 @@ def _run_bem(
     return ds
 
 
+def _checked_inputs(
+    omega_rad_s: ArrayLike, mass_kg: float, pitch_radius_of_gyration_m: float, centre_of_gravity_m: Sequence[float]
+) -> tuple[NDArray[np.float64], tuple[float, ...]]:
+    """The frequencies sorted without duplicates [rad/s] and the CoG as floats [m], after checking them and the mass properties."""
+    omega = np.unique(np.asarray(omega_rad_s, dtype=float).ravel())
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega <= 0):
+        raise ValueError(f"compute_motions: omega_rad_s must be finite and > 0, got {omega_rad_s!r}")
+    if not mass_kg > 0 or not pitch_radius_of_gyration_m > 0:
+        raise ValueError("compute_motions: mass_kg and pitch_radius_of_gyration_m must be > 0")
+    cog = tuple(float(c) for c in centre_of_gravity_m)
+    if len(cog) != 3:
+        raise ValueError("compute_motions: centre_of_gravity_m must be (x, y, z)")
+    return omega, cog
+
+
+@dataclass(frozen=True)
+class _BEMRun:
+    """What a BEM run depends on (and its cache key hashes): hull, frequencies, pitch axis, panel size, water."""
+
+    hull: HullForm
+    omega: NDArray[np.float64]
+    rotation_center: NDArray[np.float64]
+    panel_size_m: float
+    rho: float
+    g: float
+    depth: float
+
+    def cache_key(self, capytaine_version: str) -> str:
+        """The disk cache's key (see :func:`compute_motions`, Notes): unchanged, so every user's cache file stays a hit."""
+        hull = self.hull
+        payload = {
+            "stations": [repr(float(v)) for v in hull.station_x_m],
+            "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
+            "draft": repr(float(hull.draft_m)),
+            "cs": repr(float(hull.section_area_coefficient)),
+            "rotation_center": [repr(float(c)) for c in self.rotation_center],
+            "omega": [repr(float(v)) for v in self.omega],
+            "panel": repr(self.panel_size_m),
+            "rho": repr(self.rho),
+            "g": repr(self.g),
+            "depth": repr(self.depth),
+            "capytaine": capytaine_version,
+            "mesh": MESH_ALGORITHM_VERSION,
+            "dofs": list(BEM_DOFS),
+        }
+        return _cache_key(payload)
+
+    def dataset(self) -> xr.Dataset:
+        """Run capytaine (:func:`_run_bem`)."""
+        return _run_bem(self.hull, self.omega, self.rotation_center, self.panel_size_m, self.rho, self.g, self.depth)
+
+
+def _cached_or_computed(run: _BEMRun, key: str, cdir: Path, use_cache: bool, memory_cache: HydrodynamicsCache | None) -> xr.Dataset:
+    """The run's capytaine dataset: read from ``cdir`` (through ``memory_cache`` when given), else computed and written there."""
+    path = cdir / f"motions_{key}.nc"
+    if use_cache and path.is_file():
+        try:
+            ds = read_capytaine_netcdf(path) if memory_cache is None else memory_cache.dataset(path)
+            logger.debug("BEM cache hit: %s", path)
+            return ds
+        except Exception:  # noqa: BLE001 - a corrupt or foreign cache file, whatever the error: recompute it
+            logger.warning("BEM cache file %s is unreadable; recomputing it", path)
+    logger.info("computing the vessel's hydrodynamics with capytaine (BEM, tens of seconds); cache: %s", path if use_cache else "off")
+    ds = run.dataset()
+    if use_cache:
+        _write_cache(ds, key, path)
+    return ds
+
+
+def _write_cache(ds: xr.Dataset, key: str, path: Path) -> None:
+    """Write ``ds`` to ``path`` with capytaine's NetCDF export, atomically (a temporary file, then a rename)."""
+    import capytaine as cpt
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    ds.attrs["seafast_cache_key"] = key
+    fd, tmp = tempfile.mkstemp(suffix=".nc", dir=path.parent)
+    os.close(fd)
+    try:
+        cpt.export_dataset(tmp, ds)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def compute_motions(
     hull: HullForm,
     *,
@@ -103,6 +190,7 @@ def compute_motions(
     water_depth_m: float = math.inf,
     cache_dir: str | os.PathLike | None = None,
     use_cache: bool = True,
+    memory_cache: HydrodynamicsCache | None = None,
 ) -> RigidBodyMotions:
     """Heave and pitch RAOs of the vessel in head seas from capytaine (BEM), cached on disk.
 
@@ -130,6 +218,9 @@ def compute_motions(
         Directory of cached capytaine datasets; default :func:`default_cache_dir`.
     use_cache
         Read and write the cache (default True).
+    memory_cache
+        Keeps the dataset read from the disk cache and its coefficients for the next call (a
+        study's next loading of the same hull); None: read and extracted at every call.
 
     Returns
     -------
@@ -147,70 +238,25 @@ def compute_motions(
     """
     import capytaine as cpt
 
-    omega = np.unique(np.asarray(omega_rad_s, dtype=float).ravel())
-    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega <= 0):
-        raise ValueError(f"compute_motions: omega_rad_s must be finite and > 0, got {omega_rad_s!r}")
-    if not mass_kg > 0 or not pitch_radius_of_gyration_m > 0:
-        raise ValueError("compute_motions: mass_kg and pitch_radius_of_gyration_m must be > 0")
-    cog = tuple(float(c) for c in centre_of_gravity_m)
-    if len(cog) != 3:
-        raise ValueError("compute_motions: centre_of_gravity_m must be (x, y, z)")
+    omega, cog = _checked_inputs(omega_rad_s, mass_kg, pitch_radius_of_gyration_m, centre_of_gravity_m)
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     # The BEM pitch axis is fixed at the hull's LCB (at the CoG height): the radiation and
     # diffraction coefficients then depend on the hull alone, so one cached BEM run serves every
     # loading (studies vary the cargo and with it the CoG); they are moved to the CoG x below.
     rotation_center = np.array([hull.centre_of_buoyancy_x_m() - x_mid, 0.0, cog[2] - hull.draft_m])
-    depth = float(water_depth_m)
-
-    payload = {
-        "stations": [repr(float(v)) for v in hull.station_x_m],
-        "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
-        "draft": repr(float(hull.draft_m)),
-        "cs": repr(float(hull.section_area_coefficient)),
-        "rotation_center": [repr(float(c)) for c in rotation_center],
-        "omega": [repr(float(v)) for v in omega],
-        "panel": repr(float(panel_size_m)),
-        "rho": repr(float(water_density_kg_per_m3)),
-        "g": repr(float(gravity_m_per_s2)),
-        "depth": repr(depth),
-        "capytaine": cpt.__version__,
-        "mesh": MESH_ALGORITHM_VERSION,
-        "dofs": list(BEM_DOFS),
-    }
-    key = _cache_key(payload)
+    run = _BEMRun(
+        hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), float(water_depth_m)
+    )
+    key = run.cache_key(cpt.__version__)
     cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
-    path = cdir / f"motions_{key}.nc"
-    ds = None
-    if use_cache and path.is_file():
-        try:
-            ds = read_capytaine_netcdf(path)
-            logger.debug("BEM cache hit: %s", path)
-        except Exception:  # noqa: BLE001 - a corrupt or foreign cache file, whatever the error: recompute it
-            logger.warning("BEM cache file %s is unreadable; recomputing it", path)
-            ds = None
-    if ds is None:
-        logger.info("computing the vessel's hydrodynamics with capytaine (BEM, tens of seconds); cache: %s", path if use_cache else "off")
-        ds = _run_bem(hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), depth)
-        if use_cache:
-            cdir.mkdir(parents=True, exist_ok=True)
-            ds.attrs["seafast_cache_key"] = key
-            fd, tmp = tempfile.mkstemp(suffix=".nc", dir=cdir)
-            os.close(fd)
-            try:
-                cpt.export_dataset(tmp, ds)
-                os.replace(tmp, path)
-            finally:
-                if os.path.exists(tmp):
-                    os.remove(tmp)
-    # the coefficients depend on the hull alone: extracted from the dataset once per process (a
-    # cargo study changes the loading, hence mass and CoG, at every point, not the hull)
-    held = _CAPYTAINE_COEFFICIENTS.get(key)
-    if held is None or held[0] is not ds:  # extracted from this very dataset (a re-read or re-run dataset is new)
-        held = (ds, capytaine_rigid_coefficients(ds, x_mid, gravity_m_per_s2))
-        if len(_CAPYTAINE_COEFFICIENTS) >= 8:
-            _CAPYTAINE_COEFFICIENTS.pop(next(iter(_CAPYTAINE_COEFFICIENTS)))
-        _CAPYTAINE_COEFFICIENTS[key] = held
-    omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = held[1]
+    ds = _cached_or_computed(run, key, cdir, use_cache, memory_cache)
+    # the coefficients depend on the hull alone (a cargo study changes the loading, hence mass and
+    # CoG, at every point, not the hull): a memory cache extracts them once per dataset
+    if memory_cache is None:
+        coefficients = capytaine_rigid_coefficients(ds, x_mid, gravity_m_per_s2)
+    else:
+        coefficients = memory_cache.rigid_coefficients(ds, x_mid, gravity_m_per_s2)
+    omega_c, k_c, a_c, b_c, f_c, x_rot, z_rot_wl = coefficients
     return motions_from_rigid_coefficients(
         omega_c,
         k_c,
@@ -228,8 +274,3 @@ def compute_motions(
         gravity_m_per_s2=gravity_m_per_s2,
         source=f"capytaine {cpt.__version__} BEM, panel size {panel_size_m} m, cache key {key}",
     )
-
-
-# (dataset, its rigid-body coefficients) of BEM runs, by cache key (the key covers the hull,
-# frequencies, panel size, density, gravity, depth and the capytaine version)
-_CAPYTAINE_COEFFICIENTS: dict[str, tuple[xr.Dataset, tuple]] = {}

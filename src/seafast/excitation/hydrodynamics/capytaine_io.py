@@ -7,11 +7,11 @@ coordinates relative to its origin) becomes seafast motions through
 
 from __future__ import annotations
 
-import functools
 import math
 import os
 from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -22,21 +22,27 @@ from seafast.excitation.hydrodynamics.equations import wavenumber_rad_per_m
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.vessel.hull_form import HullForm
 
-__all__ = ["read_capytaine_netcdf", "capytaine_rigid_coefficients", "motions_from_capytaine"]
+__all__ = ["read_capytaine_netcdf", "RigidCoefficients", "capytaine_rigid_coefficients", "motions_from_capytaine"]
+
+
+class RigidCoefficients(NamedTuple):
+    """Head-sea rigid-body coefficients of a capytaine dataset, in capytaine's DOFs (see :func:`capytaine_rigid_coefficients`)."""
+
+    omega: NDArray[np.float64]
+    k: NDArray[np.float64]
+    added_mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    excitation_conj: NDArray[np.complex128]
+    x_rot: float
+    z_rot_wl: float
 
 
 def read_capytaine_netcdf(path: str | os.PathLike) -> xr.Dataset:
-    """Read a capytaine NetCDF export (memoised per file version: studies read it once per process)."""
-    p = Path(path)
-    stat = p.stat()
-    return _read_capytaine_netcdf_cached(str(p.resolve()), stat.st_mtime_ns, stat.st_size)
-
-
-@functools.lru_cache(maxsize=8)
-def _read_capytaine_netcdf_cached(path: str, mtime_ns: int, size: int) -> xr.Dataset:
+    """Read a capytaine NetCDF export (complex values merged back); a
+    :class:`~seafast.excitation.hydrodynamics.memory_cache.HydrodynamicsCache` keeps it for the next loading."""
     from capytaine.io.xarray import merge_complex_values
 
-    with xr.open_dataset(path) as raw:
+    with xr.open_dataset(Path(path)) as raw:
         ds = merge_complex_values(raw.load())
     return ds
 
@@ -89,7 +95,7 @@ def motions_from_capytaine(
     )
 
 
-def capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_per_s2: float) -> tuple:
+def capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_per_s2: float) -> RigidCoefficients:
     """Added mass, damping and excitation of a capytaine dataset, by frequency.
 
     Returns ``(omega, k, a, b, conj(f), x_rot, z_rot_wl)``: frequencies [rad/s] ascending,
@@ -152,4 +158,4 @@ def capytaine_rigid_coefficients(ds: xr.Dataset, origin_x_m: float, gravity_m_pe
         z_rot_wl = float(rc[2])
     else:
         x_rot = origin_x_m
-    return omega, k, a_c, b_c, np.conj(f_c), x_rot, z_rot_wl
+    return RigidCoefficients(omega, k, a_c, b_c, np.conj(f_c), x_rot, z_rot_wl)

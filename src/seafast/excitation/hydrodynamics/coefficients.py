@@ -85,41 +85,63 @@ def motions_from_rigid_coefficients(
         About the CoG x, phases relative to the wave crest at midship; with surge fields when
         d = 3.
     """
-    if np.shape(a_eta)[-1] == 3:
-        # heave and pitch by the 2-DOF solve of their block (unchanged), plus the coupled solution
-        two = motions_from_rigid_coefficients(
-            omega,
-            k,
-            np.asarray(a_eta)[:, 1:, 1:],
-            np.asarray(b_eta)[:, 1:, 1:],
-            np.asarray(f_eta_plus)[:, 1:],
-            hull,
-            coeff_reference_x_m=coeff_reference_x_m,
-            wave_phase_origin_x_m=wave_phase_origin_x_m,
-            mass_kg=mass_kg,
-            centre_of_gravity_m=centre_of_gravity_m,
-            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3,
-            gravity_m_per_s2=gravity_m_per_s2,
-            source=source,
-        )
-        x3 = _coupled_surge_motions(
-            omega,
-            k,
-            a_eta,
-            b_eta,
-            f_eta_plus,
-            hull,
-            coeff_reference_x_m=coeff_reference_x_m,
-            coeff_reference_z_wl_m=coeff_reference_z_wl_m,
-            wave_phase_origin_x_m=wave_phase_origin_x_m,
-            mass_kg=mass_kg,
-            centre_of_gravity_m=centre_of_gravity_m,
-            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3,
-            gravity_m_per_s2=gravity_m_per_s2,
-        )
-        return replace(two, surge_rao_m_per_m=x3[:, 0], coupled_heave_rao_m_per_m=x3[:, 1], coupled_pitch_rao_rad_per_m=x3[:, 2])
+    surge = np.shape(a_eta)[-1] == 3
+    # heave and pitch by the 2-DOF solve of their block (unchanged by surge), plus the coupled solution with surge
+    two = _heave_pitch_motions(
+        omega,
+        k,
+        np.asarray(a_eta)[:, 1:, 1:] if surge else a_eta,
+        np.asarray(b_eta)[:, 1:, 1:] if surge else b_eta,
+        np.asarray(f_eta_plus)[:, 1:] if surge else f_eta_plus,
+        hull,
+        coeff_reference_x_m=coeff_reference_x_m,
+        wave_phase_origin_x_m=wave_phase_origin_x_m,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+        source=source,
+    )
+    if not surge:
+        return two
+    x3 = _coupled_surge_motions(
+        omega,
+        k,
+        a_eta,
+        b_eta,
+        f_eta_plus,
+        hull,
+        coeff_reference_x_m=coeff_reference_x_m,
+        coeff_reference_z_wl_m=coeff_reference_z_wl_m,
+        wave_phase_origin_x_m=wave_phase_origin_x_m,
+        mass_kg=mass_kg,
+        centre_of_gravity_m=centre_of_gravity_m,
+        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=water_density_kg_per_m3,
+        gravity_m_per_s2=gravity_m_per_s2,
+    )
+    return replace(two, surge_rao_m_per_m=x3[:, 0], coupled_heave_rao_m_per_m=x3[:, 1], coupled_pitch_rao_rad_per_m=x3[:, 2])
+
+
+def _heave_pitch_motions(
+    omega: NDArray[np.float64],
+    k: NDArray[np.float64],
+    a_eta: NDArray[np.float64],
+    b_eta: NDArray[np.float64],
+    f_eta_plus: NDArray[np.complex128],
+    hull: HullForm,
+    *,
+    coeff_reference_x_m: float,
+    wave_phase_origin_x_m: float,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    pitch_radius_of_gyration_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    source: str,
+) -> RigidBodyMotions:
+    """The 2-DOF heave-pitch motions about the CoG x from (heave, eta5) coefficients (see :func:`motions_from_rigid_coefficients`)."""
     x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     x_g = float(centre_of_gravity_m[0])
     # eta5 -> theta (bow up)

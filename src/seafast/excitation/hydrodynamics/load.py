@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
@@ -13,6 +14,7 @@ import numpy as np
 from seafast.excitation.hydrodynamics.capytaine_io import motions_from_capytaine, read_capytaine_netcdf
 from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coefficients
 from seafast.excitation.hydrodynamics.equations import wavenumber_rad_per_m
+from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.excitation.hydrodynamics.wamit import read_wamit_1, read_wamit_3, wamit_has_surge
 from seafast.vessel.hull_form import HullForm
@@ -34,6 +36,7 @@ def load_motions(
     gravity_m_per_s2: float = 9.81,
     water_depth_m: float = math.inf,
     frequency_column: Literal["period", "omega"] = "period",
+    memory_cache: HydrodynamicsCache | None = None,
 ) -> RigidBodyMotions:
     """Import hydrodynamic coefficients and solve heave and pitch with given mass properties.
 
@@ -62,6 +65,9 @@ def load_motions(
     frequency_column
         WAMIT: whether the first column holds periods [s] (default, WAMIT's usual output) or
         angular frequencies [rad/s].
+    memory_cache
+        Keeps a capytaine file's dataset for the next call (a study's next loading); None: read
+        at every call.
 
     Notes
     -----
@@ -78,39 +84,61 @@ def load_motions(
     fmt = format
     if fmt == "auto":
         fmt = "capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit"
-    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    mass = _MassProperties(mass_kg, centre_of_gravity_m, pitch_radius_of_gyration_m, water_density_kg_per_m3, gravity_m_per_s2)
     if fmt == "capytaine":
-        ds = read_capytaine_netcdf(p)
+        ds = read_capytaine_netcdf(p) if memory_cache is None else memory_cache.dataset(p)
         return motions_from_capytaine(
             ds,
             hull,
             origin_x_m=origin_x_m,
             source=f"capytaine file {p}",
-            mass_kg=mass_kg,
-            centre_of_gravity_m=centre_of_gravity_m,
-            pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-            water_density_kg_per_m3=water_density_kg_per_m3,
-            gravity_m_per_s2=gravity_m_per_s2,
+            mass_kg=mass.mass_kg,
+            centre_of_gravity_m=mass.centre_of_gravity_m,
+            pitch_radius_of_gyration_m=mass.pitch_radius_of_gyration_m,
+            water_density_kg_per_m3=mass.water_density_kg_per_m3,
+            gravity_m_per_s2=mass.gravity_m_per_s2,
         )
     if fmt != "wamit":
         raise ValueError(f"load_motions: unknown format {format!r}")
+    return _wamit_motions(p, hull, mass, origin_x_m, ulen_m, water_depth_m, frequency_column)
+
+
+@dataclass(frozen=True)
+class _MassProperties:
+    """The loading's mass properties and the water's, as :func:`load_motions` takes them."""
+
+    mass_kg: float
+    centre_of_gravity_m: Sequence[float]
+    pitch_radius_of_gyration_m: float
+    water_density_kg_per_m3: float
+    gravity_m_per_s2: float
+
+
+def _wamit_files(p: Path) -> tuple[Path, Path]:
+    """The ``.1`` and ``.3`` files of ``p`` (either file, or their common stem); both must exist."""
     stem = p.with_suffix("") if p.suffix in (".1", ".3") else p
     f1, f3 = Path(f"{stem}.1"), Path(f"{stem}.3")
     for f in (f1, f3):
         if not f.is_file():
             raise FileNotFoundError(f"load_motions: WAMIT file {f} not found")
+    return f1, f3
+
+
+def _wamit_motions(
+    p: Path,
+    hull: HullForm,
+    mass: _MassProperties,
+    origin_x_m: float | None,
+    ulen_m: float,
+    water_depth_m: float,
+    frequency_column: Literal["period", "omega"],
+) -> RigidBodyMotions:
+    """Motions from WAMIT ``.1``/``.3`` output (see :func:`load_motions`, Notes), on the frequencies both files hold."""
+    f1, f3 = _wamit_files(p)
+    rho, g = mass.water_density_kg_per_m3, mass.gravity_m_per_s2
     modes = (1, 3, 5) if wamit_has_surge(f1, f3) else (3, 5)
-    w1, a, b = read_wamit_1(
-        f1, ulen_m=ulen_m, water_density_kg_per_m3=water_density_kg_per_m3, frequency_column=frequency_column, modes=modes
-    )
-    w3, x = read_wamit_3(
-        f3,
-        ulen_m=ulen_m,
-        water_density_kg_per_m3=water_density_kg_per_m3,
-        gravity_m_per_s2=gravity_m_per_s2,
-        frequency_column=frequency_column,
-        modes=modes,
-    )
+    w1, a, b = read_wamit_1(f1, ulen_m=ulen_m, water_density_kg_per_m3=rho, frequency_column=frequency_column, modes=modes)
+    w3, x = read_wamit_3(f3, ulen_m=ulen_m, water_density_kg_per_m3=rho, gravity_m_per_s2=g, frequency_column=frequency_column, modes=modes)
     if w1.shape != w3.shape or not np.allclose(w1, w3, rtol=1e-6):
         common_w = np.intersect1d(np.round(w1, 9), np.round(w3, 9))
         if common_w.size == 0:
@@ -118,8 +146,9 @@ def load_motions(
         i1 = np.isin(np.round(w1, 9), common_w)
         i3 = np.isin(np.round(w3, 9), common_w)
         w1, a, b, x = w1[i1], a[i1], b[i1], x[i3]
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
     origin = x_mid if origin_x_m is None else float(origin_x_m)
-    k = wavenumber_rad_per_m(w1, water_depth_m, gravity_m_per_s2)
+    k = wavenumber_rad_per_m(w1, water_depth_m, g)
     return motions_from_rigid_coefficients(
         w1,
         k,
@@ -130,9 +159,9 @@ def load_motions(
         coeff_reference_x_m=origin,
         wave_phase_origin_x_m=origin,
         source=f"WAMIT files {f1}, {f3} (ULEN = {ulen_m} m)",
-        mass_kg=mass_kg,
-        centre_of_gravity_m=centre_of_gravity_m,
-        pitch_radius_of_gyration_m=pitch_radius_of_gyration_m,
-        water_density_kg_per_m3=water_density_kg_per_m3,
-        gravity_m_per_s2=gravity_m_per_s2,
+        mass_kg=mass.mass_kg,
+        centre_of_gravity_m=mass.centre_of_gravity_m,
+        pitch_radius_of_gyration_m=mass.pitch_radius_of_gyration_m,
+        water_density_kg_per_m3=rho,
+        gravity_m_per_s2=g,
     )

@@ -9,11 +9,12 @@ import pytest
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
 from seafast.config import CaseError, load_case
-from seafast.coupling.deck import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
+from seafast.coupling.deck_iteration import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
 from seafast.coupling.status import CouplingOutcome
-from seafast.excitation.hull_girder import deck_deflection_at, still_water_response
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import harmonics_to_time
+from seafast.hull.deck import deck_deflection_at
+from seafast.hull.still_water import still_water_response
 from seafast.pipeline import build_model, couple_hull_and_cargo, run_case, solve_nonlinear
 from seafast.solvers.linear import solve_linear
 from seafast.vessel.loading import WeightItem
@@ -95,7 +96,7 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
     stiffness and its beta K_beam damping have no resultant and no moment (rigid-body motions are in
     their null space). A wrong sign or a missing inertia term would leave 100-200 % of the inertia
     resultant."""
-    from seafast.coupling.deck import spread_load_N
+    from seafast.coupling.deck_iteration import spread_load_N
 
     _, model, excitation, rows = coupled_in_waves
     xn = model.cargo.node_x_m
@@ -243,7 +244,7 @@ def test_a_tapered_pile_weighs_the_same_on_the_hull_and_in_the_cargo_model():
 
 def test_the_analytic_linear_jacobian_equals_finite_differences(coupled_in_waves):
     """``I - n C S_k`` per harmonic against finite differences of the linear model's residual."""
-    from seafast.coupling import deck as coupling
+    from seafast.coupling import deck_iteration as coupling
 
     case, model, excitation, _ = coupled_in_waves
     vessel = vessel_excitation(case)

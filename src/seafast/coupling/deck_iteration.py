@@ -45,8 +45,9 @@ from numpy.typing import NDArray
 
 from seafast.coupling.status import CouplingOutcome, CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.hull_girder import HullGirder, deck_load_influence
 from seafast.fourier import harmonics_to_time
+from seafast.hull.girder import HullGirder
+from seafast.hull.loads import deck_load_influence
 from seafast.model.structure import StructuralModel
 from seafast.vessel.loading import VesselLoading
 
