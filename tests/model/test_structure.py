@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.cache import ModelCache
 from seafast.model.seafastening import BASE_LASHING, SeaFastening
 from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2
 from seafast.model.structure import MechanismError, StructuralModel, build_structural_model
@@ -345,28 +346,30 @@ def test_natural_frequencies_of_a_fine_mesh_by_shift_invert_equal_the_converged_
     assert fine.rayleigh_beta_s == pytest.approx(coarse.rayleigh_beta_s, rel=2e-5)
 
 
-def test_models_along_a_stiffness_axis_share_the_mesh_and_equal_fresh_builds(monkeypatch) -> None:
-    import seafast.model.structure as structure
-
-    def fresh(sf: SeaFastening) -> StructuralModel:
-        monkeypatch.setattr(structure, "_BEAM_CACHE", structure.OrderedDict())
-        monkeypatch.setattr(structure, "_RAYLEIGH_CACHE", structure.OrderedDict())
-        return build_structural_model(_geometry(), sf, target_element_length_m=2.0)
-
+def test_models_along_a_stiffness_axis_share_the_mesh_and_equal_fresh_builds() -> None:
+    """A study's :class:`ModelCache` keeps one mesh for models that differ only in their springs, and one
+    Rayleigh fit for models that differ only in pretension; every model equals a fresh build (no cache) to the bit."""
+    cache = ModelCache()
     soft = SeaFastening(BASE_X, np.full(3, 1.1e8), np.array([True, False, True]))
     stiff = SeaFastening(BASE_X, np.full(3, 1.1e10), np.array([True, False, True]))
     pretensioned = SeaFastening(BASE_X, np.full(3, 1.1e10), np.array([True, False, True]), lashing_pretension_N=5e6)
-    a = build_structural_model(_geometry(), soft, target_element_length_m=2.0)
-    b = build_structural_model(_geometry(), stiff, target_element_length_m=2.0)
-    c = build_structural_model(_geometry(), pretensioned, target_element_length_m=2.0)
-    assert a.cargo is b.cargo is c.cargo  # one mesh and beam assembly for the three
+    a = build_structural_model(_geometry(), soft, target_element_length_m=2.0, cache=cache)
+    with cache.shared():  # what a study's evaluator does: the models built inside find the cache
+        b = build_structural_model(_geometry(), stiff, target_element_length_m=2.0)
+        c = build_structural_model(_geometry(), pretensioned, target_element_length_m=2.0)
+    assert a.cargo is b.cargo is c.cargo and len(cache) == 1  # one mesh and beam assembly for the three
     assert a.rayleigh_beta_s != b.rayleigh_beta_s  # the springs move the natural frequencies ...
-    assert (b.rayleigh_alpha_per_s, b.rayleigh_beta_s) == (c.rayleigh_alpha_per_s, c.rayleigh_beta_s)  # ... pretension does not
+    assert b.rayleigh_fit is c.rayleigh_fit  # ... pretension does not
     for memoised, sf in ((a, soft), (b, stiff), (c, pretensioned)):
-        reference = fresh(sf)
+        reference = build_structural_model(_geometry(), sf, target_element_length_m=2.0)
+        assert reference.cargo is not memoised.cargo  # no cache outside the block: built afresh
         np.testing.assert_array_equal(memoised.cargo.stiffness, reference.cargo.stiffness)
         assert (memoised.rayleigh_alpha_per_s, memoised.rayleigh_beta_s) == (reference.rayleigh_alpha_per_s, reference.rayleigh_beta_s)
         np.testing.assert_array_equal(memoised.static_load_N, reference.static_load_N)
+    small = ModelCache(max_entries=1)
+    build_structural_model(_geometry(), soft, target_element_length_m=2.0, cache=small)
+    build_structural_model(_geometry(), soft, target_element_length_m=4.0, cache=small)
+    assert len(small) == 1  # the oldest goes first
 
 
 def test_shift_invert_frequencies_equal_the_dense_ones_above_the_threshold_and_repeat_exactly() -> None:
@@ -417,7 +420,7 @@ def test_the_damping_fallback_warns_only_when_it_misses_the_ratio_by_more_than_a
     for every point)."""
     x = BASE_X if not warned else BASE_X[[0, 2]]
     sf = SeaFastening(x, np.full(x.size, stiffness_N_per_m), np.ones(x.size, bool) if warned else np.array([True, False, True]))
-    ratio = 0.0201 if warned else 0.0202  # a ratio no other test uses: the fit is cached per model, and logged when made
+    ratio = 0.0201 if warned else 0.0202
     with caplog.at_level("INFO", logger="seafast.model.structure"):
         model = build_structural_model(_geometry(), sf, target_element_length_m=1.0, damping_ratio=ratio)
     fit = model.rayleigh_fit

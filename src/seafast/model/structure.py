@@ -16,15 +16,15 @@ a bilateral spring with its full stiffness; in the *nonlinear* model the compres
 Harmonic convention: a periodic quantity is ``x(t) = Re(sum_k X_k exp(i k omega t))``; k = 0 is
 the static (mean) part and is real.
 
-Size: over 400 lines because the model's matrices, their banded forms, the mesh and eigen-solve
-caches a study reuses, and the mechanism test share the model's layout; splitting them would make
-private layout helpers public.
+Size: over 400 lines because the model's matrices, their banded forms, the eigen-solves, the damping's
+support coupling and the mechanism test share the model's layout; splitting them would make private
+layout helpers public. What a study reuses between its models is kept by a
+:class:`~seafast.model.cache.ModelCache` its caller owns.
 """
 
 from __future__ import annotations
 
 import logging
-from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,6 +32,7 @@ import scipy.linalg
 from numpy.typing import NDArray
 
 from seafast.model.beam import assemble_beam
+from seafast.model.cache import ModelCache, shared_model_cache
 from seafast.model.damping import RayleighFit, fit_rayleigh_to_modes, rayleigh_coefficients
 from seafast.model.mesh import mesh_cargo
 from seafast.model.seafastening import SeaFastening
@@ -419,36 +420,21 @@ DENSE_EIGEN_DOFS = 200
 """Largest cargo model (DOFs) whose natural frequencies are computed by a dense eigen-solve
 (O(n^3); the banded shift-invert Lanczos costs about the same at 180 DOFs and less beyond)."""
 
-# Studies rebuild the model at every point; along a stiffness axis the mesh and the beam
-# matrices do not change, and along a pretension axis not even the natural frequencies. Both
-# are memoised on their content (the keys hold every input): the last four, and beams only
-# while their dense matrices total at most 128 MB (a 2000-element beam holds 64 MB).
-_BEAM_CACHE: OrderedDict[tuple, CargoBeam] = OrderedDict()
-_RAYLEIGH_CACHE: OrderedDict[tuple, RayleighFit] = OrderedDict()
-_CACHE_ENTRIES = 4
-_BEAM_CACHE_BYTES = 128 * 2**20
-
-
-def _remember(cache: OrderedDict, key: tuple, value: object) -> None:
-    cache[key] = value
-    while len(cache) > _CACHE_ENTRIES:
-        cache.popitem(last=False)
-
 
 def _cargo_beam(
-    geometry: CargoGeometry, fixed_points_m: NDArray[np.float64], target_element_length_m: float, gravity_m_per_s2: float
+    geometry: CargoGeometry,
+    fixed_points_m: NDArray[np.float64],
+    target_element_length_m: float,
+    gravity_m_per_s2: float,
+    cache: ModelCache | None,
 ) -> tuple[CargoBeam, tuple]:
-    """The meshed and assembled cargo beam, memoised on its inputs; returns (beam, key)."""
+    """The meshed and assembled cargo beam (the one ``cache`` keeps for these inputs, if any); returns (beam, key)."""
     key = (geometry, tuple(float(x) for x in fixed_points_m), float(target_element_length_m), float(gravity_m_per_s2))
-    beam = _BEAM_CACHE.get(key)
-    if beam is None:
-        beam = build_cargo_beam(geometry, fixed_points_m, target_element_length_m, gravity_m_per_s2)
-        _remember(_BEAM_CACHE, key, beam)
-        while len(_BEAM_CACHE) > 1 and sum(b.stiffness.nbytes + b.mass.nbytes for b in _BEAM_CACHE.values()) > _BEAM_CACHE_BYTES:
-            _BEAM_CACHE.popitem(last=False)
-    else:
-        _BEAM_CACHE.move_to_end(key)
-    return beam, key
+
+    def build() -> CargoBeam:
+        return build_cargo_beam(geometry, fixed_points_m, target_element_length_m, gravity_m_per_s2)
+
+    return (build() if cache is None else cache.beam(key, build)), key
 
 
 def _full_band(A: NDArray[np.float64], bandwidth: int) -> NDArray[np.float64]:
@@ -500,6 +486,7 @@ def build_structural_model(
     target_element_length_m: float = 1.0,
     damping_ratio: float = 0.02,
     gravity_m_per_s2: float = 9.81,
+    cache: ModelCache | None = None,
 ) -> StructuralModel:
     """Mesh the cargo with a node at every saddle and assemble the partitioned linear system.
 
@@ -507,14 +494,19 @@ def build_structural_model(
     cargo on bilateral saddles (deck fixed) equals ``damping_ratio`` (the documented default is 2 %); see
     :func:`fit_rayleigh_to_modes` for why beta must be fitted on the modes and for the fallback.
 
+    ``cache``: where the meshed beam and the Rayleigh fit are kept and found again
+    (:class:`~seafast.model.cache.ModelCache`); default the one shared by the innermost
+    ``with cache.shared()`` block around this call, else none (built afresh). The model is the same either way.
+
     Raises
     ------
     MechanismError
         If the cargo on bilateral saddles and lashings is not stable (fewer than two distinct
         supports and no rotational restraint).
     """
+    cache = cache if cache is not None else shared_model_cache()
     xs = np.asarray(seafastening.saddle_x_m, dtype=float)
-    beam, beam_key = _cargo_beam(geometry, xs, target_element_length_m, gravity_m_per_s2)
+    beam, beam_key = _cargo_beam(geometry, xs, target_element_length_m, gravity_m_per_s2, cache)
     nodes = np.array([int(np.argmin(np.abs(beam.node_x_m - x))) for x in xs], dtype=np.intp)
     model = StructuralModel(beam, seafastening, nodes, 0.0, 0.0, gravity_m_per_s2)
     # Stability: the cargo on bilateral saddles must have no zero-energy mode: its lowest
@@ -533,19 +525,26 @@ def build_structural_model(
     sf = seafastening
     springs = (sf.lashing_vertical_stiffness_N_per_m, sf.lashing_rotational_stiffness_Nm_per_rad, sf.unilateral_stiffness_N_per_m)
     rayleigh_key = (beam_key, tuple(nodes.tolist()), *(np.asarray(k, dtype=float).tobytes() for k in springs), float(damping_ratio))
-    fit = _RAYLEIGH_CACHE.get(rayleigh_key)
-    if fit is None:
-        fit = fit_rayleigh_to_modes(damping_ratio, *model.first_modes_beam_share())
-        _remember(_RAYLEIGH_CACHE, rayleigh_key, fit)
-        if not fit.exact:
-            # beyond RAYLEIGH_FALLBACK_TOLERANCE a typed warning of the model (StructuralModel.warnings), else a detail
-            log = logger.warning if fit.warnings else logger.info
-            log(
-                "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
-                "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
-                damping_ratio,
-                fit.omega_rad_s[0],
-                fit.omega_rad_s[1],
-                *fit.realised_damping_ratio,
-            )
+    fit = (
+        _rayleigh_fit(model, damping_ratio)
+        if cache is None
+        else cache.rayleigh_fit(rayleigh_key, lambda: _rayleigh_fit(model, damping_ratio))
+    )
     return StructuralModel(beam, seafastening, nodes, fit.alpha_per_s, fit.beta_s, gravity_m_per_s2, rayleigh_fit=fit)
+
+
+def _rayleigh_fit(model: StructuralModel, damping_ratio: float) -> RayleighFit:
+    """The Rayleigh fit on the model's first two modes, logged when it falls back (once per fit made)."""
+    fit = fit_rayleigh_to_modes(damping_ratio, *model.first_modes_beam_share())
+    if not fit.exact:
+        # beyond RAYLEIGH_FALLBACK_TOLERANCE a typed warning of the model (StructuralModel.warnings), else a detail
+        log = logger.warning if fit.warnings else logger.info
+        log(
+            "model.damping_ratio = %g: Rayleigh damping cannot give both of the first two modes (%.3g, %.3g rad/s) this "
+            "ratio with non-negative, moderate coefficients; fallback (classic beta, least-squares alpha), realised %.4f and %.4f",
+            damping_ratio,
+            fit.omega_rad_s[0],
+            fit.omega_rad_s[1],
+            *fit.realised_damping_ratio,
+        )
+    return fit

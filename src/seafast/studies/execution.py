@@ -37,6 +37,7 @@ from typing import Any, Protocol
 
 from seafast.config.schema import Case
 from seafast.excitation.vessel import VesselCache
+from seafast.model.cache import ModelCache
 from seafast.studies.messages import point_log
 from seafast.studies.spec import StudyError
 from seafast.studies.store import PointRecord, stored_row
@@ -115,6 +116,10 @@ _POINT_VESSELS = VesselCache()
 data behind them), shared with the evaluator while a batch runs (:meth:`VesselCache.shared`): a study over
 the sea-fastening computes its vessel once per process, one over the cargo reads the BEM data once. A forked
 worker inherits it warm from the coordinator's first point."""
+
+_POINT_MODELS = ModelCache()
+"""The cargo beams and Rayleigh fits this process keeps for the study points it evaluates, shared as
+:data:`_POINT_VESSELS` is: along a stiffness axis the mesh is built once, along a pretension axis the fit too."""
 
 
 def _prepare_worker() -> None:
@@ -196,7 +201,7 @@ def evaluate_batch(
     records = []
     for index in indices:
         t0 = time.perf_counter()
-        with point_log(keep_messages) as messages, _POINT_VESSELS.shared():
+        with point_log(keep_messages) as messages, _POINT_VESSELS.shared(), _POINT_MODELS.shared():
             try:
                 case = grid.point_case(int(index))
                 rows = tuple(stored_row(row) for row in func(case))
