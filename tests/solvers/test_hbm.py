@@ -9,7 +9,7 @@ from threadpoolctl import threadpool_limits
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
-from seafast.solvers.references import solve_quasi_static
+from seafast.solvers.references import QuasiStaticOptions, solve_quasi_static
 from solver_cases import base_model, peak_moment, static_excitation, wave_excitation
 
 
@@ -104,7 +104,7 @@ def test_static_nonlinear_lift_off_matches_quasi_static(coarse):
     """H = 0: a large static hog lifts the outer saddles; the nonlinear static = exact static."""
     ex = wave_excitation(coarse, static_mid_mm=25.0).static_part()
     r = solve_hbm(coarse, ex, HBMOptions(harmonics=0, time_samples=2, contact_law="exact"))
-    qs = solve_quasi_static(coarse, ex, time_samples=2)
+    qs = solve_quasi_static(coarse, ex, QuasiStaticOptions(time_samples=2))
     assert r.converged and not r.contact_preserved
     assert np.allclose(r.saddle_force_time_N, qs.saddle_force_time_N, rtol=0, atol=1e-6 * qs.max_saddle_force_N)
     assert np.allclose(r.cargo_displacement_time_m, qs.cargo_displacement_time_m, rtol=0, atol=1e-9)

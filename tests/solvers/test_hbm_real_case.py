@@ -14,8 +14,9 @@ from threadpoolctl import threadpool_limits
 
 from seafast.fourier import harmonics_to_time, time_to_harmonics
 from seafast.solvers.hbm import HBMOptions, solve_hbm
-from seafast.solvers.periodic import PeriodicResponse, SolverOutcome
-from seafast.solvers.references import solve_quasi_static, solve_time_domain
+from seafast.solvers.outcome import SolverOutcome
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references import QuasiStaticOptions, TimeDomainOptions, solve_quasi_static, solve_time_domain
 from solver_cases import peak_moment
 
 
@@ -129,8 +130,8 @@ def test_exact_h16_agrees_with_references(real_case):
     """
     model, ex = real_case
     r = solve_hbm(model, ex, HBMOptions(**EXACT_16))
-    qs = solve_quasi_static(model, ex, 128)
-    td = solve_time_domain(model, ex, 128)
+    qs = solve_quasi_static(model, ex, QuasiStaticOptions(time_samples=128))
+    td = solve_time_domain(model, ex, TimeDomainOptions(time_samples=128))
     assert r.converged and qs.converged and td.converged
     for name, ref in (("quasi-static", qs), ("time domain", td)):
         e_peak = abs(r.max_saddle_force_N / ref.max_saddle_force_N - 1.0)

@@ -8,7 +8,7 @@
 * the same steady state agrees with the exact-law HBM (H = 16) within 1 % in peak force (3 % in
   peak gap, which 16 harmonics truncate);
 * convergence in the time step; a free decay of modes 1 and 2 gives the requested damping ratio
-  (issue 12: the complex eigenvalue's rate of M s^2 + D s + K, 2 % on the base case, the documented
+  (the complex eigenvalue's rate of M s^2 + D s + K, 2 % on the base case, the documented
   fallback on 1 % saddles); a detached start is the exact static contact state; the direct per-set
   solve (more than 10 saddles) equals the precomputed table;
 * the periodic march (the HBM's start) is the same integrator marched through one repeated period.
@@ -20,11 +20,12 @@ import numpy as np
 import pytest
 from scipy.linalg import eig
 
+from seafast.fourier import harmonics_to_time
 from seafast.solvers import transient
+from seafast.solvers.exact_contact import solve_exact_contact
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.periodic import harmonics_to_time
-from seafast.solvers.references import solve_exact_contact, solve_time_domain
+from seafast.solvers.references import TimeDomainOptions, solve_time_domain
 from seafast.solvers.transient import (
     MarchState,
     integrate_record,
@@ -59,7 +60,7 @@ def steady_period(model, ex, compression, steps, cutoff=None, periods=8):
 
 def test_every_mode_kept_equals_the_full_dof_time_domain_reference(wave):
     model, ex, compression = wave
-    ref = solve_time_domain(model, ex, N, steps_per_period=2048, hht_alpha=0.0)
+    ref = solve_time_domain(model, ex, TimeDomainOptions(time_samples=N, steps_per_period=2048, hht_alpha=0.0))
     assert ref.converged
     delta, _ = steady_period(model, ex, compression, 2048, cutoff=np.inf)
     force = model.saddle_unilateral_stiffness_N_per_m * np.maximum(delta, 0.0)
@@ -70,7 +71,7 @@ def test_every_mode_kept_equals_the_full_dof_time_domain_reference(wave):
 
 def test_default_reduction_is_within_1e4_of_the_full_model(wave):
     model, ex, compression = wave
-    ref = solve_time_domain(model, ex, N, steps_per_period=2048, hht_alpha=0.0)
+    ref = solve_time_domain(model, ex, TimeDomainOptions(time_samples=N, steps_per_period=2048, hht_alpha=0.0))
     delta, _ = steady_period(model, ex, compression, 2048)
     system = modal_correction(model, 0.01)
     assert system.mode_count == 4  # 44, 51, 72, 167 rad/s below 4 x 72 rad/s
@@ -144,14 +145,14 @@ def free_decay(model, mode: int, periods: int = 40, steps_per_period: int = 128)
 
 @pytest.mark.parametrize("mode", [0, 1])
 def test_free_decay_gives_the_requested_damping(mode):
-    """Issue 12: the realised damping of modes 1 and 2 is model.damping_ratio, measured on a free decay of the
+    """The realised damping of modes 1 and 2 is model.damping_ratio, measured on a free decay of the
     project's time integrator (Newmark average acceleration adds no numerical damping).
 
     The damping is not proportional (beta multiplies the beam stiffness only), so a mode's free vibration
     decays at the rate of its complex eigenvalue, -Re(s) = zeta |s|: released in the undamped mode shape it
     is that complex mode plus an O(off-diagonal damping / frequency gap) admixture of the others. The fit
     on the modes makes zeta_i = phi_i^T D phi_i / (2 w_i) equal the ratio, and the complex eigenvalue's zeta
-    differs from it at second order (5e-5 here). The classic formula realised 1.13 % / 1.10 % (the issue)."""
+    differs from it at second order (5e-5 here). The classic formula would realise 1.13 % / 1.10 %."""
     model = base_model()  # damping_ratio = 0.02, the default
     ratio = 0.02
     assert model.rayleigh_fit.exact
@@ -220,7 +221,7 @@ def test_periodic_march_is_the_integrator_through_a_repeated_period(wave):
     full = modal_correction(model, T / 2048, np.inf)
     settled = march_periodic(full, harmonics_to_time(compression, 2048), max_periods=20, tolerance=1e-9)
     assert settled.change <= 1e-9 and settled.periods < 20
-    ref = solve_time_domain(model, ex, N, steps_per_period=2048, hht_alpha=0.0)
+    ref = solve_time_domain(model, ex, TimeDomainOptions(time_samples=N, steps_per_period=2048, hht_alpha=0.0))
     delta = settled.compression_m[:: 2048 // N]
     assert np.max(np.abs(delta - ref.saddle_compression_time_m)) < 1e-6 * np.max(np.abs(ref.saddle_compression_time_m))
     with pytest.raises(ValueError, match="saddles"):

@@ -12,7 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-__all__ = ["SolverOutcome", "SolverWarning", "TimeDomainStart", "OrbitRecord"]
+from seafast.config.modes import TimeDomainStart
+
+__all__ = ["SolverOutcome", "SolverWarning", "OrbitRecord"]
 
 
 class SolverOutcome(Enum):
@@ -88,25 +90,6 @@ _DESCRIPTIONS = {
 }
 
 
-class TimeDomainStart(Enum):
-    """The state a time-domain reference starts from (at t = 0 of the period).
-
-    ``LINEAR``
-        The linear periodic solution (every saddle bilateral): displacement and velocity at t = 0.
-        The default of both formulations.
-    ``QUASI_STATIC``
-        The exact-contact quasi-static state at t = 0, velocity from the quasi-static states at
-        -dt and +dt (the full-DOF formulation's former start).
-    ``GIVEN``
-        A given periodic solution (e.g. the harmonic balance's): its displacement and velocity at
-        t = 0; the orbit reached is compared with it.
-    """
-
-    LINEAR = "linear"
-    QUASI_STATIC = "quasi_static"
-    GIVEN = "given"
-
-
 @dataclass(frozen=True)
 class OrbitRecord:
     """Where a time-domain reference started and what it reached.
@@ -114,7 +97,8 @@ class OrbitRecord:
     Attributes
     ----------
     start
-        The start (:class:`TimeDomainStart`).
+        The start (:class:`~seafast.config.modes.TimeDomainStart`: ``LINEAR``, ``QUASI_STATIC`` or ``GIVEN``;
+        a harmonic balance start is ``GIVEN``, its ``start_method`` ``"hbm"``).
     start_method
         What the start came from: ``"linear"``, ``"quasi_static"``, or the given solution's
         ``method`` (``"hbm"``, ...).

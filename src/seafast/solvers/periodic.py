@@ -23,19 +23,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-# re-exported: their public import path was this module before the Fourier kernels moved down
-from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, period_fraction
+from seafast.config.modes import SolverMethod
+from seafast.fourier import period_fraction
 from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
 
-__all__ = [
-    "PeriodicResponse",
-    "OrbitRecord",
-    "SolverOutcome",
-    "SolverWarning",
-    "period_fraction",
-    "harmonics_to_time",
-    "high_harmonic_energy_share",
-]
+__all__ = ["PeriodicResponse"]
 
 
 @dataclass(frozen=True)
@@ -45,7 +37,8 @@ class PeriodicResponse:
     Attributes
     ----------
     method
-        ``"hbm"``, ``"quasi_static"`` or ``"time_domain"``.
+        The solver (:class:`~seafast.config.modes.SolverMethod`: ``"hbm"``, ``"quasi_static"`` or
+        ``"time_domain"``).
     omega_rad_s
         Fundamental frequency [rad/s] (period T = 2 pi / omega).
     cargo_displacement_time_m
@@ -74,7 +67,7 @@ class PeriodicResponse:
         Typed warnings (:class:`~seafast.solvers.outcome.SolverWarning`), empty when none.
     harmonic_truncation_indicator
         Per saddle, the share of the fluctuating contact-force energy above harmonic H
-        (see :func:`high_harmonic_energy_share`); for the references H is the ``harmonics``
+        (see :func:`seafast.fourier.high_harmonic_energy_share`); for the references H is the ``harmonics``
         recorded in ``options`` (what an HBM with that H would miss).
     options
         The settings used (plain dict, safe to serialise).
@@ -87,7 +80,7 @@ class PeriodicResponse:
         (:class:`~seafast.solvers.outcome.OrbitRecord`).
     """
 
-    method: str
+    method: SolverMethod
     omega_rad_s: float
     cargo_displacement_time_m: NDArray[np.float64]
     cargo_displacement_harmonics: NDArray[np.complex128] | None

@@ -27,6 +27,7 @@ from scipy import sparse
 from scipy.optimize import root
 from scipy.sparse.linalg import SuperLU, splu
 
+from seafast.config.modes import ContactLawKind, NonlinearSolver
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.options import HBMOptions
 from seafast.solvers.outcome import SolverOutcome
@@ -289,7 +290,7 @@ def _hybr(problem: NonlinearProblem, law: ContactLaw, amplitude: float, u0: NDAr
     return SolveAttempt(u, ok, rel, counter["jev"], counter["fev"] + 1, note)
 
 
-_SOLVER_FUNCTIONS: dict[str, Callable[..., SolveAttempt]] = {"newton": _newton, "hybr": _hybr}
+_SOLVER_FUNCTIONS: dict[NonlinearSolver, Callable[..., SolveAttempt]] = {NonlinearSolver.NEWTON: _newton, NonlinearSolver.HYBR: _hybr}
 
 
 def _start(problem: NonlinearProblem, law: ContactLaw, amplitude: float) -> tuple[NDArray, str]:
@@ -347,8 +348,8 @@ def solve_with_fallback(problem: NonlinearProblem, law: ContactLaw, options: HBM
 
     # (1) continuation in the sharpness kappa, from a soft law to the requested one
     delta_scale = float(problem.compression_scale_m)
-    soft_name = "softplus" if law.name == "exact" else law.name
-    kappa_target = law.regularisation_per_m if law.name != "exact" else 1e4 / delta_scale
+    soft_name = ContactLawKind.SOFTPLUS if law.name is ContactLawKind.EXACT else law.name
+    kappa_target = law.regularisation_per_m if law.name is not ContactLawKind.EXACT else 1e4 / delta_scale
     kappa_start = min(1.0 / delta_scale, kappa_target / 10.0)
     if kappa_start < kappa_target:
         u = u0

@@ -9,6 +9,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.modes import Formulation, SolverMethod
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import (
     complex_to_real_harmonics,
@@ -23,7 +24,7 @@ from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, 
 from seafast.solvers.hbm.full import FullProblem
 from seafast.solvers.hbm.harmonics import force_scale_N, pad_harmonics, select_harmonics, truncation_error
 from seafast.solvers.hbm.nonlinear import solve_with_fallback
-from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.hbm.options import SAFE_HARMONICS, HBMOptions
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
 
@@ -32,7 +33,6 @@ __all__ = ["CondensedSolution", "solve_condensed", "solve_hbm"]
 logger = logging.getLogger(__name__)
 
 _QUICK_ITERATIONS = 40  # Newton steps from a start near the solution (the march, or the previous H)
-_SAFE_HARMONICS = 16  # where the full fallback chain goes when the march's start does not converge
 _SELECTION_SHARE = 0.25  # of the truncation tolerance, for the march's choice of the first H
 
 
@@ -123,7 +123,7 @@ def solve_hbm(
         H = int(options.harmonics)
         fixed = options.with_harmonics(H)
         start = None if given is None else _project(given, H)
-        if H > _SAFE_HARMONICS and options.formulation == "condensed":
+        if H > SAFE_HARMONICS and options.formulation is Formulation.CONDENSED:
             response = _solve_fixed_many_harmonics(model, excitation, fixed, start)
         else:
             response = _solve_fixed(model, excitation, fixed, start)
@@ -146,7 +146,7 @@ def solve_hbm(
     if not response.converged:
         # the robust route at few harmonics: the full fallback chain from the quasi-static predictor (a given
         # start has just failed), then the refinement below from there
-        H = min(H, _SAFE_HARMONICS)
+        H = min(H, SAFE_HARMONICS)
         ops = condensed_operators(model, excitation, H)
         response = _solve_fixed(model, excitation, options.with_harmonics(H), None, ops)
     path = [H]
@@ -211,7 +211,7 @@ def solve_hbm(
 def _solve_fixed_many_harmonics(
     model: StructuralModel, excitation: HarmonicExcitation, options: HBMOptions, start: NDArray | None
 ) -> PeriodicResponse:
-    """A fixed H above :data:`_SAFE_HARMONICS`: a few Newton steps from the given start, then from the periodic
+    """A fixed H above :data:`~seafast.solvers.hbm.options.SAFE_HARMONICS`: a few Newton steps from the given start, then from the periodic
     march (the start from which the semi-smooth Newton converges at many harmonics), and only then the full
     fallback chain, whose continuation costs minutes at hundreds of harmonics."""
     H = int(options.harmonics or 0)
@@ -267,7 +267,7 @@ def _solve_fixed(
     H, N = options.fixed_grid()
     law = options.law
     ops = condensed_operators(model, excitation, H, reuse=ops)
-    if options.formulation == "condensed":
+    if options.formulation is Formulation.CONDENSED:
         sol = solve_condensed(ops, options, start)
         C = real_to_complex_harmonics(sol.correction_force)  # (H+1, n_s)
         X = ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C)
@@ -289,7 +289,7 @@ def _solve_fixed(
         logger.warning("harmonic balance: the excitation has harmonics above H = %d; they were ignored (raise solver.harmonics)", H)
         warnings = (SolverWarning.HARMONICS_ABOVE_H_IGNORED,)
     return PeriodicResponse(
-        method="hbm",
+        method=SolverMethod.HBM,
         omega_rad_s=float(excitation.omega_rad_s),
         cargo_displacement_time_m=harmonics_to_time(X, N),
         cargo_displacement_harmonics=X,

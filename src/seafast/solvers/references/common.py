@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.modes import SolverMethod
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
@@ -17,7 +18,7 @@ __all__ = ["exact_law_response"]
 
 
 def exact_law_response(
-    method: str,
+    method: SolverMethod,
     model: StructuralModel,
     excitation: HarmonicExcitation,
     cargo_time: NDArray,

@@ -1,4 +1,4 @@
-"""Where the time-domain reference starts, and which orbit it reaches (issue 12, item 3).
+"""Where the time-domain reference starts, and which orbit it reaches.
 
 A cargo that lifts off its saddles is a non-smooth oscillator: one excitation can have several
 periodic steady states (orbits), and a non-periodic (chaotic) motion beside them. On 1 % saddles
@@ -7,14 +7,15 @@ coexists with a bouncing motion with metre-high flights and 15-20 MN impacts; wh
 integration settles on depends on where it starts. Both formulations of
 :func:`~seafast.solvers.references.solve_time_domain` therefore start from the *same* state:
 
-* :attr:`~seafast.solvers.outcome.TimeDomainStart.LINEAR` (default): the linear periodic solution
+* :attr:`~seafast.config.modes.TimeDomainStart.LINEAR` (default): the linear periodic solution
   (every saddle bilateral) at t = 0, its displacement and velocity;
-* :attr:`~seafast.solvers.outcome.TimeDomainStart.GIVEN`: a given periodic solution (e.g. the
+* :attr:`~seafast.config.modes.TimeDomainStart.GIVEN`: a given periodic solution (e.g. the
   harmonic balance's) at t = 0; the orbit reached is then compared with it
   (:func:`orbit_distance`) and a periodic state farther than ``orbit_tolerance`` is reported as
   :attr:`~seafast.solvers.outcome.SolverOutcome.OTHER_ORBIT`;
-* :attr:`~seafast.solvers.outcome.TimeDomainStart.QUASI_STATIC`: the exact-contact quasi-static
-  state at t = 0 (the full-DOF formulation's former start), kept to reproduce the issue.
+* :attr:`~seafast.config.modes.TimeDomainStart.QUASI_STATIC`: the exact-contact quasi-static
+  state at t = 0 (the full-DOF formulation's former start), kept to reproduce what that start found
+  (a bouncing, non-periodic motion on the bistable case of ``docs/orbits.md``).
 
 The acceleration at t = 0 follows from each formulation's own equation of motion. Units: SI (m,
 rad, N, s).
@@ -28,12 +29,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.modes import TimeDomainStart
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
 from seafast.solvers.exact_contact import BandedActiveSet
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.outcome import OrbitRecord, SolverOutcome, TimeDomainStart
+from seafast.solvers.outcome import OrbitRecord, SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
@@ -62,7 +64,7 @@ class StartState:
     Attributes
     ----------
     kind, method
-        The :class:`~seafast.solvers.outcome.TimeDomainStart` and what it came from (``"linear"``,
+        The :class:`~seafast.config.modes.TimeDomainStart` and what it came from (``"linear"``,
         ``"quasi_static"``, or the given solution's ``method``).
     displacement, velocity
         Cargo DOFs and their rates at t = 0 (n_c,) [m, rad], [m/s, rad/s].
@@ -144,7 +146,7 @@ def start_state(
             q0 = _series_at(X, omega, 0.0)
         v0 = _series_at(X, omega, 0.0, derivative=True)
         delta = _resample(r.saddle_compression_time_m, time_samples)
-        return StartState(TimeDomainStart.GIVEN, r.method, q0, v0, delta, int(X.shape[0] - 1))
+        return StartState(TimeDomainStart.GIVEN, str(r.method), q0, v0, delta, int(X.shape[0] - 1))
     if start is TimeDomainStart.LINEAR:
         X = solve_linear(model, excitation).cargo_displacement
         return StartState(start, "linear", _series_at(X, omega, 0.0), _series_at(X, omega, 0.0, derivative=True), None)
