@@ -87,7 +87,7 @@ def profile_shares(fn, repeats: int = 5) -> list[tuple[str, float]]:
         ("hbm/harmonics.py", "select_harmonics"): "choice of H: the march of the correction system and its spectrum",
         ("solvers/transient.py", "march_periodic"): "  of which the march (transient.march_periodic)",
         ("hbm/condensed.py", "condensed_operators"): "receptances and linear solution per harmonic (banded LU per harmonic)",
-        ("hbm/solve.py", "solve_condensed"): "Newton solves on the saddle compressions",
+        ("hbm/fixed.py", "solve_condensed"): "Newton solves on the saddle compressions",
         ("hbm/condensed.py", "factorise"): "  of which the detached-sample Jacobian (kernel gather)",
         ("hbm/condensed.py", "solve"): "  of which the Woodbury solves",
         ("seafast/fourier.py", "harmonics_to_time"): "samples of the solutions (cargo displacements, compressions)",

@@ -78,10 +78,10 @@ def test_jacobian_equals_finite_differences():
     cap = r.capacity_N(np.column_stack([np.full(256, 1e6), 1e6 * (1 + 0.5 * np.sin(2 * np.pi * np.arange(256) / 256))]))
     p = AxialProblem(r, load, cap, 7, 256)
     X = np.random.default_rng(3).normal(size=15) * 0.3
-    R, jen, u = p.evaluate(X, cap)
-    J = p.jacobian(jen, u)
+    R, state = p.residual(X)
+    J = p.jacobian(state)
     h = 1e-8
-    fd = np.column_stack([(p.evaluate(X + h * e, cap)[0] - R) / h for e in np.eye(15)])
+    fd = np.column_stack([(p.residual(X + h * e)[0] - R) / h for e in np.eye(15)])
     assert np.max(np.abs(fd - J)) < 1e-5 * np.max(np.abs(J))
 
 
@@ -336,13 +336,14 @@ def test_jacobian_of_a_cargo_locked_off_its_set_down_position():
     cap = r.capacity_N(np.repeat(normal, 2, axis=0))
     p = AxialProblem(r, load, cap, 5, 256)
     X = p.locked_guess()
-    R, jen, u = p.evaluate(X, cap)
+    R, state = p.residual(X)
+    jen = state.jenkins
     assert jen.slip_path_m == 0.0 and np.all(jen.last_slip == 128)  # clamped at t = T/2, no sample slips
-    J = p.jacobian(jen, u)
+    J = p.jacobian(state)
     # the mean moves the residual by k_a h only: a larger step there, above the residual's round-off (k_t 1e-16 m);
     # the harmonics below the 2e-10 m by which the neighbouring samples' band edges clear the bounding one
     steps = np.r_[1e-7, np.full(10, 1e-11)]
-    fd = np.column_stack([(p.evaluate(X + h * e, cap)[0] - R) / h for h, e in zip(steps, np.eye(11), strict=True)])
+    fd = np.column_stack([(p.residual(X + h * e)[0] - R) / h for h, e in zip(steps, np.eye(11), strict=True)])
     assert J[0, 0] == pytest.approx(2e5, rel=1e-9) and fd[0, 0] == pytest.approx(2e5, rel=1e-2)
     assert np.max(np.abs(fd - J)) < 1e-4 * np.max(np.abs(J))
 

@@ -10,11 +10,12 @@ The values (``"converged"``, ...) are what ``results.nc`` stores.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum
+from enum import Enum, StrEnum
 
 from seafast.config.modes import TimeDomainStart
+from seafast.solvers.newton import NewtonStop
 
-__all__ = ["SolverOutcome", "SolverWarning", "OrbitRecord"]
+__all__ = ["SolverOutcome", "SolverWarning", "OrbitRecord", "HBMStart", "HBMRoute", "HBMPath"]
 
 
 class SolverOutcome(Enum):
@@ -127,3 +128,66 @@ class OrbitRecord:
     distance_from_start: float | None
     same_as_start: bool | None
     orbit_tolerance: float
+
+
+class HBMStart(StrEnum):
+    """Where a harmonic balance's direct solve started.
+
+    ``LINEAR``
+        The linear (bilateral-saddle) solution.
+    ``PREDICTOR``
+        The quasi-static exact-contact predictor (the better of the two is taken when no start is given).
+    ``GIVEN``
+        A start the caller gave (``initial_compression_m``: e.g. a neighbouring solution).
+    ``MARCH``
+        The periodic march of the adaptive choice of H (:mod:`seafast.solvers.hbm.harmonics`), projected on
+        the harmonics solved for.
+    ``PREVIOUS_HARMONICS``
+        The solution at the previous, smaller H of the adaptive refinement.
+    """
+
+    LINEAR = "linear"
+    PREDICTOR = "quasi_static_predictor"
+    GIVEN = "given"
+    MARCH = "periodic_march"
+    PREVIOUS_HARMONICS = "previous_harmonics"
+
+
+class HBMRoute(StrEnum):
+    """Which solve of the harmonic balance's fallback chain reached the answer.
+
+    ``DIRECT``: the direct solve; ``DIRECT_FROM_LINEAR``: the second direct solve, from the linear solution;
+    ``KAPPA_CONTINUATION``: the continuation in the contact law's sharpness; ``AMPLITUDE_CONTINUATION``: the
+    continuation in the dynamic excitation amplitude; ``NONE``: none converged.
+    """
+
+    DIRECT = "direct"
+    DIRECT_FROM_LINEAR = "direct_from_linear"
+    KAPPA_CONTINUATION = "kappa_continuation"
+    AMPLITUDE_CONTINUATION = "amplitude_continuation"
+    NONE = "none"
+
+    @property
+    def by_continuation(self) -> bool:
+        """Whether the route is a continuation (the outcome ``CONVERGED_BY_CONTINUATION``)."""
+        return self in (HBMRoute.KAPPA_CONTINUATION, HBMRoute.AMPLITUDE_CONTINUATION)
+
+
+@dataclass(frozen=True)
+class HBMPath:
+    """How a harmonic balance solve went, as typed values (the ``message`` says it in words).
+
+    Attributes
+    ----------
+    start
+        Where the direct solve started (:class:`HBMStart`).
+    route
+        Which solve reached the answer (:class:`HBMRoute`; ``NONE`` when none converged).
+    stop
+        How the Newton solve that ended the route stopped (:class:`~seafast.solvers.newton.NewtonStop`; for
+        a failed chain, that of its best iterate); None for Powell's method (``hybr``).
+    """
+
+    start: HBMStart
+    route: HBMRoute
+    stop: NewtonStop | None

@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 
 from seafast.config.modes import SolverMethod
 from seafast.fourier import period_fraction
-from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
+from seafast.solvers.outcome import HBMPath, OrbitRecord, SolverOutcome, SolverWarning
 
 __all__ = ["PeriodicResponse"]
 
@@ -78,6 +78,9 @@ class PeriodicResponse:
     orbit
         Time-domain reference only (else None): where it started and what it reached
         (:class:`~seafast.solvers.outcome.OrbitRecord`).
+    path
+        Harmonic balance only (else None): where its direct solve started and which solve of the fallback
+        chain reached the answer (:class:`~seafast.solvers.outcome.HBMPath`).
     """
 
     method: SolverMethod
@@ -96,6 +99,7 @@ class PeriodicResponse:
     truncation_error: NDArray[np.float64] | None = None
     warnings: tuple[SolverWarning, ...] = ()
     orbit: OrbitRecord | None = None
+    path: HBMPath | None = None
 
     @property
     def converged(self) -> bool:

@@ -67,8 +67,9 @@ Modules: :mod:`~seafast.solvers.hbm.options` (:class:`HBMOptions`),
 
 from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
+from seafast.solvers.hbm.fixed import CondensedSolution, solve_condensed
 from seafast.solvers.hbm.options import SAFE_HARMONICS, SOURCE_OPTIONS, HBMOptions
-from seafast.solvers.hbm.solve import CondensedSolution, solve_condensed, solve_hbm
+from seafast.solvers.hbm.solve import solve_hbm
 
 __all__ = [
     "HBMOptions",

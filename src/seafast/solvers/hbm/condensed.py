@@ -41,7 +41,7 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.dynamic_stiffness import quadratic_matrices, saddle_selection, solve_dynamic_stack
 from seafast.solvers.exact_contact import solve_exact_contact
-from seafast.solvers.hbm.nonlinear import DenseJacobian
+from seafast.solvers.newton import DenseJacobian
 
 __all__ = ["CondensedOperators", "condensed_operators", "CondensedProblem", "DetachedSampleJacobian"]
 
