@@ -49,7 +49,7 @@ from seafast.results.dataset import (
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.results.validity import ValidityIssue, validity_issues, with_validity, within_validity
 from seafast.solvers.dispatch import PeriodicOptions, solve_periodic
-from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.hbm.options import SAFE_HARMONICS, HBMOptions
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.outcome import SolverWarning
 from seafast.solvers.periodic import PeriodicResponse
@@ -362,9 +362,9 @@ def couple_hull_and_cargo(
         compliance = _compliance(case, model, vessel)
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
-    # the deck forces exchanged with the hull: harmonics 0 .. H of a fixed H, else 0 .. COUPLING_HARMONICS (the
+    # the deck forces exchanged with the hull: harmonics 0 .. H of a fixed H, else 0 .. SAFE_HARMONICS (the
     # adaptive H of each cargo solve can be hundreds; the quasi-static hull girder is no model for loads that fast)
-    k_nonlinear = max((case.solver.harmonics if case.solver.harmonics is not None else COUPLING_HARMONICS) + 1, k_linear)
+    k_nonlinear = max((case.solver.harmonics if case.solver.harmonics is not None else SAFE_HARMONICS) + 1, k_linear)
     omega = excitation.omega_rad_s
     jac = linear_coupling_jacobians(model, omega, compliance, (1, k_linear, k_nonlinear))
 
@@ -375,12 +375,12 @@ def couple_hull_and_cargo(
     dynamic_case = case
     adaptive = case.solver.method == SolverMethod.HBM and case.solver.harmonics is None
     if adaptive:
-        # the deck is iterated at a fixed H = COUPLING_HARMONICS, then the cargo solved on the coupled deck with the
+        # the deck is iterated at a fixed H = SAFE_HARMONICS, then the cargo solved on the coupled deck with the
         # adaptive H (below): an H chosen afresh at each iterate makes the coupling map jump (Broyden stalls), and
         # the hundreds of harmonics of a heavy lift-off are both slow to iterate and beyond what the quasi-static
         # hull girder models (docs/coupling.md)
         # (the iterates' truncation is not the reported answer's: their estimate is not warned about)
-        held = {"harmonics": COUPLING_HARMONICS, "time_samples": None, "truncation_tolerance": 0.5}
+        held = {"harmonics": SAFE_HARMONICS, "time_samples": None, "truncation_tolerance": 0.5}
         dynamic_case = case.model_copy(update={"solver": case.solver.model_copy(update=held)})
 
     def warm_dynamic(exc: HarmonicExcitation) -> Any:
@@ -524,10 +524,3 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 def cargo_diameter_m(model: StructuralModel) -> float:
     """The cargo's largest outer diameter [m] (the scale of the validity check's displacement line)."""
     return float(np.max(model.cargo.element_outer_diameter_m))
-
-
-#: The fixed H at which the two-way coupling iterates the deck when the case leaves H adaptive (the deck forces
-#: exchanged with the hull are harmonics 0 .. COUPLING_HARMONICS; the cargo is then solved on the coupled deck
-#: with the adaptive H): the safe H of the harmonic balance (solvers/hbm/solve.py), 0.4 % on the base case.
-COUPLING_HARMONICS = 16
-"""Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""

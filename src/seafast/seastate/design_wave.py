@@ -47,7 +47,7 @@ from seafast.seastate.wave_response import (
     solve_wave_adaptive,
     wave_operators,
 )
-from seafast.solvers.hbm import HBMOptions
+from seafast.solvers.hbm import SAFE_HARMONICS, HBMOptions
 
 __all__ = [
     "DesignWaveSettings",
@@ -59,11 +59,7 @@ __all__ = [
     "static_totals",
     "still_water_excitation",
     "sea_state_design_waves",
-    "DEFAULT_HARMONICS",
 ]
-
-DEFAULT_HARMONICS = 16
-"""H of the design-wave harmonic balance: within 0.3 % of the adaptive H on the measured sea states (docs/operability.md)."""
 
 
 @dataclass(frozen=True)
@@ -93,7 +89,7 @@ class DesignWaveSettings:
 
     band_fraction: float = 0.5
     band_points: int = 3
-    harmonics: int | None = DEFAULT_HARMONICS
+    harmonics: int | None = SAFE_HARMONICS  # within 0.3 % of the adaptive H on the measured sea states (docs/operability.md)
     fallback_harmonics: tuple[int, ...] = (12, 8)
     time_samples: int | None = None
     tolerance: float = 1e-10

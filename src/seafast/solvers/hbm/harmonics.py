@@ -45,7 +45,7 @@ from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.condensed import condensed_operators
 from seafast.solvers.hbm.options import MINIMUM_TIME_SAMPLES, samples_for
 from seafast.solvers.modal_correction import modal_basis, modal_correction_system
-from seafast.solvers.transient import march_periodic, modal_correction
+from seafast.solvers.transient import march_periodic, newmark_step
 
 __all__ = [
     "HarmonicSelection",
@@ -151,7 +151,7 @@ def select_harmonics(
         march, periods, change = d_lin, 0, 0.0
     else:
         # every mode below the march's Nyquist frequency, the rest static
-        system = modal_correction(model, period / N0, math.pi * N0 / period, minimum_modes=0)
+        system = newmark_step(model, period / N0, math.pi * N0 / period, minimum_modes=0)
         periodic = march_periodic(system, d_lin, max_periods=_MARCH_MAX_PERIODS, tolerance=1e-6)
         march, periods, change = periodic.compression_m, periodic.periods, periodic.change
     scale = force_scale_N(np.max(k_u * np.maximum(march, 0.0), axis=0))
