@@ -178,7 +178,7 @@ def test_failure_is_reported_not_raised():
         np.full((64, 1), 1e6),
         AxialHBMOptions(harmonics=25, time_samples=512, max_iterations=1),
     )
-    assert not res.converged and "did not converge" in res.message and res.residual_norm > 1e-9
+    assert not res.converged and res.residual_norm > 1e-9 and res.lock_check is LockCheck.NOT_LOCKED
 
 
 def test_walking_cargo():
@@ -200,9 +200,8 @@ def test_walking_cargo():
     assert abs(np.mean(td.friction_force_N + td.lashing_force_N)) < 0.01 * np.mean(td.lashing_force_N)
     free = AxialRestraint(M, np.array([0.3]), np.array([KT]))
     walk = solve_axial_time_domain(free, load, normal, time_samples=512, max_periods=30)
-    assert not walk.converged and "walks" in walk.message
-    drift = float(walk.message.split("moves ")[1].split(" m per period")[0])
-    assert drift < -0.01
+    assert not walk.converged and walk.walk_m_per_period is not None and walk.walk_m_per_period < -0.01
+    assert td.walk_m_per_period is None  # held by its lashings it settles: no walk
 
 
 # ------------------------------------------------------------------------------ near the critical coefficient
@@ -245,7 +244,7 @@ def test_a_converged_locked_answer_obeys_the_friction_law():
         if hbm.converged and locked:
             assert np.max(demand - hbm.capacity_N) <= 1e-6 * np.max(hbm.capacity_N)
         if not hbm.converged:
-            assert hbm.lock_check in (LockCheck.VIOLATED, LockCheck.NOT_LOCKED) and "did not converge" in hbm.message
+            assert hbm.lock_check in (LockCheck.VIOLATED, LockCheck.NOT_LOCKED) and hbm.residual_norm > 0.0
 
 
 def test_lock_check_against_the_friction_law():
@@ -326,7 +325,7 @@ def test_a_walk_stopped_early_reports_its_residual_drift():
     off = abs(np.mean(early.displacement_m) - np.mean(full.displacement_m))
     assert early.residual_drift_m > 1e-7 * 0.4e6 / (M * 0.6**2)
     assert off <= 3 * early.residual_drift_m  # the estimate has the size of the distance left
-    assert "from the periodic state" in early.message
+    assert early.walk_m_per_period is None and full.residual_drift_m < early.residual_drift_m
 
 
 def test_jacobian_of_a_cargo_locked_off_its_set_down_position():

@@ -113,8 +113,7 @@ def test_started_on_the_hbm_orbit_both_formulations_stay_on_it(case):
     for r in runs.values():
         assert r.outcome is SolverOutcome.CONVERGED, r.message
         assert r.orbit.start is TimeDomainStart.GIVEN and r.orbit.start_method == "hbm"
-        assert r.orbit.same_as_start and r.orbit.distance_from_start < 1e-3 < ORBIT_TOLERANCE
-        assert "the same orbit" in r.message
+        assert r.orbit.same_as_start is True and r.orbit.distance_from_start < 1e-3 < ORBIT_TOLERANCE
     assert np.max(np.abs(runs["full"].saddle_force_time_N - runs["condensed"].saddle_force_time_N)) < 1e-6 * hbm.max_saddle_force_N
 
 
@@ -143,7 +142,6 @@ def test_a_start_on_another_orbit_is_reported_as_another_orbit(case, from_linear
         r = solve_time_domain(model, ex, TimeDomainOptions(time_samples=N), start=other)
     assert r.outcome is SolverOutcome.OTHER_ORBIT and r.converged, r.message
     assert r.orbit.periodic and r.orbit.same_as_start is False and r.orbit.distance_from_start > 0.1
-    assert "ANOTHER orbit" in r.message
     # what it reached is orbit A, the linear start's
     assert orbit_distance(r.saddle_compression_time_m, from_linear["full"].saddle_compression_time_m, k_u) < 1e-4
 

@@ -147,6 +147,9 @@ class AxialResponse:
         Time domain: the estimated distance [m] of the state it stopped at from the periodic
         state (the remaining walk, extrapolated from the last periods' changes; 0 when a period
         repeats exactly); 0 for the HBM and the statics.
+    walk_m_per_period
+        Time domain, not converged: the displacement per period [m] of a cargo that walks (its
+        velocity repeats from period to period, its position does not; forward +); None otherwise.
     warnings
         Typed warnings (:class:`AxialWarning`), set by the case analysis.
     """
@@ -170,6 +173,7 @@ class AxialResponse:
     options: dict[str, Any] = field(default_factory=dict)
     lock_check: LockCheck = LockCheck.NOT_LOCKED
     residual_drift_m: float = 0.0
+    walk_m_per_period: float | None = None
     warnings: tuple[AxialWarning, ...] = ()
 
     @property
