@@ -38,7 +38,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -90,7 +89,7 @@ class _Branch:
     def problem(self, omega: float) -> CondensedProblem:
         return CondensedProblem(self.ops(omega), self.time_samples)
 
-    def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, CondensedProblem]:
+    def residual(self, u: NDArray, omega: float) -> tuple[NDArray, NDArray, CondensedProblem]:
         p = self.problem(omega)
         R, state = p.evaluate(u, self.law, 1.0)
         return R, state, p
@@ -161,7 +160,7 @@ class _Tracer:
             t = np.linalg.solve(A, b)
         return t / np.linalg.norm(t)
 
-    def _augmented(self, yk: NDArray, y_pred: NDArray, t: NDArray) -> tuple[NDArray, Any]:
+    def _augmented(self, yk: NDArray, y_pred: NDArray, t: NDArray) -> tuple[NDArray, tuple[NDArray, CondensedProblem, NDArray, float]]:
         uk, wk = self.unscale(yk)
         R, state, p = self.branch.residual(uk, wk)
         return np.append(R / self.r_scale, t @ (yk - y_pred)), (state, p, uk, wk)

@@ -18,7 +18,6 @@ Sign conventions (docs/conventions.md#3-signs)
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -27,7 +26,13 @@ from seafast.config.modes import SolverMethod
 from seafast.fourier import period_fraction
 from seafast.solvers.outcome import HBMPath, OrbitRecord, SolverOutcome, SolverWarning
 
-__all__ = ["PeriodicResponse"]
+__all__ = ["PeriodicResponse", "SettingValue", "Settings"]
+
+SettingValue = int | float | str | bool | list[int] | None
+"""One value of a solver's record of its settings (plain, JSON-serialisable; the modes by their values)."""
+
+Settings = dict[str, SettingValue]
+"""A solver's record of the settings it used (``options`` of its result)."""
 
 
 @dataclass(frozen=True)
@@ -95,7 +100,7 @@ class PeriodicResponse:
     message: str
     harmonic_truncation_indicator: NDArray[np.float64]
     function_evaluations: int
-    options: dict[str, Any] = field(default_factory=dict)
+    options: Settings = field(default_factory=dict)
     truncation_error: NDArray[np.float64] | None = None
     warnings: tuple[SolverWarning, ...] = ()
     orbit: OrbitRecord | None = None

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,7 +34,7 @@ from seafast.solvers.axial.jenkins import JenkinsPeriod, march_jenkins
 from seafast.solvers.axial.response import LockCheck, lock_range_m
 from seafast.solvers.newton import DenseJacobian, Globalisation, Merit
 
-__all__ = ["AxialProblem", "AxialIterate", "AXIAL_GLOBALISATION", "lock_check"]
+__all__ = ["AxialProblem", "AxialIterate", "AXIAL_GLOBALISATION", "IterateArrays", "lock_check", "evaluation_arrays"]
 
 AXIAL_GLOBALISATION = Globalisation(merit=Merit.MAX_ABS, memory=1, min_step=2.0**-29, accept_converged_trial=True)
 """The axial harmonic balance's Newton: monotone backtracking on ``max |R| / scale`` (Armijo c = 1e-4) over up to
@@ -226,7 +226,19 @@ def lock_check(p: AxialProblem, jen: JenkinsPeriod, u: NDArray, tol: float) -> t
     return (LockCheck.HOLDS if excess[worst] <= margin else LockCheck.VIOLATED), float(excess[worst]), worst
 
 
-def evaluation_arrays(p: AxialProblem, X: NDArray, state: AxialIterate) -> dict[str, Any]:
+class IterateArrays(TypedDict):
+    """An iterate's displacement [m], velocity [m/s], forces on the cargo [N] (forward +), sliding samples and slip [m]."""
+
+    displacement_m: NDArray[np.float64]
+    velocity_m_per_s: NDArray[np.float64]
+    friction_force_N: NDArray[np.float64]
+    lashing_force_N: NDArray[np.float64]
+    stopper_force_N: NDArray[np.float64]
+    sliding: NDArray[np.bool_]
+    slip_m: float
+
+
+def evaluation_arrays(p: AxialProblem, X: NDArray, state: AxialIterate) -> IterateArrays:
     """Displacement, velocity and forces of an iterate, as the fields of an AxialResponse."""
     jen, u = state.jenkins, state.displacement_m
     lashing, stop = p.r.restoring_force_N(u)

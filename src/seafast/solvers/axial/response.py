@@ -10,12 +10,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from enum import Enum
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.model.axial import AxialRestraint
+from seafast.solvers.periodic import Settings
 
 __all__ = ["AxialResponse", "AxialWarning", "LockCheck", "critical_friction_coefficient", "lock_range_m", "periodic_interpolation"]
 
@@ -170,7 +170,7 @@ class AxialResponse:
     iterations: int
     message: str
     harmonics: NDArray[np.complex128] | None = None
-    options: dict[str, Any] = field(default_factory=dict)
+    options: Settings = field(default_factory=dict)
     lock_check: LockCheck = LockCheck.NOT_LOCKED
     residual_drift_m: float = 0.0
     walk_m_per_period: float | None = None

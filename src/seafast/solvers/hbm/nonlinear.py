@@ -16,7 +16,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -200,7 +200,7 @@ def _newton(problem: NonlinearProblem, law: ContactLaw, amplitude: float, u0: ND
 
 def _hybr(problem: NonlinearProblem, law: ContactLaw, amplitude: float, u0: NDArray, tol: float, max_iter: int) -> _Solve:
     """MINPACK hybrj (Powell hybrid) with the analytic Jacobian."""
-    cache: dict[str, Any] = {}
+    cache: dict[str, NDArray] = {}
     counter = {"fev": 0, "jev": 0}
 
     def fun(u: NDArray) -> NDArray:

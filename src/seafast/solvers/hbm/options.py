@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, replace
 from enum import StrEnum
-from typing import Any
 
 import numpy as np
 
 from seafast.config.modes import ContactLawKind, Formulation, NonlinearSolver
 from seafast.solvers.contact import ContactLaw
+from seafast.solvers.periodic import Settings
 
 __all__ = ["HBMOptions", "SAFE_HARMONICS", "SOURCE_OPTIONS", "MINIMUM_TIME_SAMPLES", "samples_for"]
 
@@ -88,7 +88,7 @@ class HBMOptions:
         def bad(name: str, allowed: str) -> ValueError:
             return ValueError(f"HBMOptions.{name} = {getattr(self, name)!r}; allowed: {allowed}")
 
-        def is_int(v: Any) -> bool:
+        def is_int(v: object) -> bool:
             return isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
 
         if self.harmonics is not None and (not is_int(self.harmonics) or self.harmonics < 0):
@@ -167,7 +167,7 @@ class HBMOptions:
         """The contact law object."""
         return ContactLaw(self.contact_law, float(self.regularisation_per_m))
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> Settings:
         """Plain dict of the settings (the modes by their values)."""
         return {k: str(v) if isinstance(v, StrEnum) else v for k, v in asdict(self).items()}
 

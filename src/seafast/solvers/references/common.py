@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import NDArray
 
@@ -12,7 +10,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import PeriodicResponse, Settings
 
 __all__ = ["exact_law_response"]
 
@@ -29,7 +27,7 @@ def exact_law_response(
     evaluations: int,
     message: str,
     harmonics_for_indicator: int,
-    options: dict[str, Any],
+    options: Settings,
     warnings: tuple[SolverWarning, ...] = (),
     orbit: OrbitRecord | None = None,
 ) -> PeriodicResponse:

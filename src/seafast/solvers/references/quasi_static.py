@@ -24,7 +24,7 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
 from seafast.solvers.exact_contact import solve_exact_contact
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import PeriodicResponse, Settings
 from seafast.solvers.references.common import exact_law_response
 from seafast.solvers.references.options import QuasiStaticOptions
 
@@ -103,7 +103,7 @@ def solve_quasi_static(
         else f"quasi-statics questionable: {criterion} > {QUASI_STATIC_RATIO_LIMIT} "
         "(cargo dynamics matter; use HBM or the time-domain reference)"
     )
-    record = {
+    record: Settings = {
         "time_samples": N,
         "harmonics_for_indicator": int(options.harmonics_for_indicator),
         "effective_harmonic": int(h_eff),

@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -47,7 +46,7 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection
 from seafast.solvers.exact_contact import BandedActiveSet, ExactContact
 from seafast.solvers.outcome import OrbitRecord, SolverOutcome
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import PeriodicResponse, Settings
 from seafast.solvers.references.common import exact_law_response
 from seafast.solvers.references.options import TimeDomainOptions
 from seafast.solvers.references.orbit import StartState, orbit_outcome, settling_periods, start_state
@@ -67,7 +66,7 @@ class _Run:
     periods: int
     steps: int
     description: str
-    extra_options: dict[str, Any]
+    extra_options: Settings
 
 
 def solve_time_domain(
@@ -151,7 +150,7 @@ def solve_time_domain(
     return response
 
 
-def _record(options: TimeDomainOptions, S: int, periods_allowed: int, initial: StartState, run: _Run) -> dict[str, Any]:
+def _record(options: TimeDomainOptions, S: int, periods_allowed: int, initial: StartState, run: _Run) -> Settings:
     """The settings used, as the response's plain ``options`` dict."""
     return {
         "time_samples": int(options.time_samples),
@@ -309,7 +308,7 @@ def _time_domain_full(
         + (f", {step.enumerations} enumerations" if step.enumerations else "")
         + f"), {S} steps/period"
     )
-    extra = {"contact_states_factorised": len(step.factors), "solves_per_step": per_step}
+    extra: Settings = {"contact_states_factorised": len(step.factors), "solves_per_step": per_step}
     return _Run(cargo_out.copy(), delta_out.copy(), check, periods, steps, description, extra)
 
 
