@@ -465,8 +465,9 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     """
     if not _summary_by_condensation(case):
         return run_case(case).summary
+    from seafast.fourier import real_to_complex_harmonics
     from seafast.results.summary import RowSolution, summary_rows
-    from seafast.solvers.hbm import CondensedOperators, condensed_operators, real_to_complex_harmonics, solve_condensed, solve_hbm
+    from seafast.solvers.hbm import CondensedOperators, condensed_operators, solve_condensed, solve_hbm
 
     model = build_model(case)
     excitation, _ = _excitation(case, model)

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from seafast.config.modes import ContactLawKind, Formulation, NonlinearSolver
+from seafast.fourier import real_dft_matrices
 from seafast.solvers.contact import ContactLaw, contact_law
-from seafast.solvers.hbm import HBMOptions, real_dft_matrices
+from seafast.solvers.hbm import HBMOptions
 
 K = 1.1e9
 

@@ -23,12 +23,10 @@ from scipy.linalg import solve_banded
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 from seafast.solvers.banded import solve_dynamic_band_stack
-from seafast.solvers.banded import to_band as to_banded
 
 __all__ = [
     "QuadraticMatrices",
     "quadratic_matrices",
-    "to_banded",
     "from_band",
     "solve_dynamic",
     "solve_dynamic_stack",
