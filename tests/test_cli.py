@@ -206,8 +206,8 @@ def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(
     """The warning is built from the typed outcome and residual, not from the solver's message."""
     import seafast.pipeline as pipeline
 
-    original = pipeline._hbm_options
-    monkeypatch.setattr(pipeline, "_hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
+    original = pipeline.hbm_options
+    monkeypatch.setattr(pipeline, "hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
     assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 3
     err = capsys.readouterr().err
     assert "dynamic nonlinear solution did NOT converge (not converged, residual" in err

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-import seafast.solvers.hbm as hbm_package
+import seafast.solvers.dispatch as dispatch
 from seafast.cli import main
 from seafast.output.report.findings import run_findings
 from seafast.solvers.hbm import HBMOptions
@@ -63,11 +63,11 @@ def test_time_domain_run_reaches_the_hbm_orbit_from_either_start(tmp_path, start
 def test_a_reference_that_leaves_the_hbm_orbit_is_reported(tmp_path, monkeypatch, capsys):
     """The HBM is made to return orbit C (its solution from a start shifted by half a period): the reference
     started there settles on orbit A, and the run says so as a typed outcome, on stderr and in the report."""
-    solve = hbm_package.solve_hbm
+    solve = dispatch.solve_hbm
 
     def other_orbit(model, excitation, options=None, **kwargs):
+        from seafast.fourier import harmonics_to_time
         from seafast.solvers.linear import solve_linear
-        from seafast.solvers.periodic import harmonics_to_time
 
         lin = harmonics_to_time(solve_linear(model, excitation).saddle_compression_m, 256)
         # H = 10: orbit C is unstable and a march from it reaches orbit A only from this H's truncation
@@ -75,7 +75,7 @@ def test_a_reference_that_leaves_the_hbm_orbit_is_reported(tmp_path, monkeypatch
         options = HBMOptions(continuation=False, harmonics=10)
         return solve(model, excitation, options, initial_compression_m=np.roll(lin, 128, axis=0))
 
-    monkeypatch.setattr(hbm_package, "solve_hbm", other_orbit)
+    monkeypatch.setattr(dispatch, "solve_hbm", other_orbit)  # the HBM start solve_periodic solves first
     out = tmp_path / "other"
     assert main(["run", "-o", str(out), *CASE, "--set", "solver.time_domain_start=hbm"]) == 0  # a periodic state: numbers usable
     err = capsys.readouterr().err

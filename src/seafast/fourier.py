@@ -30,6 +30,10 @@ __all__ = [
     "complex_to_real_harmonics",
     "real_to_complex_harmonics",
     "high_harmonic_energy_share",
+    "harmonics_up_to",
+    "harmonics_above",
+    "periodic_impulse_response",
+    "resample_periodic",
 ]
 
 
@@ -169,3 +173,59 @@ def high_harmonic_energy_share(signal: NDArray, harmonics: int) -> NDArray[np.fl
     with np.errstate(invalid="ignore", divide="ignore"):
         share = np.where(total > 1e-24 * np.maximum(scale, 1e-300), above / total, 0.0)
     return share
+
+
+def harmonics_up_to(samples: NDArray, harmonics: int) -> NDArray[np.float64]:
+    """Periodic samples (N, ...) keeping only their harmonics 0 .. H (a low-pass on the grid ``t_n = n T / N``).
+
+    Any unit (the result carries it). H >= N / 2 keeps every harmonic the samples hold.
+    """
+    x = np.asarray(samples, dtype=float)
+    X = np.fft.rfft(x, axis=0)
+    X[int(harmonics) + 1 :] = 0.0
+    return np.fft.irfft(X, n=x.shape[0], axis=0)
+
+
+def harmonics_above(samples: NDArray, harmonics: int) -> NDArray[np.float64]:
+    """What periodic samples (N, ...) hold above harmonic H: the samples less :func:`harmonics_up_to` (a high-pass).
+
+    Any unit (the result carries it).
+    """
+    x = np.asarray(samples, dtype=float)
+    X = np.fft.rfft(x, axis=0)
+    X[: int(harmonics) + 1] = 0.0
+    return np.fft.irfft(X, n=x.shape[0], axis=0)
+
+
+def periodic_impulse_response(transfer: NDArray, time_samples: int) -> NDArray[np.float64]:
+    """Response over one period to a unit sample at ``t_0`` of an operator that multiplies harmonic k by ``transfer[k]``.
+
+    ``kappa[tau] = (IDFT diag(transfer) DFT e_0)[tau]``, tau = 0 .. N-1: the kernel of the circulant operator
+    (a unit sample at ``t_m`` responds with ``kappa[tau - m]``, indices modulo N), through harmonics
+    k = 0 .. H of ``transfer`` (shape (H+1, ...), H < N / 2; complex, k = 0 real). Units: the transfer's per
+    unit of the sample.
+    """
+    T = np.asarray(transfer)
+    N = int(time_samples)
+    if 2 * (T.shape[0] - 1) >= N:
+        raise ValueError(f"periodic_impulse_response: {T.shape[0] - 1} harmonics need more than {2 * (T.shape[0] - 1)} samples; got {N}")
+    A = np.zeros((N // 2 + 1,) + T.shape[1:], dtype=complex)
+    A[: T.shape[0]] = T
+    return np.fft.irfft(A, n=N, axis=0)
+
+
+def resample_periodic(samples: NDArray, time_samples: int) -> NDArray[np.float64]:
+    """Periodic samples (N', ...) on the grid ``t_n = n T / N`` (exact for signals band-limited below N' / 2).
+
+    Through the harmonics the N' samples hold; for an even N' the Nyquist term is kept as the cosine the
+    samples show (its sine part is not seen). Any unit. N = N' returns a copy.
+    """
+    x = np.asarray(samples, dtype=float)
+    n, N = x.shape[0], int(time_samples)
+    if n == N:
+        return np.array(x, dtype=float)
+    X = time_to_harmonics(x, (n - 1) // 2)
+    if n % 2 == 0:  # the Nyquist component, a cosine of amplitude rfft / N' (not doubled)
+        nyquist = np.fft.rfft(x, axis=0)[-1:] / n
+        X = np.concatenate([X, nyquist.real.astype(complex)])
+    return harmonics_to_time(X, N)

@@ -19,6 +19,7 @@ import numpy as np
 import xarray as xr
 
 import seafast
+from seafast.config.modes import Formulation, SolverMethod
 from seafast.config.schema import Case
 from seafast.coupling.deck_iteration import (
     DeckCoupling,
@@ -31,6 +32,7 @@ from seafast.coupling.deck_iteration import (
 from seafast.coupling.hull import CoupledHull, coupled_hull
 from seafast.coupling.status import CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time
 from seafast.model.from_case import cargo_geometry
 from seafast.model.seafastening import SeaFastening
 from seafast.model.structure import StructuralModel, build_structural_model
@@ -46,8 +48,12 @@ from seafast.results.dataset import (
 )
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.results.validity import ValidityIssue, validity_issues, with_validity, within_validity
+from seafast.solvers.dispatch import PeriodicOptions, solve_periodic
+from seafast.solvers.hbm.options import SAFE_HARMONICS, HBMOptions
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.periodic import harmonics_to_time
+from seafast.solvers.outcome import SolverWarning
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references.options import QuasiStaticOptions, TimeDomainOptions
 
 __all__ = [
     "CaseResult",
@@ -56,6 +62,7 @@ __all__ = [
     "run_case",
     "evaluate_summary",
     "solve_nonlinear",
+    "nonlinear_options",
     "couple_hull_and_cargo",
     "hbm_options",
 ]
@@ -88,17 +95,10 @@ def build_model(case: Case) -> StructuralModel:
     )
 
 
-def hbm_options(case: Case, **changes: Any) -> Any:
-    """Harmonic-balance options (:class:`~seafast.solvers.hbm.HBMOptions`) from the case's solver settings, with ``changes`` applied."""
-    return _hbm_options(case, **changes)
-
-
-def _hbm_options(case: Case, **changes: Any) -> Any:
-    """:func:`hbm_options` (the solves here call this name, which tests may patch)."""
-    from seafast.solvers.hbm import HBMOptions
-
+def hbm_options(case: Case, **changes: Any) -> HBMOptions:
+    """Harmonic-balance options from the case's solver settings, with ``changes`` (HBMOptions fields) applied."""
     s = case.solver
-    settings: dict[str, Any] = dict(
+    options = HBMOptions(
         harmonics=s.harmonics,
         time_samples=s.time_samples,
         contact_law=s.contact_law,
@@ -109,44 +109,43 @@ def _hbm_options(case: Case, **changes: Any) -> Any:
         truncation_tolerance=s.truncation_tolerance,
         max_harmonics=s.max_harmonics,
     )
-    settings.update(changes)
-    return HBMOptions(**settings)
+    return replace(options, **changes) if changes else options
 
 
-def solve_nonlinear(model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: Any = None) -> Any:
-    """Nonlinear (unilateral-saddle) response by the case's method; returns a PeriodicResponse.
+def nonlinear_options(case: Case, static: bool) -> tuple[SolverMethod, PeriodicOptions]:
+    """The method and options :func:`solve_nonlinear` solves the case with.
 
-    ``static=True`` solves the still-water state alone (harmonic balance with H = 0).
-    ``warm_start``: a neighbouring PeriodicResponse of the same case to start the condensed HBM
-    from (ignored by the other methods).
+    The still-water state (``static``): the harmonic balance at H = 0, or for the references their
+    exact-law quasi-static state. The time-domain reference integrates all cargo DOFs (its full
+    formulation) from the case's ``time_domain_start``, the HBM start with the case's HBM settings.
     """
-    from seafast.solvers.hbm import solve_hbm
-
     s = case.solver
-    if static and s.method != "hbm":
-        # the references use the exact contact law; so does their still-water state
-        from seafast.solvers.references import solve_quasi_static
-
-        return solve_quasi_static(model, excitation.static_part(), time_samples=2)
     if static:
-        opts = _hbm_options(case, harmonics=0, time_samples=2)
-        return solve_hbm(model, excitation.static_part(), opts)
-    if s.method == "quasi_static":
-        from seafast.solvers.references import solve_quasi_static
-
-        return solve_quasi_static(model, excitation, time_samples=s.reference_time_samples)
-    if s.method == "time_domain":
-        from seafast.solvers.outcome import TimeDomainStart
-        from seafast.solvers.references import solve_time_domain
-
+        if s.method == SolverMethod.HBM:
+            return SolverMethod.HBM, hbm_options(case, harmonics=0, time_samples=2)
+        return SolverMethod.QUASI_STATIC, QuasiStaticOptions(time_samples=2)
+    if s.method == SolverMethod.QUASI_STATIC:
+        return SolverMethod.QUASI_STATIC, QuasiStaticOptions(time_samples=s.reference_time_samples)
+    if s.method == SolverMethod.TIME_DOMAIN:
         # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
-        td_start = solve_hbm(model, excitation, _hbm_options(case)) if s.time_domain_start == "hbm" else TimeDomainStart.LINEAR
-        return solve_time_domain(model, excitation, time_samples=s.reference_time_samples, start=td_start)
-    opts = _hbm_options(case)
+        options = TimeDomainOptions(time_samples=s.reference_time_samples, start=s.time_domain_start, hbm=hbm_options(case))
+        return SolverMethod.TIME_DOMAIN, options
+    return SolverMethod.HBM, hbm_options(case)
+
+
+def solve_nonlinear(
+    model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: PeriodicResponse | None = None
+) -> PeriodicResponse:
+    """Nonlinear (unilateral-saddle) response by the case's method (:func:`~seafast.solvers.solve_periodic`).
+
+    ``static=True`` solves the still-water state alone (:func:`nonlinear_options`). ``warm_start``: a
+    neighbouring response of the same case to start the condensed HBM from (ignored otherwise).
+    """
+    method, options = nonlinear_options(case, static)
     start = None
-    if warm_start is not None and s.formulation == "condensed":
+    if warm_start is not None and not static and isinstance(options, HBMOptions) and options.formulation is Formulation.CONDENSED:
         start = np.asarray(warm_start.saddle_compression_time_m)
-    return solve_hbm(model, excitation, opts, initial_compression_m=start)
+    return solve_periodic(model, excitation.static_part() if static else excitation, method, options=options, initial_compression_m=start)
 
 
 @dataclass(frozen=True)
@@ -301,8 +300,10 @@ def run_case(
         **orbit_attributes(nl_dynamic.orbit),  # the time-domain reference's start and orbit (docs/orbits.md)
         "solver_formulation": case.solver.formulation,
         "contact_law": case.solver.contact_law,
-        "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == "hbm" else -1,
-        "harmonics_selection": str(nl_dynamic.options.get("harmonics_selection", "fixed")) if case.solver.method == "hbm" else "none",
+        "harmonics": int(nl_dynamic.options.get("harmonics", -1)) if case.solver.method == SolverMethod.HBM else -1,
+        "harmonics_selection": str(nl_dynamic.options.get("harmonics_selection", "fixed"))
+        if case.solver.method == SolverMethod.HBM
+        else "none",
         "time_samples": N,
         "case_json": case.model_dump_json(),
         # the damping as built, so that an outside code can rebuild the model: D = alpha M + beta K_<stiffness>
@@ -361,9 +362,9 @@ def couple_hull_and_cargo(
         compliance = _compliance(case, model, vessel)
     static = excitation.static_part()
     k_linear = excitation.harmonic_count
-    # the deck forces exchanged with the hull: harmonics 0 .. H of a fixed H, else 0 .. COUPLING_HARMONICS (the
+    # the deck forces exchanged with the hull: harmonics 0 .. H of a fixed H, else 0 .. SAFE_HARMONICS (the
     # adaptive H of each cargo solve can be hundreds; the quasi-static hull girder is no model for loads that fast)
-    k_nonlinear = max((case.solver.harmonics if case.solver.harmonics is not None else COUPLING_HARMONICS) + 1, k_linear)
+    k_nonlinear = max((case.solver.harmonics if case.solver.harmonics is not None else SAFE_HARMONICS) + 1, k_linear)
     omega = excitation.omega_rad_s
     jac = linear_coupling_jacobians(model, omega, compliance, (1, k_linear, k_nonlinear))
 
@@ -372,14 +373,14 @@ def couple_hull_and_cargo(
 
     last: dict[str, Any] = {}
     dynamic_case = case
-    adaptive = case.solver.method == "hbm" and case.solver.harmonics is None
+    adaptive = case.solver.method == SolverMethod.HBM and case.solver.harmonics is None
     if adaptive:
-        # the deck is iterated at a fixed H = COUPLING_HARMONICS, then the cargo solved on the coupled deck with the
+        # the deck is iterated at a fixed H = SAFE_HARMONICS, then the cargo solved on the coupled deck with the
         # adaptive H (below): an H chosen afresh at each iterate makes the coupling map jump (Broyden stalls), and
         # the hundreds of harmonics of a heavy lift-off are both slow to iterate and beyond what the quasi-static
         # hull girder models (docs/coupling.md)
         # (the iterates' truncation is not the reported answer's: their estimate is not warned about)
-        held = {"harmonics": COUPLING_HARMONICS, "time_samples": None, "truncation_tolerance": 0.5}
+        held = {"harmonics": SAFE_HARMONICS, "time_samples": None, "truncation_tolerance": 0.5}
         dynamic_case = case.model_copy(update={"solver": case.solver.model_copy(update=held)})
 
     def warm_dynamic(exc: HarmonicExcitation) -> Any:
@@ -444,8 +445,8 @@ def _summary_by_condensation(case: Case) -> bool:
     s = case.solver
     return (
         case.vessel.coupling == "one_way"
-        and s.method == "hbm"
-        and s.formulation == "condensed"
+        and s.method == SolverMethod.HBM
+        and s.formulation == Formulation.CONDENSED
         and case.seafastening.friction_coefficient is None  # the axial analysis needs the time series of run_case
     )
 
@@ -464,16 +465,17 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
     """
     if not _summary_by_condensation(case):
         return run_case(case).summary
+    from seafast.fourier import real_to_complex_harmonics
     from seafast.results.summary import RowSolution, summary_rows
-    from seafast.solvers.hbm import CondensedOperators, condensed_operators, real_to_complex_harmonics, solve_condensed, solve_hbm
+    from seafast.solvers.hbm import CondensedOperators, condensed_operators, solve_condensed, solve_hbm
 
     model = build_model(case)
     excitation, _ = _excitation(case, model)
     n_k = excitation.harmonic_count
     # the dynamic nonlinear state first: its (possibly adaptive) H sets the time grid N of every row
-    dynamic = solve_hbm(model, excitation, _hbm_options(case))
+    dynamic = solve_hbm(model, excitation, hbm_options(case))
     N = dynamic.time_samples
-    if dynamic.warnings and any(w.value == "harmonics_above_h_ignored" for w in dynamic.warnings):
+    if SolverWarning.HARMONICS_ABOVE_H_IGNORED in dynamic.warnings:
         return run_case(case).summary  # the linear model would see harmonics the condensation drops
     ops = condensed_operators(model, excitation, max(n_k - 1, 0))  # the linear model lives on the excitation's harmonics
     static_ops = CondensedOperators(
@@ -495,7 +497,7 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
         delta = harmonics_to_time(linear_delta[:harmonics], 1 if harmonics == 1 else N)
         rows[(load_case, "linear")] = RowSolution(ops.linear_cargo_displacement[:harmonics], delta, delta * k_u, exc, nonlinear=False)
     # nonlinear (unilateral) model: still water (H = 0) and the dynamic state above
-    static_options = _hbm_options(case, harmonics=0, time_samples=2)
+    static_options = hbm_options(case, harmonics=0, time_samples=2)
     sol = solve_condensed(static_ops, static_options)
     delta = sol.saddle_compression[:1]  # H = 0: the mean is the state
     C = real_to_complex_harmonics(sol.correction_force)
@@ -523,10 +525,3 @@ def evaluate_summary(case: Case) -> list[dict[str, Any]]:
 def cargo_diameter_m(model: StructuralModel) -> float:
     """The cargo's largest outer diameter [m] (the scale of the validity check's displacement line)."""
     return float(np.max(model.cargo.element_outer_diameter_m))
-
-
-#: The fixed H at which the two-way coupling iterates the deck when the case leaves H adaptive (the deck forces
-#: exchanged with the hull are harmonics 0 .. COUPLING_HARMONICS; the cargo is then solved on the coupled deck
-#: with the adaptive H): the safe H of the harmonic balance (solvers/hbm/solve.py), 0.4 % on the base case.
-COUPLING_HARMONICS = 16
-"""Harmonics of the deck forces the two-way coupling exchanges when ``solver.harmonics`` is adaptive."""

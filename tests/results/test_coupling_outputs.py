@@ -19,7 +19,7 @@ from seafast.output.report.tables import coupling_rows, diagnostics_rows
 from seafast.output.tables import format_summary_table
 from seafast.pipeline import run_case
 from seafast.results.coupling import COUPLED_HULL_VARIABLES
-from seafast.solvers.references import solve_time_domain
+from seafast.solvers.references import TimeDomainOptions, solve_time_domain
 
 FAST = {"vessel.motions": "none", "solver.time_samples": 32}
 
@@ -150,7 +150,7 @@ def test_heavy_lift_off_couples_at_h16_then_solves_the_coupled_deck_with_the_ada
     at16 = run_case(load_case(overrides={**over, "solver.harmonics": 16}))
     deck = res.deck_couplings[("dynamic", "nonlinear")].excitation
     np.testing.assert_array_equal(deck.deck_displacement, at16.deck_couplings[("dynamic", "nonlinear")].excitation.deck_displacement)
-    reference = solve_time_domain(res.model, deck, time_samples=1024)
+    reference = solve_time_domain(res.model, deck, TimeDomainOptions(time_samples=1024))
     assert reference.converged
     f_adaptive = next(r["F_N"] for r in res.summary if r["load_case"] == "dynamic" and r["model"] == "nonlinear")
     f_16 = next(r["F_N"] for r in at16.summary if r["load_case"] == "dynamic" and r["model"] == "nonlinear")

@@ -32,7 +32,7 @@ def _model(xs, damping_ratio=0.02):
 def _linear_row(model, excitation):
     resp = solve_linear(model, excitation)
     n_t = 1 if excitation.harmonic_count == 1 else 64
-    from seafast.solvers.periodic import harmonics_to_time
+    from seafast.fourier import harmonics_to_time
 
     delta = harmonics_to_time(resp.saddle_compression_m, n_t)
     return RowSolution(resp.cargo_displacement, delta, harmonics_to_time(resp.saddle_force_N, n_t), excitation, nonlinear=False)

@@ -135,14 +135,14 @@ def test_wave_solution_equals_solve_hbm_and_the_run_summary(base):
 def test_harmonic_balance_of_a_design_wave_agrees_with_the_time_domain_reference(base):
     # independent check of the nonlinear answer: HHT time integration with the exact contact law
     # to the periodic steady state, same excitation (the force design wave at the spectral peak)
-    from seafast.solvers.references import solve_time_domain
+    from seafast.solvers.references import TimeDomainOptions, solve_time_domain
 
     an, static = base
     wv = next(w for w in select_design_waves(an) if w.quantity == "F_N" and w.role == "peak")
     unit = unit_wave_excitation(static, an.transfer, wv.frequency_index)
     opts = HBMOptions(harmonics=16)
     sol = solve_wave(wave_operators(an.model, unit, opts), wv.amplitude_m, opts)
-    td = solve_time_domain(an.model, _scaled(unit, wv.amplitude_m), time_samples=512)
+    td = solve_time_domain(an.model, _scaled(unit, wv.amplitude_m), TimeDomainOptions(time_samples=512))
     assert sol.lifted_off and sol.converged
     assert sol.maxima["F_N"] == pytest.approx(float(td.saddle_force_time_N.max()), rel=5e-3)
     # the gap carries the truncation of the re-contact (H = 16): within 15 % of the reference's 3.2 mm

@@ -78,10 +78,10 @@ def test_jacobian_equals_finite_differences():
     cap = r.capacity_N(np.column_stack([np.full(256, 1e6), 1e6 * (1 + 0.5 * np.sin(2 * np.pi * np.arange(256) / 256))]))
     p = AxialProblem(r, load, cap, 7, 256)
     X = np.random.default_rng(3).normal(size=15) * 0.3
-    R, jen, u = p.evaluate(X, cap)
-    J = p.jacobian(jen, u)
+    R, state = p.residual(X)
+    J = p.jacobian(state)
     h = 1e-8
-    fd = np.column_stack([(p.evaluate(X + h * e, cap)[0] - R) / h for e in np.eye(15)])
+    fd = np.column_stack([(p.residual(X + h * e)[0] - R) / h for e in np.eye(15)])
     assert np.max(np.abs(fd - J)) < 1e-5 * np.max(np.abs(J))
 
 
@@ -178,7 +178,7 @@ def test_failure_is_reported_not_raised():
         np.full((64, 1), 1e6),
         AxialHBMOptions(harmonics=25, time_samples=512, max_iterations=1),
     )
-    assert not res.converged and "did not converge" in res.message and res.residual_norm > 1e-9
+    assert not res.converged and res.residual_norm > 1e-9 and res.lock_check is LockCheck.NOT_LOCKED
 
 
 def test_walking_cargo():
@@ -200,9 +200,8 @@ def test_walking_cargo():
     assert abs(np.mean(td.friction_force_N + td.lashing_force_N)) < 0.01 * np.mean(td.lashing_force_N)
     free = AxialRestraint(M, np.array([0.3]), np.array([KT]))
     walk = solve_axial_time_domain(free, load, normal, time_samples=512, max_periods=30)
-    assert not walk.converged and "walks" in walk.message
-    drift = float(walk.message.split("moves ")[1].split(" m per period")[0])
-    assert drift < -0.01
+    assert not walk.converged and walk.walk_m_per_period is not None and walk.walk_m_per_period < -0.01
+    assert td.walk_m_per_period is None  # held by its lashings it settles: no walk
 
 
 # ------------------------------------------------------------------------------ near the critical coefficient
@@ -245,7 +244,7 @@ def test_a_converged_locked_answer_obeys_the_friction_law():
         if hbm.converged and locked:
             assert np.max(demand - hbm.capacity_N) <= 1e-6 * np.max(hbm.capacity_N)
         if not hbm.converged:
-            assert hbm.lock_check in (LockCheck.VIOLATED, LockCheck.NOT_LOCKED) and "did not converge" in hbm.message
+            assert hbm.lock_check in (LockCheck.VIOLATED, LockCheck.NOT_LOCKED) and hbm.residual_norm > 0.0
 
 
 def test_lock_check_against_the_friction_law():
@@ -326,7 +325,7 @@ def test_a_walk_stopped_early_reports_its_residual_drift():
     off = abs(np.mean(early.displacement_m) - np.mean(full.displacement_m))
     assert early.residual_drift_m > 1e-7 * 0.4e6 / (M * 0.6**2)
     assert off <= 3 * early.residual_drift_m  # the estimate has the size of the distance left
-    assert "from the periodic state" in early.message
+    assert early.walk_m_per_period is None and full.residual_drift_m < early.residual_drift_m
 
 
 def test_jacobian_of_a_cargo_locked_off_its_set_down_position():
@@ -336,13 +335,14 @@ def test_jacobian_of_a_cargo_locked_off_its_set_down_position():
     cap = r.capacity_N(np.repeat(normal, 2, axis=0))
     p = AxialProblem(r, load, cap, 5, 256)
     X = p.locked_guess()
-    R, jen, u = p.evaluate(X, cap)
+    R, state = p.residual(X)
+    jen = state.jenkins
     assert jen.slip_path_m == 0.0 and np.all(jen.last_slip == 128)  # clamped at t = T/2, no sample slips
-    J = p.jacobian(jen, u)
+    J = p.jacobian(state)
     # the mean moves the residual by k_a h only: a larger step there, above the residual's round-off (k_t 1e-16 m);
     # the harmonics below the 2e-10 m by which the neighbouring samples' band edges clear the bounding one
     steps = np.r_[1e-7, np.full(10, 1e-11)]
-    fd = np.column_stack([(p.evaluate(X + h * e, cap)[0] - R) / h for h, e in zip(steps, np.eye(11), strict=True)])
+    fd = np.column_stack([(p.residual(X + h * e)[0] - R) / h for h, e in zip(steps, np.eye(11), strict=True)])
     assert J[0, 0] == pytest.approx(2e5, rel=1e-9) and fd[0, 0] == pytest.approx(2e5, rel=1e-2)
     assert np.max(np.abs(fd - J)) < 1e-4 * np.max(np.abs(J))
 

@@ -3,17 +3,20 @@
 from __future__ import annotations
 
 import dataclasses
+import re
 
 import numpy as np
 import pytest
 
-from seafast.solvers.contact import CONTACT_LAWS, ContactLaw, contact_law
-from seafast.solvers.hbm import HBMOptions, real_dft_matrices
+from seafast.config.modes import ContactLawKind, Formulation, NonlinearSolver
+from seafast.fourier import real_dft_matrices
+from seafast.solvers.contact import ContactLaw, contact_law
+from seafast.solvers.hbm import HBMOptions
 
 K = 1.1e9
 
 
-@pytest.mark.parametrize("name", CONTACT_LAWS)
+@pytest.mark.parametrize("name", list(ContactLawKind))
 def test_derivative_matches_finite_difference(name):
     law = contact_law(name, 1000.0)
     d = np.linspace(-0.01, 0.01, 201) + 1.234e-6  # avoid the exact kink
@@ -95,15 +98,28 @@ def test_options_are_keyword_only_frozen_and_accept_minimal_grid():
     assert HBMOptions(harmonics=3, time_samples=9).time_samples == 9
     with pytest.raises(dataclasses.FrozenInstanceError):
         o.harmonics = 4  # type: ignore[misc]
-    # issue 12: the exact law and adaptive harmonics are the defaults; the source's method is one constant away
+    # the exact law and adaptive harmonics are the defaults; the source's method is one constant away
     assert o.to_dict()["contact_law"] == "exact"
     default = HBMOptions()
     assert default.adaptive and default.harmonics is None and default.time_samples is None
     assert default.with_harmonics(160).time_samples == 400 and default.with_harmonics(5).time_samples == 128
     from seafast.solvers.hbm import SOURCE_OPTIONS
 
-    assert (SOURCE_OPTIONS.contact_law, SOURCE_OPTIONS.regularisation_per_m, SOURCE_OPTIONS.harmonics) == ("tanh", 1000.0, 5)
-    assert (SOURCE_OPTIONS.time_samples, SOURCE_OPTIONS.solver) == (128, "hybr")
+    assert (SOURCE_OPTIONS.contact_law, SOURCE_OPTIONS.regularisation_per_m, SOURCE_OPTIONS.harmonics) == (ContactLawKind.TANH, 1000.0, 5)
+    assert (SOURCE_OPTIONS.time_samples, SOURCE_OPTIONS.solver) == (128, NonlinearSolver.HYBR)
+
+
+def test_modes_given_by_their_values_become_the_enum_members():
+    """The case file's strings and the enum members are one: HBMOptions and ContactLaw hold members
+    (compared by identity in the solvers), and the options' plain dict holds the values."""
+    o = HBMOptions(contact_law="tanh", formulation="full", solver="hybr")
+    assert o.contact_law is ContactLawKind.TANH and o.formulation is Formulation.FULL and o.solver is NonlinearSolver.HYBR
+    assert o.law.name is ContactLawKind.TANH and ContactLaw("softplus").name is ContactLawKind.SOFTPLUS
+    plain = o.to_dict()
+    assert (plain["contact_law"], plain["formulation"], plain["solver"]) == ("tanh", "full", "hybr")
+    assert all(type(plain[k]) is str for k in ("contact_law", "formulation", "solver"))
+    with pytest.raises(ValueError, match=re.escape("HBMOptions.formulation = 'dense'; allowed: condensed | full")):
+        HBMOptions(formulation="dense")
 
 
 @pytest.mark.parametrize("H, N", [(0, 2), (1, 4), (5, 128), (7, 17)])

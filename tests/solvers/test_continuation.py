@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
+from seafast.fourier import harmonics_to_time
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.continuation import BranchEnd, frequency_response
 from seafast.solvers.floquet import floquet_multipliers, stability_system
 from seafast.solvers.hbm import HBMOptions
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.periodic import harmonics_to_time
-from seafast.solvers.references import solve_quasi_static
+from seafast.solvers.references import QuasiStaticOptions, solve_quasi_static
 from solver_cases import base_model, uniform_heave, wave_excitation
 
 
@@ -38,7 +38,7 @@ def test_wave_frequencies_are_quasi_static():
     assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(2.0, rel=1e-6)
     assert branch.end is BranchEnd.REACHED_END
     assert not branch.contact_preserved.any()  # the middle saddle lifts off throughout
-    qs = solve_quasi_static(model, excitation_at(0.2), time_samples=64)
+    qs = solve_quasi_static(model, excitation_at(0.2), QuasiStaticOptions(time_samples=64))
     figures = (
         f"omega 0.2..2 rad/s: max force {branch.max_saddle_force_N.min() / 1e6:.4f}..{branch.max_saddle_force_N.max() / 1e6:.4f} MN, "
         f"quasi-static {qs.max_saddle_force_N / 1e6:.4f} MN; {len(branch.omega_rad_s)} points"
@@ -74,7 +74,7 @@ def test_linear_resonance_peak_matches_linear_frf():
 def test_nonlinear_resonance_is_passed_with_lift_off():
     model = base_model(element_length_m=2.0, stiffness_scale=0.01)
     opts = HBMOptions(harmonics=3, time_samples=32, contact_law="tanh")
-    # 40 mm of deck hog/sag: with the realised 2 % damping of the bounce mode (issue 12; it was about 1 %)
+    # 40 mm of deck hog/sag: with the realised 2 % damping of the bounce mode (it was once about 1 %)
     # the 20 mm this test used no longer lifts the cargo off at resonance
     branch = frequency_response(model, deck_only(model, 40.0), 1.0, 10.0, opts)
     assert branch.converged.all() and branch.omega_rad_s[-1] == pytest.approx(10.0, rel=1e-6)

@@ -19,7 +19,7 @@ from seafast.solvers.contact import ContactLaw
 from seafast.solvers.continuation import frequency_response
 from seafast.solvers.floquet import floquet_multipliers, stability_system
 from seafast.solvers.hbm import HBMOptions, condensed_operators
-from seafast.solvers.transient import MarchState, march_period, modal_correction
+from seafast.solvers.transient import MarchState, march_period, newmark_step
 from solver_cases import base_model, uniform_heave, wave_excitation
 
 EXACT = ContactLaw("exact")
@@ -114,7 +114,7 @@ def test_a_perturbation_of_an_unstable_orbit_grows_by_the_leading_multiplier(sof
     )
     state = MarchState(eta.sum(0).real, (1j * kw[:, None] * eta).sum(0).real, (-(kw[:, None] ** 2) * eta).sum(0).real, c[0], c[0] > 0.0)
     linear = harmonics_to_time(real_to_complex_harmonics(condensed_operators(model, excitation_at(w), H).linear_compression_m), N)
-    marcher = modal_correction(model, 2 * np.pi / w / N, system.cutoff_rad_s, minimum_modes=0)  # the same modes
+    marcher = newmark_step(model, 2 * np.pi / w / N, system.cutoff_rad_s, minimum_modes=0)  # the same modes
     assert marcher.mode_count == m
     deviation = []
     for _ in range(60):

@@ -13,9 +13,10 @@ import pytest
 from threadpoolctl import threadpool_limits
 
 from seafast.fourier import harmonics_to_time, time_to_harmonics
-from seafast.solvers.hbm import HBMOptions, solve_hbm
-from seafast.solvers.periodic import PeriodicResponse, SolverOutcome
-from seafast.solvers.references import solve_quasi_static, solve_time_domain
+from seafast.solvers.hbm import SAFE_HARMONICS, HBMOptions, solve_hbm
+from seafast.solvers.outcome import HBMRoute, HBMStart, SolverOutcome
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references import QuasiStaticOptions, TimeDomainOptions, solve_quasi_static, solve_time_domain
 from solver_cases import peak_moment
 
 
@@ -37,8 +38,8 @@ def real_case():
 
 
 def _direct(r: PeriodicResponse) -> bool:
-    """Converged by the direct solve (no kappa / amplitude continuation)."""
-    return r.outcome is SolverOutcome.CONVERGED
+    """Converged by the direct solve (no second start, no kappa / amplitude continuation)."""
+    return r.outcome is SolverOutcome.CONVERGED and r.path is not None and r.path.route is HBMRoute.DIRECT
 
 
 def _force_error(r: PeriodicResponse, ref: PeriodicResponse) -> float:
@@ -56,7 +57,7 @@ def test_a_fixed_h_of_many_harmonics_starts_from_the_periodic_march(real_case, h
     H is, and converges directly, within its own truncation estimate of the adaptive answer."""
     model, ex = real_case
     r = solve_hbm(model, ex, HBMOptions(harmonics=harmonics))
-    assert _direct(r) and "started from the periodic march" in r.message, r.message
+    assert _direct(r) and r.path.start is HBMStart.MARCH, r.message
     adaptive = solve_hbm(model, ex)
     error = abs(r.max_saddle_force_N / adaptive.max_saddle_force_N - 1.0)
     assert error <= float(np.max(r.truncation_error)) + float(np.max(adaptive.truncation_error)), (error, r.truncation_error)
@@ -64,10 +65,11 @@ def test_a_fixed_h_of_many_harmonics_starts_from_the_periodic_march(real_case, h
 
 @pytest.mark.parametrize("harmonics", [5, 8, 16, 20])
 def test_newton_exact_converges_directly(real_case, harmonics):
-    """Semi-smooth Newton from the quasi-static contact predictor, no kappa continuation."""
+    """Semi-smooth Newton, no kappa continuation: from the quasi-static contact predictor up to H = 16, from the
+    periodic march above (a fixed H above SAFE_HARMONICS starts there)."""
     model, ex = real_case
     r = solve_hbm(model, ex, HBMOptions(harmonics=harmonics, time_samples=128, contact_law="exact"))
-    assert _direct(r), r.message
+    assert _direct(r) and r.path.start is (HBMStart.PREDICTOR if harmonics <= SAFE_HARMONICS else HBMStart.MARCH), r.message
     assert r.residual_norm <= 1e-10 and r.iterations <= 10
     assert r.saddle_force_time_N.min() >= 0.0
 
@@ -129,8 +131,8 @@ def test_exact_h16_agrees_with_references(real_case):
     """
     model, ex = real_case
     r = solve_hbm(model, ex, HBMOptions(**EXACT_16))
-    qs = solve_quasi_static(model, ex, 128)
-    td = solve_time_domain(model, ex, 128)
+    qs = solve_quasi_static(model, ex, QuasiStaticOptions(time_samples=128))
+    td = solve_time_domain(model, ex, TimeDomainOptions(time_samples=128))
     assert r.converged and qs.converged and td.converged
     for name, ref in (("quasi-static", qs), ("time domain", td)):
         e_peak = abs(r.max_saddle_force_N / ref.max_saddle_force_N - 1.0)

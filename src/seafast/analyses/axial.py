@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from seafast.analyses.axial_coupling import friction_moment_effect_N, saddle_moment_flexibility
+from seafast.config.modes import SolverMethod
 from seafast.config.schema import Case
 from seafast.excitation.axial import AxialLoad, axial_load_of
 from seafast.fourier import harmonics_to_time
@@ -57,7 +58,7 @@ def _row(
 ) -> AxialResponse:
     if static:
         return static_response(restraint, float(load.force_N[0].real), float(restraint.capacity_N(normal[0])), load.omega_rad_s, N)
-    if method == "time_domain":
+    if method == SolverMethod.TIME_DOMAIN:
         return solve_axial_time_domain(restraint, load, normal, time_samples=options.time_samples).on_grid(N)
     hbm = solve_axial_hbm(restraint, load, normal, options, initial_harmonics=start)
     if hbm.converged:
@@ -222,6 +223,6 @@ def run_axial_analysis(
     mass = model.cargo.mass_kg  # the structural model's cargo: one mass for the vertical and the axial analysis
     restraint = axial_restraint(case, mass)
     load = axial_load_of(case, vessel, mass)
-    method = "time_domain" if case.solver.method == "time_domain" else "hbm"
+    method = SolverMethod.TIME_DOMAIN if case.solver.method == SolverMethod.TIME_DOMAIN else SolverMethod.HBM
     vertical_samples = next(iter(series.values())).saddle_force_N.shape[0]  # the rows' time grid (N follows the vertical H)
     return axial_case_arrays(restraint, load, series, model, axial_options(case, vertical_samples), method)

@@ -15,11 +15,12 @@ from __future__ import annotations
 import math
 from itertools import pairwise
 from pathlib import Path
-from typing import Annotated, Literal
+from typing import Annotated, Literal, get_args
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from seafast.config.arrangement import evenly_spaced_saddles
+from seafast.config.modes import ContactLawKind, Formulation, NonlinearSolver, SolverMethod, TimeDomainStart
 
 __all__ = [
     "Case",
@@ -299,11 +300,11 @@ class WaveConfig(_Strict):
 
 #: The source's method (``solver.preset: source``): the values it gives the keys the case leaves unset.
 SOURCE_SOLVER_SETTINGS: dict[str, object] = {
-    "contact_law": "tanh",
+    "contact_law": ContactLawKind.TANH,
     "regularisation_per_m": 1000.0,
     "harmonics": 5,
     "time_samples": 128,
-    "nonlinear_solver": "hybr",
+    "nonlinear_solver": NonlinearSolver.HYBR,
 }
 
 
@@ -316,16 +317,18 @@ class SolverConfig(_Strict):
         "'source' (the source's method: tanh law with kappa = 1000 1/m, 5 harmonics, 128 samples, Powell's hybrid "
         "method); a preset only fills the keys the case leaves unset",
     )
-    method: Literal["hbm", "quasi_static", "time_domain"] = "hbm"
-    formulation: Literal["condensed", "full"] = "condensed"
-    time_domain_start: Literal["linear", "hbm"] = Field(
-        "linear",
+    # the modes are Literals of enum members: the values are the members, the JSON Schema lists them inline
+    method: Literal[SolverMethod.HBM, SolverMethod.QUASI_STATIC, SolverMethod.TIME_DOMAIN] = SolverMethod.HBM
+    formulation: Literal[Formulation.CONDENSED, Formulation.FULL] = Formulation.CONDENSED
+    # a case starts the time-domain reference from the linear or the harmonic balance's solution only
+    time_domain_start: Literal[TimeDomainStart.LINEAR, TimeDomainStart.HBM] = Field(
+        TimeDomainStart.LINEAR,
         description="State the time-domain reference (solver.method: time_domain) starts from: 'linear' (the "
         "linear periodic solution at t = 0) or 'hbm' (the harmonic balance's solution with the case's settings: the "
         "reference then reports whether it stays on that orbit, solver outcome 'other_orbit' when it does not)",
     )
-    contact_law: Literal["tanh", "softplus", "exact"] = Field(
-        "exact", description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
+    contact_law: Literal[ContactLawKind.TANH, ContactLawKind.SOFTPLUS, ContactLawKind.EXACT] = Field(
+        ContactLawKind.EXACT, description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
     )
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
     harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] | None = Field(
@@ -336,8 +339,8 @@ class SolverConfig(_Strict):
     time_samples: Annotated[int, Field(ge=4, le=16384), NotBool] | None = Field(
         None, description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references)"
     )
-    nonlinear_solver: Literal["hybr", "newton"] = Field(
-        "newton", description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
+    nonlinear_solver: Literal[NonlinearSolver.HYBR, NonlinearSolver.NEWTON] = Field(
+        NonlinearSolver.NEWTON, description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
     )
     tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
     axial_harmonics: Annotated[int, Field(ge=1, le=400), NotBool] = Field(
@@ -349,6 +352,16 @@ class SolverConfig(_Strict):
         "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few",
     )
     max_harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] = Field(512, description="Upper bound of the adaptive H")
+
+    @field_validator("method", "formulation", "time_domain_start", "contact_law", "nonlinear_solver", mode="before")
+    @classmethod
+    def _mode(cls, value: object, info: ValidationInfo) -> object:
+        # a mode by its value, the allowed ones named by their values (pydantic's own message prints the members' reprs)
+        allowed = get_args(cls.model_fields[str(info.field_name)].annotation)
+        if not isinstance(value, str) or value not in allowed:
+            names = [repr(str(m)) for m in allowed]
+            raise ValueError("Input should be " + (", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]))
+        return type(allowed[0])(value)
 
     @model_validator(mode="before")
     @classmethod

@@ -148,6 +148,10 @@ class StructuralModel:
     rayleigh_fit
         The fit (realised modal damping of the first two modes, whether it is exact), or None for a model
         built with given coefficients.
+    derived_cache
+        What the layers above derive from this model and keep with it (the solvers' banded K, M, D and
+        modal basis), keyed by what is derived: computed once per model, never shared with another
+        (a copy of the model starts empty), dropped with the model.
     """
 
     cargo: CargoBeam
@@ -158,6 +162,7 @@ class StructuralModel:
     gravity_m_per_s2: float = 9.81
     rayleigh_fit: RayleighFit | None = None
     _springs: dict = field(default_factory=dict, repr=False, compare=False)
+    derived_cache: dict[str, object] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     # ---------------------------------------------------------------- sizes and maps
     @property

@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.seastate.design_wave_rule import DEFAULT_HARMONICS, DesignWave, DesignWaveSettings, read_locations, select_design_waves
+from seafast.seastate.design_wave_rule import DesignWave, DesignWaveSettings, read_locations, select_design_waves
 from seafast.seastate.spectral import SpectralAnalysis
 from seafast.seastate.transfer import TransferFunctions
 from seafast.seastate.wave_response import (
@@ -65,7 +65,6 @@ __all__ = [
     "static_totals",
     "still_water_excitation",
     "sea_state_design_waves",
-    "DEFAULT_HARMONICS",
 ]
 
 

@@ -21,12 +21,9 @@ from numpy.typing import NDArray
 from seafast.seastate.spectral import ResponseStatistics, SpectralAnalysis
 from seafast.seastate.wave_maxima import SADDLE_QUANTITIES
 from seafast.seastate.wave_response import RESPONSE_QUANTITIES
-from seafast.solvers.hbm import HBMOptions
+from seafast.solvers.hbm import SAFE_HARMONICS, HBMOptions
 
-__all__ = ["DEFAULT_HARMONICS", "DesignWaveSettings", "DesignWave", "select_design_waves", "read_locations"]
-
-DEFAULT_HARMONICS = 16
-"""H of the design-wave harmonic balance: within 0.3 % of the adaptive H in mild lift-off, 2.7 % low at worst (docs/operability.md)."""
+__all__ = ["DesignWaveSettings", "DesignWave", "select_design_waves", "read_locations"]
 
 
 @dataclass(frozen=True)
@@ -56,7 +53,8 @@ class DesignWaveSettings:
 
     band_fraction: float = 0.5
     band_points: int = 3
-    harmonics: int | None = DEFAULT_HARMONICS
+    # the safe H: within 0.3 % of the adaptive H in mild lift-off, 2.7 % low at worst (docs/operability.md)
+    harmonics: int | None = SAFE_HARMONICS
     fallback_harmonics: tuple[int, ...] = (12, 8)
     time_samples: int | None = None
     tolerance: float = 1e-10

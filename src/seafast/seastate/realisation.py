@@ -65,10 +65,10 @@ from seafast.solvers.transient import (
     DEFAULT_CUTOFF_FACTOR,
     DEFAULT_STEPS_PER_PERIOD,
     MarchState,
-    ModalCorrection,
     MomentOutput,
+    NewmarkStep,
     march_window,
-    modal_correction,
+    newmark_step,
     reference_frequency_rad_s,
     time_step_s,
 )
@@ -163,7 +163,7 @@ class RealisationPlan:
     moment_static_Nm: NDArray[np.float64]
     section_modulus_m3: NDArray[np.float64]
     moment_basis: NDArray[np.float64]
-    system: ModalCorrection
+    system: NewmarkStep
     moments: MomentOutput
     ratio: int
     tolerance_m: float
@@ -188,7 +188,7 @@ class RealisationPlan:
             "coarse_step_s": self.grid.time_step_s,
             "integrator_step_s": self.fine_step_s,
             "modes_kept": self.system.mode_count,
-            "cutoff_rad_s": self.system.cutoff_rad_s,
+            "cutoff_rad_s": self.system.reduced.cutoff_rad_s,
             "moment_rank": int(self.moment_basis.shape[1]),
             "window_tolerance_m": self.tolerance_m,
             "steps_per_period": self.settings.steps_per_period,
@@ -294,15 +294,15 @@ def realisation_plan(
     ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
     grid = synthesis_grid((lo, hi), density, ss.duration_s, dt_c_max)
     transfer = interpolate_transfer(omega_i, channels, grid.omega_rad_s)
-    system = modal_correction(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))
+    system = newmark_step(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))
     beam = model.cargo
 
     def recover(q: NDArray[np.float64]) -> NDArray[np.float64]:
         """The bending-moment line [N m] of displacement rows (..., n_c)."""
         return bending_moment_line(beam.node_x_m, q, beam.element_bending_stiffness_Nm2, None, None, MOMENT_POINTS_PER_ELEMENT)[1]
 
-    moment_modes = recover(system.modes.T).T
-    moment_residual = recover(system.residual_displacement.T).T
+    moment_modes = recover(system.reduced.mode_shape.T).T
+    moment_residual = recover(system.reduced.residual_displacement_m_per_N.T).T
     modulus = tf.bending_section_modulus_m3
     moments = MomentOutput(
         np.asarray(still.bending_moment_Nm, dtype=float),

@@ -7,10 +7,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from seafast.solvers.periodic import Settings
 
 __all__ = ["BranchEnd", "FrequencyResponseBranch"]
 
@@ -77,12 +78,24 @@ class FrequencyResponseBranch:
     contact_preserved: NDArray[np.bool_]
     message: str = ""
     steps: int = 0
-    options: dict[str, Any] = field(default_factory=dict)
+    options: Settings = field(default_factory=dict)
     end: BranchEnd = BranchEnd.REACHED_END
     compression_harmonics_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 1, 1)))
     tangent_omega: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     residual_norm: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     at_fold: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+
+    @property
+    def time_samples(self) -> int | None:
+        """N, the AFT samples of the branch's harmonic balance (from ``options``; None when not recorded)."""
+        value = self.options.get("time_samples")
+        return int(value) if isinstance(value, int) else None
+
+    @property
+    def truncation_tolerance(self) -> float | None:
+        """The branch's harmonic balance ``truncation_tolerance`` [-] (from ``options``; None when not recorded)."""
+        value = self.options.get("truncation_tolerance")
+        return float(value) if isinstance(value, (int, float)) else None
 
     @property
     def peak_omega_rad_s(self) -> float:

@@ -22,15 +22,15 @@ All functions are vectorised: ``delta`` of any shape, ``stiffness`` broadcast ag
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.special import expit
 
-__all__ = ["CONTACT_LAWS", "ContactLaw", "contact_law"]
+from seafast.config.modes import ContactLawKind
 
-CONTACT_LAWS: tuple[str, ...] = ("tanh", "softplus", "exact")
-"""Accepted contact-law names."""
+__all__ = ["ContactLaw", "contact_law"]
 
 
 @dataclass(frozen=True)
@@ -40,18 +40,19 @@ class ContactLaw:
     Parameters
     ----------
     name
-        One of :data:`CONTACT_LAWS`.
+        The law (:class:`~seafast.config.modes.ContactLawKind`, or its value).
     regularisation_per_m
         Sharpness kappa [1/m] of the ``tanh`` and ``softplus`` laws (ignored by ``exact``),
         > 0.
     """
 
-    name: str = "tanh"
+    name: ContactLawKind = ContactLawKind.TANH
     regularisation_per_m: float = 1000.0
 
     def __post_init__(self) -> None:
-        if self.name not in CONTACT_LAWS:
-            raise ValueError(f"contact_law = {self.name!r}; accepted values: {', '.join(CONTACT_LAWS)}")
+        if not isinstance(self.name, str) or self.name not in set(ContactLawKind):
+            raise ValueError(f"contact_law = {self.name!r}; accepted values: {', '.join(ContactLawKind)}")
+        object.__setattr__(self, "name", ContactLawKind(self.name))  # a value given becomes the member
         kappa = float(self.regularisation_per_m)
         if not np.isfinite(kappa) or kappa <= 0.0:
             raise ValueError(f"regularisation_per_m = {self.regularisation_per_m!r}; must be a finite number > 0 [1/m]")
@@ -59,12 +60,12 @@ class ContactLaw:
     @property
     def is_smooth(self) -> bool:
         """False for the exact (kinked) law."""
-        return self.name != "exact"
+        return self.name is not ContactLawKind.EXACT
 
     @property
     def can_pull(self) -> bool:
         """True if the law can produce a tensile (negative) force (only ``tanh``)."""
-        return self.name == "tanh"
+        return self.name is ContactLawKind.TANH
 
     def force(self, compression_m: ArrayLike, stiffness_N_per_m: ArrayLike) -> NDArray[np.float64]:
         """Contact force on the cargo [N], positive upward."""
@@ -81,9 +82,9 @@ class ContactLaw:
         d = np.asarray(compression_m, dtype=float)
         k = np.asarray(stiffness_N_per_m, dtype=float)
         kappa = float(self.regularisation_per_m)
-        if self.name == "exact":
+        if self.name is ContactLawKind.EXACT:
             return k * np.maximum(d, 0.0), k * np.heaviside(d, 0.5)
-        if self.name == "tanh":
+        if self.name is ContactLawKind.TANH:
             th = np.tanh(kappa * d)
             half = 0.5 * (1.0 + th)
             return k * d * half, k * (half + 0.5 * kappa * d * (1.0 - th * th))
@@ -96,12 +97,12 @@ class ContactLaw:
         return ContactLaw(self.name, regularisation_per_m)
 
 
-def contact_law(name: str, regularisation_per_m: float = 1000.0) -> ContactLaw:
-    """The contact law called ``name`` (one of :data:`CONTACT_LAWS`).
+def contact_law(name: ContactLawKind | str, regularisation_per_m: float = 1000.0) -> ContactLaw:
+    """The contact law called ``name`` (a :class:`~seafast.config.modes.ContactLawKind` or its value).
 
     Raises
     ------
     ValueError
         For an unknown name (the message lists the accepted ones) or kappa <= 0.
     """
-    return ContactLaw(str(name), float(regularisation_per_m))
+    return ContactLaw(cast(ContactLawKind, name), float(regularisation_per_m))  # ContactLaw checks the name and converts it

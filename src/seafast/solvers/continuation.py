@@ -38,7 +38,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -50,10 +49,12 @@ from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, CondensedProblem, HBMOptions, condensed_operators, solve_condensed
 
-__all__ = ["DEFAULT_HARMONICS", "BranchEnd", "FrequencyResponseBranch", "frequency_response"]
+__all__ = ["CONTINUATION_HARMONICS", "BranchEnd", "FrequencyResponseBranch", "frequency_response"]
 
-DEFAULT_HARMONICS = 10
-"""H of a continuation whose options leave ``harmonics`` unset (one branch is followed at a fixed H)."""
+CONTINUATION_HARMONICS = 10
+"""H of a continuation (a frequency sweep) whose options leave ``harmonics`` unset: one branch is followed at a
+fixed H, and every step of it solves the condensed system, so fewer than a single solve's
+:data:`~seafast.solvers.hbm.options.SAFE_HARMONICS` (a deliberately different setting: speed along the branch)."""
 
 _NOISE_FACTOR = 10.0  # a stalled corrector is accepted within this multiple of the point's round-off floor
 _NOISE_CAP = 1e-5  # ... and never above this relative residual
@@ -88,7 +89,7 @@ class _Branch:
     def problem(self, omega: float) -> CondensedProblem:
         return CondensedProblem(self.ops(omega), self.time_samples)
 
-    def residual(self, u: NDArray, omega: float) -> tuple[NDArray, Any, CondensedProblem]:
+    def residual(self, u: NDArray, omega: float) -> tuple[NDArray, NDArray, CondensedProblem]:
         p = self.problem(omega)
         R, state = p.evaluate(u, self.law, 1.0)
         return R, state, p
@@ -159,7 +160,7 @@ class _Tracer:
             t = np.linalg.solve(A, b)
         return t / np.linalg.norm(t)
 
-    def _augmented(self, yk: NDArray, y_pred: NDArray, t: NDArray) -> tuple[NDArray, Any]:
+    def _augmented(self, yk: NDArray, y_pred: NDArray, t: NDArray) -> tuple[NDArray, tuple[NDArray, CondensedProblem, NDArray, float]]:
         uk, wk = self.unscale(yk)
         R, state, p = self.branch.residual(uk, wk)
         return np.append(R / self.r_scale, t @ (yk - y_pred)), (state, p, uk, wk)
@@ -300,7 +301,7 @@ def frequency_response(
             f"steps: need 0 < min_step <= initial_step <= max_step and 0 < max_omega_step <= 1, got "
             f"{min_step}, {initial_step}, {max_step}, {max_omega_step}"
         )
-    H = DEFAULT_HARMONICS if options.harmonics is None else int(options.harmonics)  # one branch, at a fixed H
+    H = CONTINUATION_HARMONICS if options.harmonics is None else int(options.harmonics)  # one branch, at a fixed H
     options = options.with_harmonics(H)
     branch = _Branch(model, excitation_at, options)
     w0, w1 = float(omega_start_rad_s), float(omega_end_rad_s)

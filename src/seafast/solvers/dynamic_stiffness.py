@@ -3,7 +3,7 @@
 The structural model gives ``K_d(omega) = K - omega^2 M + i omega D`` of the cargo DOFs (and
 of the cargo-deck coupling). The harmonic balance, the exact references and the continuation
 all solve ``K_d^cc(k omega) x_k = rhs_k`` for many harmonics k; this module splits K_d into
-K, M and D once per model (two evaluations, cached), stores them in LAPACK band form, and
+K, M and D once per model (kept in the model's ``derived_cache``), stores them in LAPACK band form, and
 solves one harmonic (:func:`solve_dynamic`) or all of them (:func:`solve_dynamic_stack`).
 
 Units: K [N/m, N m/rad], M [kg, kg m^2], D [N s/m]; rhs in N (N m for rotations); solutions in
@@ -13,7 +13,6 @@ True.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -24,12 +23,10 @@ from scipy.linalg import solve_banded
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
 from seafast.solvers.banded import solve_dynamic_band_stack
-from seafast.solvers.banded import to_band as to_banded
 
 __all__ = [
     "QuadraticMatrices",
     "quadratic_matrices",
-    "to_banded",
     "from_band",
     "solve_dynamic",
     "solve_dynamic_stack",
@@ -88,26 +85,20 @@ def from_band(ab: NDArray, bandwidth: int) -> NDArray:
     return A
 
 
-_QUADRATIC_CACHE: dict[tuple[int, bool], tuple[weakref.ref, QuadraticMatrices]] = {}
-
-
 def quadratic_matrices(model: StructuralModel, include_saddles: bool = True) -> QuadraticMatrices:
-    """``model.dynamic_stiffness`` as K - w^2 M + i w D, banded (``model.banded_quadratic``, O(n)), cached per model."""
-    key = (id(model), bool(include_saddles))
-    hit = _QUADRATIC_CACHE.get(key)
-    if hit is not None and hit[0]() is model:
-        return hit[1]
+    """``model.dynamic_stiffness`` as K - w^2 M + i w D, banded (``model.banded_quadratic``, O(n)).
+
+    Computed once per model and ``include_saddles``, kept in the model's ``derived_cache``.
+    """
+    key = f"quadratic_matrices(include_saddles={bool(include_saddles)})"
+    cached = model.derived_cache.get(key)
+    if isinstance(cached, QuadraticMatrices):
+        return cached
     bw, K, M, D, Kco = model.banded_quadratic(include_saddles)
     Kco = np.asarray(Kco, dtype=float)
     # the deck carries no mass; the damping couples to the deck velocities through the quasi-static support motion
     q = QuadraticMatrices(Kco, np.zeros_like(Kco), np.asarray(model.support_damping_coupling, dtype=float), int(bw), K, M, D)
-    if len(_QUADRATIC_CACHE) > 64:
-        for k in [k for k, (ref, _) in _QUADRATIC_CACHE.items() if ref() is None]:
-            del _QUADRATIC_CACHE[k]
-    try:
-        _QUADRATIC_CACHE[key] = (weakref.ref(model), q)
-    except TypeError:  # pragma: no cover - objects without weakref support are not cached
-        pass
+    model.derived_cache[key] = q
     return q
 
 

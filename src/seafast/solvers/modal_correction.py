@@ -24,7 +24,6 @@ truncation estimate).
 from __future__ import annotations
 
 import math
-import weakref
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -154,22 +153,20 @@ class ModalBasis:
     complete: bool
 
 
-_BASIS_CACHE: dict[int, tuple[weakref.ref, ModalBasis]] = {}
+_BASIS_KEY = "modal_basis"  # the model's derived_cache entry
 _DENSE_EIGEN_LIMIT = 400  # DOFs; above it, the few lowest modes come from a shift-invert Lanczos
 
 
 def modal_basis(model: StructuralModel, cutoff_rad_s: float) -> ModalBasis:
-    """Modes of the model at least up to ``cutoff_rad_s`` (cached per model; grows when asked for more).
+    """Modes of the model at least up to ``cutoff_rad_s`` (kept in the model's ``derived_cache``; grows when asked for more).
 
     Small models (or ``cutoff_rad_s = inf``) take every mode from a dense generalised eigensolve; large
     ones (long or finely meshed cargo) the lowest ones from ARPACK in shift-invert mode on the banded K,
     doubling the count until the cutoff is passed.
     """
-    hit = _BASIS_CACHE.get(id(model))
-    if hit is not None and hit[0]() is model:
-        basis = hit[1]
-        if basis.complete or basis.natural_frequency_rad_s[-1] > cutoff_rad_s:
-            return basis
+    cached = model.derived_cache.get(_BASIS_KEY)
+    if isinstance(cached, ModalBasis) and (cached.complete or cached.natural_frequency_rad_s[-1] > cutoff_rad_s):
+        return cached
     K = np.asarray(model.dynamic_stiffness(0.0, True)[0], dtype=float)  # every saddle bilateral
     M = np.asarray(model.cargo.mass, dtype=float)
     n = K.shape[0]
@@ -200,13 +197,7 @@ def modal_basis(model: StructuralModel, cutoff_rad_s: float) -> ModalBasis:
     basis = ModalBasis(
         np.sqrt(np.maximum(w2, 0.0)), phi, static, 0.5 * (flexibility + flexibility.T), phi.T @ model.damping_cc @ phi, complete
     )
-    try:
-        _BASIS_CACHE[id(model)] = (weakref.ref(model), basis)
-    except TypeError:  # pragma: no cover - models without weakref support are not cached
-        pass
-    if len(_BASIS_CACHE) > 64:
-        for key in [k for k, (ref, _) in _BASIS_CACHE.items() if ref() is None]:
-            del _BASIS_CACHE[key]
+    model.derived_cache[_BASIS_KEY] = basis
     return basis
 
 

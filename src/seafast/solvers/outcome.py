@@ -10,9 +10,12 @@ The values (``"converged"``, ...) are what ``results.nc`` stores.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum
+from enum import Enum, StrEnum
 
-__all__ = ["SolverOutcome", "SolverWarning", "TimeDomainStart", "OrbitRecord"]
+from seafast.config.modes import TimeDomainStart
+from seafast.solvers.newton import NewtonStop
+
+__all__ = ["SolverOutcome", "SolverWarning", "OrbitRecord", "HBMStart", "HBMRoute", "HBMPath"]
 
 
 class SolverOutcome(Enum):
@@ -88,25 +91,6 @@ _DESCRIPTIONS = {
 }
 
 
-class TimeDomainStart(Enum):
-    """The state a time-domain reference starts from (at t = 0 of the period).
-
-    ``LINEAR``
-        The linear periodic solution (every saddle bilateral): displacement and velocity at t = 0.
-        The default of both formulations.
-    ``QUASI_STATIC``
-        The exact-contact quasi-static state at t = 0, velocity from the quasi-static states at
-        -dt and +dt (the full-DOF formulation's former start).
-    ``GIVEN``
-        A given periodic solution (e.g. the harmonic balance's): its displacement and velocity at
-        t = 0; the orbit reached is compared with it.
-    """
-
-    LINEAR = "linear"
-    QUASI_STATIC = "quasi_static"
-    GIVEN = "given"
-
-
 @dataclass(frozen=True)
 class OrbitRecord:
     """Where a time-domain reference started and what it reached.
@@ -114,7 +98,8 @@ class OrbitRecord:
     Attributes
     ----------
     start
-        The start (:class:`TimeDomainStart`).
+        The start (:class:`~seafast.config.modes.TimeDomainStart`: ``LINEAR``, ``QUASI_STATIC`` or ``GIVEN``;
+        a harmonic balance start is ``GIVEN``, its ``start_method`` ``"hbm"``).
     start_method
         What the start came from: ``"linear"``, ``"quasi_static"``, or the given solution's
         ``method`` (``"hbm"``, ...).
@@ -143,3 +128,66 @@ class OrbitRecord:
     distance_from_start: float | None
     same_as_start: bool | None
     orbit_tolerance: float
+
+
+class HBMStart(StrEnum):
+    """Where a harmonic balance's direct solve started.
+
+    ``LINEAR``
+        The linear (bilateral-saddle) solution.
+    ``PREDICTOR``
+        The quasi-static exact-contact predictor (the better of the two is taken when no start is given).
+    ``GIVEN``
+        A start the caller gave (``initial_compression_m``: e.g. a neighbouring solution).
+    ``MARCH``
+        The periodic march of the adaptive choice of H (:mod:`seafast.solvers.hbm.harmonics`), projected on
+        the harmonics solved for.
+    ``PREVIOUS_HARMONICS``
+        The solution at the previous, smaller H of the adaptive refinement.
+    """
+
+    LINEAR = "linear"
+    PREDICTOR = "quasi_static_predictor"
+    GIVEN = "given"
+    MARCH = "periodic_march"
+    PREVIOUS_HARMONICS = "previous_harmonics"
+
+
+class HBMRoute(StrEnum):
+    """Which solve of the harmonic balance's fallback chain reached the answer.
+
+    ``DIRECT``: the direct solve; ``DIRECT_FROM_LINEAR``: the second direct solve, from the linear solution;
+    ``KAPPA_CONTINUATION``: the continuation in the contact law's sharpness; ``AMPLITUDE_CONTINUATION``: the
+    continuation in the dynamic excitation amplitude; ``NONE``: none converged.
+    """
+
+    DIRECT = "direct"
+    DIRECT_FROM_LINEAR = "direct_from_linear"
+    KAPPA_CONTINUATION = "kappa_continuation"
+    AMPLITUDE_CONTINUATION = "amplitude_continuation"
+    NONE = "none"
+
+    @property
+    def by_continuation(self) -> bool:
+        """Whether the route is a continuation (the outcome ``CONVERGED_BY_CONTINUATION``)."""
+        return self in (HBMRoute.KAPPA_CONTINUATION, HBMRoute.AMPLITUDE_CONTINUATION)
+
+
+@dataclass(frozen=True)
+class HBMPath:
+    """How a harmonic balance solve went, as typed values (the ``message`` says it in words).
+
+    Attributes
+    ----------
+    start
+        Where the direct solve started (:class:`HBMStart`).
+    route
+        Which solve reached the answer (:class:`HBMRoute`; ``NONE`` when none converged).
+    stop
+        How the Newton solve that ended the route stopped (:class:`~seafast.solvers.newton.NewtonStop`; for
+        a failed chain, that of its best iterate); None for Powell's method (``hybr``).
+    """
+
+    start: HBMStart
+    route: HBMRoute
+    stop: NewtonStop | None

@@ -18,24 +18,21 @@ Sign conventions (docs/conventions.md#3-signs)
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-# re-exported: their public import path was this module before the Fourier kernels moved down
-from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, period_fraction
-from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
+from seafast.config.modes import SolverMethod
+from seafast.fourier import period_fraction
+from seafast.solvers.outcome import HBMPath, OrbitRecord, SolverOutcome, SolverWarning
 
-__all__ = [
-    "PeriodicResponse",
-    "OrbitRecord",
-    "SolverOutcome",
-    "SolverWarning",
-    "period_fraction",
-    "harmonics_to_time",
-    "high_harmonic_energy_share",
-]
+__all__ = ["PeriodicResponse", "SettingValue", "Settings"]
+
+SettingValue = int | float | str | bool | list[int] | None
+"""One value of a solver's record of its settings (plain, JSON-serialisable; the modes by their values)."""
+
+Settings = dict[str, SettingValue]
+"""A solver's record of the settings it used (``options`` of its result)."""
 
 
 @dataclass(frozen=True)
@@ -45,7 +42,8 @@ class PeriodicResponse:
     Attributes
     ----------
     method
-        ``"hbm"``, ``"quasi_static"`` or ``"time_domain"``.
+        The solver (:class:`~seafast.config.modes.SolverMethod`: ``"hbm"``, ``"quasi_static"`` or
+        ``"time_domain"``).
     omega_rad_s
         Fundamental frequency [rad/s] (period T = 2 pi / omega).
     cargo_displacement_time_m
@@ -74,7 +72,7 @@ class PeriodicResponse:
         Typed warnings (:class:`~seafast.solvers.outcome.SolverWarning`), empty when none.
     harmonic_truncation_indicator
         Per saddle, the share of the fluctuating contact-force energy above harmonic H
-        (see :func:`high_harmonic_energy_share`); for the references H is the ``harmonics``
+        (see :func:`seafast.fourier.high_harmonic_energy_share`); for the references H is the ``harmonics``
         recorded in ``options`` (what an HBM with that H would miss).
     options
         The settings used (plain dict, safe to serialise).
@@ -85,9 +83,12 @@ class PeriodicResponse:
     orbit
         Time-domain reference only (else None): where it started and what it reached
         (:class:`~seafast.solvers.outcome.OrbitRecord`).
+    path
+        Harmonic balance only (else None): where its direct solve started and which solve of the fallback
+        chain reached the answer (:class:`~seafast.solvers.outcome.HBMPath`).
     """
 
-    method: str
+    method: SolverMethod
     omega_rad_s: float
     cargo_displacement_time_m: NDArray[np.float64]
     cargo_displacement_harmonics: NDArray[np.complex128] | None
@@ -99,10 +100,11 @@ class PeriodicResponse:
     message: str
     harmonic_truncation_indicator: NDArray[np.float64]
     function_evaluations: int
-    options: dict[str, Any] = field(default_factory=dict)
+    options: Settings = field(default_factory=dict)
     truncation_error: NDArray[np.float64] | None = None
     warnings: tuple[SolverWarning, ...] = ()
     orbit: OrbitRecord | None = None
+    path: HBMPath | None = None
 
     @property
     def converged(self) -> bool:

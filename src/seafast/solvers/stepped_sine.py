@@ -39,7 +39,7 @@ from seafast.fourier import harmonics_to_time, real_to_complex_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm import condensed_operators
 from seafast.solvers.modal_correction import modal_correction_system
-from seafast.solvers.transient import MarchState, march_period, modal_correction
+from seafast.solvers.transient import MarchState, march_period, newmark_step
 
 __all__ = ["SweepJump", "SteppedSineSweep", "stepped_sine_sweep"]
 
@@ -118,7 +118,7 @@ def _hold(
     """March whole periods at one frequency from a copy of ``start`` until the compressions repeat (or ``max_periods``)."""
     ops = condensed_operators(model, excitation, max(excitation.harmonic_count - 1, 1))
     lin = np.ascontiguousarray(harmonics_to_time(real_to_complex_harmonics(ops.linear_compression_m), steps))
-    system = modal_correction(model, 2.0 * math.pi / excitation.omega_rad_s / steps, cutoff_rad_s, minimum_modes=0)
+    system = newmark_step(model, 2.0 * math.pi / excitation.omega_rad_s / steps, cutoff_rad_s, minimum_modes=0)
     state = MarchState(start.eta.copy(), start.eta_dot.copy(), start.eta_ddot.copy(), start.force_N.copy(), start.detached.copy())
     scale = max(float(np.max(np.abs(lin))), 1e-12)
     previous: NDArray | None = None
@@ -132,7 +132,7 @@ def _hold(
                 settled = True
                 break
         previous = delta
-    k = system.stiffness_N_per_m
+    k = system.reduced.unilateral_stiffness_N_per_m
     span = float(np.max(np.ptp(delta, axis=0)))
     return _Held(state, float(np.max(k * np.maximum(delta, 0.0))), float(max(-np.min(delta), 0.0)), span, settled, periods)
 

@@ -46,14 +46,11 @@ from seafast.model.structure import StructuralModel
 from seafast.pipeline import build_model, hbm_options
 from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
-from seafast.solvers.continuation import DEFAULT_HARMONICS, frequency_response
+from seafast.solvers.continuation import CONTINUATION_HARMONICS, frequency_response
 from seafast.solvers.hbm import condensed_operators, solve_condensed
 from seafast.solvers.hbm.options import samples_for
 
-__all__ = ["SWEEP_HARMONICS", "SWEEP_MIN_TIME_SAMPLES", "SweepKind", "SweepResult", "frequency_sweep", "wave_excitation"]
-
-SWEEP_HARMONICS = DEFAULT_HARMONICS
-"""H (10) of a sweep when the case leaves ``solver.harmonics`` unset (continuation runs at a fixed H)."""
+__all__ = ["SWEEP_MIN_TIME_SAMPLES", "SweepKind", "SweepResult", "frequency_sweep", "wave_excitation"]
 
 SWEEP_MIN_TIME_SAMPLES = 512
 """AFT samples N of a sweep when the case leaves ``solver.time_samples`` unset (at least ``samples_for(H)``):
@@ -222,7 +219,7 @@ def frequency_sweep(
     model = build_model(case)
     # continuation runs on the condensed system with Newton correctors at a fixed H
     opts = hbm_options(case, formulation="condensed", solver="newton", tolerance=max(case.solver.tolerance, 1e-8))
-    H = SWEEP_HARMONICS if opts.harmonics is None else int(opts.harmonics)
+    H = CONTINUATION_HARMONICS if opts.harmonics is None else int(opts.harmonics)  # continuation runs at a fixed H
     # the case's N if it sets one, else at least SWEEP_MIN_TIME_SAMPLES (the sampled contact resolves the folds)
     opts = opts.with_harmonics(H, case.solver.time_samples or max(SWEEP_MIN_TIME_SAMPLES, samples_for(H)))
     w_lo, w_hi = sorted((float(omega_start_rad_s), float(omega_end_rad_s)))

@@ -333,7 +333,7 @@ def sweep_table(
         raise ValueError("sweep_table: give wave_amplitude_m, rao_at and still_water_compression_m together (wave sweep) or none")
     n = branch.omega_rad_s.size
     H = branch.compression_harmonics_m.shape[1] // 2
-    N = int(branch.options.get("time_samples") or 128)
+    N = branch.time_samples or 128
     system = stability_system(model, float(np.max(branch.omega_rad_s)) if n else 1.0, H)
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     inverse, _ = real_dft_matrices(H, N)
@@ -421,7 +421,7 @@ def sweep_table(
         u_c_m=np.array(cols["u_c"]),
         stability=stability,
         stability_tolerance=tolerance,
-        truncation_tolerance=float(branch.options.get("truncation_tolerance", 1e-3)),
+        truncation_tolerance=branch.truncation_tolerance or 1e-3,
         folds=clusters,
         limits=limits,
         wave=wave,

@@ -7,7 +7,8 @@ stiffness ``k_t`` in series with the Coulomb slider of capacity ``C(t)``). At th
 stiffness (1e12 N/m per saddle, a rigid contact) the periodic solution does not depend on it
 (tests: 1e11 to 1e13 N/m agree to 1e-4) and converges to the rigid-Coulomb time-domain reference.
 
-Damped Newton from several starts, one after the other until one converges to a real periodic
+The shared Newton (:func:`seafast.solvers.newton.newton`, with
+:data:`~seafast.solvers.axial.problem.AXIAL_GLOBALISATION`) from several starts, one after the other until one converges to a real periodic
 state: stuck (exact when the friction holds: zero iterations), locked at the edge of the lock
 range (shakedown), a given neighbouring solution, sliding all period (the describing function)
 and frictionless, then a continuation in the contact stiffness from a soft (regularised) law to
@@ -32,8 +33,9 @@ from numpy.typing import NDArray
 from seafast.excitation.axial import AxialLoad
 from seafast.fourier import complex_to_real_harmonics, real_to_complex_harmonics
 from seafast.model.axial import AxialRestraint
-from seafast.solvers.axial.problem import AxialProblem, Evaluation, evaluation_arrays, lock_check, newton
+from seafast.solvers.axial.problem import AXIAL_GLOBALISATION, AxialIterate, AxialProblem, evaluation_arrays, lock_check
 from seafast.solvers.axial.response import AxialResponse, LockCheck, periodic_interpolation
+from seafast.solvers.newton import NewtonResult, newton
 
 __all__ = ["AxialHBMOptions", "solve_axial_hbm", "axial_time_samples"]
 
@@ -90,7 +92,7 @@ class _Attempt:
     norm: float
     iterations: int
     converged: bool
-    evaluation: Evaluation
+    state: AxialIterate
     check: LockCheck
     excess_N: float
     sample: int
@@ -110,10 +112,19 @@ class _Attempt:
         return f"{self.start}: did not converge (residual {self.norm:.2e} after {self.iterations} iterations)"
 
 
-def _run(p: AxialProblem, start: str, X0: NDArray, options: AxialHBMOptions, first: Evaluation | None = None) -> _Attempt:
-    X, norm, iters, ok, ev = newton(p, X0, p.capacity, options.tolerance, options.max_iterations, first)
-    check, excess, sample = lock_check(p, ev[1], ev[2], options.tolerance) if ok else (LockCheck.NOT_LOCKED, 0.0, -1)
-    return _Attempt(start, X, norm, iters, ok, ev, check, excess, sample)
+def _newton(
+    p: AxialProblem, X0: NDArray, options: AxialHBMOptions, first: tuple[NDArray, AxialIterate] | None = None
+) -> NewtonResult[AxialIterate]:
+    return newton(p, X0, tolerance=options.tolerance, max_iterations=options.max_iterations, globalisation=AXIAL_GLOBALISATION, first=first)
+
+
+def _run(p: AxialProblem, start: str, X0: NDArray, options: AxialHBMOptions, first: tuple[NDArray, AxialIterate] | None = None) -> _Attempt:
+    r = _newton(p, X0, options, first)
+    ok = r.converged
+    check, excess, sample = (
+        lock_check(p, r.state.jenkins, r.state.displacement_m, options.tolerance) if ok else (LockCheck.NOT_LOCKED, 0.0, -1)
+    )
+    return _Attempt(start, r.u, r.relative_residual, r.iterations, ok, r.state, check, excess, sample)
 
 
 def _continuation(p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, options: AxialHBMOptions) -> _Attempt | None:
@@ -132,10 +143,10 @@ def _continuation(p: AxialProblem, restraint: AxialRestraint, load: AxialLoad, o
     factor, target, iterations = 1.0, kt, 0
     for _ in range(_CONTINUATION_STEPS):
         q = AxialProblem(restraint, load, p.capacity, p.H, p.N, target)
-        X_new, _, its, ok, _ = newton(q, X, p.capacity, options.tolerance, options.max_iterations)
-        iterations += its
-        if ok:
-            X, kt = X_new, target
+        r = _newton(q, X, options)
+        iterations += r.iterations
+        if r.converged:
+            X, kt = r.u, target
             if kt >= p.kt:
                 last = _run(p, "contact-stiffness continuation", X, options)
                 return replace(last, iterations=iterations + last.iterations)
@@ -162,7 +173,7 @@ def _attempts(
     The stuck start first on its own: when the friction holds it is the answer (zero iterations).
     """
     stuck = p.stick_guess()
-    ev = p.evaluate(stuck, p.capacity)
+    ev = p.residual(stuck)
     if float(np.max(np.abs(ev[0]))) <= options.tolerance * p.scale:
         first = _run(p, "stuck", stuck, options, ev)
         if first.accepted:
@@ -173,11 +184,11 @@ def _attempts(
         ("sliding (describing function)", p.sliding_guess),
         ("frictionless", p.free_guess),
     ]
-    starts: list[tuple[float, str, NDArray, Evaluation]] = [(float(np.max(np.abs(ev[0]))), "stuck", stuck, ev)]
+    starts: list[tuple[float, str, NDArray, tuple[NDArray, AxialIterate]]] = [(float(np.max(np.abs(ev[0]))), "stuck", stuck, ev)]
     for name, make in makers:
         X0 = make()
         if X0 is not None:
-            ev0 = p.evaluate(X0, p.capacity)
+            ev0 = p.residual(X0)
             starts.append((float(np.max(np.abs(ev0[0]))), name, X0, ev0))
     out: list[_Attempt] = []
     for _, name, X0, ev0 in sorted(starts, key=lambda s: s[0]):
@@ -262,5 +273,5 @@ def solve_axial_hbm(
             "tangential_stiffness_N_per_m": p.kt,
         },
         lock_check=check,
-        **evaluation_arrays(p, chosen.X, chosen.evaluation),
+        **evaluation_arrays(p, chosen.X, chosen.state),
     )

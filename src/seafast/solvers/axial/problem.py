@@ -1,4 +1,4 @@
-"""One axial harmonic-balance problem: residual, Jacobian, Newton, its start guesses, the lock check.
+"""One axial harmonic-balance problem: residual, Jacobian, its start guesses, the lock check.
 
 Unknowns: the 2H+1 real harmonic coefficients ``X = [a0, a1, b1, ..., aH, bH]`` of the axial
 displacement ``u(t)`` (layout of :func:`seafast.fourier.real_dft_matrices`). Residual::
@@ -7,7 +7,8 @@ displacement ``u(t)`` (layout of :func:`seafast.fourier.real_dft_matrices`). Res
 
 ``Z`` the linear part per harmonic (``k_a - (k w)^2 m``, and ``c k w`` between cosine and sine),
 ``f_J`` the friction as a Jenkins element (:func:`~seafast.solvers.axial.jenkins.march_jenkins`),
-``f_s`` the stoppers. Analytic Jacobian ``Z + DFT (k_t (I - S) + diag f_s') IDFT``.
+``f_s`` the stoppers. Analytic Jacobian ``Z + DFT (k_t (I - S) + diag f_s') IDFT``. The problem is a
+:class:`~seafast.solvers.newton.NewtonSystem` of the shared Newton (:data:`AXIAL_GLOBALISATION`).
 
 Start guesses (docs/axial.md): stuck (the contacts' spring carries the load), locked at the edge of
 the lock range (:func:`~seafast.solvers.axial.response.lock_range_m`), sliding all period (the
@@ -20,7 +21,8 @@ violates it between them.
 from __future__ import annotations
 
 import math
-from typing import Any
+from dataclasses import dataclass
+from typing import TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,11 +32,21 @@ from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_h
 from seafast.model.axial import AxialRestraint
 from seafast.solvers.axial.jenkins import JenkinsPeriod, march_jenkins
 from seafast.solvers.axial.response import LockCheck, lock_range_m
+from seafast.solvers.newton import DenseJacobian, Globalisation, Merit
 
-__all__ = ["AxialProblem", "Evaluation", "lock_check", "newton"]
+__all__ = ["AxialProblem", "AxialIterate", "AXIAL_GLOBALISATION", "IterateArrays", "lock_check", "evaluation_arrays"]
 
-#: Residual, the Jenkins period and the displacement samples of one iterate.
-Evaluation = tuple[NDArray[np.float64], JenkinsPeriod, NDArray[np.float64]]
+AXIAL_GLOBALISATION = Globalisation(merit=Merit.MAX_ABS, memory=1, min_step=2.0**-29, accept_converged_trial=True)
+"""The axial harmonic balance's Newton: monotone backtracking on ``max |R| / scale`` (Armijo c = 1e-4) over up to
+30 halvings of the step, a trial that meets the tolerance accepted; a singular Jacobian solved in least squares."""
+
+
+@dataclass(frozen=True)
+class AxialIterate:
+    """What one residual evaluation computed besides ``R``: the Jenkins period and the displacement samples [m]."""
+
+    jenkins: JenkinsPeriod
+    displacement_m: NDArray[np.float64]
 
 
 class AxialProblem:
@@ -79,19 +91,26 @@ class AxialProblem:
         self.harmonic_coupling_N_per_m = restraint.damping_N_s_per_m * k * w
         self.scale = max(float(np.max(np.abs(self.load_t))), float(np.max(capacity)) if capacity.size else 0.0, 1e-300)
 
-    def evaluate(self, X: NDArray, capacity: NDArray) -> Evaluation:
+    def residual(self, X: NDArray) -> tuple[NDArray, AxialIterate]:
+        """``R(X)`` [N] and the iterate's Jenkins period and displacement samples."""
         # the transforms by FFT (O(N log N)); the dense E and D only for the Jacobian
         u = real_harmonics_to_time(X, self.N)
         _, stop = self.r.restoring_force_N(u)
-        jen = march_jenkins(u, capacity, self.kt)
+        jen = march_jenkins(u, self.capacity, self.kt)
         R = self.apply_linear(X) + time_to_real_harmonics(jen.force_N + stop, self.H) - self.F
-        return R, jen, u
+        return R, AxialIterate(jen, u)
 
-    def jacobian(self, jen: JenkinsPeriod, u: NDArray) -> NDArray:
+    def jacobian(self, state: AxialIterate) -> NDArray:
+        """The dense Jacobian ``dR/dX`` (2H+1, 2H+1) [N/m] at an evaluated iterate."""
         E, D = real_dft_matrices(self.H, self.N)
+        jen = state.jenkins
         gathered = np.where((jen.last_slip >= 0)[:, None], E[np.maximum(jen.last_slip, 0)], 0.0)
-        dfe = self.kt * (E - gathered) + self.r.stopper_tangent_N_per_m(u)[:, None] * E
+        dfe = self.kt * (E - gathered) + self.r.stopper_tangent_N_per_m(state.displacement_m)[:, None] * E
         return self.Z + D @ dfe
+
+    def factorise(self, state: AxialIterate) -> DenseJacobian:
+        """The Jacobian for Newton steps (a singular one solved in least squares)."""
+        return DenseJacobian(self.jacobian(state), least_squares=True)
 
     @property
     def Z(self) -> NDArray:
@@ -180,36 +199,6 @@ class AxialProblem:
         return X if 4.0 * c_mean / math.pi < first and np.all(np.isfinite(X)) else None
 
 
-def newton(
-    p: AxialProblem, X: NDArray, capacity: NDArray, tol: float, max_iter: int, first: Evaluation | None = None
-) -> tuple[NDArray, float, int, bool, Evaluation]:
-    """Damped Newton; returns the iterate, its relative residual, iterations, success and its evaluation."""
-    ev = first if first is not None else p.evaluate(X, capacity)
-    R, jen, u = ev
-    norm = float(np.max(np.abs(R))) / p.scale
-    for it in range(1, max_iter + 1):
-        if norm <= tol:
-            return X, norm, it - 1, True, ev
-        J = p.jacobian(jen, u)
-        try:
-            dX = np.linalg.solve(J, -R)
-        except np.linalg.LinAlgError:
-            dX = np.linalg.lstsq(J, -R, rcond=None)[0]
-        step = 1.0
-        for _ in range(30):
-            X_try = X + step * dX
-            ev_try = p.evaluate(X_try, capacity)
-            n_try = float(np.max(np.abs(ev_try[0]))) / p.scale
-            if n_try < (1.0 - 1e-4 * step) * norm or n_try <= tol:
-                break
-            step *= 0.5
-        else:
-            return X, norm, it, False, ev
-        X, ev, norm = X_try, ev_try, n_try
-        R, jen, u = ev
-    return X, norm, max_iter, norm <= tol, ev
-
-
 def lock_check(p: AxialProblem, jen: JenkinsPeriod, u: NDArray, tol: float) -> tuple[LockCheck, float, int]:
     """A slip-free solution against the rigid-Coulomb friction law: ``|F - r(u)| <= C`` at every sample.
 
@@ -237,9 +226,21 @@ def lock_check(p: AxialProblem, jen: JenkinsPeriod, u: NDArray, tol: float) -> t
     return (LockCheck.HOLDS if excess[worst] <= margin else LockCheck.VIOLATED), float(excess[worst]), worst
 
 
-def evaluation_arrays(p: AxialProblem, X: NDArray, ev: Evaluation) -> dict[str, Any]:
+class IterateArrays(TypedDict):
+    """An iterate's displacement [m], velocity [m/s], forces on the cargo [N] (forward +), sliding samples and slip [m]."""
+
+    displacement_m: NDArray[np.float64]
+    velocity_m_per_s: NDArray[np.float64]
+    friction_force_N: NDArray[np.float64]
+    lashing_force_N: NDArray[np.float64]
+    stopper_force_N: NDArray[np.float64]
+    sliding: NDArray[np.bool_]
+    slip_m: float
+
+
+def evaluation_arrays(p: AxialProblem, X: NDArray, state: AxialIterate) -> IterateArrays:
     """Displacement, velocity and forces of an iterate, as the fields of an AxialResponse."""
-    _, jen, u = ev
+    jen, u = state.jenkins, state.displacement_m
     lashing, stop = p.r.restoring_force_N(u)
     V = np.zeros_like(X)
     k = np.arange(1, p.H + 1)

@@ -10,12 +10,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from enum import Enum
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.model.axial import AxialRestraint
+from seafast.solvers.periodic import Settings
 
 __all__ = ["AxialResponse", "AxialWarning", "LockCheck", "critical_friction_coefficient", "lock_range_m", "periodic_interpolation"]
 
@@ -147,6 +147,9 @@ class AxialResponse:
         Time domain: the estimated distance [m] of the state it stopped at from the periodic
         state (the remaining walk, extrapolated from the last periods' changes; 0 when a period
         repeats exactly); 0 for the HBM and the statics.
+    walk_m_per_period
+        Time domain, not converged: the displacement per period [m] of a cargo that walks (its
+        velocity repeats from period to period, its position does not; forward +); None otherwise.
     warnings
         Typed warnings (:class:`AxialWarning`), set by the case analysis.
     """
@@ -167,9 +170,10 @@ class AxialResponse:
     iterations: int
     message: str
     harmonics: NDArray[np.complex128] | None = None
-    options: dict[str, Any] = field(default_factory=dict)
+    options: Settings = field(default_factory=dict)
     lock_check: LockCheck = LockCheck.NOT_LOCKED
     residual_drift_m: float = 0.0
+    walk_m_per_period: float | None = None
     warnings: tuple[AxialWarning, ...] = ()
 
     @property

@@ -351,7 +351,8 @@ def _response(
     )
     if walk.jumps:
         msg += f"; start extrapolated to the walk's limit {len(walk.jumps)} time(s) (last: {walk.jumps[-1]})"
-    if not converged and abs(state[2] - start[2]) <= tolerance * s.w * walk.u_scale:
+    walks = not converged and abs(state[2] - start[2]) <= tolerance * s.w * walk.u_scale
+    if walks:
         msg += f"; the cargo moves {drift_m:+.4g} m per period (walks)"
     return AxialResponse(
         "time_domain",
@@ -372,4 +373,5 @@ def _response(
         None,
         {"time_samples": time_samples, "steps_per_period": steps, "max_periods": max_periods, "tolerance": tolerance},
         residual_drift_m=float(residual_m),
+        walk_m_per_period=float(drift_m) if walks else None,
     )

@@ -45,43 +45,42 @@ static contact problem with the static receptance G_0 (active-set solver of
 converges in 2-6 iterations even where the piecewise-linear exact law makes Newton from the
 linear solution cycle.
 
-Solvers: ``newton`` (semi-smooth Newton with the exact law; globalised by a non-monotone
-Armijo line search on ``||R||^2 / 2``, a Levenberg-Marquardt step where the line search fails,
-and an early exit on stagnation) and ``hybr`` (MINPACK's Powell hybrid method via
+Solvers: ``newton`` (semi-smooth Newton with the exact law, the package's one Newton of
+:mod:`seafast.solvers.newton`; globalised by a non-monotone Armijo line search on ``||R||^2 / 2``,
+a Levenberg-Marquardt step where the line search fails, and an early exit on stagnation) and ``hybr`` (MINPACK's Powell hybrid method via
 ``scipy.optimize.root`` with the analytic Jacobian, as the source). If the direct solve fails,
 a second direct solve starts from the linear solution, then the solver continues in the
 contact-law sharpness kappa (soft to the requested law) and then in the dynamic excitation
 amplitude (static state to full amplitude) before giving up; the response's ``outcome``
 (:class:`~seafast.solvers.outcome.SolverOutcome`) says which: ``CONVERGED`` (direct solve),
-``CONVERGED_BY_CONTINUATION`` or ``NOT_CONVERGED`` (reported, never raised); the message
-tells people the path and the start used.
+``CONVERGED_BY_CONTINUATION`` or ``NOT_CONVERGED`` (reported, never raised); its ``path``
+(:class:`~seafast.solvers.outcome.HBMPath`) which start and which route; the message tells people
+the same in words.
 
-Modules: :mod:`~seafast.solvers.hbm.options` (:class:`HBMOptions`),
+Modules: :mod:`~seafast.solvers.hbm.options` (:class:`HBMOptions`, :data:`SAFE_HARMONICS`),
 :mod:`~seafast.solvers.hbm.condensed` (operators and problem of the condensed formulation),
 :mod:`~seafast.solvers.hbm.full` (the full-DOF problem), :mod:`~seafast.solvers.hbm.nonlinear`
-(Newton, hybr and the fallback chain, for any :class:`~seafast.solvers.hbm.nonlinear.NonlinearProblem`),
-:mod:`~seafast.solvers.hbm.harmonics` (the truncation indicator and the adaptive choice of H),
-:mod:`~seafast.solvers.hbm.solve` (the entry points). The Fourier kernels are in
+(Newton's globalisation, hybr and the fallback chain, for any
+:class:`~seafast.solvers.hbm.nonlinear.NonlinearProblem`), :mod:`~seafast.solvers.hbm.harmonics`
+(the truncation indicator and the march's choice of H), :mod:`~seafast.solvers.hbm.fixed` (one solve
+at a fixed H), :mod:`~seafast.solvers.hbm.adaptive` (the adaptive choice of H),
+:mod:`~seafast.solvers.hbm.solve` (the entry point). The Fourier kernels are in
 :mod:`seafast.fourier`, the dynamic stiffness in :mod:`seafast.solvers.dynamic_stiffness`.
 """
 
-from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
 from seafast.solvers.hbm.condensed import CondensedOperators, CondensedProblem, condensed_operators
-from seafast.solvers.hbm.options import FORMULATIONS, SOLVERS, SOURCE_OPTIONS, HBMOptions
-from seafast.solvers.hbm.solve import CondensedSolution, solve_condensed, solve_hbm
+from seafast.solvers.hbm.fixed import CondensedSolution, solve_condensed
+from seafast.solvers.hbm.options import SAFE_HARMONICS, SOURCE_OPTIONS, HBMOptions
+from seafast.solvers.hbm.solve import solve_hbm
 
 __all__ = [
     "HBMOptions",
     "SOURCE_OPTIONS",
-    "FORMULATIONS",
-    "SOLVERS",
+    "SAFE_HARMONICS",
     "solve_hbm",
-    "real_dft_matrices",
     "CondensedOperators",
     "CondensedProblem",
     "condensed_operators",
     "solve_condensed",
     "CondensedSolution",
-    "complex_to_real_harmonics",
-    "real_to_complex_harmonics",
 ]

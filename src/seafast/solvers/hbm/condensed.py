@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import (
     complex_to_real_harmonics,
+    periodic_impulse_response,
     real_dft_matrices,
     real_harmonics_to_time,
     real_to_complex_harmonics,
@@ -41,7 +42,7 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.dynamic_stiffness import quadratic_matrices, saddle_selection, solve_dynamic_stack
 from seafast.solvers.exact_contact import solve_exact_contact
-from seafast.solvers.hbm.nonlinear import DenseJacobian
+from seafast.solvers.newton import DenseJacobian
 
 __all__ = ["CondensedOperators", "condensed_operators", "CondensedProblem", "DetachedSampleJacobian"]
 
@@ -121,10 +122,7 @@ class CondensedOperators:
     def time_kernel(self, time_samples: int) -> NDArray[np.float64]:
         """``kappa[tau, t, s]``: compression change at saddle t, ``tau`` samples after a unit correction force
         sample at saddle s, through harmonics 0 .. H (circulant: ``IDFT G DFT``), (N, n_s, n_s) [m/N]."""
-        N = int(time_samples)
-        A = np.zeros((N // 2 + 1, self.saddle_count, self.saddle_count), dtype=complex)
-        A[: self.harmonics + 1] = self.receptance_harmonics
-        return np.fft.irfft(A, n=N, axis=0)
+        return periodic_impulse_response(self.receptance_harmonics, int(time_samples))
 
     def linear_compression_at(self, amplitude_scale: float) -> NDArray[np.float64]:
         """Linear compression with the dynamic harmonics scaled by ``amplitude_scale``."""

@@ -32,13 +32,20 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, real_dft_matrices, real_to_complex_harmonics
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    harmonics_above,
+    harmonics_to_time,
+    real_dft_matrices,
+    real_to_complex_harmonics,
+    time_to_harmonics,
+)
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm.condensed import condensed_operators
 from seafast.solvers.hbm.options import MINIMUM_TIME_SAMPLES, samples_for
 from seafast.solvers.modal_correction import modal_basis, modal_correction_system
-from seafast.solvers.transient import march_periodic, modal_correction
+from seafast.solvers.transient import march_periodic, newmark_step
 
 __all__ = [
     "HarmonicSelection",
@@ -144,10 +151,9 @@ def select_harmonics(
         march, periods, change = d_lin, 0, 0.0
     else:
         # every mode below the march's Nyquist frequency, the rest static
-        system = modal_correction(model, period / N0, math.pi * N0 / period, minimum_modes=0)
+        system = newmark_step(model, period / N0, math.pi * N0 / period, minimum_modes=0)
         periodic = march_periodic(system, d_lin, max_periods=_MARCH_MAX_PERIODS, tolerance=1e-6)
         march, periods, change = periodic.compression_m, periodic.periods, periodic.change
-    X = np.fft.rfft(march, axis=0) / N0  # half the complex amplitudes, k = 0 .. N0/2
     scale = force_scale_N(np.max(k_u * np.maximum(march, 0.0), axis=0))
     in_contact = march > 0.0
 
@@ -155,9 +161,7 @@ def select_harmonics(
 
     def neglected_error(H: int) -> NDArray[np.float64]:
         # the change of each saddle's peak force if the compression lost its harmonics above H
-        tail = X.copy()
-        tail[: H + 1] = 0.0
-        change = np.fft.irfft(tail, n=N0, axis=0) * N0 * k_u * in_contact
+        change = harmonics_above(march, H) * k_u * in_contact
         return peak_change_bound(force, change) / scale
 
     H = n_exc
@@ -167,9 +171,8 @@ def select_harmonics(
         estimated = neglected_error(H)
     capped = bool(np.max(estimated, initial=0.0) > tolerance)
     C = np.zeros((H + 1, march.shape[1]), dtype=complex)
-    m = min(H, X.shape[0] - 1)
-    C[0] = X[0].real
-    C[1 : m + 1] = 2.0 * X[1 : m + 1]
+    m = min(H, N0 // 2)
+    C[: m + 1] = time_to_harmonics(march, m)
     return HarmonicSelection(
         harmonics=int(H),
         time_samples=samples_for(H),
@@ -212,15 +215,15 @@ def truncation_error(
     delta = harmonics_to_time(real_to_complex_harmonics(U), N_f)  # an inverse real FFT
     force, _ = law.force_and_derivative(delta, k_u)
     correction = force - k_u * delta
-    C = np.fft.rfft(correction, axis=0) * (2.0 / N_f)  # complex amplitudes X_k (k >= 1)
+    C = time_to_harmonics(correction, N_f // 2 - 1)  # complex amplitudes X_k
     k = np.arange(H + 1, N_f // 2)
     if k.size == 0:
         return np.zeros(k_u.size)
     system = modal_correction_system(model, 1.2 * float(k[-1]) * omega_rad_s)
     G = system.receptance(k * omega_rad_s)  # (n_k, n_s, n_s)
-    missing = np.zeros((N_f // 2 + 1, k_u.size), dtype=complex)
+    missing = np.zeros((N_f // 2, k_u.size), dtype=complex)
     missing[k] = -np.einsum("kts,ks->kt", G, C[k])  # compression harmonics above H
-    delta_missing = np.fft.irfft(missing, n=N_f, axis=0) * (N_f / 2.0)  # Re sum_k X_k e^{ik wt}
+    delta_missing = harmonics_to_time(missing, N_f)  # Re sum_k X_k e^{ik wt}
     change = k_u * delta_missing * (delta > 0.0)
     return np.asarray(peak_change_bound(force, change) / force_scale_N(np.max(force, axis=0)), dtype=float)
 

@@ -1,18 +1,25 @@
-"""Settings of the harmonic balance solver (:class:`HBMOptions`) and the accepted names."""
+"""Settings of the harmonic balance solver (:class:`HBMOptions`) and its grid defaults."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from typing import Any
+from enum import StrEnum
 
 import numpy as np
 
-from seafast.solvers.contact import CONTACT_LAWS, ContactLaw
+from seafast.config.modes import ContactLawKind, Formulation, NonlinearSolver
+from seafast.solvers.contact import ContactLaw
+from seafast.solvers.periodic import Settings
 
-__all__ = ["HBMOptions", "FORMULATIONS", "SOLVERS", "SOURCE_OPTIONS", "MINIMUM_TIME_SAMPLES", "samples_for"]
+__all__ = ["HBMOptions", "SAFE_HARMONICS", "SOURCE_OPTIONS", "MINIMUM_TIME_SAMPLES", "samples_for"]
 
-FORMULATIONS: tuple[str, ...] = ("condensed", "full")
+SAFE_HARMONICS = 16
+"""The harmonic balance's fixed H where a robust solve matters more than resolving every harmonic: the
+adaptive choice falls back on it when its start does not converge (the full fallback chain is affordable
+there), above it a fixed H starts from the periodic march first (:mod:`seafast.solvers.hbm.solve`), and
+the two-way coupling iterates the deck at it when ``solver.harmonics`` is adaptive (0.4 % of the peak
+forces on the base case)."""
 
 MINIMUM_TIME_SAMPLES = 128
 """N never goes below this by default: the peaks are read on the samples (128 samples miss a smooth peak by
@@ -23,9 +30,6 @@ def samples_for(harmonics: int) -> int:
     """The default AFT samples N for H harmonics: 2.5 H rounded up to an even number, at least 128 and 2H + 2."""
     H = int(harmonics)
     return int(max(MINIMUM_TIME_SAMPLES, 2 * H + 2, 2 * math.ceil(1.25 * H)))
-
-
-SOLVERS: tuple[str, ...] = ("newton", "hybr")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -42,13 +46,16 @@ class HBMOptions:
         N >= 2H + 2 AFT samples per period (any integer; powers of 2 not required), or None
         (default): ``max(128, 2.5 H)`` (:func:`~seafast.solvers.hbm.harmonics.samples_for`).
     contact_law
-        ``exact`` (default), ``tanh`` (the source's regularisation) or ``softplus``.
+        :class:`~seafast.config.modes.ContactLawKind` (or its value): ``exact`` (default), ``tanh``
+        (the source's regularisation) or ``softplus``.
     regularisation_per_m
         kappa [1/m] of ``tanh``/``softplus``, > 0 (default 1000, the source's value).
     formulation
-        ``condensed`` (default, fast) or ``full`` (all cargo DOFs, as the source).
+        :class:`~seafast.config.modes.Formulation` (or its value): ``condensed`` (default, fast) or
+        ``full`` (all cargo DOFs, as the source).
     solver
-        ``newton`` (default) or ``hybr`` (Powell hybrid, as the source).
+        :class:`~seafast.config.modes.NonlinearSolver` (or its value): ``newton`` (default) or ``hybr``
+        (Powell hybrid, as the source).
     tolerance
         Relative residual at convergence (> 0, < 1): condensed, max |R| over the largest linear
         saddle compression; full, max |R| over the largest load/saddle force.
@@ -67,10 +74,10 @@ class HBMOptions:
 
     harmonics: int | None = None
     time_samples: int | None = None
-    contact_law: str = "exact"
+    contact_law: ContactLawKind = ContactLawKind.EXACT
     regularisation_per_m: float = 1000.0
-    formulation: str = "condensed"
-    solver: str = "newton"
+    formulation: Formulation = Formulation.CONDENSED
+    solver: NonlinearSolver = NonlinearSolver.NEWTON
     tolerance: float = 1e-10
     max_iterations: int = 100
     continuation: bool = True
@@ -81,7 +88,7 @@ class HBMOptions:
         def bad(name: str, allowed: str) -> ValueError:
             return ValueError(f"HBMOptions.{name} = {getattr(self, name)!r}; allowed: {allowed}")
 
-        def is_int(v: Any) -> bool:
+        def is_int(v: object) -> bool:
             return isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
 
         if self.harmonics is not None and (not is_int(self.harmonics) or self.harmonics < 0):
@@ -89,8 +96,15 @@ class HBMOptions:
         minimum_samples = 2 * int(self.harmonics) + 2 if self.harmonics is not None else 4
         if self.time_samples is not None and (not is_int(self.time_samples) or self.time_samples < minimum_samples):
             raise bad("time_samples", f"an integer >= 2*harmonics + 2 = {minimum_samples}, or None")
-        if self.contact_law not in CONTACT_LAWS:
-            raise bad("contact_law", " | ".join(CONTACT_LAWS))
+
+        def mode(name: str, kind: type[StrEnum]) -> None:
+            # a mode given by its value becomes the member (the field always holds one)
+            value = getattr(self, name)
+            if not isinstance(value, str) or value not in set(kind):
+                raise bad(name, " | ".join(kind))
+            object.__setattr__(self, name, kind(value))
+
+        mode("contact_law", ContactLawKind)
         if (
             isinstance(self.regularisation_per_m, bool)
             or not isinstance(self.regularisation_per_m, (int, float, np.floating, np.integer))
@@ -98,10 +112,8 @@ class HBMOptions:
             or self.regularisation_per_m <= 0
         ):
             raise bad("regularisation_per_m", "a finite number > 0 [1/m]")
-        if self.formulation not in FORMULATIONS:
-            raise bad("formulation", " | ".join(FORMULATIONS))
-        if self.solver not in SOLVERS:
-            raise bad("solver", " | ".join(SOLVERS))
+        mode("formulation", Formulation)
+        mode("solver", NonlinearSolver)
         if (
             isinstance(self.tolerance, bool)
             or not isinstance(self.tolerance, (int, float, np.floating))
@@ -155,10 +167,12 @@ class HBMOptions:
         """The contact law object."""
         return ContactLaw(self.contact_law, float(self.regularisation_per_m))
 
-    def to_dict(self) -> dict[str, Any]:
-        """Plain dict of the settings."""
-        return asdict(self)
+    def to_dict(self) -> Settings:
+        """Plain dict of the settings (the modes by their values)."""
+        return {k: str(v) if isinstance(v, StrEnum) else v for k, v in asdict(self).items()}
 
 
-SOURCE_OPTIONS = HBMOptions(harmonics=5, time_samples=128, contact_law="tanh", regularisation_per_m=1000.0, solver="hybr")
+SOURCE_OPTIONS = HBMOptions(
+    harmonics=5, time_samples=128, contact_law=ContactLawKind.TANH, regularisation_per_m=1000.0, solver=NonlinearSolver.HYBR
+)
 """The source's method: tanh law with kappa = 1000 1/m, H = 5, N = 128, Powell's hybrid method."""

@@ -15,23 +15,24 @@ same grid ``t_n = n T / N`` as HBM.
     enumeration of all sets as a fallback, so the answer is exact to round-off.
 ``solve_time_domain``
     HHT-alpha integration of the cargo equations with the exact law to the periodic steady
-    state, in two formulations of the same equations (``"full"``, the independent reference,
-    and ``"condensed"``), both started from one stated state and reporting the orbit reached
+    state, in two formulations of the same equations (``Formulation.FULL``, the independent
+    reference, and ``Formulation.CONDENSED``), both started from one stated state and reporting the orbit reached
     (:mod:`~seafast.solvers.references.time_domain`, :mod:`~seafast.solvers.references.orbit`).
 
 The references live in :mod:`~seafast.solvers.references.quasi_static` and
-:mod:`~seafast.solvers.references.time_domain`; the active-set contact solvers they use in
-:mod:`seafast.solvers.exact_contact`. This package keeps their public names.
+:mod:`~seafast.solvers.references.time_domain`, their settings (:class:`QuasiStaticOptions`,
+:class:`TimeDomainOptions`) in :mod:`~seafast.solvers.references.options`; the active-set contact
+solvers they use in :mod:`seafast.solvers.exact_contact`.
 """
 
-from seafast.solvers.exact_contact import solve_exact_contact
+from seafast.solvers.references.options import QuasiStaticOptions, TimeDomainOptions
 from seafast.solvers.references.quasi_static import QUASI_STATIC_RATIO_LIMIT, solve_quasi_static
-from seafast.solvers.references.time_domain import TIME_DOMAIN_FORMULATIONS, solve_time_domain
+from seafast.solvers.references.time_domain import solve_time_domain
 
 __all__ = [
-    "TIME_DOMAIN_FORMULATIONS",
+    "QuasiStaticOptions",
+    "TimeDomainOptions",
     "solve_quasi_static",
     "solve_time_domain",
-    "solve_exact_contact",
     "QUASI_STATIC_RATIO_LIMIT",
 ]

@@ -2,22 +2,21 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.modes import SolverMethod
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import PeriodicResponse, Settings
 
 __all__ = ["exact_law_response"]
 
 
 def exact_law_response(
-    method: str,
+    method: SolverMethod,
     model: StructuralModel,
     excitation: HarmonicExcitation,
     cargo_time: NDArray,
@@ -28,7 +27,7 @@ def exact_law_response(
     evaluations: int,
     message: str,
     harmonics_for_indicator: int,
-    options: dict[str, Any],
+    options: Settings,
     warnings: tuple[SolverWarning, ...] = (),
     orbit: OrbitRecord | None = None,
 ) -> PeriodicResponse:

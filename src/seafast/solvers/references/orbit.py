@@ -1,4 +1,4 @@
-"""Where the time-domain reference starts, and which orbit it reaches (issue 12, item 3).
+"""Where the time-domain reference starts, and which orbit it reaches.
 
 A cargo that lifts off its saddles is a non-smooth oscillator: one excitation can have several
 periodic steady states (orbits), and a non-periodic (chaotic) motion beside them. On 1 % saddles
@@ -7,14 +7,15 @@ coexists with a bouncing motion with metre-high flights and 15-20 MN impacts; wh
 integration settles on depends on where it starts. Both formulations of
 :func:`~seafast.solvers.references.solve_time_domain` therefore start from the *same* state:
 
-* :attr:`~seafast.solvers.outcome.TimeDomainStart.LINEAR` (default): the linear periodic solution
+* :attr:`~seafast.config.modes.TimeDomainStart.LINEAR` (default): the linear periodic solution
   (every saddle bilateral) at t = 0, its displacement and velocity;
-* :attr:`~seafast.solvers.outcome.TimeDomainStart.GIVEN`: a given periodic solution (e.g. the
+* :attr:`~seafast.config.modes.TimeDomainStart.GIVEN`: a given periodic solution (e.g. the
   harmonic balance's) at t = 0; the orbit reached is then compared with it
   (:func:`orbit_distance`) and a periodic state farther than ``orbit_tolerance`` is reported as
   :attr:`~seafast.solvers.outcome.SolverOutcome.OTHER_ORBIT`;
-* :attr:`~seafast.solvers.outcome.TimeDomainStart.QUASI_STATIC`: the exact-contact quasi-static
-  state at t = 0 (the full-DOF formulation's former start), kept to reproduce the issue.
+* :attr:`~seafast.config.modes.TimeDomainStart.QUASI_STATIC`: the exact-contact quasi-static
+  state at t = 0 (the full-DOF formulation's former start), kept to reproduce what that start found
+  (a bouncing, non-periodic motion on the bistable case of ``docs/orbits.md``).
 
 The acceleration at t = 0 follows from each formulation's own equation of motion. Units: SI (m,
 rad, N, s).
@@ -28,12 +29,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.modes import TimeDomainStart
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import harmonics_to_time
+from seafast.fourier import harmonics_up_to, resample_periodic, time_to_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.exact_contact import BandedActiveSet
 from seafast.solvers.linear import solve_linear
-from seafast.solvers.outcome import OrbitRecord, SolverOutcome, TimeDomainStart
+from seafast.solvers.outcome import OrbitRecord, SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
@@ -62,7 +64,7 @@ class StartState:
     Attributes
     ----------
     kind, method
-        The :class:`~seafast.solvers.outcome.TimeDomainStart` and what it came from (``"linear"``,
+        The :class:`~seafast.config.modes.TimeDomainStart` and what it came from (``"linear"``,
         ``"quasi_static"``, or the given solution's ``method``).
     displacement, velocity
         Cargo DOFs and their rates at t = 0 (n_c,) [m, rad], [m/s, rad/s].
@@ -92,25 +94,9 @@ def _series_at(harmonics: NDArray, omega: float, t: float, derivative: bool = Fa
 
 
 def _sample_harmonics(samples: NDArray) -> NDArray[np.complex128]:
-    """Complex amplitudes X_k (``x = Re sum X_k e^{ik w t}``) of periodic samples (N', ...); the Nyquist term dropped."""
-    n = samples.shape[0]
-    C = np.fft.rfft(samples, axis=0) / n
-    X = 2.0 * C
-    X[0] = C[0].real
-    if n % 2 == 0:
-        X = X[:-1]  # the Nyquist component: its phase (and rate) is not defined by the samples
-    return X
-
-
-def _resample(samples: NDArray, N: int) -> NDArray[np.float64]:
-    """Periodic samples (N', ...) on the grid ``t_n = n T / N`` (exact for signals band-limited below N'/2)."""
-    if samples.shape[0] == N:
-        return np.array(samples, dtype=float)
-    X = _sample_harmonics(samples)
-    if samples.shape[0] % 2 == 0:  # keep the Nyquist term as a cosine, as the samples have it
-        nyq = np.fft.rfft(samples, axis=0)[-1:] / samples.shape[0]
-        X = np.concatenate([X, nyq.real.astype(complex)])
-    return harmonics_to_time(X, N)
+    """Complex amplitudes X_k (``x = Re sum X_k e^{ik w t}``) of periodic samples (N', ...), k below N'/2: the
+    Nyquist term of an even N' dropped (its phase, and rate, is not defined by the samples)."""
+    return time_to_harmonics(samples, (samples.shape[0] - 1) // 2)
 
 
 def start_state(
@@ -143,8 +129,8 @@ def start_state(
         else:
             q0 = _series_at(X, omega, 0.0)
         v0 = _series_at(X, omega, 0.0, derivative=True)
-        delta = _resample(r.saddle_compression_time_m, time_samples)
-        return StartState(TimeDomainStart.GIVEN, r.method, q0, v0, delta, int(X.shape[0] - 1))
+        delta = resample_periodic(r.saddle_compression_time_m, time_samples)
+        return StartState(TimeDomainStart.GIVEN, str(r.method), q0, v0, delta, int(X.shape[0] - 1))
     if start is TimeDomainStart.LINEAR:
         X = solve_linear(model, excitation).cargo_displacement
         return StartState(start, "linear", _series_at(X, omega, 0.0), _series_at(X, omega, 0.0, derivative=True), None)
@@ -180,16 +166,9 @@ def orbit_distance(compression_m: NDArray, start_compression_m: NDArray, stiffne
     f = k * np.maximum(compression_m, 0.0)
     f0 = k * np.maximum(start_compression_m, 0.0)
     if harmonics is not None and int(harmonics) + 1 < f.shape[0] // 2 + 1:
-        f, f0 = (_low_pass(x, int(harmonics)) for x in (f, f0))
+        f, f0 = (harmonics_up_to(x, int(harmonics)) for x in (f, f0))
     scale = max(float(np.sqrt(np.mean(f0**2))), 1.0)
     return float(np.sqrt(np.mean((f - f0) ** 2)) / scale)
-
-
-def _low_pass(samples: NDArray, harmonics: int) -> NDArray[np.float64]:
-    """Periodic samples (N, ...) keeping harmonics 0 .. H."""
-    X = np.fft.rfft(samples, axis=0)
-    X[harmonics + 1 :] = 0.0
-    return np.fft.irfft(X, n=samples.shape[0], axis=0)
 
 
 def orbit_outcome(

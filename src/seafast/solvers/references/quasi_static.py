@@ -17,14 +17,16 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import eigh
 
+from seafast.config.modes import SolverMethod
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection, solve_dynamic
 from seafast.solvers.exact_contact import solve_exact_contact
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import PeriodicResponse, Settings
 from seafast.solvers.references.common import exact_law_response
+from seafast.solvers.references.options import QuasiStaticOptions
 
 __all__ = ["QUASI_STATIC_RATIO_LIMIT", "solve_quasi_static"]
 
@@ -44,13 +46,9 @@ def _effective_harmonic(force: NDArray, omega: float, share: float = 1e-3) -> in
 
 
 def solve_quasi_static(
-    model: StructuralModel,
-    excitation: HarmonicExcitation,
-    time_samples: int = 128,
-    *,
-    harmonics_for_indicator: int = 5,
+    model: StructuralModel, excitation: HarmonicExcitation, options: QuasiStaticOptions | None = None
 ) -> PeriodicResponse:
-    """Exact-contact quasi-static response at ``time_samples`` instants of the period.
+    """Exact-contact quasi-static response at ``options.time_samples`` instants of the period.
 
     Cargo inertia and damping are neglected (each instant is a static problem with the
     stiffness K); the vessel loads of the excitation (e.g. rigid-body inertia -M a_rb) and the
@@ -69,9 +67,8 @@ def solve_quasi_static(
         ``method = "quasi_static"``; ``options`` records ``time_samples``,
         ``effective_harmonic``, ``lowest_natural_frequency_rad_s`` and ``frequency_ratio``.
     """
-    N = int(time_samples)
-    if N < 2:
-        raise ValueError(f"time_samples = {time_samples!r}; allowed: an integer >= 2")
+    options = QuasiStaticOptions() if options is None else options
+    N = int(options.time_samples)
     q = quadratic_matrices(model, True)
     B = saddle_selection(model)
     sad_c, sad_o = model.saddle_cargo_dof, model.saddle_deck_dof
@@ -106,9 +103,9 @@ def solve_quasi_static(
         else f"quasi-statics questionable: {criterion} > {QUASI_STATIC_RATIO_LIMIT} "
         "(cargo dynamics matter; use HBM or the time-domain reference)"
     )
-    options = {
+    record: Settings = {
         "time_samples": N,
-        "harmonics_for_indicator": int(harmonics_for_indicator),
+        "harmonics_for_indicator": int(options.harmonics_for_indicator),
         "effective_harmonic": int(h_eff),
         "lowest_natural_frequency_rad_s": float(w1),
         "frequency_ratio": float(ratio),
@@ -120,7 +117,7 @@ def solve_quasi_static(
     else:
         logger.debug("quasi-static reference: %s", verdict)
     return exact_law_response(
-        "quasi_static",
+        SolverMethod.QUASI_STATIC,
         model,
         excitation,
         cargo,
@@ -130,7 +127,7 @@ def solve_quasi_static(
         len(states),
         N,
         f"exact active-set solution at {N} instants; {verdict}",
-        harmonics_for_indicator,
-        options,
+        int(options.harmonics_for_indicator),
+        record,
         warnings,
     )

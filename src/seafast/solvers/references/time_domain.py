@@ -4,7 +4,7 @@ HHT-alpha integration (average-acceleration Newmark for ``hht_alpha = 0``) of th
 equations with the exact law, period by period until the change between two periods is
 below ``tolerance`` (the periodic steady state). Two formulations of the same equations:
 
-``formulation="full"`` (default, the independent reference)
+``Formulation.FULL`` (default, the independent reference)
     All cargo DOFs, ``M q'' + D q' + K_lin q = f_static + f_vessel(t) - K_co x_o(t) -
     D_co x_o'(t) + B f_c(delta)`` (``D_co``: the damping acts on the motion relative to the
     quasi-static support motion) with ``K_lin`` the cargo beam and the lashing springs only and the
@@ -14,7 +14,7 @@ below ``tolerance`` (the periodic steady state). Two formulations of the same eq
     per active set, so a step costs one banded matrix-vector product and one or two banded
     triangular solves. It uses the model's matrices directly (none of the receptance /
     condensation machinery of the HBM).
-``formulation="condensed"``
+``Formulation.CONDENSED``
     The same integration with the saddles bilateral in the linear stiffness and the
     implicit contact problem of each step condensed onto the saddles (the step's
     effective receptance) and solved with the active-set method of
@@ -27,36 +27,33 @@ chaotic motion for one excitation; the start decides which one a time integratio
 result says what it found (:class:`~seafast.solvers.outcome.OrbitRecord`, outcome ``CONVERGED``,
 ``NOT_PERIODIC`` or ``OTHER_ORBIT``).
 
-Size: just over 400 lines as ruff formats it (one keyword argument a line in a call that does not
-fit on one line; about 380 lines before); the full-DOF and condensed formulations share the
-integrator's step and the periodicity check.
+The settings are :class:`~seafast.solvers.references.options.TimeDomainOptions`.
 """
 
 from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.sparse import csr_array
 
+from seafast.config.modes import Formulation, SolverMethod, TimeDomainStart
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
 from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, saddle_selection
 from seafast.solvers.exact_contact import BandedActiveSet, ExactContact
-from seafast.solvers.outcome import SolverOutcome, TimeDomainStart
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.outcome import OrbitRecord, SolverOutcome
+from seafast.solvers.periodic import PeriodicResponse, Settings
 from seafast.solvers.references.common import exact_law_response
-from seafast.solvers.references.orbit import ORBIT_TOLERANCE, StartState, orbit_outcome, settling_periods, start_state
+from seafast.solvers.references.options import TimeDomainOptions
+from seafast.solvers.references.orbit import StartState, orbit_outcome, settling_periods, start_state
 
-__all__ = ["TIME_DOMAIN_FORMULATIONS", "solve_time_domain"]
+__all__ = ["solve_time_domain"]
 
 logger = logging.getLogger(__name__)
-
-TIME_DOMAIN_FORMULATIONS = ("full", "condensed")
 
 
 @dataclass(frozen=True)
@@ -69,59 +66,37 @@ class _Run:
     periods: int
     steps: int
     description: str
-    extra_options: dict[str, Any]
+    extra_options: Settings
 
 
 def solve_time_domain(
     model: StructuralModel,
     excitation: HarmonicExcitation,
-    time_samples: int = 128,
+    options: TimeDomainOptions | None = None,
     *,
-    formulation: str = "full",
-    start: TimeDomainStart | PeriodicResponse = TimeDomainStart.LINEAR,
-    steps_per_period: int | None = None,
-    max_periods: int | None = None,
-    tolerance: float = 1e-7,
-    hht_alpha: float = -0.05,
-    harmonics_for_indicator: int = 5,
-    orbit_tolerance: float = ORBIT_TOLERANCE,
+    start: PeriodicResponse | None = None,
 ) -> PeriodicResponse:
     """Periodic steady state by implicit time integration with the exact contact law.
 
     Parameters
     ----------
-    time_samples
-        N, output samples per period (the HBM grid).
-    formulation
-        ``"full"`` (default): HHT-alpha on all cargo DOFs with ``K_lin`` = cargo beam +
-        lashings and the saddles as exact unilateral springs, the implicit contact problem of
-        each step solved by an active-set (semi-smooth Newton) iteration on the full effective
-        stiffness with banded Cholesky factorisations cached per active set; independent of
-        the HBM's receptance machinery. ``"condensed"``: the same equations with the saddles
-        bilateral in ``K`` and each step's contact problem condensed onto the saddles.
-        Both integrate the same discrete equations from the same start and agree to the
+    model, excitation
+        The cargo model and its excitation.
+    options
+        :class:`~seafast.solvers.references.options.TimeDomainOptions` (default: 128 output samples, the
+        full-DOF formulation, 16 steps per sample, from the linear periodic solution). ``formulation``
+        ``FULL``: HHT-alpha on all cargo DOFs with ``K_lin`` = cargo beam + lashings and the saddles as
+        exact unilateral springs, the implicit contact problem of each step solved by an active-set
+        (semi-smooth Newton) iteration on the full effective stiffness with banded Cholesky factorisations
+        cached per active set; independent of the HBM's receptance machinery. ``CONDENSED``: the same
+        equations with the saddles bilateral in ``K`` and each step's contact problem condensed onto the
+        saddles. Both integrate the same discrete equations from the same start and agree to the
         period-to-period tolerance.
     start
-        The state at t = 0 both formulations start from: ``TimeDomainStart.LINEAR`` (default, the
-        linear periodic solution), a :class:`PeriodicResponse` of the same model and frequency
-        (e.g. the HBM's: its displacement and velocity at t = 0; the orbit reached is compared
-        with it), or ``TimeDomainStart.QUASI_STATIC`` (the exact-contact quasi-static state).
-    steps_per_period
-        Time steps per period, a multiple of N (default 16 N).
-    max_periods
-        Periods integrated at most; default
-        :func:`~seafast.solvers.references.orbit.settling_periods` (twice what the slowest free
-        vibration needs to decay by ``tolerance``, at least 40).
-    tolerance
-        Steady state when the largest change of the saddle forces between two consecutive
-        periods, over the largest saddle force, is below this.
-    hht_alpha
-        HHT-alpha parameter in [-1/3, 0]; 0 is the average-acceleration Newmark rule, a small
-        negative value damps the spurious high-frequency response of contact switches.
-    orbit_tolerance
-        With a given start: the distance (:func:`~seafast.solvers.references.orbit.orbit_distance`)
-        above which the periodic state reached is another orbit [-] (default
-        :data:`~seafast.solvers.references.orbit.ORBIT_TOLERANCE`).
+        A periodic solution of the same model and frequency to start from (e.g. the HBM's: its
+        displacement and velocity at t = 0; the orbit reached is compared with it). Without it,
+        ``options.start`` (``LINEAR``: the linear periodic solution; ``QUASI_STATIC``: the exact-contact
+        quasi-static state; ``HBM`` needs the harmonic balance's solution here).
 
     Returns
     -------
@@ -133,54 +108,31 @@ def solve_time_domain(
         ``iterations`` = periods integrated, ``function_evaluations`` = time steps,
         ``residual_norm`` = last period-to-period change; ``message`` and
         ``options["formulation"]``, ``options["start"]`` name the formulation and the start.
+
+    Raises
+    ------
+    ValueError
+        For ``options.start = HBM`` without a ``start`` solution (:func:`seafast.solvers.solve_periodic`
+        solves it), or a ``start`` of another frequency or model.
     """
-    N = int(time_samples)
-    S = 16 * N if steps_per_period is None else int(steps_per_period)
-    if formulation not in TIME_DOMAIN_FORMULATIONS:
-        raise ValueError(f"formulation = {formulation!r}; allowed: 'full', 'condensed'")
-    if N < 2:
-        raise ValueError(f"time_samples = {time_samples!r}; allowed: an integer >= 2")
-    if S < N or S % N:
-        raise ValueError(f"steps_per_period = {steps_per_period!r}; allowed: a positive multiple of time_samples = {N}")
-    if not (-1.0 / 3.0 <= hht_alpha <= 0.0):
-        raise ValueError(f"hht_alpha = {hht_alpha!r}; allowed: a number in [-1/3, 0]")
-    if max_periods is not None and int(max_periods) < 2:
-        raise ValueError(f"max_periods = {max_periods!r}; allowed: an integer >= 2, or None")
-    if not (0.0 < float(orbit_tolerance) < 1.0):
-        raise ValueError(f"orbit_tolerance = {orbit_tolerance!r}; allowed: a number in (0, 1)")
+    options = TimeDomainOptions() if options is None else options
+    if start is None and options.start is TimeDomainStart.HBM:
+        raise ValueError(
+            "start: options.start = 'hbm' needs the harmonic balance's solution; allowed: start=<its PeriodicResponse>, "
+            "or solve_periodic(..., method=SolverMethod.TIME_DOMAIN), which solves it first"
+        )
+    N, S = int(options.time_samples), options.steps
     omega = float(excitation.omega_rad_s)
-    periods_allowed = settling_periods(model, omega, float(tolerance)) if max_periods is None else int(max_periods)
-    initial = start_state(model, excitation, start, N, 2.0 * np.pi / omega / S)
-    integrate = _time_domain_full if formulation == "full" else _time_domain_condensed
-    run = integrate(model, excitation, initial, N, S, periods_allowed, float(tolerance), float(hht_alpha))
+    periods_allowed = settling_periods(model, omega, float(options.tolerance)) if options.max_periods is None else int(options.max_periods)
+    initial = start_state(model, excitation, options.start if start is None else start, N, 2.0 * np.pi / omega / S)
+    integrate = _time_domain_full if options.formulation is Formulation.FULL else _time_domain_condensed
+    run = integrate(model, excitation, initial, N, S, periods_allowed, float(options.tolerance), float(options.hht_alpha))
     k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
     outcome, orbit = orbit_outcome(
-        initial, k_u, run.compression_m, run.check.converged, run.periods, run.check.change, float(orbit_tolerance)
+        initial, k_u, run.compression_m, run.check.converged, run.periods, run.check.change, float(options.orbit_tolerance)
     )
-    options = {
-        "time_samples": N,
-        "steps_per_period": S,
-        "max_periods": periods_allowed,
-        "tolerance": float(tolerance),
-        "hht_alpha": float(hht_alpha),
-        "harmonics_for_indicator": int(harmonics_for_indicator),
-        "contact_law": "exact",
-        "formulation": formulation,
-        "start": initial.kind.value,
-        "start_method": initial.method,
-        "orbit_tolerance": float(orbit_tolerance),
-        **run.extra_options,
-    }
-    given = f" ({initial.method})" if initial.kind is TimeDomainStart.GIVEN else ""
-    message = f"{run.description}; from the {_START_WORDS[initial.kind]}{given}; " + run.check.describe(run.periods)
-    if orbit.distance_from_start is not None:
-        message += (
-            f"; distance from the start's orbit {orbit.distance_from_start:.2e} ("
-            + ("the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached")
-            + f", tolerance {orbit.orbit_tolerance:g})"
-        )
     response = exact_law_response(
-        "time_domain",
+        SolverMethod.TIME_DOMAIN,
         model,
         excitation,
         run.cargo_m,
@@ -189,13 +141,44 @@ def solve_time_domain(
         run.check.change,
         run.periods,
         run.steps,
-        message,
-        int(harmonics_for_indicator),
-        options,
+        _message(run, initial, orbit),
+        int(options.harmonics_for_indicator),
+        _record(options, S, periods_allowed, initial, run),
         orbit=orbit,
     )
     logger.log(logging.DEBUG if outcome is SolverOutcome.CONVERGED else logging.INFO, "time-domain reference: %s", response.message)
     return response
+
+
+def _record(options: TimeDomainOptions, S: int, periods_allowed: int, initial: StartState, run: _Run) -> Settings:
+    """The settings used, as the response's plain ``options`` dict."""
+    return {
+        "time_samples": int(options.time_samples),
+        "steps_per_period": S,
+        "max_periods": periods_allowed,
+        "tolerance": float(options.tolerance),
+        "hht_alpha": float(options.hht_alpha),
+        "harmonics_for_indicator": int(options.harmonics_for_indicator),
+        "contact_law": "exact",
+        "formulation": str(options.formulation),
+        "start": str(initial.kind),
+        "start_method": initial.method,
+        "orbit_tolerance": float(options.orbit_tolerance),
+        **run.extra_options,
+    }
+
+
+def _message(run: _Run, initial: StartState, orbit: OrbitRecord) -> str:
+    """The account for people: formulation, start, periodicity and (a given start) the orbit reached."""
+    given = f" ({initial.method})" if initial.kind is TimeDomainStart.GIVEN else ""
+    message = f"{run.description}; from the {_START_WORDS[initial.kind]}{given}; " + run.check.describe(run.periods)
+    if orbit.distance_from_start is not None:
+        message += (
+            f"; distance from the start's orbit {orbit.distance_from_start:.2e} ("
+            + ("the same orbit" if orbit.same_as_start else "ANOTHER orbit" if orbit.same_as_start is False else "no orbit reached")
+            + f", tolerance {orbit.orbit_tolerance:g})"
+        )
+    return message
 
 
 _START_WORDS = {
@@ -325,7 +308,7 @@ def _time_domain_full(
         + (f", {step.enumerations} enumerations" if step.enumerations else "")
         + f"), {S} steps/period"
     )
-    extra = {"contact_states_factorised": len(step.factors), "solves_per_step": per_step}
+    extra: Settings = {"contact_states_factorised": len(step.factors), "solves_per_step": per_step}
     return _Run(cargo_out.copy(), delta_out.copy(), check, periods, steps, description, extra)
 
 

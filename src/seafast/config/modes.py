@@ -1,0 +1,84 @@
+"""The solver modes, as string enums shared by the case schema and the solvers.
+
+Each is a :class:`enum.StrEnum`: a member equals its value (``SolverMethod.HBM == "hbm"``), so the
+case file's YAML strings validate to members and the results store the same text they always did.
+The case schema (:mod:`seafast.config.schema`) types its keys with them, the solvers take and compare
+them (``options.formulation is Formulation.CONDENSED``); nothing compares a mode as a bare string.
+This module imports nothing (the lowest floor: the solvers import it, it imports no solver).
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+__all__ = ["SolverMethod", "Formulation", "ContactLawKind", "NonlinearSolver", "TimeDomainStart"]
+
+
+class SolverMethod(StrEnum):
+    """How the nonlinear (unilateral-saddle) periodic response is solved (``solver.method``).
+
+    ``HBM``: harmonic balance with AFT (:func:`seafast.solvers.hbm.solve_hbm`); ``QUASI_STATIC``: the
+    exact-contact quasi-static reference; ``TIME_DOMAIN``: the exact-contact time-domain reference
+    (:mod:`seafast.solvers.references`).
+    """
+
+    HBM = "hbm"
+    QUASI_STATIC = "quasi_static"
+    TIME_DOMAIN = "time_domain"
+
+
+class Formulation(StrEnum):
+    """Which unknowns a solver carries (``solver.formulation``; the time-domain reference's too).
+
+    ``CONDENSED``: every saddle bilateral in the linear part, the problem condensed onto the saddle
+    compressions; ``FULL``: all cargo DOFs, the compression-only saddle parts as the contact force.
+    """
+
+    CONDENSED = "condensed"
+    FULL = "full"
+
+
+class ContactLawKind(StrEnum):
+    """The saddle contact law (``solver.contact_law``; :class:`seafast.solvers.contact.ContactLaw`).
+
+    ``TANH``: the source's C1 regularisation (pulls slightly after separation); ``SOFTPLUS``: smooth and
+    never negative; ``EXACT``: ``k max(delta, 0)``.
+    """
+
+    TANH = "tanh"
+    SOFTPLUS = "softplus"
+    EXACT = "exact"
+
+
+class NonlinearSolver(StrEnum):
+    """The harmonic balance's nonlinear solver (``solver.nonlinear_solver``).
+
+    ``NEWTON``: the globalised semi-smooth Newton (:mod:`seafast.solvers.newton`); ``HYBR``: MINPACK's
+    Powell hybrid method (``scipy.optimize.root``), as the source.
+    """
+
+    NEWTON = "newton"
+    HYBR = "hybr"
+
+
+class TimeDomainStart(StrEnum):
+    """The state a time-domain reference starts from at t = 0 (``solver.time_domain_start``: linear or hbm).
+
+    ``LINEAR``
+        The linear periodic solution (every saddle bilateral): displacement and velocity at t = 0.
+        The default of both formulations.
+    ``HBM``
+        The harmonic balance's solution with the case's settings; the reference is then started from it
+        as from any ``GIVEN`` solution (:func:`seafast.solvers.solve_periodic` solves it first).
+    ``QUASI_STATIC``
+        The exact-contact quasi-static state at t = 0, velocity from the quasi-static states at
+        -dt and +dt (the full-DOF formulation's former start; not a case key).
+    ``GIVEN``
+        A given periodic solution (e.g. the harmonic balance's): its displacement and velocity at
+        t = 0; the orbit reached is compared with it (what the orbit record of a ``HBM`` start says).
+    """
+
+    LINEAR = "linear"
+    HBM = "hbm"
+    QUASI_STATIC = "quasi_static"
+    GIVEN = "given"
