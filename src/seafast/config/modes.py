@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["SolverMethod", "Formulation", "ContactLawKind", "NonlinearSolver", "TimeDomainStart"]
+__all__ = ["SolverMethod", "Formulation", "ContactLawKind", "NonlinearSolver", "TimeDomainStart", "HullCargoCoupling", "MotionCoupling"]
 
 
 class SolverMethod(StrEnum):
@@ -82,3 +82,25 @@ class TimeDomainStart(StrEnum):
     HBM = "hbm"
     QUASI_STATIC = "quasi_static"
     GIVEN = "given"
+
+
+class HullCargoCoupling(StrEnum):
+    """Whether the cargo's saddle forces load the hull girder (``vessel.coupling``).
+
+    ``ONE_WAY``: the hull moves the cargo, the cargo's weight is spread on the hull (the source's);
+    ``TWO_WAY``: the deck under the saddles and the cargo are solved together (:mod:`seafast.coupling`).
+    """
+
+    ONE_WAY = "one_way"
+    TWO_WAY = "two_way"
+
+
+class MotionCoupling(StrEnum):
+    """Which rigid-body motions the vertical analysis uses (``vessel.motion_coupling``).
+
+    ``HEAVE_PITCH``: the 2-DOF heave-pitch solution (the source's model); ``SURGE_HEAVE_PITCH``: coupled
+    with surge, when the hydrodynamic data hold it (docs/axial.md).
+    """
+
+    HEAVE_PITCH = "heave_pitch"
+    SURGE_HEAVE_PITCH = "surge_heave_pitch"

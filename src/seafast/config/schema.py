@@ -20,7 +20,15 @@ from typing import Annotated, Literal, get_args
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from seafast.config.arrangement import evenly_spaced_saddles
-from seafast.config.modes import ContactLawKind, Formulation, NonlinearSolver, SolverMethod, TimeDomainStart
+from seafast.config.modes import (
+    ContactLawKind,
+    Formulation,
+    HullCargoCoupling,
+    MotionCoupling,
+    NonlinearSolver,
+    SolverMethod,
+    TimeDomainStart,
+)
 
 __all__ = [
     "Case",
@@ -245,8 +253,8 @@ class VesselConfig(_Strict):
     )
     motions: str = Field("bem", description="'bem' (computed with capytaine), 'none', or a path to capytaine NetCDF / WAMIT .1 output")
     bem_panel_size_m: Positive = Field(3.0, description="Target panel size of the BEM mesh [m]")
-    motion_coupling: Literal["heave_pitch", "surge_heave_pitch"] = Field(
-        "heave_pitch",
+    motion_coupling: Literal[MotionCoupling.HEAVE_PITCH, MotionCoupling.SURGE_HEAVE_PITCH] = Field(
+        MotionCoupling.HEAVE_PITCH,
         description="Rigid-body motions the vertical analysis uses: 'heave_pitch' (the 2-DOF solution, the source's model) or "
         "'surge_heave_pitch' (coupled with surge, when the hydrodynamic data hold it; docs/axial.md). The axial analysis "
         "always uses the coupled surge and pitch",
@@ -254,8 +262,8 @@ class VesselConfig(_Strict):
     deck_height_m: Positive = Field(
         12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
     )
-    coupling: Literal["one_way", "two_way"] = Field(
-        "one_way",
+    coupling: Literal[HullCargoCoupling.ONE_WAY, HullCargoCoupling.TWO_WAY] = Field(
+        HullCargoCoupling.ONE_WAY,
         description="'one_way' (the source's: the hull carries the cargo as a spread weight, the cargo follows the deck) or "
         "'two_way' (hull and cargo solved together: the cargo's deck forces load the quasi-static hull girder, still water and wave)",
     )

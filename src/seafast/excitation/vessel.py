@@ -40,6 +40,7 @@ import xarray as xr
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
+from seafast.config.modes import MotionCoupling
 from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
@@ -351,7 +352,7 @@ def _rigid_body_amplitudes(case: Case, motions: RigidBodyMotions, omega: float, 
         surge_c, heave_c, pitch_c = (complex(q) * amplitude for q in motions.coupled_at(omega))
         surge, coupled_pitch = surge_c, pitch_c
     vertical = "heave/pitch (2-DOF)"
-    if v.motion_coupling == "surge_heave_pitch" and motions.has_surge and inside:
+    if v.motion_coupling is MotionCoupling.SURGE_HEAVE_PITCH and motions.has_surge and inside:
         heave, pitch = heave_c / amplitude, pitch_c / amplitude
         vertical = "heave/pitch coupled with surge"
     rigid = RigidBodyAmplitudes(

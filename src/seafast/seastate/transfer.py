@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import solve_banded
 
 from seafast.config.loader import CaseError
+from seafast.config.modes import HullCargoCoupling
 from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.rao_extension import extended_rao
@@ -133,7 +134,7 @@ def _check_supported(case: Case) -> None:
             f"vessel.deck_deflection_table = '{v.deck_deflection_table}': a deck table holds the hull's deflection in one "
             "regular wave; a sea state needs it at every frequency: remove the table (the computed hull girder is used)"
         )
-    if v.coupling == "two_way":
+    if v.coupling is HullCargoCoupling.TWO_WAY:
         raise CaseError(
             "vessel.coupling = 'two_way': sea states support 'one_way' only (the coupled deck changes with frequency); "
             "use --set vessel.coupling=one_way"

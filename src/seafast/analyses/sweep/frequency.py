@@ -37,6 +37,7 @@ from scipy.interpolate import CubicSpline
 
 from seafast.analyses.sweep.range import RangeLimits, deck_acceleration_m_per_s2
 from seafast.analyses.sweep.table import SweepTable, sweep_table
+from seafast.config.modes import HullCargoCoupling
 from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.harmonic import HarmonicExcitation
@@ -208,7 +209,7 @@ def frequency_sweep(
     seafast.config.CaseError
         A wave sweep of a case with a deck-deflection table.
     """
-    if case.vessel.coupling == "two_way":
+    if case.vessel.coupling is HullCargoCoupling.TWO_WAY:
         # the coupled deck depends on the cargo's response at each frequency: continuation
         # would have to re-couple at every point, which it does not
         raise ValueError(
