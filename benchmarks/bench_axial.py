@@ -19,24 +19,15 @@ from benchutil import timed
 
 
 def _series(result):
-    from seafast.results.timeseries import from_periodic_response, linear_time_series
-
-    n = int(result.attrs["time_samples"])  # the run's own time grid (N follows the adaptive H)
-    r = result.responses
-    return {
-        ("static", "linear"): linear_time_series(r["linear_static"], n),
-        ("dynamic", "linear"): linear_time_series(r["linear_dynamic"], n),
-        ("static", "nonlinear"): from_periodic_response(r["nonlinear_static"], n),
-        ("dynamic", "nonlinear"): from_periodic_response(r["nonlinear_dynamic"], n),
-    }
+    return result.series  # every row on the run's own time grid (N follows the adaptive H)
 
 
 def main() -> None:
     from seafast.analyses.axial import axial_options, run_axial_analysis
+    from seafast.analyses.run import run_case
     from seafast.config import load_case
     from seafast.excitation.axial import axial_load_of
     from seafast.model.from_case import axial_restraint
-    from seafast.pipeline import run_case
     from seafast.solvers.axial import solve_axial_hbm, solve_axial_time_domain
 
     base = load_case()

@@ -20,7 +20,7 @@ import time
 from pathlib import Path
 
 FULL_STACK = (
-    "import scipy.linalg, threadpoolctl, matplotlib.pyplot, seafast.cli, seafast.pipeline, seafast.output.files, "
+    "import scipy.linalg, threadpoolctl, matplotlib.pyplot, seafast.cli, seafast.analyses.run, seafast.output.files, "
     "seafast.output.report.write, seafast.studies.runner, seafast.seastate.monte_carlo, seafast.operability.allowable"
 )
 

@@ -21,9 +21,10 @@ ELEMENT_LENGTHS_M = (1.0, 0.5, 0.2, 0.1)
 def _one_length(length: float):
     """The base case at one element length: one-way and two-way timed, and the two-way
     still-water nonlinear row iterated to its round-off floor. Returns (result, floor, t_one, t_two)."""
+    from seafast.analyses.run import run_case
     from seafast.config import load_case
     from seafast.coupling.deck_iteration import couple_deck, deck_forces_N, linear_coupling_jacobian
-    from seafast.pipeline import run_case, solve_nonlinear
+    from seafast.solvers.from_case import solve_nonlinear
 
     one_way = load_case(overrides={"model.element_length_m": length})
     case = load_case(overrides={"model.element_length_m": length, "vessel.coupling": "two_way"})
@@ -46,8 +47,8 @@ def _one_length(length: float):
 
 
 def main() -> None:
+    from seafast.analyses.run import run_case
     from seafast.config import load_case
-    from seafast.pipeline import run_case
 
     run_case(load_case())  # the vessel (BEM from the disk cache) into memory
     print(

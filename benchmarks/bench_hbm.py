@@ -48,7 +48,7 @@ def base_case_model_and_excitation() -> tuple[StructuralModel, HarmonicExcitatio
     """
     from seafast.config import load_case
     from seafast.excitation.vessel import vessel_excitation
-    from seafast.pipeline import build_model
+    from seafast.model.from_case import build_model
 
     case = load_case()
     model = build_model(case)

@@ -6,7 +6,7 @@ Usage::
     python benchmarks/bench_scaling.py --quick     # fewer repeats
 
 The base case (its real vessel excitation, its own solver settings through
-``seafast.pipeline.solve_nonlinear``) with the cargo mesh refined through
+``seafast.solvers.from_case.solve_nonlinear``) with the cargo mesh refined through
 ``model.element_length_m`` from 77 to about 1000 nodes, and with 2 to 12 saddles on the base
 mesh. Two timings per configuration, medians over repeats in this process, one BLAS thread:
 
@@ -34,7 +34,8 @@ from threadpoolctl import threadpool_limits
 
 from seafast.config import load_case
 from seafast.excitation.vessel import vessel_excitation
-from seafast.pipeline import build_model, solve_nonlinear
+from seafast.model.from_case import build_model
+from seafast.solvers.from_case import solve_nonlinear
 
 ELEMENT_LENGTHS_M = (1.0, 0.6, 0.35, 0.2, 0.12, 0.074)  # 77 ... ~1000 nodes on the 74 m pile
 SADDLE_COUNTS = (2, 3, 4, 6, 8, 10, 12)

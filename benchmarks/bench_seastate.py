@@ -33,7 +33,7 @@ from seafast.excitation.vessel import vessel_excitation
 from seafast.hull.deck import deck_harmonics_at
 from seafast.hull.transfer import wave_transfer_functions
 from seafast.hull.wave import wave_response
-from seafast.pipeline import build_model
+from seafast.model.from_case import build_model
 from seafast.seastate.spectral import spectral_analysis
 from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.linear import solve_harmonic

@@ -73,7 +73,8 @@ def hbm_median_ms(repeats: int = 200) -> tuple[float, float]:
     """Median wall and CPU time [ms] of the base case's dynamic nonlinear solve with its own settings (condensed HBM)."""
     from seafast.config import load_case
     from seafast.excitation.vessel import vessel_excitation
-    from seafast.pipeline import build_model, solve_nonlinear
+    from seafast.model.from_case import build_model
+    from seafast.solvers.from_case import solve_nonlinear
 
     case = load_case()
     assert case.solver.method == "hbm" and case.solver.formulation == "condensed", "the base case is solved by the condensed HBM"

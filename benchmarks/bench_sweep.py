@@ -50,7 +50,7 @@ def hbm_median_ms(result, omega: float) -> float:
     """Median condensed HBM solve [ms] at ``omega`` on the sweep's model and H, started from the branch's nearest point."""
     from seafast.analyses.sweep.frequency import SweepKind, wave_excitation
     from seafast.fourier import harmonics_to_time, real_to_complex_harmonics
-    from seafast.pipeline import hbm_options
+    from seafast.solvers.from_case import hbm_options
     from seafast.solvers.hbm import solve_hbm
 
     case, model, branch = result.case, result.model, result.branch
@@ -131,7 +131,7 @@ def _table_again(result):
     """The sweep's table (stability, moments, linear model, truncation, range) rebuilt for its branch."""
     from seafast.analyses.sweep.frequency import SweepKind, wave_excitation
     from seafast.analyses.sweep.table import sweep_table
-    from seafast.pipeline import hbm_options
+    from seafast.solvers.from_case import hbm_options
     from seafast.solvers.hbm import condensed_operators, solve_condensed
 
     case, model, branch = result.case, result.model, result.branch

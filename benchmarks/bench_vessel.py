@@ -25,6 +25,7 @@ def main() -> None:
     parser.add_argument("--no-bem", action="store_true", help="skip the BEM run")
     args = parser.parse_args()
 
+    from seafast.analyses.run import run_case
     from seafast.config import load_case
     from seafast.coupling.deck_iteration import hull_compliance
     from seafast.coupling.hull import coupled_hull
@@ -32,7 +33,7 @@ def main() -> None:
     from seafast.excitation.vessel_inputs import hull_form_of, rigid_body_motions
     from seafast.hull.still_water import still_water_response
     from seafast.hull.wave import wave_response
-    from seafast.pipeline import build_model, run_case
+    from seafast.model.from_case import build_model
 
     one_way = load_case()
     two_way = load_case(overrides={"vessel.coupling": "two_way"})

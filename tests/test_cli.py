@@ -204,10 +204,10 @@ def test_sweep_says_it_cannot_couple(capsys):
 
 def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(tmp_path, capsys, monkeypatch):
     """The warning is built from the typed outcome and residual, not from the solver's message."""
-    import seafast.pipeline as pipeline
+    import seafast.solvers.from_case as from_case
 
-    original = pipeline.hbm_options
-    monkeypatch.setattr(pipeline, "hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
+    original = from_case.hbm_options
+    monkeypatch.setattr(from_case, "hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
     assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 3
     err = capsys.readouterr().err
     assert "dynamic nonlinear solution did NOT converge (not converged, residual" in err
@@ -218,16 +218,10 @@ def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(
 
 def test_a_coupling_that_does_not_converge_is_named_in_the_warning(tmp_path, capsys, monkeypatch):
     """The warning is built from the coupling's typed outcome, not from a message."""
-    import seafast.coupling.deck_iteration as coupling
-    import seafast.pipeline as pipeline
+    import seafast.coupling.case as coupling
 
     original = coupling.couple_deck
-
-    def stopped(*a, **k):
-        return original(*a, **{**k, "max_iterations": 0})
-
-    monkeypatch.setattr(coupling, "couple_deck", stopped)
-    monkeypatch.setattr(pipeline, "couple_deck", stopped, raising=False)  # where the pipeline imports it at module level
+    monkeypatch.setattr(coupling, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
     assert main(["run", "-o", str(tmp_path / "run"), *FAST, "--set", "vessel.coupling=two_way"]) == 3
     err = capsys.readouterr().err
     assert err.count("solution did NOT converge (two-way") == 4 and "residual" in err

@@ -169,8 +169,8 @@ def test_every_output_column_is_documented_exactly():
 
 
 def test_every_results_variable_is_documented():
+    from seafast.analyses.run import run_case
     from seafast.config import load_case
-    from seafast.pipeline import run_case
 
     ds = run_case(load_case(overrides={"vessel.motions": "none", "solver.time_samples": 16, "solver.harmonics": 3})).dataset
     missing = [name for name in ds.data_vars if f"`{name}`" not in ALL_DOCS]

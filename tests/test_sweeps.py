@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from threadpoolctl import threadpool_limits
 
+from seafast.analyses.run import run_case
 from seafast.analyses.sweep.frequency import SweepKind, frequency_sweep, wave_excitation
 from seafast.analyses.sweep.range import RangeLimit, deck_acceleration_m_per_s2
 from seafast.analyses.sweep.table import STRUCTURAL_COLUMNS, WAVE_COLUMNS
@@ -21,11 +22,12 @@ from seafast.config import load_case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import real_dft_matrices
+from seafast.model.from_case import build_model
 from seafast.output.sweep import structural_figure
-from seafast.pipeline import build_model, hbm_options, run_case
 from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd
 from seafast.solvers.floquet import Stability
+from seafast.solvers.from_case import hbm_options
 from seafast.solvers.hbm import solve_hbm
 from seafast.solvers.stepped_sine import stepped_sine_sweep
 

@@ -34,8 +34,8 @@ _LAZY = {
     "load_case": "seafast.config",
     "Case": "seafast.config",
     "CaseError": "seafast.config",
-    "run_case": "seafast.pipeline",
-    "CaseResult": "seafast.pipeline",
+    "run_case": "seafast.analyses.run",
+    "CaseResult": "seafast.analyses.run",
 }
 
 

@@ -8,14 +8,17 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicHermiteSpline, CubicSpline
 
+from seafast.analyses.run import run_case
 from seafast.config import CaseError, load_case
+from seafast.coupling.case import couple_hull_and_cargo
 from seafast.coupling.deck_iteration import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
 from seafast.coupling.status import CouplingOutcome
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import harmonics_to_time
 from seafast.hull.deck import deck_deflection_at
 from seafast.hull.still_water import still_water_response
-from seafast.pipeline import build_model, couple_hull_and_cargo, run_case, solve_nonlinear
+from seafast.model.from_case import build_model
+from seafast.solvers.from_case import solve_nonlinear
 from seafast.solvers.linear import solve_linear
 from seafast.vessel.loading import WeightItem
 
@@ -201,10 +204,10 @@ def test_a_coupling_that_does_not_converge_is_flagged_with_its_own_residual(monk
     """Every row's coupling stopped before its first step: the rows are flagged, and what says
     so is the coupling's typed outcome with the coupling's residual (the deck mismatch, mm
     here), not the cargo solver's (which converged, ~1e-14)."""
-    from seafast import pipeline
+    from seafast.coupling import case as coupling_case
 
-    original = pipeline.couple_deck
-    monkeypatch.setattr(pipeline, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
+    original = coupling_case.couple_deck
+    monkeypatch.setattr(coupling_case, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
     result = run_case(load_case(overrides={**NO_MOTIONS, "vessel.coupling": "two_way"}))
     assert set(result.coupling) == {(lc, m) for lc in ("static", "dynamic") for m in ("linear", "nonlinear")}
     for row in result.summary:

@@ -5,10 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from seafast.analyses.run import run_case
 from seafast.config import load_case
 from seafast.excitation.vessel import VesselCache, shared_vessel_cache, vessel_excitation
 from seafast.excitation.vessel_inputs import hull_form_of
-from seafast.pipeline import build_model, run_case
+from seafast.model.from_case import build_model
 
 NO_MOTIONS = {"vessel.motions": "none"}
 

@@ -20,6 +20,7 @@ import xarray as xr
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from seafast.analyses.run import run_case
 from seafast.config import load_case
 from seafast.output import plots
 from seafast.output.report.figures import rao_figure, run_figures, saddle_time_history_figure, stick_slip_figure
@@ -27,7 +28,6 @@ from seafast.output.report.print_figures import plot_contact_timeline
 from seafast.output.report.study_figures import compliance_map_figure, study_surface_figure
 from seafast.output.study_plots import plot_compliance_map, plot_profiles, plot_surfaces
 from seafast.output.style import cell_boundary, scaled_unit
-from seafast.pipeline import run_case
 
 PLAIN_NUMBER = re.compile("^[\u2212-]?\\d+(\\.\\d+)?$")  # matplotlib writes U+2212 for minus
 

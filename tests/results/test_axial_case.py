@@ -12,15 +12,16 @@ import pytest
 import xarray as xr
 
 from seafast.analyses.axial import axial_options
+from seafast.analyses.run import run_case
 from seafast.cli import main
 from seafast.config import load_case
 from seafast.excitation.axial import axial_load_of
 from seafast.model.from_case import axial_restraint
-from seafast.pipeline import run_case, solve_nonlinear
 from seafast.results.axial import AXIAL_SUMMARY_COLUMNS
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.solvers.axial import LockCheck, solve_axial_hbm, solve_axial_time_domain
 from seafast.solvers.axial.harmonic_balance import axial_time_samples
+from seafast.solvers.from_case import solve_nonlinear
 
 FAST = {"solver.time_samples": 64, "model.element_length_m": 2.0}
 _MODELS = ("linear", "nonlinear")
@@ -255,14 +256,14 @@ def test_one_way_coupling_friction_moment_is_small(cases):
     estimate = float(res.axial.rows["friction_moment_saddle_force_change_N"][1, 1])
     per_saddle = res.dataset["friction_force_per_saddle_N"].sel(load_case="dynamic", model="nonlinear").values  # (N, n_s)
     lever = 0.5 * model.cargo.element_outer_diameter_m[0]
-    H = int(res.responses["nonlinear_dynamic"].options["harmonics"])  # the harmonics the vertical solve used
+    H = int(res.rows.nonlinear_dynamic.options["harmonics"])  # the harmonics the vertical solve used
     moments = np.fft.rfft(per_saddle * lever, axis=0)[: H + 1] / per_saddle.shape[0]
     moments[1:] *= 2.0
     padded = exc.padded(H + 1)
     load = padded.cargo_load_N.copy()
     load[:, model.saddle_cargo_dof + 1] += moments
     # the same harmonics as the uncoupled solve, so that the two compare sample by sample
-    nd = res.responses["nonlinear_dynamic"]
+    nd = res.rows.nonlinear_dynamic
     same = res.case.model_copy(update={"solver": res.case.solver.model_copy(update={"harmonics": H, "time_samples": nd.time_samples})})
     coupled = solve_nonlinear(model, replace(padded, cargo_load_N=load), same, static=False)
     # the peaks (the moment shifts the ringing after a re-contact by a few samples: compare peaks, not samples)

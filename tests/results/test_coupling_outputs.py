@@ -9,15 +9,15 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from seafast import pipeline
+from seafast.analyses.run import run_case
 from seafast.cli import main
 from seafast.config import load_case
+from seafast.coupling import case as coupling_case
 from seafast.output import plots
 from seafast.output.report.figures import hull_girder_figure
 from seafast.output.report.findings import run_findings
 from seafast.output.report.tables import coupling_rows, diagnostics_rows
 from seafast.output.tables import format_summary_table
-from seafast.pipeline import run_case
 from seafast.results.coupling import COUPLED_HULL_VARIABLES
 from seafast.solvers.references import TimeDomainOptions, solve_time_domain
 
@@ -34,8 +34,8 @@ def runs():
 @pytest.fixture
 def never_converging(monkeypatch):
     """Every coupling stops before its first step (its residual is then the whole deck change)."""
-    original = pipeline.couple_deck
-    monkeypatch.setattr(pipeline, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
+    original = coupling_case.couple_deck
+    monkeypatch.setattr(coupling_case, "couple_deck", lambda *a, **k: original(*a, **{**k, "max_iterations": 0}))
 
 
 def test_results_nc_holds_both_hulls_labelled(runs, tmp_path):
@@ -144,7 +144,7 @@ def test_heavy_lift_off_couples_at_h16_then_solves_the_coupled_deck_with_the_ada
     res = run_case(load_case(overrides=over))
     status = res.coupling[("dynamic", "nonlinear")]
     assert status.converged and status.residual_m <= status.tolerance_m
-    final = res.responses["nonlinear_dynamic"]
+    final = res.rows.nonlinear_dynamic
     assert final.converged and final.options["harmonics_selection"] == "adaptive"
     assert float(np.max(final.truncation_error)) <= 1e-3
     at16 = run_case(load_case(overrides={**over, "solver.harmonics": 16}))

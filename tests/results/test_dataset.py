@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from seafast.analyses.run import run_case
 from seafast.config import load_case
 from seafast.output.files import write_netcdf
-from seafast.pipeline import run_case
 from seafast.results.dataset import SUMMARY_COLUMNS, build_case_dataset, case_arrays
 from seafast.results.timeseries import from_periodic_response, linear_time_series
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
@@ -77,20 +77,20 @@ def test_typed_outcomes_and_warnings_reach_results_nc(result, tmp_path):
     assert set(ds["solver_outcome"].values.ravel()) == {"converged"}
     assert list(ds["solver_warning"].values) == [w.value for w in SolverWarning]
     # the flags are the responses' typed warnings (H = 10 fixed leaves some truncation: too_few_harmonics may be raised)
-    raised = {w.value for key in ("nonlinear_static", "nonlinear_dynamic") for w in result.responses[key].warnings}
+    raised = {w.value for key in ("nonlinear_static", "nonlinear_dynamic") for w in getattr(result.rows, key).warnings}
     flagged = {str(w) for w in ds["solver_warning"].values if int(ds["solver_warning_flag"].sel(solver_warning=w).sum()) > 0}
     assert flagged == raised
     # the dynamic nonlinear row: not converged, with a warning (what a solver can report)
     bad = replace(
-        result.responses["nonlinear_dynamic"],
+        result.rows.nonlinear_dynamic,
         outcome=SolverOutcome.NOT_CONVERGED,
         warnings=(SolverWarning.QUASI_STATICS_QUESTIONABLE,),
     )
-    N = result.responses["nonlinear_dynamic"].time_samples
+    N = result.rows.nonlinear_dynamic.time_samples
     series = {
-        ("static", "linear"): linear_time_series(result.responses["linear_static"], N),
-        ("dynamic", "linear"): linear_time_series(result.responses["linear_dynamic"], N),
-        ("static", "nonlinear"): from_periodic_response(result.responses["nonlinear_static"], N),
+        ("static", "linear"): linear_time_series(result.rows.linear_static, N),
+        ("dynamic", "linear"): linear_time_series(result.rows.linear_dynamic, N),
+        ("static", "nonlinear"): from_periodic_response(result.rows.nonlinear_static, N),
         ("dynamic", "nonlinear"): from_periodic_response(bad, N),
     }
     arrays = case_arrays(result.model, result.excitation, series, N)
@@ -147,7 +147,7 @@ def test_the_truncation_estimate_reaches_results_nc_and_agrees_with_the_warning(
         var = back["truncation_error"]
         assert var.attrs["units"] == "1" and "peak force" in var.attrs["long_name"]
         row = var.sel(load_case="dynamic", model="nonlinear").values
-        np.testing.assert_allclose(row, res.responses["nonlinear_dynamic"].truncation_error, rtol=1e-12)
+        np.testing.assert_allclose(row, res.rows.nonlinear_dynamic.truncation_error, rtol=1e-12)
         assert np.all(np.isnan(var.sel(model="linear").values))  # the linear model truncates nothing
         flag = bool(back["solver_warning_flag"].sel(load_case="dynamic", model="nonlinear", solver_warning="too_few_harmonics"))
         assert flag is too_few

@@ -12,10 +12,10 @@ import csv
 
 import xarray as xr
 
+from seafast.analyses.run import evaluate_summary, run_case
 from seafast.cli import EXIT_OUTSIDE_VALIDITY, main
 from seafast.config import load_case
 from seafast.output.report.findings import run_findings
-from seafast.pipeline import evaluate_summary, run_case
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.results.validity import (
     DEFAULT_MAX_GAP_M,

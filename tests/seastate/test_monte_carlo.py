@@ -151,7 +151,7 @@ def test_plan_grid_does_not_repeat_within_the_duration(plan3):
 def test_interpolated_transfer_functions_match_direct_evaluation(plan3):
     """The plan's transfer functions (cubic splines from a 0.01 rad/s grid) at synthesis frequencies."""
     case, plan = plan3
-    model = seafast.pipeline.build_model(case)
+    model = seafast.model.from_case.build_model(case)
     pick = np.linspace(0, plan.grid.omega_rad_s.size - 1, 61).astype(int)[1:-1] + 3  # off the spline knots
     tf = transfer_functions(case, model, plan.grid.omega_rad_s[pick])
     n_s = plan.saddle_count

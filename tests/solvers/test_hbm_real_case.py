@@ -30,7 +30,7 @@ def _one_blas_thread():
 def real_case():
     from seafast.config import load_case
     from seafast.excitation.vessel import vessel_excitation
-    from seafast.pipeline import build_model
+    from seafast.model.from_case import build_model
 
     case = load_case()
     model = build_model(case)

@@ -392,7 +392,7 @@ def test_random_cases_time_domain_full_equals_condensed(case):
 def real_case():
     from seafast.config import load_case
     from seafast.excitation.vessel import vessel_excitation
-    from seafast.pipeline import build_model
+    from seafast.model.from_case import build_model
 
     case = load_case()
     model = build_model(case)

@@ -31,7 +31,7 @@ from seafast.config import load_case
 from seafast.config.modes import TimeDomainStart
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import harmonics_to_time
-from seafast.pipeline import build_model
+from seafast.model.from_case import build_model
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.linear import solve_linear
 from seafast.solvers.outcome import SolverOutcome

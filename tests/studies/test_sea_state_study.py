@@ -85,7 +85,7 @@ def test_study_command_response_option(tmp_path, capsys):
 
 
 def test_sea_state_rows_carry_the_models_typed_warnings():
-    """Two saddles at 2.57e9 N/m: the Rayleigh fit misses 2 % by 21 % (see tests/test_pipeline_summary.py); the
+    """Two saddles at 2.57e9 N/m: the Rayleigh fit misses 2 % by 21 % (see tests/analyses/test_run.py); the
     damping shapes the spectral and the design-wave responses alike, so both rows raise rayleigh_fallback."""
     from seafast.model.warning import ModelWarning
     from seafast.seastate.study import evaluate_sea_state

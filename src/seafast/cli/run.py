@@ -12,7 +12,7 @@ import seafast
 from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, EXIT_OUTSIDE_VALIDITY, add_case_options, error
 
 if TYPE_CHECKING:
-    from seafast.pipeline import CaseResult
+    from seafast.analyses.run import CaseResult
 
 __all__ = ["add_run_subcommand", "RUN_EXAMPLES"]
 
@@ -45,10 +45,10 @@ def add_run_subcommand(subparsers: Any) -> argparse.ArgumentParser:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
+    from seafast.analyses.run import run_case
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.output.files import write_run_outputs
     from seafast.output.tables import format_summary_table
-    from seafast.pipeline import run_case
     from seafast.results.dataset import LOAD_CASES, MODELS
 
     try:
@@ -80,7 +80,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if result.axial is not None:
         for line in result.axial.warning_lines():
             print(f"seafast: warning: {line}", file=sys.stderr)
-    orbit = getattr(result.responses.get("nonlinear_dynamic"), "orbit", None)
+    orbit = result.rows.nonlinear_dynamic.orbit
     if orbit is not None and orbit.same_as_start is False:
         print(
             f"seafast: warning: dynamic nonlinear: the time-domain reference started on the {orbit.start_method} solution's "

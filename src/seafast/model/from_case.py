@@ -6,9 +6,11 @@ import numpy as np
 
 from seafast.config.schema import Case
 from seafast.model.axial import AxialRestraint, lashing_axial_stiffness_N_per_m
+from seafast.model.seafastening import SeaFastening
 from seafast.model.sections import CargoGeometry, TubeSegment
+from seafast.model.structure import StructuralModel, build_structural_model
 
-__all__ = ["cargo_geometry", "axial_restraint", "DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M"]
+__all__ = ["build_model", "cargo_geometry", "axial_restraint", "DEFAULT_TANGENTIAL_STIFFNESS_N_PER_M"]
 
 #: Default stick stiffness of each saddle's friction contact [N/m]: a rigid contact, 1000 times the
 #: base saddle's compression stiffness (docs/axial.md: the results do not depend on it).
@@ -53,4 +55,32 @@ def axial_restraint(case: Case, cargo_mass_kg: float | None = None) -> AxialRest
         lashing_axial_stiffness_N_per_m=k_axial,
         stopper_gap_m=sf.stopper.gap_m,
         stopper_stiffness_N_per_m=float(sf.stopper.stiffness_N_per_m or 0.0),
+    )
+
+
+def build_model(case: Case) -> StructuralModel:
+    """Cargo + sea-fastening structural model of the case (its beam and fit from a shared
+    :class:`~seafast.model.cache.ModelCache` when a ``with cache.shared()`` block is around the call).
+
+    Raises
+    ------
+    seafast.model.structure.MechanismError
+        If the support layout leaves the cargo a mechanism.
+    """
+    positions = np.array(case.saddle_positions_m())
+    lashed = np.zeros(positions.size, dtype=bool)
+    lashed[list(case.lashed_saddle_indices())] = True
+    sf = SeaFastening(
+        saddle_x_m=positions,
+        saddle_stiffness_N_per_m=np.array(case.saddle_stiffnesses_N_per_m()),
+        lashed=lashed,
+        lashing_wire_stiffness_N_per_m=case.seafastening.lashing.stiffness_N_per_m,
+        lashing_pretension_N=case.seafastening.lashing.pretension_N,
+    )
+    return build_structural_model(
+        cargo_geometry(case),
+        sf,
+        target_element_length_m=case.model.element_length_m,
+        damping_ratio=case.model.damping_ratio,
+        gravity_m_per_s2=case.model.gravity_m_per_s2,
     )

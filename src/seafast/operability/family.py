@@ -24,8 +24,8 @@ from seafast.config.loader import CaseError
 from seafast.config.schema import Case
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.vessel import vessel_excitation
+from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
-from seafast.pipeline import build_model
 from seafast.seastate.spectral import (
     ResponseStatistics,
     SpectralAnalysis,

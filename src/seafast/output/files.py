@@ -20,7 +20,7 @@ def write_netcdf(ds: Any, path: Path) -> Path:
 
 
 def write_run_outputs(result: Any, out_dir: str | Path) -> dict[str, Path]:
-    """Write everything ``seafast run`` produces for ``result`` (a :class:`seafast.pipeline.CaseResult`)."""
+    """Write everything ``seafast run`` produces for ``result`` (a :class:`seafast.analyses.run.CaseResult`)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths: dict[str, Path] = {}

@@ -18,7 +18,7 @@ the nonlinear solve. The definitions are those of :meth:`CaseArrays.maxima` (REA
 
 The moments are linear in the displacements and loads, so they are formed per harmonic and
 sampled once; the results equal the time-domain route to round-off
-(``tests/results/test_summary.py`` and ``tests/test_pipeline_summary.py``).
+(``tests/results/test_summary.py`` and ``tests/analyses/test_run.py``).
 """
 
 from __future__ import annotations

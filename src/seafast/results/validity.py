@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from seafast.config.schema import BASE_SADDLE_STIFFNESS_N_PER_M, Case
+from seafast.model.structure import StructuralModel
 from seafast.results.dataset import LOAD_CASES, MODELS
 
 __all__ = [
@@ -41,6 +42,7 @@ __all__ = [
     "within_validity",
     "with_validity",
     "likely_cause",
+    "cargo_diameter_m",
 ]
 
 DISPLACEMENT_SHARE_OF_DIAMETER = 0.25
@@ -105,7 +107,7 @@ def validity_issues(rows: Sequence[Mapping[str, Any]], diameter_m: float) -> tup
     ----------
     rows
         Summary rows (``load_case``, ``model``, ``u_c_m``, ``u_s_m``, ``u_d_m``, ``cargo_slope_rad``), as
-        :attr:`seafast.pipeline.CaseResult.summary` and :func:`seafast.results.summary.summary_rows` give them.
+        :attr:`seafast.analyses.run.CaseResult.summary` and :func:`seafast.results.summary.summary_rows` give them.
     diameter_m
         The cargo's largest outer diameter [m].
     """
@@ -161,3 +163,8 @@ def likely_cause(case: Case, issues: Sequence[ValidityIssue]) -> str | None:
             f"N/m; the base case {BASE_SADDLE_STIFFNESS_N_PER_M:.3g} N/m): was it meant in another unit ({readings})?"
         )
     return "check the units of the case's stiffnesses (N/m), loads (N) and lengths (m) against the quantities they describe"
+
+
+def cargo_diameter_m(model: StructuralModel) -> float:
+    """The cargo's largest outer diameter [m] (the scale of the displacement line)."""
+    return float(np.max(model.cargo.element_outer_diameter_m))

@@ -301,7 +301,7 @@ def build_plan(case: Case, settings: MonteCarloSettings = MonteCarloSettings()) 
     seafast.config.CaseError
         Invalid or unresolvable sea state, or a vessel set-up without per-frequency hull response.
     """
-    from seafast.pipeline import build_model
+    from seafast.model.from_case import build_model
     from seafast.seastate.spectrum import sea_state_spectrum
     from seafast.seastate.transfer import still_water, transfer_functions
 

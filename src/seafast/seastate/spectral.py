@@ -29,8 +29,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.config.schema import Case
+from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
-from seafast.pipeline import build_model
 from seafast.seastate.spectrum import WaveSpectrum, sea_state_spectrum
 from seafast.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
 

@@ -190,7 +190,7 @@ def transfer_functions(case: Case, model: StructuralModel, omega_rad_s: ArrayLik
     case
         The case (vessel, cargo position, gravity; one-way coupling, computed hull girder).
     model
-        Its structural model (:func:`seafast.pipeline.build_model`).
+        Its structural model (:func:`seafast.model.from_case.build_model`).
     omega_rad_s
         Wave frequencies [rad/s], > 0, strictly increasing.
 

@@ -1,7 +1,7 @@
 """Evaluating study points: evaluators, batches, and the serial / local-process / Dask back-ends.
 
 Every point is evaluated by an *evaluator* ``Callable[[Case], list[dict]]`` (default
-:func:`seafast.pipeline.evaluate_summary`, imported lazily) returning one row per load case and
+:func:`seafast.analyses.run.evaluate_summary`, imported lazily) returning one row per load case and
 model. Points travel to workers in batches (:func:`plan_batches`); :func:`evaluate_batches`
 yields each batch's :class:`~seafast.studies.store.PointRecord` list as it completes, whatever
 the back-end. A point whose evaluation raises is recorded with its error text; a row's typed
@@ -75,8 +75,8 @@ class PointSource(Protocol):
 
 # --------------------------------------------------------------------------- evaluators
 def default_evaluator(case: Case) -> list[dict]:
-    """Evaluate one case with :func:`seafast.pipeline.evaluate_summary` (imported on first use)."""
-    from seafast.pipeline import evaluate_summary
+    """Evaluate one case with :func:`seafast.analyses.run.evaluate_summary` (imported on first use)."""
+    from seafast.analyses.run import evaluate_summary
 
     return evaluate_summary(case)
 
@@ -321,7 +321,7 @@ def _iter_processes(
     context = multiprocessing.get_context(start_method)
     if start_method == "forkserver":
         # the server imports the numerics once; each worker forks from it (no per-worker imports)
-        preload = ["seafast.pipeline", "seafast.studies.execution"]
+        preload = ["seafast.analyses.run", "seafast.studies.execution"]
         if isinstance(evaluator, str) and ":" in evaluator:
             preload.append(evaluator.partition(":")[0])
         context.set_forkserver_preload(preload)

@@ -43,11 +43,12 @@ from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitat
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.vessel import vessel_excitation
+from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
-from seafast.pipeline import build_model, hbm_options
 from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
 from seafast.solvers.continuation import CONTINUATION_HARMONICS, frequency_response
+from seafast.solvers.from_case import hbm_options
 from seafast.solvers.hbm import condensed_operators, solve_condensed
 from seafast.solvers.hbm.options import samples_for
 

@@ -1,11 +1,10 @@
-"""The study evaluator's short path gives the rows of the full pipeline (``run_case(case).summary``).
+"""One solve of a case's four rows, read alike by its summary and by its dataset.
 
-``evaluate_summary`` takes one-way condensed-HBM cases through one linear condensation and
-computes the maxima from harmonics (``seafast.results.summary``); ``run_case`` solves the linear
-model on its own (dense partitioned solves), runs ``solve_hbm`` twice and takes the maxima of
-period time series and moment lines. Two routes to the same numbers: a wrong sign, factor,
-harmonic or frame in either would show here far beyond the tolerances (round-off, and the
-nonlinear solver's 1e-10 relative tolerance).
+``CaseResult.summary`` (what ``summary.csv`` and a study record) reads the rows from the solution's
+harmonics (``seafast.results.summary``: moments per harmonic, sampled once); the dataset (``results.nc``)
+reads them from the period time series and moment lines (``seafast.results.dataset``). Two readings of
+the same solution: a wrong sign, factor, harmonic or frame in either would show here far beyond the
+tolerances (round-off of the moment sampling). A study point never forms the time series.
 """
 
 from __future__ import annotations
@@ -15,12 +14,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from seafast.analyses.run import evaluate_summary, run_case
 from seafast.config import load_case
+from seafast.model.from_case import build_model
 from seafast.model.warning import ModelWarning
-from seafast.pipeline import build_model, evaluate_summary, run_case
+from seafast.results.dataset import summary_rows_from_arrays
+from seafast.results.validity import cargo_diameter_m, with_validity
 from seafast.solvers.outcome import SolverWarning
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 CASES = {
     "base": {},
@@ -45,25 +47,25 @@ CASES = {
     "no rigid-body motion, steep wave": {"vessel.motions": "none", "wave.amplitude_m": 5.0},
     "calm water": {"wave.amplitude_m": 0.0},
     "user deck table": {"vessel.deck_deflection_table": str(EXAMPLES / "deck_deflection.csv")},
-    "two-way coupling (full pipeline)": {"vessel.coupling": "two_way"},
+    "two-way coupling": {"vessel.coupling": "two_way"},
 }
 
 
-# Round-off of the two routes' factorisations (dense Cholesky/LU there, one banded LU here) grows
-# with K's condition number: ~1e4 on saddles, but ~1e12 for a cargo on one saddle held in
-# rotation by its lashing alone, where the two agree to ~1e-6.
-ILL_CONDITIONED = {"one saddle, stiff lashing (baseline from the deck slope)"}
-
-
 @pytest.mark.parametrize("name", list(CASES))
-def test_short_path_rows_equal_the_full_pipeline(name):
-    overrides = CASES[name]
-    rel = 1e-5 if name in ILL_CONDITIONED else 1e-8
-    case = load_case(overrides=overrides)
-    fast = evaluate_summary(case)
-    full = run_case(case).summary
+def test_the_summary_and_the_dataset_read_the_rows_alike(name):
+    case = load_case(overrides=CASES[name])
+    result = run_case(case)
+    fast = result.summary
+    assert "arrays" not in result.__dict__  # the summary formed no time series
+    full = with_validity(
+        summary_rows_from_arrays(result.arrays, result.model.cargo.node_x_m, result.model.warnings), cargo_diameter_m(result.model)
+    )
+    for row in full:  # the coupling's own verdict, as the summary applies it
+        status = result.coupling.get((row["load_case"], row["model"]))
+        row.update({} if status is None else {"converged": row["converged"] and status.converged})
+    rel = 1e-8
     assert [(r["load_case"], r["model"]) for r in fast] == [(r["load_case"], r["model"]) for r in full]
-    assert [list(r) for r in fast] == [list(r) for r in full]  # same columns, same order
+    assert [r for r in fast[0] if r in full[0]] == list(full[0])  # the same columns, in the same order
     for f, r in zip(fast, full, strict=True):
         label = f"{f['load_case']}/{f['model']}"
         for key, scale in (("u_c_m", 1e-3), ("u_s_m", 1e-3), ("u_d_m", 1e-3), ("F_N", 1e6), ("M_b_Nm", 1e7), ("sigma_b_Pa", 1e6)):
@@ -73,20 +75,21 @@ def test_short_path_rows_equal_the_full_pipeline(name):
         assert f["warnings"] == r["warnings"], label  # the same typed warnings, in the same order
 
 
-def test_the_short_path_is_taken_where_it_applies(monkeypatch):
-    import seafast.pipeline as pipeline
-
-    calls: list[str] = []
-    real = pipeline.run_case
-    monkeypatch.setattr(pipeline, "run_case", lambda case: calls.append(case.vessel.coupling) or real(case))
-    rows = evaluate_summary(load_case())
-    assert calls == [] and len(rows) == 4
-    evaluate_summary(load_case(overrides={"vessel.coupling": "two_way"}))
-    evaluate_summary(load_case(overrides={"solver.method": "quasi_static"}))
-    assert calls == ["two_way", "one_way"]  # two-way coupling and the references run the full pipeline
+def test_the_dataset_holds_the_summary_s_numbers():
+    result = run_case(load_case())
+    ds = result.dataset
+    for row in result.summary:
+        sel = ds.sel(load_case=row["load_case"], model=row["model"])
+        for key in ("u_c_m", "u_s_m", "u_d_m", "F_N", "M_b_Nm", "sigma_b_Pa"):
+            assert float(sel[key]) == row[key], key  # one set of numbers in summary.csv and results.nc
 
 
-def test_short_path_sees_lift_off_where_the_linear_model_pulls():
+def test_a_study_point_is_the_run_s_summary():
+    case = load_case(overrides={"solver.harmonics": 16})
+    assert evaluate_summary(case) == run_case(case).summary
+
+
+def test_the_summary_sees_lift_off_where_the_linear_model_pulls():
     # the base case: the linear model carries tension at the fore saddle, the nonlinear one lifts off
     rows = {(r["load_case"], r["model"]): r for r in evaluate_summary(load_case())}
     dyn_lin, dyn_nl = rows[("dynamic", "linear")], rows[("dynamic", "nonlinear")]

@@ -1,0 +1,77 @@
+"""A case's solver settings as the solvers' options (configuration -> solvers).
+
+:func:`hbm_options` maps ``solver.*`` to :class:`~seafast.solvers.hbm.HBMOptions`;
+:func:`nonlinear_options` chooses the method and its options for a still-water or a dynamic row;
+:func:`solve_nonlinear` solves a row with them through :func:`~seafast.solvers.solve_periodic`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from seafast.config.modes import Formulation, SolverMethod
+from seafast.config.schema import Case
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.model.structure import StructuralModel
+from seafast.solvers.dispatch import PeriodicOptions, solve_periodic
+from seafast.solvers.hbm.options import HBMOptions
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.references.options import QuasiStaticOptions, TimeDomainOptions
+
+__all__ = ["hbm_options", "nonlinear_options", "solve_nonlinear"]
+
+
+def hbm_options(case: Case, **changes: Any) -> HBMOptions:
+    """Harmonic-balance options from the case's solver settings, with ``changes`` (HBMOptions fields) applied."""
+    s = case.solver
+    options = HBMOptions(
+        harmonics=s.harmonics,
+        time_samples=s.time_samples,
+        contact_law=s.contact_law,
+        regularisation_per_m=s.regularisation_per_m,
+        formulation=s.formulation,
+        solver=s.nonlinear_solver,
+        tolerance=s.tolerance,
+        truncation_tolerance=s.truncation_tolerance,
+        max_harmonics=s.max_harmonics,
+    )
+    return replace(options, **changes) if changes else options
+
+
+def nonlinear_options(case: Case, static: bool) -> tuple[SolverMethod, PeriodicOptions]:
+    """The method and options :func:`solve_nonlinear` solves the case with.
+
+    The still-water state (``static``): the harmonic balance at H = 0, or for the references their
+    exact-law quasi-static state. The time-domain reference integrates all cargo DOFs (its full
+    formulation) from the case's ``time_domain_start``, the HBM start with the case's HBM settings.
+    """
+    s = case.solver
+    if static:
+        if s.method == SolverMethod.HBM:
+            return SolverMethod.HBM, hbm_options(case, harmonics=0, time_samples=2)
+        return SolverMethod.QUASI_STATIC, QuasiStaticOptions(time_samples=2)
+    if s.method == SolverMethod.QUASI_STATIC:
+        return SolverMethod.QUASI_STATIC, QuasiStaticOptions(time_samples=s.reference_time_samples)
+    if s.method == SolverMethod.TIME_DOMAIN:
+        # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
+        options = TimeDomainOptions(time_samples=s.reference_time_samples, start=s.time_domain_start, hbm=hbm_options(case))
+        return SolverMethod.TIME_DOMAIN, options
+    return SolverMethod.HBM, hbm_options(case)
+
+
+def solve_nonlinear(
+    model: StructuralModel, excitation: HarmonicExcitation, case: Case, static: bool, warm_start: PeriodicResponse | None = None
+) -> PeriodicResponse:
+    """Nonlinear (unilateral-saddle) response by the case's method (:func:`~seafast.solvers.solve_periodic`).
+
+    ``static=True`` solves the still-water state alone (:func:`nonlinear_options`). ``warm_start``: a
+    neighbouring response of the same case to start the condensed HBM from (ignored otherwise).
+    """
+    method, options = nonlinear_options(case, static)
+    start = None
+    if warm_start is not None and not static and isinstance(options, HBMOptions) and options.formulation is Formulation.CONDENSED:
+        start = np.asarray(warm_start.saddle_compression_time_m)
+    return solve_periodic(model, excitation.static_part() if static else excitation, method, options=options, initial_compression_m=start)
