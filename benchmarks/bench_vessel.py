@@ -15,9 +15,9 @@ import tempfile
 import time
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from benchutil import timed
+from seafast.parallel.threads import one_blas_thread
 
 
 def main() -> None:
@@ -36,7 +36,7 @@ def main() -> None:
     two_way = load_case(overrides={"vessel.coupling": "two_way"})
     model = build_model(one_way)
     vessel = vessel_excitation(one_way)  # BEM from the disk cache (computed on first use)
-    with threadpool_limits(1):
+    with one_blas_thread():
         _, t_still = timed(lambda: still_water_response(vessel.girder, vessel.loading), 20)
         _, t_wave = timed(lambda: wave_response(vessel.girder, vessel.loading, 171.0, 3.0), 5)
         _, t_comp = timed(lambda: hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, 4), 10)
@@ -54,7 +54,7 @@ def main() -> None:
     for status in r2.coupling.values():
         print(f"  {status.message}")
     v2 = r2.vessel
-    with threadpool_limits(1):
+    with one_blas_thread():
         hull, t_hull = timed(
             lambda: coupled_hull(
                 v2.girder,
@@ -89,7 +89,7 @@ def main() -> None:
     if not args.no_bem:
         hull = hull_form_of(one_way)
         previous = os.environ.get("SEAFAST_CACHE_DIR")
-        with tempfile.TemporaryDirectory() as cache, threadpool_limits(None):
+        with tempfile.TemporaryDirectory() as cache:  # the BEM takes every core itself
             os.environ["SEAFAST_CACHE_DIR"] = cache  # an empty cache: a first run on a new hull
             try:
                 t0 = time.perf_counter()
