@@ -13,9 +13,9 @@ is what the axial analysis adds to the base case (mu = 0.3), ``axial_hbm_ms`` it
 from __future__ import annotations
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from benchutil import timed
+from seafast.parallel.threads import one_blas_thread
 
 
 def _series(result):
@@ -32,7 +32,7 @@ def main() -> None:
 
     base = load_case()
     cases = {mu: load_case(overrides={"seafastening.friction_coefficient": mu}) for mu in (0.3, 0.02, 0.05)}
-    with threadpool_limits(1):
+    with one_blas_thread():
         run_case(base)
         results = {mu: run_case(c) for mu, c in cases.items()}  # warm: vessel and BEM from the caches
         series = {mu: _series(r) for mu, r in results.items()}

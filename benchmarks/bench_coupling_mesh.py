@@ -11,9 +11,9 @@ section 2); the last line is ``key=value`` pairs.
 from __future__ import annotations
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from benchutil import timed
+from seafast.parallel.threads import one_blas_thread
 
 ELEMENT_LENGTHS_M = (1.0, 0.5, 0.2, 0.1)
 
@@ -28,7 +28,7 @@ def _one_length(length: float):
 
     one_way = load_case(overrides={"model.element_length_m": length})
     case = load_case(overrides={"model.element_length_m": length, "vessel.coupling": "two_way"})
-    with threadpool_limits(1):
+    with one_blas_thread():
         _, t_one = timed(lambda: run_case(one_way), 1)
         result, t_two = timed(lambda: run_case(case), 1)
         model, static = result.model, result.excitation.static_part()

@@ -25,9 +25,9 @@ from dataclasses import replace
 
 import numpy as np
 from scipy.ndimage import spline_filter1d
-from threadpoolctl import threadpool_limits
 
 import seafast
+from seafast.parallel.threads import one_blas_thread
 from seafast.seastate.monte_carlo import BENCHMARK_SEA_STATE, MonteCarloSettings, benchmark_realisation, build_plan
 from seafast.seastate.realisation import evaluate_realisation
 from seafast.seastate.synthesis import realisation_phases, synthesise
@@ -58,7 +58,7 @@ def _full_march_s(plan, index: int) -> tuple[float, int]:
 
 
 def main() -> None:
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         realisation_s = benchmark_realisation()
         case = seafast.load_case(None, BENCHMARK_SEA_STATE)
         plan = build_plan(case)

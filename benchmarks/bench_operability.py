@@ -35,6 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import seafast
 from benchutil import timed
 from seafast.operability.allowable import allowable_sea_states
+from seafast.parallel.threads import one_blas_thread
 from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation
 from seafast.seastate.spectral import spectral_analysis
 
@@ -57,9 +58,7 @@ def timed_cpu(fn, repeats: int) -> tuple[object, float, float]:
 
 def main() -> None:
     skip_mc = "--skip-monte-carlo" in sys.argv
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         case = seafast.load_case(None)
         analysis = spectral_analysis(case)
         dw = sea_state_design_waves(analysis)  # warm: vessel, moment map, numba

@@ -30,12 +30,12 @@ import time
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from seafast.config import load_case
 from seafast.excitation.vessel import vessel_excitation
 from seafast.model.from_case import build_model
 from seafast.solvers.from_case import solve_nonlinear
+from seafast.parallel.threads import one_blas_thread
 
 ELEMENT_LENGTHS_M = (1.0, 0.6, 0.35, 0.2, 0.12, 0.074)  # 77 ... ~1000 nodes on the 74 m pile
 SADDLE_COUNTS = (2, 3, 4, 6, 8, 10, 12)
@@ -124,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--figure", type=Path, default=FIGURE, help="PNG to write (default: %(default)s)")
     args = parser.parse_args(argv)
     rounds = 5 if args.quick else 25
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         mesh_cases = [Configuration({"model.element_length_m": length}) for length in ELEMENT_LENGTHS_M]
         saddle_cases = [Configuration({"seafastening.saddle_count": count}) for count in SADDLE_COUNTS]
         time_all(mesh_cases + saddle_cases, rounds)

@@ -30,9 +30,10 @@ import time
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
-from seafast.studies.runner import ExecutionOptions, StudyRun, run_study
+from seafast.parallel.executor import ExecutionOptions
+from seafast.parallel.threads import one_blas_thread
+from seafast.studies.runner import StudyRun, run_study
 from seafast.studies.spec import build_grid, load_study_spec, study_spec_from_mapping
 
 SUBSET = {
@@ -81,7 +82,7 @@ def hbm_median_ms(repeats: int = 200) -> tuple[float, float]:
     model = build_model(case)
     excitation = vessel_excitation(case).cargo_excitation(model, case)
     times, cpu = [], []
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         solve_nonlinear(model, excitation, case, static=False)  # warm the per-model caches
         for _ in range(repeats):
             t0, c0 = time.perf_counter(), time.process_time()
@@ -149,7 +150,7 @@ def main(argv: list[str] | None = None) -> int:
         )
     grid = build_grid(study_spec_from_mapping(SUBSET))
     # the subset last: a Dask LocalCluster leaves threads in this process, after which local
-    # workers are no longer forked (see seafast.studies.execution)
+    # workers are no longer forked (see seafast.parallel.executor)
     print(f"subset: {grid.size} points ({' x '.join(grid.keys)}), {cores} cores, evaluator: {'fake' if args.fake else 'seafast.pipeline'}")
     t_serial = _run(grid, ExecutionOptions(workers=1, progress=False), evaluator).seconds
     print(f"serial:    {t_serial:6.2f} s  {grid.size / t_serial:7.1f} points/s")

@@ -22,9 +22,9 @@ import time
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from benchutil import timed
+from seafast.parallel.threads import one_blas_thread
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -82,7 +82,7 @@ def main() -> None:
     from seafast.solvers.stepped_sine import stepped_sine_sweep
 
     figures: dict[str, float] = {}
-    with tempfile.TemporaryDirectory() as tmp, threadpool_limits(1):
+    with tempfile.TemporaryDirectory() as tmp, one_blas_thread():
         for name, case, w0, w1, wave in (
             ("deck", deck_case(Path(tmp)), 3.0, 8.0, False),
             ("wave", load_case(None, {}), 0.2, 1.8, True),

@@ -15,9 +15,9 @@ import tempfile
 import time
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from benchutil import timed
+from seafast.parallel.threads import one_blas_thread
 
 
 def main() -> None:
@@ -40,7 +40,7 @@ def main() -> None:
     model = build_model(one_way)
     vessels = VesselCache()  # what a study keeps for its points
     vessel = vessel_excitation(one_way, vessels)  # BEM from the disk cache (computed on first use)
-    with threadpool_limits(1), vessels.shared():
+    with one_blas_thread(), vessels.shared():
         _, t_still = timed(lambda: still_water_response(vessel.girder, vessel.loading), 20)
         _, t_wave = timed(lambda: wave_response(vessel.girder, vessel.loading, 171.0, 3.0), 5)
         _, t_comp = timed(lambda: hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, 4), 10)
@@ -58,7 +58,7 @@ def main() -> None:
     for status in r2.coupling.values():
         print(f"  {status.message}")
     v2 = r2.vessel
-    with threadpool_limits(1):
+    with one_blas_thread():
         hull, t_hull = timed(
             lambda: coupled_hull(
                 v2.girder,
@@ -93,7 +93,7 @@ def main() -> None:
     if not args.no_bem:
         hull = hull_form_of(one_way)
         previous = os.environ.get("SEAFAST_CACHE_DIR")
-        with tempfile.TemporaryDirectory() as cache, threadpool_limits(None):
+        with tempfile.TemporaryDirectory() as cache:  # the BEM takes every core itself
             os.environ["SEAFAST_CACHE_DIR"] = cache  # an empty cache: a first run on a new hull
             try:
                 t0 = time.perf_counter()

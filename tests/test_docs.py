@@ -154,8 +154,8 @@ def test_every_output_column_is_documented_exactly():
     from seafast.excitation.deck_table import DECK_TABLE_COLUMNS
     from seafast.output.sweep import COLUMNS as SWEEP_COLUMNS
     from seafast.results.dataset import SUMMARY_COLUMNS
+    from seafast.studies.assembly import CORE_COLUMNS
     from seafast.studies.limits import COMPLIANCE_COLUMNS, RANKING_COLUMNS
-    from seafast.studies.runner import CORE_COLUMNS
 
     assert ",".join(SUMMARY_COLUMNS) in INTERFACE
     assert ",".join(SWEEP_COLUMNS) in INTERFACE

@@ -146,6 +146,14 @@ def test_fourier_is_the_lowest_layer():
     assert edges == set()
 
 
+def test_parallel_imports_nothing_else_of_seafast():
+    """The shared machinery (store, executor, thread pinning, progress) sits beside fourier.py at the bottom."""
+    modules = [name for name in MODULES if name == "seafast.parallel" or name.startswith("seafast.parallel.")]
+    assert len(modules) >= 6
+    outside = {name: sorted(e for e in GRAPH[name][0] if not e.startswith("seafast.parallel")) for name in modules}
+    assert {name: edges for name, edges in outside.items() if edges} == {}
+
+
 def test_long_modules_say_why():
     unexplained = {}
     for name, (path, _) in MODULES.items():

@@ -357,7 +357,8 @@ def test_imported_motions_without_surge(tmp_path, capsys, plain):
 
 
 def test_study_over_the_friction_coefficient(tmp_path):
-    from seafast.studies.runner import ExecutionOptions, run_study
+    from seafast.parallel.executor import ExecutionOptions
+    from seafast.studies.runner import run_study
     from seafast.studies.spec import build_grid, study_spec_from_mapping
 
     spec = study_spec_from_mapping(

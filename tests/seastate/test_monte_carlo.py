@@ -15,13 +15,13 @@ import pytest
 from scipy import stats
 
 import seafast
+from seafast.parallel.errors import ForeignStoreError
 from seafast.seastate.extremes import gumbel_fit, most_probable_maximum
 from seafast.seastate.monte_carlo import MonteCarloSettings, build_plan, run_monte_carlo
 from seafast.seastate.realisation import QUANTITIES, evaluate_realisation
 from seafast.seastate.spectral import rayleigh_mpm, spectral_analysis
 from seafast.seastate.spectrum import jonswap_density
 from seafast.seastate.synthesis import amplitude_factors, realisation_phases, synthesis_grid, synthesise
-from seafast.seastate.task_store import StoreError, TaskStore
 from seafast.seastate.transfer import transfer_functions
 
 
@@ -295,25 +295,6 @@ def test_dataset_has_units_and_long_names(tmp_path):
 
 
 # ---------------------------------------------------------------------------- the store
-def _fake_record(i):
-    return {"index": i, "value": i * i}
-
-
-def test_store_resumes_refuses_another_run_and_drops_a_torn_line(tmp_path):
-    with TaskStore(tmp_path, "aaa", {"what": "test"}) as store:
-        assert store.append([_fake_record(0), _fake_record(1)]) == 2
-        assert store.append([_fake_record(1)]) == 0  # no duplicate
-    with open(tmp_path / TaskStore.RECORDS, "ab") as fh:
-        fh.write(b'{"run":"aaa","index":2,"rec')  # torn by a kill
-    with TaskStore(tmp_path, "aaa", {}) as store:
-        assert sorted(store.completed) == [0, 1] and store.pending(4) == [2, 3]
-        store.append([_fake_record(2)])
-    lines = (tmp_path / TaskStore.RECORDS).read_text().splitlines()
-    assert [json.loads(line)["index"] for line in lines] == [0, 1, 2]
-    with pytest.raises(StoreError, match=str(tmp_path)):
-        TaskStore(tmp_path, "bbb", {})
-
-
 def test_more_realisations_extend_the_store(tmp_path):
     case = case_of(significant_height_m=2.0, duration_s=600.0, realisations=3)
     first = run_monte_carlo(case, tmp_path, workers=1, progress=False)
@@ -323,19 +304,19 @@ def test_more_realisations_extend_the_store(tmp_path):
     assert more.reused == 3
     assert np.array_equal(more.linear.maxima["F_N"][:3], first.linear.maxima["F_N"])
     other = case_of(significant_height_m=2.5, duration_s=600.0, realisations=3)
-    with pytest.raises(StoreError, match="another run"):
+    with pytest.raises(ForeignStoreError, match="another run"):
         run_monte_carlo(other, tmp_path, workers=1, progress=False)
 
 
 def test_progress_off_a_terminal_is_plain_lines_as_a_study_s(tmp_path, monkeypatch, caplog):
-    """The Monte Carlo reports through seafast.progress (as a study does): off a terminal, plain lines."""
+    """The Monte Carlo reports through seafast.parallel.progress (as a study does): off a terminal, plain lines."""
     import logging
 
-    import seafast.progress
+    import seafast.parallel.progress
 
-    monkeypatch.setattr(seafast.progress, "PROGRESS_MIN_INTERVAL_S", 0.0)
+    monkeypatch.setattr(seafast.parallel.progress, "PROGRESS_MIN_INTERVAL_S", 0.0)
     case = case_of(significant_height_m=2.0, duration_s=600.0, realisations=3)
-    with caplog.at_level(logging.INFO, logger="seafast.progress"):
+    with caplog.at_level(logging.INFO, logger="seafast.parallel.progress"):
         run_monte_carlo(case, tmp_path, workers=1, progress=True)
-    lines = [r.getMessage() for r in caplog.records if r.name == "seafast.progress"]
+    lines = [r.getMessage() for r in caplog.records if r.name == "seafast.parallel.progress"]
     assert [line.split(" (")[0] for line in lines] == [f"Monte Carlo {case.name}: {i}/3 realisations" for i in (1, 2, 3)]

@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 
 import seafast
+from seafast.parallel.store import DICT_RECORDS
 from seafast.seastate.monte_carlo import STORE_DIRECTORY, build_plan
 from seafast.seastate.realisation import evaluate_realisation
-from seafast.seastate.task_store import TaskStore
 
 OVERRIDES = {"sea_state.significant_height_m": 3.0, "sea_state.duration_s": 900.0, "sea_state.realisations": 12}
 
@@ -39,7 +39,7 @@ SCRIPT = textwrap.dedent(
 
 
 def _stored(out: Path) -> list[int]:
-    path = out / STORE_DIRECTORY / TaskStore.RECORDS
+    path = out / STORE_DIRECTORY / DICT_RECORDS.records
     if not path.exists():
         return []
     return [json.loads(line)["index"] for line in path.read_bytes().split(b"\n")[:-1]]
@@ -75,7 +75,7 @@ def test_sigkill_then_resume_loses_and_repeats_nothing(tmp_path: Path):
     plan = build_plan(seafast.load_case(None, OVERRIDES))
     lines = {
         json.loads(line)["index"]: json.loads(line)["record"]
-        for line in (out / STORE_DIRECTORY / TaskStore.RECORDS).read_text().splitlines()
+        for line in (out / STORE_DIRECTORY / DICT_RECORDS.records).read_text().splitlines()
     }
     for index in (after_kill[0], stored[-1]):
         record, _ = evaluate_realisation(plan, index)

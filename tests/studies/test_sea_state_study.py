@@ -9,9 +9,10 @@ import pytest
 
 import seafast
 from seafast.cli import main
+from seafast.parallel.executor import ExecutionOptions
 from seafast.seastate.design_wave import sea_state_design_waves
 from seafast.seastate.spectral import spectral_analysis
-from seafast.studies.runner import ExecutionOptions, run_study
+from seafast.studies.runner import run_study
 from seafast.studies.spec import StudyError, build_grid, study_spec_from_mapping
 
 HS_STUDY = {

@@ -4,22 +4,18 @@ from __future__ import annotations
 
 import csv
 import json
-import os
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 
-from seafast.studies.runner import (
-    CORE_COLUMNS,
-    ExecutionOptions,
-    PointStore,
-    evaluate_batch,
-    plan_batches,
-    run_study,
-)
+from seafast.parallel.executor import ExecutionOptions
+from seafast.studies.assembly import CORE_COLUMNS
+from seafast.studies.execution import evaluate_batch
+from seafast.studies.runner import run_study
 from seafast.studies.spec import StudyError, build_grid, load_study_spec
+from seafast.studies.store import point_store
 
 FAKE = "study_fakes:fake_evaluate"
 FAILING = "study_fakes:failing_evaluate"
@@ -58,40 +54,6 @@ def test_serial_processes_and_dask_agree(small_grid, tmp_path: Path):
         )
         xr.testing.assert_identical(_results(serial.dataset), _results(other.dataset))
         assert (tmp_path / method / "study.csv").read_text() == texts[0]
-
-
-def test_local_workers_fork_after_a_warm_up_point_in_this_process(small_grid, tmp_path: Path, monkeypatch):
-    log = tmp_path / "eval.log"
-    monkeypatch.setenv("SEAFAST_FAKE_EVAL_LOG", str(log))
-    options = ExecutionOptions(workers=2, batch_size=3, progress=False, start_method="fork")
-    run = run_study(small_grid, tmp_path / "out", evaluator=FAKE, execution=options)
-    assert run.computed == small_grid.size and run.workers == 2
-    pids = [int(line.split(" ", 1)[0]) for line in log.read_text().splitlines()]
-    assert len(pids) == small_grid.size  # every point evaluated once
-    assert pids[0] == os.getpid()  # the first point warms this process's caches before the fork
-    assert os.getpid() not in pids[1:] and len(set(pids[1:])) >= 1  # the rest in the forked workers
-
-
-def test_start_method_is_fork_in_a_single_threaded_process_else_forkserver():
-    import subprocess
-    import sys
-    import threading
-
-    probe = "from seafast.studies.execution import ExecutionOptions; print(ExecutionOptions(workers=2).process_start_method())"
-    fresh = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120, check=True)
-    assert fresh.stdout.strip() == ("fork" if sys.platform.startswith("linux") else "spawn")
-
-    stop = threading.Event()
-    thread = threading.Thread(target=stop.wait, daemon=True)
-    thread.start()
-    try:
-        assert ExecutionOptions(workers=2).process_start_method() == "forkserver"  # POSIX
-        assert ExecutionOptions(workers=2, start_method="spawn").process_start_method() == "spawn"
-    finally:
-        stop.set()
-        thread.join()
-    with pytest.raises(StudyError, match="start_method = 'thread'"):
-        ExecutionOptions(start_method="thread")
 
 
 def test_dataset_layout_and_attributes(small_grid, tmp_path: Path):
@@ -152,7 +114,7 @@ def test_failing_point_is_recorded_and_the_others_complete(small_grid, tmp_path:
 def test_not_converged_is_recorded_not_an_error(tmp_path: Path):
     spec, directory = load_study_spec("saddles")
     grid = build_grid(spec, directory)
-    records = evaluate_batch(grid, [80], FAILING, pin_threads=False)  # 6 saddles
+    records = evaluate_batch(grid, [80], FAILING)  # 6 saddles
     assert records[0].error == ""
     assert [r["converged"] for r in records[0].rows if r["model"] == "nonlinear"] == [False, False]
 
@@ -162,7 +124,7 @@ def test_invalid_point_combination_is_an_error_record():
     from seafast.studies.spec import study_spec_from_mapping
 
     grid = build_grid(study_spec_from_mapping(spec_text))
-    ok, bad = evaluate_batch(grid, [0, 1], FAKE, pin_threads=False)
+    ok, bad = evaluate_batch(grid, [0, 1], FAKE)
     assert ok.error == "" and len(ok.rows) == 4
     assert bad.error.startswith("CaseError:") and "wall_thickness_m" in bad.error and bad.rows == ()
 
@@ -176,8 +138,8 @@ def test_resume_skips_finished_points_and_drops_a_torn_line(small_grid, tmp_path
         calls.append(1)
         return fake_evaluate(case)
 
-    with PointStore(tmp_path, small_grid) as store:
-        store.append(evaluate_batch(small_grid, list(range(7)), FAKE, pin_threads=False))
+    with point_store(tmp_path, small_grid) as store:
+        store.append(evaluate_batch(small_grid, list(range(7)), FAKE))
     with open(tmp_path / "points.jsonl", "ab") as fh:
         fh.write(b'{"study": "' + small_grid.fingerprint().encode() + b'", "index": 7, "rows": [{"load_')
     run = run_study(small_grid, tmp_path, evaluator=counting, execution=ExecutionOptions(workers=1, progress=False))
@@ -198,37 +160,26 @@ def test_directory_of_another_study_is_refused(small_grid, tmp_path: Path):
         run_study(other, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
 
 
-def test_batches_cover_every_point_once():
-    pending = list(range(1, 400, 2))
-    for workers, size in ((1, None), (2, None), (8, None), (2, 7)):
-        batches = plan_batches(pending, workers, size)
-        assert [i for b in batches for i in b] == pending
-        assert max(len(b) for b in batches) <= (size or 25)
-    assert plan_batches([], 2) == []
-    guided = [len(b) for b in plan_batches(list(range(400)), 2)]
-    assert guided[0] == 25 and guided[-1] == 1 and guided == sorted(guided, reverse=True)  # the tail is fine-grained
+def test_the_store_keeps_its_format_and_resumes_a_directory_written_before(small_grid, tmp_path: Path):
+    first = run_study(small_grid, tmp_path / "now", evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    lines = (tmp_path / "now" / "points.jsonl").read_text().splitlines()
+    fingerprint = small_grid.fingerprint()
+    assert [list(json.loads(line)) for line in lines] == [["study", "index", "rows", "error", "seconds"]] * small_grid.size
+    assert lines[0].startswith('{"study":"' + fingerprint + '","index":0,"rows":[{"load_case":"static","model":"linear",')
+    # a directory as an earlier seafast wrote it: the manifest's fingerprint after the description
+    old = tmp_path / "old"
+    old.mkdir()
+    (old / "study.json").write_text(json.dumps({**small_grid.manifest(), "fingerprint": fingerprint}, indent=1))
+    (old / "points.jsonl").write_text("\n".join(lines) + "\n")
+    resumed = run_study(small_grid, old, evaluator=FAKE, execution=ExecutionOptions(workers=1, progress=False))
+    assert resumed.reused == small_grid.size and resumed.computed == 0
+    assert (old / "study.csv").read_text() == (tmp_path / "now" / "study.csv").read_text()
+    xr.testing.assert_identical(_results(resumed.dataset), _results(first.dataset))
 
 
-def test_store_appends_reach_the_file_at_once_and_fsync_is_batched(small_grid, tmp_path: Path, monkeypatch):
-    import seafast.studies.store as store_module
-
-    syncs: list[int] = []
-    real_fsync = os.fsync
-    monkeypatch.setattr(store_module.os, "fsync", lambda fd: (syncs.append(fd), real_fsync(fd))[1])
-    records = evaluate_batch(small_grid, list(range(small_grid.size)), FAKE, pin_threads=False)
-    store = PointStore(tmp_path, small_grid, fsync_interval_s=3600.0)
-    for record in records:
-        store.append([record])
-        # kill safety: what append returned is in the file for any other reader (a resumed run)
-        assert record.index in PointStore(tmp_path, small_grid).completed
-    assert syncs == []  # durability against a machine crash is batched ...
-    store.close()
-    assert len(syncs) == 1  # ... and completed when the store closes
-    every = PointStore(tmp_path / "every", small_grid, fsync_interval_s=0.0)
-    for record in records[:3]:
-        every.append([record])
-    every.close()
-    assert len(syncs) == 1 + 3
+def test_an_unreachable_scheduler_is_a_study_error(small_grid, tmp_path: Path):
+    with pytest.raises(StudyError, match="--scheduler nope://host:8786: cannot connect to a Dask scheduler"):
+        run_study(small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(scheduler="nope://host:8786", progress=False))
 
 
 def test_real_points_do_not_depend_on_the_back_end_or_the_evaluation_order(tmp_path: Path):
@@ -250,8 +201,8 @@ def test_real_points_do_not_depend_on_the_back_end_or_the_evaluation_order(tmp_p
     serial = run_study(grid, tmp_path / "serial", execution=ExecutionOptions(workers=1, progress=False))
     assert serial.failed == 0
     run_study(grid, tmp_path / "forked", execution=ExecutionOptions(workers=2, batch_size=1, progress=False))
-    with PointStore(tmp_path / "resumed", grid) as store:  # a partial run, points in reverse order
-        store.append(evaluate_batch(grid, [5, 3, 1], pin_threads=False))
+    with point_store(tmp_path / "resumed", grid) as store:  # a partial run, points in reverse order
+        store.append(evaluate_batch(grid, [5, 3, 1]))
     resumed = run_study(grid, tmp_path / "resumed", execution=ExecutionOptions(workers=1, progress=False))
     assert resumed.reused == 3 and resumed.computed == 3
     text = (tmp_path / "serial" / "study.csv").read_text()
@@ -260,30 +211,23 @@ def test_real_points_do_not_depend_on_the_back_end_or_the_evaluation_order(tmp_p
     assert float(serial.dataset["F_N"].sel(load_case="dynamic", model="nonlinear").max()) > 5e6  # real forces
 
 
-def test_forkserver_workers_outlive_the_parent_watch_interval(small_grid, tmp_path: Path, monkeypatch):
-    # a forkserver's workers are children of the server, not of this process: they must watch
-    # the parent they start with, or they exit at the watch's first tick (0.25 s) mid-study
-    monkeypatch.setenv("SEAFAST_FAKE_EVAL_SLEEP_S", "0.05")
-    run = run_study(
-        small_grid, tmp_path, evaluator=FAKE, execution=ExecutionOptions(workers=2, batch_size=8, progress=False, start_method="forkserver")
-    )
-    assert run.computed == small_grid.size and run.failed == 0  # 8 x 0.05 s per task, beyond the 0.25 s tick
-
-
 def test_a_study_process_shares_one_vessel_cache_with_the_points_it_evaluates(small_grid):
     """The evaluator finds the process's vessel cache (so the pipeline's and the sea-state analysis'
     ``vessel_excitation(case)`` reuse one vessel across points), the same in every batch; outside a batch
     nothing is shared."""
     from seafast.excitation.vessel import VesselCache, shared_vessel_cache
+    from seafast.model.cache import ModelCache, shared_model_cache
     from study_fakes import fake_evaluate
 
-    seen = []
+    seen, models = [], []
 
     def evaluate(case):
         seen.append(shared_vessel_cache())
+        models.append(shared_model_cache())
         return fake_evaluate(case)
 
-    evaluate_batch(small_grid, [0, 1], evaluate, pin_threads=False)
-    evaluate_batch(small_grid, [2], evaluate, pin_threads=False)
+    evaluate_batch(small_grid, [0, 1], evaluate)
+    evaluate_batch(small_grid, [2], evaluate)
     assert len(seen) == 3 and isinstance(seen[0], VesselCache) and all(cache is seen[0] for cache in seen)
-    assert shared_vessel_cache() is None
+    assert isinstance(models[0], ModelCache) and all(cache is models[0] for cache in models)  # the cargo meshes too
+    assert shared_vessel_cache() is None and shared_model_cache() is None

@@ -13,8 +13,11 @@ import pytest
 import xarray as xr
 
 from seafast.cli import main
+from seafast.parallel.executor import ExecutionOptions
+from seafast.studies.execution import evaluate_batch
 from seafast.studies.messages import WARNING_KINDS, point_log, replay_point_messages
-from seafast.studies.runner import ExecutionOptions, PointStore, evaluate_batch, run_study
+from seafast.studies.runner import run_study
+from seafast.studies.store import point_store
 from study_fakes import fake_warnings
 
 FAKE = "study_fakes:fake_evaluate"
@@ -64,8 +67,8 @@ def test_a_resumed_study_restores_the_warnings_of_the_points_stored_before(small
         evaluated.append(case.seafastening.saddle_count)
         return fake_evaluate(case)
 
-    with PointStore(tmp_path / "resumed", small_grid) as store:  # the run before the interruption
-        store.append(evaluate_batch(small_grid, [0, 4, 10, 11, 15], FAKE, pin_threads=False))
+    with point_store(tmp_path / "resumed", small_grid) as store:  # the run before the interruption
+        store.append(evaluate_batch(small_grid, [0, 4, 10, 11, 15], FAKE))
     resumed = run_study(small_grid, tmp_path / "resumed", evaluator=counting, execution=SERIAL)
     assert resumed.reused == 5 and len(evaluated) == small_grid.size - 5
     reference = run_study(small_grid, tmp_path / "reference", evaluator=FAKE, execution=SERIAL)
@@ -76,14 +79,15 @@ def test_a_resumed_study_restores_the_warnings_of_the_points_stored_before(small
 
 
 def test_a_point_stored_without_its_warnings_is_recomputed(small_grid, tmp_path: Path):
-    with PointStore(tmp_path, small_grid) as store:
-        store.append(evaluate_batch(small_grid, [0, 1], FAKE, pin_threads=False))
+    with point_store(tmp_path, small_grid) as store:
+        store.append(evaluate_batch(small_grid, [0, 1], FAKE))
     lines = (tmp_path / "points.jsonl").read_text().splitlines()
     old = json.loads(lines[0])
     for row in old["rows"]:
         del row["warnings"]  # as a store written before warnings were stored
     (tmp_path / "points.jsonl").write_text(json.dumps(old) + "\n" + lines[1] + "\n")
-    assert sorted(PointStore(tmp_path, small_grid).completed) == [1]
+    with point_store(tmp_path, small_grid) as store:
+        assert sorted(store.completed) == [1] and store.rejected == 1
     run = run_study(small_grid, tmp_path, evaluator=FAKE, execution=SERIAL)
     assert run.reused == 1 and run.computed == small_grid.size - 1
     assert bool(run.dataset["warning_flag"].isel({KEYS[0]: 0, KEYS[1]: 0}).sel(load_case="dynamic", warning="rayleigh_fallback").all())
@@ -209,9 +213,9 @@ def test_point_log_captures_per_thread_and_restores_the_package_logger():
 
 
 def test_the_command_shows_progress_lines_off_a_terminal(fake_study: Path, capsys, monkeypatch: pytest.MonkeyPatch):
-    import seafast.progress
+    import seafast.parallel.progress
 
-    monkeypatch.setattr(seafast.progress, "PROGRESS_MIN_INTERVAL_S", 0.0)  # the test's points take milliseconds
+    monkeypatch.setattr(seafast.parallel.progress, "PROGRESS_MIN_INTERVAL_S", 0.0)  # the test's points take milliseconds
     command = ["study", str(fake_study / "small.yaml"), "--workers", "1", "--batch-size", "1", "--no-figures"]
     assert main([*command, "-o", str(fake_study / "plain")]) == 0
     lines = [line for line in capsys.readouterr().err.splitlines() if line.startswith("study small: ")]

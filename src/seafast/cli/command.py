@@ -17,16 +17,15 @@ from __future__ import annotations
 
 import argparse
 import logging
-import os
 import sys
 from collections.abc import Sequence
 
-# Small dense solves are fastest on one BLAS thread on few cores; OpenBLAS reads this when it is
-# loaded, so set it before numpy/scipy load (study worker processes inherit it). An explicit
-# user setting wins.
-for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
+from seafast.parallel.threads import default_to_one_thread, one_blas_thread
 
+# Small dense solves are fastest on one BLAS thread on few cores; OpenBLAS reads the variables
+# when it is loaded, so they are set before numpy/scipy load (worker processes inherit them). An
+# explicit user setting wins.
+default_to_one_thread()
 
 # the command modules import the numerical stack in their handlers only: after the thread settings above
 import seafast  # noqa: E402
@@ -86,9 +85,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not getattr(args, "handler", None):
         parser.print_help()
         return EXIT_OK
-    import scipy.linalg  # noqa: F401 - load scipy's BLAS now so the limit below reaches it
-    from threadpoolctl import threadpool_limits
-
     if args.global_quiet and hasattr(args, "quiet"):
         args.quiet = True  # the command's own quiet mode (no tables) follows the global one
     # the package's log records go to stderr for this command only (main can be called again,
@@ -96,7 +92,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     with command_logging(_log_level(args)):
         # seafast's dense solves are small (~100-5000 unknowns): one BLAS thread is fastest on
         # few cores, and leaves the cores to study workers (the BEM step lifts this limit for itself).
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_blas_thread():
             return int(args.handler(args))
 
 

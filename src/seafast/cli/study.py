@@ -103,6 +103,7 @@ def build_study_parser() -> argparse.ArgumentParser:
 def cmd_study(args: argparse.Namespace) -> int:
     """Handler of ``seafast study``; returns the exit code."""
     from seafast.config.loader import CaseError, parse_overrides
+    from seafast.parallel.executor import ExecutionOptions
     from seafast.studies.limits import (
         COMPLIANCE_COLUMNS,
         RANKING_COLUMNS,
@@ -112,7 +113,7 @@ def cmd_study(args: argparse.Namespace) -> int:
         rank_compliant,
         write_rows_csv,
     )
-    from seafast.studies.runner import ExecutionOptions, run_study
+    from seafast.studies.runner import run_study
     from seafast.studies.spec import build_grid, load_study_spec, study_spec_from_mapping
 
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))

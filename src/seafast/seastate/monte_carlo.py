@@ -4,11 +4,13 @@
 ``sea_state.duration_s`` (:mod:`seafast.seastate.synthesis`), evaluates each for the linear
 (bilateral-saddle) and the nonlinear (compression-only saddles, exact contact) model
 (:mod:`seafast.seastate.realisation`, integrator :mod:`seafast.solvers.transient`), stores each
-realisation as it finishes in ``DIR/monte_carlo/`` (:mod:`seafast.seastate.task_store`: a killed
-run resumes without loss or duplication; more realisations later extend the same store, since
-realisation i depends only on ``sea_state.seed`` and i), and estimates per quantity the most
-probable maximum over the duration with a bootstrap confidence interval
-(:mod:`seafast.seastate.extremes`).
+realisation as it finishes in ``DIR/monte_carlo/`` (``manifest.json``, ``records.jsonl``: the
+shared resumable store :class:`seafast.parallel.store.RecordStore`; a killed run resumes without
+loss or duplication; more realisations later extend the same store, since realisation i depends
+only on ``sea_state.seed`` and i), runs them on the shared executor
+(:func:`seafast.parallel.executor.map_batches`: serial, local worker processes or Dask, one
+realisation a task), and estimates per quantity the most probable maximum over the duration with
+a bootstrap confidence interval (:mod:`seafast.seastate.extremes`).
 
 The linear Monte Carlo is the exact frequency-domain synthesis of the linear model (the
 integrator with bilateral saddles has no correction to march: q_c = 0); it checks the synthesis
@@ -36,7 +38,10 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from seafast.config.schema import Case
-from seafast.progress import progress as progress_reporter
+from seafast.parallel.executor import ExecutionOptions, error_text, map_batches, plan_batches
+from seafast.parallel.progress import progress as progress_reporter
+from seafast.parallel.store import DICT_RECORDS, RecordStore
+from seafast.parallel.threads import one_blas_thread
 from seafast.seastate.extremes import CONFIDENCE_LEVEL, MPMEstimate, most_probable_maximum
 from seafast.seastate.realisation import (
     QUANTITIES,
@@ -46,7 +51,6 @@ from seafast.seastate.realisation import (
     evaluate_realisation,
     realisation_plan,
 )
-from seafast.seastate.task_store import StoreError, TaskStore, run_tasks
 
 __all__ = [
     "MODELS",
@@ -55,7 +59,6 @@ __all__ = [
     "MonteCarloResult",
     "MonteCarloSettings",
     "RealisationTimeSeries",
-    "StoreError",
     "build_plan",
     "run_monte_carlo",
     "statistics_from_records",
@@ -328,8 +331,16 @@ def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan
     return digest.hexdigest()[:16]
 
 
-def _task(plan: RealisationPlan, index: int) -> dict[str, Any]:
-    return evaluate_realisation(plan, index)[0]
+def _realisations(plan: RealisationPlan, indices: list[int]) -> list[dict[str, Any]]:
+    """The records of a batch of realisations; one that fails is a record with its error text (the run goes on)."""
+    records = []
+    for index in indices:
+        t0 = time.perf_counter()
+        try:
+            records.append(evaluate_realisation(plan, index)[0])
+        except Exception as exc:  # noqa: BLE001 - any failure of one realisation is recorded
+            records.append({"index": int(index), "error": error_text(exc), "seconds": time.perf_counter() - t0})
+    return records
 
 
 # ---------------------------------------------------------------------------- statistics
@@ -386,8 +397,8 @@ def run_monte_carlo(
     scheduler
         Dask scheduler address; overrides ``workers``.
     progress
-        Show progress on stderr (:func:`seafast.progress.progress`: a bar on a terminal, else a
-        plain line every few per cent).
+        Show progress on stderr (:func:`seafast.parallel.progress.progress`: a bar on a terminal,
+        else a plain line every few per cent).
     settings
         Numerical settings (defaults verified by the tests).
 
@@ -401,23 +412,27 @@ def run_monte_carlo(
     ------
     seafast.config.CaseError
         Invalid sea state (from the spectrum or the transfer functions).
-    StoreError
-        The directory holds another run, or the scheduler cannot be reached.
+    seafast.parallel.errors.ParallelError
+        The directory holds another run (:class:`~seafast.parallel.errors.ForeignStoreError`), or
+        the scheduler cannot be reached.
     """
     plan = build_plan(case, settings)
     n_r = int(case.sea_state.realisations)
     fingerprint = _fingerprint(case, settings, plan)
     manifest = {"case": case.name, "duration_s": plan.duration_s, "seed": plan.seed, "settings": plan.describe()}
     seconds = np.full(n_r, np.nan)
-    with TaskStore(Path(directory) / STORE_DIRECTORY, fingerprint, manifest) as store:
+    execution = ExecutionOptions(workers=workers, scheduler=scheduler, batch_size=1, progress=progress)
+    with RecordStore(Path(directory) / STORE_DIRECTORY, fingerprint, manifest, DICT_RECORDS) as store:
         pending = store.pending(n_r)
         reused = n_r - len(pending)
         bar = progress_reporter(n_r, reused, label=f"Monte Carlo {case.name}", unit="realisations", enabled=progress and bool(pending))
         try:
-            for record in run_tasks(_task, plan, pending, workers=workers, scheduler=scheduler):
-                bar.update(store.append([record]))
-                if 0 <= int(record["index"]) < n_r:
-                    seconds[int(record["index"])] = float(record.get("seconds", np.nan))
+            batches = plan_batches(pending, execution.worker_count(), execution.batch_size)
+            for batch in map_batches(_realisations, plan, batches, execution):
+                bar.update(store.append(batch))
+                for record in batch:
+                    if 0 <= int(record["index"]) < n_r:
+                        seconds[int(record["index"])] = float(record.get("seconds", np.nan))
         finally:
             bar.close()
         records = [store.completed[i] for i in range(n_r)]
@@ -458,12 +473,10 @@ def benchmark_realisation(overrides: Mapping[str, Any] | None = None, index: int
     figure is the wall time of realisation ``index`` (synthesis, linear maxima, windows,
     statistics of the record), BLAS on one thread.
     """
-    from threadpoolctl import threadpool_limits
-
     from seafast.config.loader import load_case
 
     case = load_case(None, {**BENCHMARK_SEA_STATE, "sea_state.duration_s": 10800.0, **dict(overrides or {})})
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         plan = build_plan(case)
         evaluate_realisation(plan, 0)  # compile / load the kernels
         t0 = time.perf_counter()

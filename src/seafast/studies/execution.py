@@ -1,35 +1,25 @@
-"""Evaluating study points: evaluators, batches, and the serial / local-process / Dask back-ends.
+"""Evaluating study points: evaluators, batches of points, and their run on the shared executor.
 
 Every point is evaluated by an *evaluator* ``Callable[[Case], list[dict]]`` (default
 :func:`seafast.analyses.run.evaluate_summary`, imported lazily) returning one row per load case and
-model. Points travel to workers in batches (:func:`plan_batches`); :func:`evaluate_batches`
-yields each batch's :class:`~seafast.studies.store.PointRecord` list as it completes, whatever
-the back-end. A point whose evaluation raises is recorded with its error text; a row's typed
-warnings are stored as their values, and the log records of a point are captured, not printed
-(:mod:`seafast.studies.messages`).
+model. Points travel to workers in batches (:func:`seafast.parallel.executor.plan_batches`);
+:func:`evaluate_batches` yields each batch's :class:`~seafast.studies.store.PointRecord` list as
+it completes, on the back-end the :class:`~seafast.parallel.executor.ExecutionOptions` select
+(serial, local worker processes, Dask: :func:`seafast.parallel.executor.map_batches`, which
+also pins each worker to one BLAS thread). A point whose evaluation raises is recorded with its
+error text; a row's typed warnings are stored as their values, and the log records of a point
+are captured, not printed (:mod:`seafast.studies.messages`).
 
-The back-ends are generic: they need an object with ``size`` and ``point_case(index)``
-(:class:`PointSource`), e.g. a :class:`~seafast.studies.spec.StudyGrid`.
-
-Local processes start by ``fork`` on Linux when this process runs no other Python thread: the
-workers then inherit the imported modules and the caches the coordinating process warmed on
-its first point (the vessel excitation and BEM data of its ``VesselCache``, the cargo mesh), so a worker costs
-milliseconds to start instead of a fresh interpreter's imports (about a second of CPU each).
-Otherwise (another thread runs here, e.g. after a Dask client; not Linux) they fork from a
-``forkserver`` that imported the numerics once, or are spawned where there is none; any of the
-three can be asked for (``ExecutionOptions.start_method``).
+The points can be anything with ``size`` and ``point_case(index)`` (:class:`PointSource`), e.g.
+a :class:`~seafast.studies.spec.StudyGrid`. Forked local workers start after this process has
+evaluated the study's first point, so they inherit the caches it warmed (vessel excitation,
+hydrodynamic coefficients, cargo mesh).
 """
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import importlib
-import logging
-import math
-import multiprocessing
 import os
-import sys
-import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
@@ -38,6 +28,7 @@ from typing import Any, Protocol
 from seafast.config.schema import Case
 from seafast.excitation.vessel import VesselCache
 from seafast.model.cache import ModelCache
+from seafast.parallel.executor import ExecutionOptions, error_text, map_batches
 from seafast.studies.messages import point_log
 from seafast.studies.spec import StudyError
 from seafast.studies.store import PointRecord, stored_row
@@ -46,15 +37,11 @@ __all__ = [
     "Evaluator",
     "EVALUATOR_ENV",
     "PointSource",
-    "ExecutionOptions",
     "default_evaluator",
     "resolve_evaluator",
     "evaluate_batch",
-    "plan_batches",
     "evaluate_batches",
 ]
-
-logger = logging.getLogger(__name__)
 
 Evaluator = Callable[[Case], list[dict]]
 
@@ -109,8 +96,6 @@ def resolve_evaluator(evaluator: Evaluator | str | None) -> Evaluator:
     return target
 
 
-_worker_ready = False
-
 _POINT_VESSELS = VesselCache()
 """The vessel excitations this process keeps for the study points it evaluates (with the hull forms and BEM
 data behind them), shared with the evaluator while a batch runs (:meth:`VesselCache.shared`): a study over
@@ -122,58 +107,13 @@ _POINT_MODELS = ModelCache()
 :data:`_POINT_VESSELS` is: along a stiffness axis the mesh is built once, along a pretension axis the fit too."""
 
 
-def _prepare_worker() -> None:
-    """Once per worker process: one BLAS/OpenMP thread (the parallelism is across points)."""
-    global _worker_ready  # noqa: PLW0603 - per-process state: a worker pins its threads once
-    if _worker_ready:
-        return
-    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS"):
-        os.environ[var] = "1"
-    try:
-        from threadpoolctl import threadpool_limits
-
-        threadpool_limits(limits=1)
-    except Exception:  # noqa: BLE001  # pragma: no cover - pinning is an optimisation; a library threadpoolctl cannot inspect must not stop a worker
-        pass
-    _worker_ready = True
-
-
-def _exit_with_parent(parent_pid: int, interval_s: float = 0.25) -> None:
-    """Exit this worker when its parent process is gone (e.g. the study was killed with SIGKILL)."""
-
-    def watch() -> None:
-        while True:
-            time.sleep(interval_s)
-            if os.getppid() != parent_pid:
-                os._exit(1)
-
-    threading.Thread(target=watch, name="seafast-parent-watch", daemon=True).start()
-
-
-def _init_process_worker(coordinator_pid: int) -> None:
-    """Initializer of local worker processes: one BLAS thread; exit with the coordinator.
-
-    A forked or spawned worker's parent is the coordinating process; a forkserver's worker's is
-    the server, which exits when the coordinator does. Either way the worker watches the parent
-    it starts with.
-    """
-    global _worker_ready  # noqa: PLW0603 - per-process state, reset in a forked worker
-    _worker_ready = False  # a forked worker re-pins its own BLAS
-    _prepare_worker()
-    parent = os.getppid()
-    if parent == 1 and coordinator_pid != 1:
-        os._exit(1)  # orphaned before it started
-    _exit_with_parent(parent)
-
-
 def evaluate_batch(
     grid: PointSource,
     indices: Sequence[int],
     evaluator: Evaluator | str | None = None,
-    pin_threads: bool = True,
     keep_messages: bool = False,
 ) -> list[PointRecord]:
-    """Evaluate a batch of points (runs in a worker).
+    """Evaluate a batch of points (in a worker, or in this process).
 
     Parameters
     ----------
@@ -183,8 +123,6 @@ def evaluate_batch(
         Flat point indices.
     evaluator : callable, str or None
         See :func:`resolve_evaluator`.
-    pin_threads : bool
-        Limit BLAS/OpenMP to one thread in this process (workers; not the serial runner).
     keep_messages : bool
         Return each point's log records with its record (:func:`seafast.studies.messages.point_log`);
         False: they are dropped. Either way nothing is printed while a point runs.
@@ -195,8 +133,6 @@ def evaluate_batch(
         One per index, in order; a point that raised carries its error text. Each row holds
         ``warnings``, the list of its typed warnings' values (empty when none).
     """
-    if pin_threads:
-        _prepare_worker()
     func = resolve_evaluator(evaluator)
     records = []
     for index in indices:
@@ -207,151 +143,22 @@ def evaluate_batch(
                 rows = tuple(stored_row(row) for row in func(case))
                 error = ""
             except Exception as exc:  # noqa: BLE001 - any failure of one point is recorded, the study goes on
-                text = " ".join(str(exc).split()) or "(no message)"
-                rows, error = (), f"{type(exc).__name__}: {text}"
+                rows, error = (), error_text(exc)
         records.append(PointRecord(int(index), rows, error, time.perf_counter() - t0, tuple(messages)))
     return records
 
 
-def plan_batches(pending: Sequence[int], workers: int, batch_size: int | None = None) -> list[list[int]]:
-    """Split pending point indices into batches (tasks).
-
-    Parameters
-    ----------
-    pending : sequence of int
-        Indices still to evaluate.
-    workers : int
-        Parallel workers. By default the batches shrink as the work runs out (guided
-        scheduling): each holds a quarter of the points left per worker, 1..25 of them, so
-        the workers finish together instead of one waiting for another's last large batch.
-    batch_size : int, optional
-        Points per batch (overrides the default).
-    """
-    if not pending:
-        return []
-    if batch_size:
-        return [list(pending[i : i + batch_size]) for i in range(0, len(pending), batch_size)]
-    batches, start = [], 0
-    while start < len(pending):
-        size = max(1, min(25, math.ceil((len(pending) - start) / (4 * max(1, workers)))))
-        batches.append(list(pending[start : start + size]))
-        start += size
-    return batches
-
-
-# --------------------------------------------------------------------------- execution options
-START_METHODS: tuple[str, ...] = ("fork", "forkserver", "spawn")
-
-
 @dataclass(frozen=True)
-class ExecutionOptions:
-    """How to run a study.
+class _StudyJob:
+    """What every batch of a study shares: the points, the evaluator and whether to keep the points' messages."""
 
-    Attributes
-    ----------
-    workers : int or None
-        Local worker processes; None = all cores; 1 = serial in this process.
-    scheduler : str or None
-        Address of a Dask distributed scheduler (``tcp://host:port``); overrides ``workers``.
-    batch_size : int or None
-        Points per task; None = about four tasks per worker, at most 25 points each.
-    progress : bool
-        Show progress on stderr (:func:`seafast.progress.progress`: a bar on a terminal, else a
-        plain line every few per cent).
-    start_method : str or None
-        How local worker processes start: ``fork``, ``forkserver`` or ``spawn``; None = ``fork``
-        on Linux when this process runs no other Python thread, else ``forkserver`` where
-        available, else ``spawn``.
-    """
-
-    workers: int | None = None
-    scheduler: str | None = None
-    batch_size: int | None = None
-    progress: bool = True
-    start_method: str | None = None
-
-    def __post_init__(self) -> None:
-        if self.start_method is not None and self.start_method not in START_METHODS:
-            raise StudyError(f"start_method = {self.start_method!r}; allowed: {', '.join(START_METHODS)} or None (automatic)")
-
-    def worker_count(self) -> int:
-        """Number of local workers."""
-        return max(1, self.workers if self.workers is not None else (os.cpu_count() or 1))
-
-    def mode(self) -> str:
-        """``'dask'``, ``'processes'`` or ``'serial'``."""
-        if self.scheduler:
-            return "dask"
-        return "serial" if self.worker_count() == 1 else "processes"
-
-    def process_start_method(self) -> str:
-        """The start method local worker processes will use (see ``start_method``)."""
-        if self.start_method is not None:
-            return self.start_method
-        methods = multiprocessing.get_all_start_methods()
-        if sys.platform.startswith("linux") and "fork" in methods and threading.active_count() == 1:
-            return "fork"
-        return "forkserver" if "forkserver" in methods else "spawn"
+    grid: PointSource
+    evaluator: Evaluator | str | None
+    keep_messages: bool
 
 
-# --------------------------------------------------------------------------- back-ends
-def _iter_serial(
-    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, keep: bool = False
-) -> Iterator[list[PointRecord]]:
-    from threadpoolctl import threadpool_limits
-
-    # One BLAS thread here too: the model's matrices are small, and threading them is slower.
-    with threadpool_limits(limits=1):
-        for batch in batches:
-            yield evaluate_batch(grid, batch, evaluator, pin_threads=False, keep_messages=keep)
-
-
-def _iter_processes(
-    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, workers: int, start_method: str, keep: bool = False
-) -> Iterator[list[PointRecord]]:
-    if start_method == "fork" and batches and batches[0]:
-        # the first point here, before forking: the workers inherit its imports and warm caches
-        first, rest = batches[0][:1], batches[0][1:]
-        # unpacked, not next(): the generator runs to its end and leaves its thread limit
-        (records,) = _iter_serial(grid, [first], evaluator, keep)
-        yield records
-        batches = ([rest] if rest else []) + batches[1:]
-        if not batches:
-            return
-    context = multiprocessing.get_context(start_method)
-    if start_method == "forkserver":
-        # the server imports the numerics once; each worker forks from it (no per-worker imports)
-        preload = ["seafast.analyses.run", "seafast.studies.execution"]
-        if isinstance(evaluator, str) and ":" in evaluator:
-            preload.append(evaluator.partition(":")[0])
-        context.set_forkserver_preload(preload)
-    executor = cf.ProcessPoolExecutor(
-        max_workers=min(workers, len(batches)), mp_context=context, initializer=_init_process_worker, initargs=(os.getpid(),)
-    )
-    try:
-        futures = [executor.submit(evaluate_batch, grid, batch, evaluator, True, keep) for batch in batches]
-        for future in cf.as_completed(futures):
-            yield future.result()
-    finally:
-        executor.shutdown(wait=True, cancel_futures=True)
-
-
-def _iter_dask(
-    grid: PointSource, batches: list[list[int]], evaluator: Evaluator | str | None, address: str, keep: bool = False
-) -> Iterator[list[PointRecord]]:
-    from distributed import Client, as_completed
-
-    try:
-        client = Client(address, timeout="20s", set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise StudyError(f"--scheduler {address}: cannot connect to a Dask scheduler ({exc})") from None
-    try:
-        grid_future = client.scatter(grid, broadcast=True, hash=False)
-        futures = [client.submit(evaluate_batch, grid_future, batch, evaluator, True, keep, pure=False) for batch in batches]
-        for future in as_completed(futures, loop=client.loop):
-            yield future.result()
-    finally:
-        client.close()
+def _evaluate_job(job: _StudyJob, indices: list[int]) -> list[PointRecord]:
+    return evaluate_batch(job.grid, indices, job.evaluator, job.keep_messages)
 
 
 def evaluate_batches(
@@ -368,7 +175,7 @@ def evaluate_batches(
     grid : PointSource
         The points.
     batches : list of list of int
-        From :func:`plan_batches`.
+        From :func:`seafast.parallel.executor.plan_batches`.
     evaluator : callable, str or None
         See :func:`resolve_evaluator`; must be picklable (a module-level function) for the
         spawned-process and Dask back-ends.
@@ -379,17 +186,11 @@ def evaluate_batches(
 
     Raises
     ------
-    StudyError
+    seafast.parallel.errors.ParallelError
         If the Dask scheduler cannot be reached.
     """
-    if not batches:
-        return iter(())
-    mode = execution.mode()
-    if mode == "dask":
-        assert execution.scheduler is not None
-        return _iter_dask(grid, batches, evaluator, execution.scheduler, keep_messages)
-    if mode == "processes":
-        method = execution.process_start_method()
-        logger.debug("local worker processes start by %s", method)
-        return _iter_processes(grid, batches, evaluator, execution.worker_count(), method, keep_messages)
-    return _iter_serial(grid, batches, evaluator, keep_messages)
+    # a forkserver imports the numerics once (and a plug-in evaluator's module)
+    preload = ["seafast.analyses.run"]
+    if isinstance(evaluator, str) and ":" in evaluator:
+        preload.append(evaluator.partition(":")[0])
+    return map_batches(_evaluate_job, _StudyJob(grid, evaluator, keep_messages), batches, execution, preload=preload)

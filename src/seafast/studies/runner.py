@@ -1,8 +1,9 @@
 """Running a study: batched evaluation (serial, local processes or Dask) into a resumable store.
 
-The pieces live by concern: :mod:`seafast.studies.execution` (evaluators, batches, back-ends),
-:mod:`seafast.studies.store` (the resumable point store) and :mod:`seafast.studies.assembly`
-(``study.nc`` and ``study.csv``); this module drives them and re-exports their public names.
+The pieces live by concern: :mod:`seafast.studies.execution` (evaluators and their batches on
+the shared executor, :mod:`seafast.parallel.executor`), :mod:`seafast.studies.store` (the
+study's points in the shared resumable store, :mod:`seafast.parallel.store`) and
+:mod:`seafast.studies.assembly` (``study.nc`` and ``study.csv``); this module drives them.
 
 Points are sent to workers in batches; as each batch completes, its records are appended to
 ``DIR/points.jsonl`` (one JSON object per point, keyed by the point index and the study
@@ -16,7 +17,7 @@ Every point is a pure function of its case: the default evaluator starts each no
 from the point's own predictor, never from a neighbour's solution, so the results do not depend
 on the back-end, the batch plan, the number of workers or a resume (bit for bit on one machine).
 
-Messages: progress through :func:`seafast.progress.progress` (a bar on a terminal, else a plain
+Messages: progress through :func:`seafast.parallel.progress.progress` (a bar on a terminal, else a plain
 line every few per cent); a point's log records are not printed as it runs, but logged again here
 naming the point (index and overrides) when this process logs at DEBUG (``seafast -v study``);
 at the end one warning per typed warning kind with the number of points that raised it
@@ -33,57 +34,21 @@ from pathlib import Path
 
 import xarray as xr
 
-from seafast.progress import progress
-from seafast.studies.assembly import (
-    CORE_COLUMNS,
-    LOAD_CASES,
-    MODELS,
-    assemble_dataset,
-    study_rows,
-    write_study_csv,
-    write_study_netcdf,
-)
-from seafast.studies.execution import (
-    EVALUATOR_ENV,
-    Evaluator,
-    ExecutionOptions,
-    default_evaluator,
-    evaluate_batch,
-    evaluate_batches,
-    plan_batches,
-    resolve_evaluator,
-)
+from seafast.parallel.errors import ParallelError
+from seafast.parallel.executor import ExecutionOptions, plan_batches
+from seafast.parallel.progress import progress
+from seafast.studies.assembly import assemble_dataset, write_study_csv, write_study_netcdf
+from seafast.studies.execution import Evaluator, evaluate_batches, resolve_evaluator
 from seafast.studies.messages import point_label, points_with_warning, replay_point_messages, warning_count_lines
-from seafast.studies.spec import StudyGrid
-from seafast.studies.store import PointRecord, PointStore
+from seafast.studies.spec import StudyError, StudyGrid
+from seafast.studies.store import POINTS_FILE, PointRecord, point_store
 
 logger = logging.getLogger(__name__)
 
 SEA_STATE_EVALUATOR = "seafast.seastate.study:evaluate_sea_state"
 """The evaluator of studies judged on their sea state (``response: sea_state``)."""
 
-__all__ = [
-    "Evaluator",
-    "ExecutionOptions",
-    "PointRecord",
-    "PointStore",
-    "StudyRun",
-    "CORE_COLUMNS",
-    "LOAD_CASES",
-    "MODELS",
-    "EVALUATOR_ENV",
-    "default_evaluator",
-    "resolve_evaluator",
-    "evaluate_batch",
-    "evaluate_batches",
-    "plan_batches",
-    "run_study",
-    "SEA_STATE_EVALUATOR",
-    "assemble_dataset",
-    "study_rows",
-    "write_study_csv",
-    "write_study_netcdf",
-]
+__all__ = ["StudyRun", "run_study", "SEA_STATE_EVALUATOR"]
 
 
 # --------------------------------------------------------------------------- the driver
@@ -185,33 +150,42 @@ def run_study(
         evaluator = SEA_STATE_EVALUATOR
     if isinstance(evaluator, str):
         resolve_evaluator(evaluator)  # fail early on a bad reference
-    with PointStore(out, grid) as store:
-        reused = len(store.completed)
-        pending = store.pending()
-        mode = execution.mode()
-        workers = execution.worker_count() if mode == "processes" else 1
-        batches = plan_batches(pending, workers if mode != "dask" else max(2, workers), execution.batch_size)
-        computed = 0
-        logger.info(
-            "study '%s': %d points, %d already stored in %s, %d to compute (%s)", grid.spec.name, grid.size, reused, out, len(pending), mode
-        )
-        keep = logging.getLogger("seafast").isEnabledFor(logging.DEBUG)  # point messages wanted (seafast -v)
-        stream: Iterator[list[PointRecord]] = evaluate_batches(grid, batches, evaluator, execution, keep)
-        bar = progress(grid.size, reused, label=f"study {grid.spec.name}", unit="points", enabled=execution.progress and bool(pending))
-        try:
-            for batch in stream:
-                added = store.append(batch)
-                computed += added
-                _replay(grid, batch)
-                bar.update(added)
-        finally:
-            bar.close()
-        records = dict(sorted(store.completed.items()))
+    try:
+        with point_store(out, grid) as store:
+            reused = len(store.completed)
+            pending = store.pending(grid.size)
+            mode = execution.mode()
+            workers = execution.worker_count() if mode == "processes" else 1
+            batches = plan_batches(pending, workers if mode != "dask" else max(2, workers), execution.batch_size)
+            computed = 0
+            logger.info(
+                "study '%s': %d points, %d already stored in %s, %d to compute (%s)",
+                grid.spec.name,
+                grid.size,
+                reused,
+                out,
+                len(pending),
+                mode,
+            )
+            keep = logging.getLogger("seafast").isEnabledFor(logging.DEBUG)  # point messages wanted (seafast -v)
+            stream: Iterator[list[PointRecord]] = evaluate_batches(grid, batches, evaluator, execution, keep)
+            bar = progress(grid.size, reused, label=f"study {grid.spec.name}", unit="points", enabled=execution.progress and bool(pending))
+            try:
+                for batch in stream:
+                    added = store.append(batch)
+                    computed += added
+                    _replay(grid, batch)
+                    bar.update(added)
+            finally:
+                bar.close()
+            records = dict(sorted(store.completed.items()))
+    except ParallelError as exc:  # e.g. an unreachable scheduler: a study's error, as its other input errors
+        raise StudyError(str(exc)) from None
     dataset = assemble_dataset(grid, records)
     files = {
         "netcdf": write_study_netcdf(out / "study.nc", dataset),
         "csv": write_study_csv(out / "study.csv", grid, records),
-        "store": out / PointStore.POINTS,
+        "store": out / POINTS_FILE,
     }
     failed = sum(1 for r in records.values() if r.error)
     logger.info("study '%s': %d computed, %d failed, %.1f s", grid.spec.name, computed, failed, time.perf_counter() - t0)

@@ -1,17 +1,12 @@
-"""The resumable point store of a study directory: one JSON line per finished point.
+"""A study's points in the shared resumable store: one JSON line per finished point.
 
 ``DIR/study.json`` identifies the study (its fingerprint and a description of its points);
-``DIR/points.jsonl`` holds one record per finished point, appended as results arrive. Only the
-coordinating process writes. The store is generic: anything with a ``fingerprint()``, a
-``size`` and a ``manifest()`` (:class:`StoredPoints`) can keep its points here (a parametric
-grid, a set of Monte Carlo realisations).
-
-Kill safety: every :meth:`PointStore.append` hands its records to the operating system in one
-``write`` before it returns, so a process killed at any later moment (SIGKILL included) loses
-nothing it appended; a write torn by the kill leaves a partial last line, which the next open
-drops. Durability against a power cut (``fsync``) is batched: at most one ``fsync`` per
-``fsync_interval_s`` seconds and one when the store closes, so a crash of the machine can lose
-the last second of points (they are recomputed on resume), never corrupt the store.
+``DIR/points.jsonl`` holds one record per finished point (its rows, error text and wall time),
+appended as results arrive. The store itself, with its kill safety, batched ``fsync`` and
+refusal of another run's directory, is :class:`seafast.parallel.store.RecordStore`; this module
+says how a study's points are laid out in it (:data:`STUDY_MANIFEST`, :data:`POINTS_FILE`,
+:func:`point_store`). Anything with a ``fingerprint()``, a ``size`` and a ``manifest()``
+(:class:`StoredPoints`) can keep its points here.
 
 A record holds each row's typed ``warnings`` (their values), so a resumed study restores the
 warnings of the points computed before the interruption. A record without them (written by a
@@ -20,23 +15,27 @@ seafast that did not store warnings) is not trusted: its point is recomputed.
 
 from __future__ import annotations
 
-import json
 import logging
-import os
-import time
-from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
 import numpy as np
 
+from seafast.parallel.errors import ForeignStoreError
+from seafast.parallel.store import RecordStore, StoreLayout
 from seafast.studies.messages import warning_values
 from seafast.studies.spec import StudyError
 
-__all__ = ["PointRecord", "PointStore", "StoredPoints", "stored_row"]
+__all__ = ["STUDY_MANIFEST", "POINTS_FILE", "PointRecord", "StoredPoints", "point_store", "stored_row"]
 
 logger = logging.getLogger(__name__)
+
+STUDY_MANIFEST = "study.json"
+"""The study's manifest in its directory (fingerprint, name, axes)."""
+
+POINTS_FILE = "points.jsonl"
+"""The study's records file in its directory (one JSON line per finished point)."""
 
 
 class StoredPoints(Protocol):
@@ -96,150 +95,75 @@ class PointRecord:
     seconds: float = 0.0
     messages: tuple[tuple[str, int, str], ...] = ()
 
-    def to_json(self, fingerprint: str) -> str:
-        """One line of ``points.jsonl`` (no newline)."""
-        return json.dumps(
-            {"study": fingerprint, "index": self.index, "rows": list(self.rows), "error": self.error, "seconds": self.seconds},
-            separators=(",", ":"),
-            allow_nan=True,
-        )
+    def fields(self) -> dict[str, Any]:
+        """What a line of ``points.jsonl`` holds besides the study's fingerprint and the index."""
+        return {"rows": list(self.rows), "error": self.error, "seconds": self.seconds}
 
     @staticmethod
     def from_json(data: dict) -> PointRecord:
-        """Inverse of :meth:`to_json` (already parsed)."""
+        """A record from a parsed line of ``points.jsonl``."""
         return PointRecord(int(data["index"]), tuple(data.get("rows") or ()), str(data.get("error") or ""), float(data.get("seconds", 0.0)))
 
 
-class PointStore:
-    """Append-only JSON-lines store of finished points in a study directory.
+def _point_index(record: PointRecord) -> int:
+    return record.index
+
+
+def _point_fields(record: PointRecord) -> dict[str, Any]:
+    return record.fields()
+
+
+@dataclass(frozen=True)
+class _PointDecoder:
+    """A stored line back to a point of a study of ``size`` points; None for a point stored without its warnings."""
+
+    size: int
+
+    def __call__(self, line: dict[str, Any]) -> PointRecord | None:
+        record = PointRecord.from_json(line)
+        if not (0 <= record.index < self.size):
+            return None
+        if not record.error and not all("warnings" in row for row in record.rows):
+            return None  # stored without its warnings: recomputed
+        return record
+
+
+def point_store(directory: str | Path, grid: StoredPoints, *, fsync_interval_s: float = 1.0) -> RecordStore[PointRecord]:
+    """The resumable store of a study's points in ``directory`` (``study.json``, ``points.jsonl``).
 
     Parameters
     ----------
-    directory : Path
+    directory : str or Path
         The study's output directory (created if needed).
     grid : StoredPoints
         The points (e.g. a :class:`~seafast.studies.spec.StudyGrid`); a directory holding
         another set of points (other fingerprint) is refused.
     fsync_interval_s : float
-        Least time between two ``fsync`` calls [s] (see the module docstring); 0 syncs every
-        append.
+        Least time between two ``fsync`` calls [s] (:class:`~seafast.parallel.store.RecordStore`);
+        0 syncs every append.
 
     Raises
     ------
     StudyError
         If the directory holds a different study.
     """
-
-    MANIFEST = "study.json"
-    POINTS = "points.jsonl"
-
-    def __init__(self, directory: Path, grid: StoredPoints, fsync_interval_s: float = 1.0) -> None:
-        self.directory = Path(directory)
-        self.fingerprint = grid.fingerprint()
-        self.size = grid.size
-        self.fsync_interval_s = float(fsync_interval_s)
-        self.directory.mkdir(parents=True, exist_ok=True)
-        self._check_manifest(grid.manifest())
-        self.completed: dict[int, PointRecord] = self._read_points()
-        self._handle = open(self.path, "ab")  # noqa: SIM115 - appended to until close() / __exit__
-        self._last_sync = time.monotonic()
-        self._unsynced = False
-
-    @property
-    def path(self) -> Path:
-        """``DIR/points.jsonl``."""
-        return self.directory / self.POINTS
-
-    def _check_manifest(self, content: dict[str, Any]) -> None:
-        manifest = self.directory / self.MANIFEST
-        if manifest.exists():
-            try:
-                held = json.loads(manifest.read_text(encoding="utf-8"))
-            except (OSError, ValueError):
-                held = {}
-            if held.get("fingerprint") != self.fingerprint:
-                raise StudyError(
-                    f"output directory '{self.directory}' holds a different study ('{held.get('name', '?')}', fingerprint "
-                    f"{held.get('fingerprint', '?')}) from this '{content.get('name', '?')}' (fingerprint {self.fingerprint}; the "
-                    "fingerprint covers the base case with its overrides, the axes and the derived keys); "
-                    "allowed: the same study (to resume) or an empty directory; choose another -o DIR"
-                )
-            return
-        tmp = manifest.with_suffix(".json.tmp")
-        tmp.write_text(json.dumps({**content, "fingerprint": self.fingerprint}, indent=1), encoding="utf-8")
-        os.replace(tmp, manifest)
-
-    def _read_points(self) -> dict[int, PointRecord]:
-        if not self.path.exists():
-            return {}
-        data = self.path.read_bytes()
-        end = data.rfind(b"\n") + 1  # bytes after the last newline are a torn record
-        completed: dict[int, PointRecord] = {}
-        stale = 0
-        for line in data[:end].splitlines():
-            if not line.strip():
-                continue
-            try:
-                raw = json.loads(line)
-            except ValueError:
-                continue  # a damaged record: its point is recomputed
-            if raw.get("study") != self.fingerprint:
-                raise StudyError(
-                    f"'{self.path}' holds points of another study (fingerprint {raw.get('study')}, "
-                    f"this study {self.fingerprint}); choose another -o DIR"
-                )
-            record = PointRecord.from_json(raw)
-            if not (0 <= record.index < self.size):
-                continue
-            if not record.error and not all("warnings" in row for row in record.rows):
-                stale += 1  # stored without its warnings: recomputed
-                completed.pop(record.index, None)
-                continue
-            completed[record.index] = record
-        if stale:
-            logger.info("%d point(s) in %s were stored without their warnings; they are recomputed", stale, self.path)
-        if end < len(data):
-            logger.info("dropping a torn record at the end of %s", self.path)
-            with open(self.path, "r+b") as fh:
-                fh.truncate(end)
-                fh.flush()
-                os.fsync(fh.fileno())
-        return completed
-
-    def append(self, records: Iterable[PointRecord]) -> int:
-        """Append records (one ``write``, kill-safe on return); returns how many were new."""
-        fresh = [r for r in records if r.index not in self.completed]
-        if not fresh:
-            return 0
-        payload = "".join(r.to_json(self.fingerprint) + "\n" for r in fresh).encode("utf-8")
-        self._handle.write(payload)
-        self._handle.flush()  # into the kernel: survives the death of this process
-        self._unsynced = True
-        if time.monotonic() - self._last_sync >= self.fsync_interval_s:
-            self.sync()
-        for r in fresh:
-            self.completed[r.index] = r
-        return len(fresh)
-
-    def sync(self) -> None:
-        """Make the appended records durable (``fsync``)."""
-        if self._unsynced and not self._handle.closed:
-            os.fsync(self._handle.fileno())
-            self._unsynced = False
-        self._last_sync = time.monotonic()
-
-    def pending(self) -> list[int]:
-        """Indices not yet in the store, ascending."""
-        return [i for i in range(self.size) if i not in self.completed]
-
-    def close(self) -> None:
-        """Sync and close the append handle."""
-        if not self._handle.closed:
-            self.sync()
-            self._handle.close()
-
-    def __enter__(self) -> PointStore:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    manifest = grid.manifest()
+    fingerprint = grid.fingerprint()
+    layout = StoreLayout(STUDY_MANIFEST, POINTS_FILE, "study", _point_index, _point_fields, _PointDecoder(grid.size))
+    try:
+        store = RecordStore(directory, fingerprint, manifest, layout, fsync_interval_s=fsync_interval_s)
+    except ForeignStoreError as exc:
+        if exc.path.name != STUDY_MANIFEST:
+            raise StudyError(
+                f"'{exc.path}' holds points of another study (fingerprint {exc.held.get('fingerprint')}, "
+                f"this study {fingerprint}); choose another -o DIR"
+            ) from None
+        raise StudyError(
+            f"output directory '{directory}' holds a different study ('{exc.held.get('name', '?')}', fingerprint "
+            f"{exc.held.get('fingerprint', '?')}) from this '{manifest.get('name', '?')}' (fingerprint {fingerprint}; the "
+            "fingerprint covers the base case with its overrides, the axes and the derived keys); "
+            "allowed: the same study (to resume) or an empty directory; choose another -o DIR"
+        ) from None
+    if store.rejected:
+        logger.info("%d point(s) in %s were stored without their warnings; they are recomputed", store.rejected, store.path)
+    return store

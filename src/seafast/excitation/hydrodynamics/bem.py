@@ -25,6 +25,7 @@ from seafast.excitation.hydrodynamics.capytaine_io import capytaine_rigid_coeffi
 from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coefficients
 from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
+from seafast.parallel.threads import blas_on_every_core
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.hull_mesh import hull_mesh_arrays
 
@@ -79,10 +80,8 @@ def _run_bem(
         kw = dict(body=body, omega=float(w), rho=rho, g=g, water_depth=depth)
         problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in BEM_DOFS]
         problems.append(cpt.DiffractionProblem(wave_direction=np.pi, **kw))
-    from threadpoolctl import threadpool_limits
-
     # the BEM's dense complex solves do profit from every core (callers may have pinned BLAS)
-    with threadpool_limits(limits=os.cpu_count() or 1, user_api="blas"):
+    with blas_on_every_core():
         results = solver.solve_all(problems, progress_bar=False)
     ds = cpt.assemble_dataset(results, hydrostatics=False)
     ds.attrs["seafast_origin_x_m"] = float(hm.x_mid_m)

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
-import seafast.progress as progress_module
-from seafast.progress import PlainProgress, format_duration, progress
+import seafast.parallel.progress as progress_module
+from seafast.parallel.progress import PlainProgress, format_duration, progress
 
-SRC = Path(__file__).resolve().parents[1] / "src" / "seafast"
+SRC = Path(__file__).resolve().parents[2] / "src" / "seafast"
 
 
 class Clock:
@@ -92,18 +92,18 @@ def test_the_bar_on_a_terminal_the_lines_elsewhere_nothing_when_off(monkeypatch:
 def test_the_plain_lines_are_logged_for_the_command_to_print(monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture):
     monkeypatch.setattr(progress_module, "PROGRESS_MIN_INTERVAL_S", 0.0)
     monkeypatch.setattr("sys.stderr", io.StringIO())
-    with caplog.at_level(logging.INFO, logger="seafast.progress"):
+    with caplog.at_level(logging.INFO, logger="seafast.parallel.progress"):
         bar = progress(4, 0, label="Monte Carlo base", unit="realisations")
         for _ in range(4):
             bar.update(1)
         bar.close()
-    lines = [r.getMessage() for r in caplog.records if r.name == "seafast.progress"]
+    lines = [r.getMessage() for r in caplog.records if r.name == "seafast.parallel.progress"]
     assert len(lines) == 4 and re.fullmatch(r"Monte Carlo base: 2/4 realisations \(50 %\), \d+ s elapsed, ~\d+ s left", lines[1])
 
 
 def test_one_progress_helper_in_the_package():
-    """The study runner and the Monte Carlo both report through seafast.progress; no other module draws a bar."""
+    """The study runner and the Monte Carlo both report through seafast.parallel.progress; no other module draws a bar."""
     users = sorted(str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if re.search(r"^\s*(from|import) tqdm", p.read_text(), re.M))
-    assert users == ["progress.py"]
+    assert users == ["parallel/progress.py"]
     for module in ("studies/runner.py", "seastate/monte_carlo.py"):
-        assert "from seafast.progress import progress" in (SRC / module).read_text(), module
+        assert re.search(r"^from seafast\.parallel\.progress import progress\b", (SRC / module).read_text(), re.M), module

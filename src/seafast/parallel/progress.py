@@ -8,7 +8,7 @@ every :data:`PROGRESS_STEP_PERCENT` per cent of the items, at most one per
 
     study saddles: 30/120 points (25 %), 14 s elapsed, ~42 s left
 
-logged at INFO on ``seafast.progress`` (``seafast`` prints it on stderr; ``-q`` hides it; a
+logged at INFO on ``seafast.parallel.progress`` (``seafast`` prints it on stderr; ``-q`` hides it; a
 library caller sees it when it configures logging). The time left is the rate of this run's
 items so far (items found finished before it, e.g. a resumed study's, do not count) times the
 items left.
