@@ -30,7 +30,7 @@ deck-motion scale (:data:`COUPLING_RELATIVE_TOLERANCE`), and reported as a
 ship under the coupled cargo is :mod:`seafast.coupling.hull`. Theory and checks:
 ``docs/coupling.md``.
 
-Size: about 500 lines, the compliance, the exchanged loads, the linear Jacobians and the
+Size: about 550 lines, the compliance, the exchanged loads, the linear Jacobians and the
 quasi-Newton iteration that uses them; they change together.
 """
 
@@ -344,6 +344,130 @@ def linear_coupling_jacobian(model: StructuralModel, omega_rad_s: float, complia
     return linear_coupling_jacobians(model, omega_rad_s, compliance, [harmonic_count])[int(harmonic_count)]
 
 
+class _CouplingResidual:
+    """``r(v) = v - pack(n C (P(unpack(v)) - Q))`` of the cargo model, keeping its last response and forces.
+
+    ``v`` packs the deck change of harmonics 0 .. K-1 (:func:`_pack`); :meth:`size_m` measures a
+    residual in metres (deflection entries as they are, slope entries times the lever arm, half
+    the cargo's length).
+    """
+
+    def __init__(
+        self,
+        excitation: HarmonicExcitation,
+        compliance: HullCompliance,
+        solve: Callable[[HarmonicExcitation], object],
+        deck_forces: Callable[[HarmonicExcitation, object], NDArray],
+        spread_load: NDArray,
+        harmonic_count: int,
+        dof_count: int,
+        lever_arm_m: float,
+    ) -> None:
+        self.excitation, self.compliance = excitation, compliance
+        self.solve, self.deck_forces, self.spread_load = solve, deck_forces, spread_load
+        self.harmonic_count, self.dof_count = harmonic_count, dof_count
+        self.size = dof_count * (2 * harmonic_count - 1)
+        self.weight = np.where(np.arange(self.size) % 2 == 0, 1.0, lever_arm_m)
+        self.response: object = None
+        self.deck_force: NDArray | None = None
+
+    def __call__(self, v: NDArray) -> NDArray:
+        exc = _with_deck_change(self.excitation, _unpack(v, self.harmonic_count, self.dof_count), "")
+        self.response = self.solve(exc)
+        self.deck_force = self.deck_forces(exc, self.response)
+        return v - _pack(self.compliance.deck_change(self.deck_force, self.spread_load))
+
+    def size_m(self, r: NDArray) -> float:
+        """The residual's size [m]: its largest entry, slopes times the lever arm."""
+        return float(np.max(np.abs(self.weight * r)))
+
+    def jacobian(self, v: NDArray, r: NDArray) -> NDArray:
+        """Forward-difference Jacobian at ``v`` (``r`` = the residual there) of the model itself."""
+        step = 1e-7  # finite-difference step [m]: well inside the millimetre scale of the deck change
+        J = np.empty((self.size, self.size))
+        for j in range(self.size):
+            dv = np.zeros(self.size)
+            dv[j] = step
+            J[:, j] = (self(v + dv) - r) / step
+        return J
+
+
+def _deck_motion_scale_m(model: StructuralModel, excitation: HarmonicExcitation, harmonic_count: int, lever_arm_m: float) -> float:
+    """The largest one-way deck harmonic under the sea-fastening [m], slopes times the lever arm (at least 1 um)."""
+    one_way = np.asarray(excitation.deck_displacement)[:harmonic_count]
+    return max(
+        float(np.max(np.abs(one_way[:, model.saddle_deck_dof]), initial=0.0)),
+        lever_arm_m * float(np.max(np.abs(one_way[:, model.saddle_deck_dof + 1]), initial=0.0)),
+        1e-6,
+    )
+
+
+@dataclass
+class _Iterate:
+    """The state of the quasi-Newton iteration: the packed deck change, its residual and the Jacobian."""
+
+    v: NDArray
+    r: NDArray
+    J: NDArray
+    residual_m: float
+    iterations: int = 0
+    stalled: bool = False
+
+
+def _line_search(residual: _CouplingResidual, it: _Iterate) -> tuple[NDArray, NDArray, NDArray] | None:
+    """The Newton step on ``it.J``, halved until the residual's norm falls (at most four times).
+
+    Returns ``(step, v, r)``: the step taken, the new point and its residual; ``None`` when no
+    step reduces the residual (or ``it.J`` is singular).
+    """
+    try:
+        dv = -np.linalg.solve(it.J, it.r)
+    except np.linalg.LinAlgError:
+        return None
+    alpha = 1.0
+    while alpha >= 1.0 / 16.0:
+        v_try = it.v + alpha * dv
+        r_try = residual(v_try)
+        if float(np.linalg.norm(r_try)) < (1.0 - 1e-4 * alpha) * float(np.linalg.norm(it.r)):
+            return alpha * dv, v_try, r_try
+        alpha *= 0.5
+    return None
+
+
+def _broyden(residual: _CouplingResidual, it: _Iterate, refreshed: bool, tolerance_m: float, max_iterations: int) -> _Iterate:
+    """Iterate ``it`` until its residual is within ``tolerance_m`` [m], the limit, or a stall.
+
+    Broyden's ("good") update after each accepted step; when a step fails to reduce the residual
+    the model's own finite-difference Jacobian replaces the drifted matrix, once.
+    """
+    while it.residual_m > tolerance_m and it.iterations < max_iterations:
+        it.iterations += 1
+        step = _line_search(residual, it)
+        if step is not None:
+            s_v, v_try, r_try = step
+            it.J += np.outer(r_try - it.r - it.J @ s_v, s_v) / float(s_v @ s_v)  # Broyden's ("good") update
+            it.v, it.r = v_try, r_try
+            it.residual_m = residual.size_m(it.r)
+            refreshed = False
+        elif not refreshed:
+            # Broyden's matrix has drifted (contact switches): the model's own Jacobian, once
+            it.J = residual.jacobian(it.v, it.r)
+            refreshed = True
+        else:
+            it.stalled = True
+            break
+    return it
+
+
+def _outcome(residual_m: float, tolerance_m: float, stalled: bool) -> CouplingOutcome:
+    """How the iteration ended, from its final residual [m]."""
+    if not np.isfinite(residual_m):
+        return CouplingOutcome.NOT_FINITE
+    if residual_m <= tolerance_m:
+        return CouplingOutcome.CONVERGED
+    return CouplingOutcome.STALLED if stalled else CouplingOutcome.ITERATION_LIMIT
+
+
 def couple_deck(
     model: StructuralModel,
     excitation: HarmonicExcitation,
@@ -400,91 +524,19 @@ def couple_deck(
     Q = spread_load_N(model, excitation, K)
     x = model.cargo.node_x_m
     lever_arm_m = 0.5 * float(x[-1] - x[0])
-    # residual in metres: deflection entries as they are, slope entries times the lever arm
-    weight = np.where(np.arange(n_o * (2 * K - 1)) % 2 == 0, 1.0, lever_arm_m)
-    one_way = np.asarray(excitation.deck_displacement)[:K]
-    scale_m = max(
-        float(np.max(np.abs(one_way[:, model.saddle_deck_dof]), initial=0.0)),
-        lever_arm_m * float(np.max(np.abs(one_way[:, model.saddle_deck_dof + 1]), initial=0.0)),
-        1e-6,
-    )
+    scale_m = _deck_motion_scale_m(model, excitation, K, lever_arm_m)
     tolerance_m = float(relative_tolerance) * scale_m
-
-    def size_m(r: NDArray) -> float:
-        return float(np.max(np.abs(weight * r)))
-
-    def residual_of(forces: Callable[[HarmonicExcitation], NDArray], v: NDArray) -> NDArray:
-        exc = _with_deck_change(excitation, _unpack(v, K, n_o), "")
-        return v - _pack(compliance.deck_change(forces(exc), Q))
-
-    state: dict[str, object] = {}
-
-    def forces_of_model(exc: HarmonicExcitation) -> NDArray:
-        response = solve(exc)
-        state["response"] = response
-        P = deck_forces(exc, response)
-        state["P"] = P
-        return P
-
-    size = n_o * (2 * K - 1)
-    step = 1e-7  # finite-difference step [m]: well inside the millimetre scale of the deck change
-
-    def jacobian(forces: Callable[[HarmonicExcitation], NDArray], v: NDArray, r: NDArray) -> NDArray:
-        J = np.empty((size, size))
-        for j in range(size):
-            dv = np.zeros(size)
-            dv[j] = step
-            J[:, j] = (residual_of(forces, v + dv) - r) / step
-        return J
-
-    v = np.zeros(size)
-    r = residual_of(forces_of_model, v)
-    J = jacobian(forces_of_model, v, r) if jacobian0 is None else np.array(jacobian0, dtype=float)
-    it = 0
-    res = size_m(r)
-    refreshed = jacobian0 is None
-    stalled = False
-    while res > tolerance_m and it < max_iterations:
-        it += 1
-        dv: NDArray | None
-        try:
-            dv = -np.linalg.solve(J, r)
-        except np.linalg.LinAlgError:
-            dv = None
-        accepted = False
-        alpha = 1.0
-        while dv is not None and alpha >= 1.0 / 16.0:
-            v_try = v + alpha * dv
-            r_try = residual_of(forces_of_model, v_try)
-            if float(np.linalg.norm(r_try)) < (1.0 - 1e-4 * alpha) * float(np.linalg.norm(r)):
-                accepted = True
-                break
-            alpha *= 0.5
-        if accepted and dv is not None:
-            s_v = alpha * dv
-            J += np.outer(r_try - r - J @ s_v, s_v) / float(s_v @ s_v)  # Broyden's ("good") update
-            v, r = v_try, r_try
-            res = size_m(r)
-            refreshed = False
-        elif not refreshed:
-            # Broyden's matrix has drifted (contact switches): the model's own Jacobian, once
-            J = jacobian(forces_of_model, v, r)
-            refreshed = True
-        else:
-            stalled = True
-            break
-    residual_of(forces_of_model, v)  # the response and forces at the final state
-    if not np.isfinite(res):
-        outcome = CouplingOutcome.NOT_FINITE
-    elif res <= tolerance_m:
-        outcome = CouplingOutcome.CONVERGED
-    else:
-        outcome = CouplingOutcome.STALLED if stalled else CouplingOutcome.ITERATION_LIMIT
-    V = _unpack(v, K, n_o)
+    residual = _CouplingResidual(excitation, compliance, solve, deck_forces, Q, K, n_o, lever_arm_m)
+    v = np.zeros(residual.size)
+    r = residual(v)
+    J = residual.jacobian(v, r) if jacobian0 is None else np.array(jacobian0, dtype=float)
+    it = _broyden(residual, _Iterate(v, r, J, residual.size_m(r)), jacobian0 is None, tolerance_m, max_iterations)
+    residual(it.v)  # the response and forces at the final state
+    V = _unpack(it.v, K, n_o)
     status = CouplingStatus(
-        outcome=outcome,
-        iterations=it,
-        residual_m=res,
+        outcome=_outcome(it.residual_m, tolerance_m, it.stalled),
+        iterations=it.iterations,
+        residual_m=it.residual_m,
         tolerance_m=tolerance_m,
         deck_motion_scale_m=scale_m,
         relative_tolerance=float(relative_tolerance),
@@ -494,4 +546,4 @@ def couple_deck(
         label=label,
     )
     coupled = _with_deck_change(excitation, V, "two-way coupled deck")
-    return DeckCoupling(coupled, state["response"], V, np.asarray(state["P"]), Q, status)
+    return DeckCoupling(coupled, residual.response, V, np.asarray(residual.deck_force), Q, status)
