@@ -22,7 +22,8 @@ def _one_length(length: float):
     """The base case at one element length: one-way and two-way timed, and the two-way
     still-water nonlinear row iterated to its round-off floor. Returns (result, floor, t_one, t_two)."""
     from seafast.config import load_case
-    from seafast.coupling.deck_iteration import couple_deck, deck_forces_N, linear_coupling_jacobian
+    from seafast.coupling.deck_iteration import couple_deck, linear_coupling_jacobian
+    from seafast.coupling.deck_loads import deck_forces_N
     from seafast.pipeline import run_case, solve_nonlinear
 
     one_way = load_case(overrides={"model.element_length_m": length})

@@ -26,7 +26,7 @@ def main() -> None:
     args = parser.parse_args()
 
     from seafast.config import load_case
-    from seafast.coupling.deck_iteration import hull_compliance
+    from seafast.coupling.deck_loads import hull_compliance
     from seafast.coupling.hull import coupled_hull
     from seafast.excitation.vessel import VesselCache, vessel_excitation
     from seafast.excitation.vessel_inputs import hull_form_of, rigid_body_motions

@@ -20,14 +20,8 @@ import xarray as xr
 
 import seafast
 from seafast.config.schema import Case
-from seafast.coupling.deck_iteration import (
-    DeckCoupling,
-    HullCompliance,
-    couple_deck,
-    deck_forces_N,
-    hull_compliance,
-    linear_coupling_jacobians,
-)
+from seafast.coupling.deck_iteration import DeckCoupling, couple_deck, linear_coupling_jacobians
+from seafast.coupling.deck_loads import HullCompliance, deck_forces_N, hull_compliance
 from seafast.coupling.hull import CoupledHull, coupled_hull
 from seafast.coupling.status import CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
