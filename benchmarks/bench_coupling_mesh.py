@@ -23,7 +23,8 @@ def _one_length(length: float):
     still-water nonlinear row iterated to its round-off floor. Returns (result, floor, t_one, t_two)."""
     from seafast.analyses.run import run_case
     from seafast.config import load_case
-    from seafast.coupling.deck_iteration import couple_deck, deck_forces_N, linear_coupling_jacobian
+    from seafast.coupling.deck_iteration import couple_deck, linear_coupling_jacobian
+    from seafast.coupling.deck_loads import deck_forces_N
     from seafast.solvers.from_case import solve_nonlinear
 
     one_way = load_case(overrides={"model.element_length_m": length})

@@ -34,8 +34,8 @@ import numpy as np
 from seafast.config import load_case
 from seafast.excitation.vessel import vessel_excitation
 from seafast.model.from_case import build_model
-from seafast.solvers.from_case import solve_nonlinear
 from seafast.parallel.threads import one_blas_thread
+from seafast.solvers.from_case import solve_nonlinear
 
 ELEMENT_LENGTHS_M = (1.0, 0.6, 0.35, 0.2, 0.12, 0.074)  # 77 ... ~1000 nodes on the 74 m pile
 SADDLE_COUNTS = (2, 3, 4, 6, 8, 10, 12)

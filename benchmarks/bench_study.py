@@ -8,7 +8,7 @@ Usage::
 
 The machine-independent figure is ``cost_per_point_vs_hbm``: a study's wall time times the
 processes it used, per point, over the median condensed HBM solve of the base case timed in
-this process (``seafast.pipeline.solve_nonlinear`` with the base case's own solver settings, so
+this process (``seafast.solvers.from_case.solve_nonlinear`` with the base case's own solver settings, so
 it follows any change of the defaults). It is printed per study, and for the saddles, lashing
 and cargo studies together (sums of wall x workers over sums of points x the HBM median taken
 just before each study, so a change of the machine's load between studies cancels). On a
@@ -151,7 +151,9 @@ def main(argv: list[str] | None = None) -> int:
     grid = build_grid(study_spec_from_mapping(SUBSET))
     # the subset last: a Dask LocalCluster leaves threads in this process, after which local
     # workers are no longer forked (see seafast.parallel.executor)
-    print(f"subset: {grid.size} points ({' x '.join(grid.keys)}), {cores} cores, evaluator: {'fake' if args.fake else 'seafast.pipeline'}")
+    print(
+        f"subset: {grid.size} points ({' x '.join(grid.keys)}), {cores} cores, evaluator: {'fake' if args.fake else 'seafast.analyses.run'}"
+    )
     t_serial = _run(grid, ExecutionOptions(workers=1, progress=False), evaluator).seconds
     print(f"serial:    {t_serial:6.2f} s  {grid.size / t_serial:7.1f} points/s")
     t_proc = _run(grid, ExecutionOptions(workers=cores, progress=False), evaluator).seconds

@@ -27,7 +27,7 @@ def main() -> None:
 
     from seafast.analyses.run import run_case
     from seafast.config import load_case
-    from seafast.coupling.deck_iteration import hull_compliance
+    from seafast.coupling.deck_loads import hull_compliance
     from seafast.coupling.hull import coupled_hull
     from seafast.excitation.vessel import VesselCache, vessel_excitation
     from seafast.excitation.vessel_inputs import hull_form_of, rigid_body_motions

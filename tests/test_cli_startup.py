@@ -117,14 +117,16 @@ def test_lazy_exports_agree_with_the_static_imports_and_resolve(package):
         module.not_an_export  # noqa: B018
 
 
-def test_an_export_named_like_its_submodule_stays_the_export():
-    """``seafast.output.report.study_figures`` is a function in the module of the same name; importing
-    that module (as the report's page does) must not replace the package's attribute by the module."""
-    code = """
+@pytest.mark.parametrize("name", ["study_figures", "run_figures"])
+def test_an_export_named_like_its_submodule_stays_the_export(name):
+    """``seafast.output.report.study_figures`` (and ``run_figures``) is a function in the module of the
+    same name; importing that module (as the report's page does) must not replace the package's
+    attribute by the module."""
+    code = f"""
 import seafast.output.report as report
-import seafast.output.report.study_figures
+import seafast.output.report.{name}
 import seafast.output.report.write
-print(callable(report.study_figures), type(report.study_figures).__name__)
+print(callable(report.{name}), type(report.{name}).__name__)
 """
     out = _python(code)
     assert out.returncode == 0, out.stderr

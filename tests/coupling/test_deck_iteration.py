@@ -11,7 +11,8 @@ from scipy.interpolate import CubicHermiteSpline, CubicSpline
 from seafast.analyses.run import run_case
 from seafast.config import CaseError, load_case
 from seafast.coupling.case import couple_hull_and_cargo
-from seafast.coupling.deck_iteration import couple_deck, deck_forces_N, hull_compliance, linear_coupling_jacobian
+from seafast.coupling.deck_iteration import couple_deck, linear_coupling_jacobian
+from seafast.coupling.deck_loads import deck_forces_N, hull_compliance, spread_load_N
 from seafast.coupling.status import CouplingOutcome
 from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import harmonics_to_time
@@ -99,8 +100,6 @@ def test_the_exchanged_wave_loads_are_self_equilibrated(coupled_in_waves):
     stiffness and its beta K_beam damping have no resultant and no moment (rigid-body motions are in
     their null space). A wrong sign or a missing inertia term would leave 100-200 % of the inertia
     resultant."""
-    from seafast.coupling.deck_iteration import spread_load_N
-
     _, model, excitation, rows = coupled_in_waves
     xn = model.cargo.node_x_m
     xs = model.saddle_x_m
@@ -251,10 +250,10 @@ def test_the_analytic_linear_jacobian_equals_finite_differences(coupled_in_waves
 
     case, model, excitation, _ = coupled_in_waves
     vessel = vessel_excitation(case)
-    compliance = coupling.hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, case.cargo.units_abreast)
+    compliance = hull_compliance(vessel.girder, vessel.loading, model, vessel.cargo_aft_end_x_m, case.cargo.units_abreast)
     K, n_o = 3, model.deck_dof_count
     analytic = coupling.linear_coupling_jacobian(model, excitation.omega_rad_s, compliance, K)
-    Q = coupling.spread_load_N(model, excitation, K)
+    Q = spread_load_N(model, excitation, K)
 
     def residual(v):
         exc = coupling._with_deck_change(excitation, coupling._unpack(v, K, n_o), "")

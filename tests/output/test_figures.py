@@ -23,9 +23,12 @@ import matplotlib.pyplot as plt
 from seafast.analyses.run import run_case
 from seafast.config import load_case
 from seafast.output import plots
-from seafast.output.report.figures import rao_figure, run_figures, saddle_time_history_figure, stick_slip_figure
+from seafast.output.report.axial_figures import stick_slip_figure
+from seafast.output.report.cargo_figures import saddle_time_history_figure
 from seafast.output.report.print_figures import plot_contact_timeline
+from seafast.output.report.run_figures import run_figures
 from seafast.output.report.study_figures import compliance_map_figure, study_surface_figure
+from seafast.output.report.vessel_figures import rao_figure
 from seafast.output.study_plots import plot_compliance_map, plot_profiles, plot_surfaces
 from seafast.output.style import cell_boundary, scaled_unit
 

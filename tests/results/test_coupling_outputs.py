@@ -14,9 +14,9 @@ from seafast.cli import main
 from seafast.config import load_case
 from seafast.coupling import case as coupling_case
 from seafast.output import plots
-from seafast.output.report.figures import hull_girder_figure
 from seafast.output.report.findings import run_findings
 from seafast.output.report.tables import coupling_rows, diagnostics_rows
+from seafast.output.report.vessel_figures import hull_girder_figure
 from seafast.output.tables import format_summary_table
 from seafast.results.coupling import COUPLED_HULL_VARIABLES
 from seafast.solvers.references import TimeDomainOptions, solve_time_domain

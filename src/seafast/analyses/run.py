@@ -24,7 +24,8 @@ from seafast.analyses.axial import run_axial_analysis
 from seafast.config.modes import HullCargoCoupling, SolverMethod
 from seafast.config.schema import Case
 from seafast.coupling.case import case_compliance, couple_hull_and_cargo
-from seafast.coupling.deck_iteration import DeckCoupling, HullCompliance
+from seafast.coupling.deck_iteration import DeckCoupling
+from seafast.coupling.deck_loads import HullCompliance
 from seafast.coupling.hull import CoupledHull, coupled_hull
 from seafast.coupling.status import CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation

@@ -6,14 +6,8 @@ from dataclasses import replace
 
 from seafast.config.modes import SolverMethod
 from seafast.config.schema import Case
-from seafast.coupling.deck_iteration import (
-    DeckCoupling,
-    HullCompliance,
-    couple_deck,
-    deck_forces_N,
-    hull_compliance,
-    linear_coupling_jacobians,
-)
+from seafast.coupling.deck_iteration import DeckCoupling, couple_deck, linear_coupling_jacobians
+from seafast.coupling.deck_loads import HullCompliance, deck_forces_N, hull_compliance
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.vessel import VesselExcitation
 from seafast.model.structure import StructuralModel

@@ -31,7 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.coupling.deck_iteration import DeckCoupling, HullCompliance
+from seafast.coupling.deck_iteration import DeckCoupling
+from seafast.coupling.deck_loads import HullCompliance
 from seafast.hull.girder import HullGirder
 from seafast.hull.loads import patch_load_response
 from seafast.hull.still_water import HullGirderResponse
@@ -85,7 +86,7 @@ def coupled_hull(
     girder, loading
         The hull girder and the one-way loading it was solved with.
     compliance
-        The coupling's :class:`~seafast.coupling.deck_iteration.HullCompliance` (cargo nodes on the
+        The coupling's :class:`~seafast.coupling.deck_loads.HullCompliance` (cargo nodes on the
         ship, saddle nodes, units abreast).
     still_water
         The one-way still-water response (its nodes are the output grid).

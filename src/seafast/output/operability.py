@@ -72,12 +72,11 @@ def operability_csv_text(result: OperabilityResult) -> str:
     return buf.getvalue()
 
 
-def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | None = None) -> xr.Dataset:
-    """The content of operability.nc (see the module docstring)."""
+def _point_variables(result: OperabilityResult) -> dict[str, xr.Variable]:
+    """The allowable Hs of each peak period and the diagnostics of its searches (dimension ``peak_period_s``)."""
     P = result.points
     d = ("peak_period_s",)
-    case = result.case
-    v = {
+    return {
         "hs_allowable_linear_m": _var(d, [p.hs_allowable_linear_m for p in P], "largest Hs within both limits, linear spectral MPMs", "m"),
         "hs_allowable_nonlinear_m": _var(
             d,
@@ -135,8 +134,12 @@ def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | 
         ),
         "evaluations": _var(d, [p.evaluations for p in P], "design-wave evaluations of the nonlinear search", "1"),
     }
-    coords: dict[str, Any] = {"peak_period_s": _var(d, [p.peak_period_s for p in P], "spectral peak period Tp", "s")}
-    attrs: dict[str, Any] = {
+
+
+def _operability_attrs(result: OperabilityResult) -> dict[str, Any]:
+    """The global attributes of operability.nc: the sea state's shape, the limits, the search settings and the case."""
+    case = result.case
+    return {
         "title": f"seafast operability: {case.name}",
         "seafast_version": seafast.__version__,
         "spectrum": case.sea_state.spectrum,
@@ -151,23 +154,36 @@ def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | 
         "case_json": case.model_dump_json(),
         "conventions": "MPMs over duration_s, still water included; head seas; Hs = 4 sqrt(m0)",
     }
+
+
+def _scatter_variables(scatter: ScatterAssessment) -> dict[str, xr.Variable]:
+    """The scatter diagram's cells and whether each lies within the limits (dimension ``scatter_cell``)."""
+    c = ("scatter_cell",)
+    dg = scatter.diagram
+    return {
+        "scatter_significant_height_m": _var(c, dg.significant_height_m, "scatter cell significant wave height", "m"),
+        "scatter_peak_period_s": _var(c, dg.peak_period_s, "scatter cell peak period", "s"),
+        "scatter_occurrence": _var(c, dg.occurrence, "scatter cell occurrence, normalised to sum 1", "1"),
+        "scatter_within_limits_linear": _var(
+            c, scatter.within_linear.astype(np.int8), "cell within the limits, linear (1) or not (0)", "1"
+        ),
+        "scatter_within_limits_nonlinear": _var(
+            c, scatter.within_nonlinear.astype(np.int8), "cell within the limits, nonlinear (1) or not (0)", "1"
+        ),
+    }
+
+
+def operability_dataset(result: OperabilityResult, scatter: ScatterAssessment | None = None) -> xr.Dataset:
+    """The content of operability.nc (see the module docstring)."""
+    v = _point_variables(result)
+    coords: dict[str, Any] = {
+        "peak_period_s": _var(("peak_period_s",), [p.peak_period_s for p in result.points], "spectral peak period Tp", "s")
+    }
+    attrs = _operability_attrs(result)
     if scatter is not None:
-        c = ("scatter_cell",)
+        v.update(_scatter_variables(scatter))
         dg = scatter.diagram
-        v.update(
-            {
-                "scatter_significant_height_m": _var(c, dg.significant_height_m, "scatter cell significant wave height", "m"),
-                "scatter_peak_period_s": _var(c, dg.peak_period_s, "scatter cell peak period", "s"),
-                "scatter_occurrence": _var(c, dg.occurrence, "scatter cell occurrence, normalised to sum 1", "1"),
-                "scatter_within_limits_linear": _var(
-                    c, scatter.within_linear.astype(np.int8), "cell within the limits, linear (1) or not (0)", "1"
-                ),
-                "scatter_within_limits_nonlinear": _var(
-                    c, scatter.within_nonlinear.astype(np.int8), "cell within the limits, nonlinear (1) or not (0)", "1"
-                ),
-            }
-        )
-        coords["scatter_cell"] = _var(c, np.arange(dg.occurrence.size), "scatter diagram cell index", "1")
+        coords["scatter_cell"] = _var(("scatter_cell",), np.arange(dg.occurrence.size), "scatter diagram cell index", "1")
         attrs.update(
             scatter_source=dg.source,
             share_within_limits_linear=scatter.share_within_linear,

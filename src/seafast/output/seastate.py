@@ -175,11 +175,13 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
     return v
 
 
-def seastate_dataset(
-    analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any]], monte_carlo: xr.Dataset | None = None, design: Any = None
-) -> xr.Dataset:
-    """The content of seastate.nc (see the module docstring); ``design``: the DesignWaveExtremes, if computed."""
-    sp, tf, e = analysis.spectrum, analysis.transfer, analysis.extremes
+_MODELS = ("linear", "nonlinear")
+_METHODS = ("spectral", "monte_carlo", "design_wave")
+
+
+def _transfer_variables(analysis: SpectralAnalysis) -> dict[str, xr.Variable]:
+    """The wave spectrum, the grid's geometry and the transfer functions (real and imaginary parts)."""
+    sp, tf = analysis.spectrum, analysis.transfer
     w, s, x = ("omega_rad_s",), ("omega_rad_s", "saddle"), ("omega_rad_s", "x_moment_m")
     per = "per metre of wave amplitude"
     v: dict[str, xr.Variable] = {
@@ -208,6 +210,13 @@ def seastate_dataset(
     _complex(
         v, "bending_moment_transfer_Nm_per_m", x, tf.bending_moment_Nm, f"cargo bending moment, sagging + (linear model) {per}", "N m/m"
     )
+    return v
+
+
+def _spectral_variables(analysis: SpectralAnalysis) -> dict[str, xr.Variable]:
+    """The response spectra and their statistics, the still-water state and the uplift rate (linear)."""
+    e = analysis.extremes
+    v: dict[str, xr.Variable] = {}
     for key, stats, unit, tag, spectrum_unit, label in (
         ("saddle_force", e.saddle_force, "N", "N", "N2 s/rad", "saddle force"),
         ("saddle_compression", e.saddle_compression, "m", "m", "m2 s/rad", "saddle compression"),
@@ -238,7 +247,13 @@ def seastate_dataset(
         "expected downward zero crossings of the saddle compression per hour (linear, Rice)",
         "1/h",
     )
-    models, methods = ["linear", "nonlinear"], ["spectral", "monte_carlo", "design_wave"]
+    return v
+
+
+def _table_variables(rows: Sequence[Mapping[str, Any]]) -> dict[str, xr.Variable]:
+    """The table of seastate.csv over (model, estimate_method): NaN, and converged -1, where not computed."""
+    models, methods = list(_MODELS), list(_METHODS)
+    v: dict[str, xr.Variable] = {}
     for q, (long_name, unit) in QUANTITIES.items():
         table = np.full((2, 3), np.nan)
         for r in rows:
@@ -250,47 +265,62 @@ def seastate_dataset(
         if r["converged"] is not None:
             conv[models.index(r["model"]), methods.index(r["method"])] = int(bool(r["converged"]))
     v["converged"] = _var(("model", "estimate_method"), conv, "all solves converged (1), not (0), not computed (-1)", "1")
+    return v
+
+
+def _seastate_coords(analysis: SpectralAnalysis, design: Any) -> dict[str, xr.Variable]:
+    """The coordinates of seastate.nc (``design_wave`` when the design waves were computed)."""
+    tf = analysis.transfer
+    coords = {
+        "omega_rad_s": _var(("omega_rad_s",), analysis.spectrum.omega_rad_s, "wave angular frequency (sea-state grid)", "rad/s"),
+        "saddle": _var(("saddle",), np.arange(analysis.model.saddle_count), "saddle index, aft to fore", "1"),
+        "x_moment_m": _var(("x_moment_m",), tf.bending_moment_x_m, "position along the cargo from its aft end", "m"),
+        "model": xr.Variable(("model",), list(_MODELS), {"long_name": "cargo model (linear: bilateral saddles)", "units": "1"}),
+        # not "method": xarray's .sel(method=...) is taken
+        "estimate_method": xr.Variable(
+            ("estimate_method",), list(_METHODS), {"long_name": "method of the extremes (seastate.csv column 'method')", "units": "1"}
+        ),
+    }
+    if design is not None:
+        coords["design_wave"] = _var(("design_wave",), np.arange(len(design.waves)), "design wave index", "1")
+    return coords
+
+
+def _seastate_attrs(analysis: SpectralAnalysis) -> dict[str, Any]:
+    """The global attributes of seastate.nc: the sea state, the limits, the case and the conventions."""
+    sp, case = analysis.spectrum, analysis.case
+    return {
+        "title": f"seafast sea state: {case.name}",
+        "seafast_version": seafast.__version__,
+        "spectrum": sp.description,
+        "significant_height_m": sp.significant_height_m,
+        "peak_period_s": sp.peak_period_s,
+        "duration_s": case.sea_state.duration_s,
+        "variance_outside_grid_m2": sp.variance_outside_grid_m2,
+        "max_saddle_force_N": case.limits.max_saddle_force_N,
+        "max_bending_stress_Pa": case.limits.max_bending_stress_Pa,
+        "pitch_reference_x_m": analysis.transfer.pitch_reference_x_m,
+        "case_json": case.model_dump_json(),
+        "conventions": "x(t) = Re(X exp(i omega t)) per metre of wave amplitude, wave zeta = zeta_a cos(omega t) amidships "
+        "(head seas); z up; sagging moment +; saddle compression + when compressed; maxima are most probable maxima "
+        "over duration_s, still water included",
+    }
+
+
+def seastate_dataset(
+    analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any]], monte_carlo: xr.Dataset | None = None, design: Any = None
+) -> xr.Dataset:
+    """The content of seastate.nc (see the module docstring); ``design``: the DesignWaveExtremes, if computed."""
+    v = _transfer_variables(analysis)
+    v.update(_spectral_variables(analysis))
+    v.update(_table_variables(rows))
     if design is not None:
         v.update(_design_wave_variables(design))
-    case = analysis.case
-    ds = xr.Dataset(
-        v,
-        coords={
-            "omega_rad_s": _var(w, sp.omega_rad_s, "wave angular frequency (sea-state grid)", "rad/s"),
-            "saddle": _var(("saddle",), np.arange(analysis.model.saddle_count), "saddle index, aft to fore", "1"),
-            "x_moment_m": _var(("x_moment_m",), tf.bending_moment_x_m, "position along the cargo from its aft end", "m"),
-            "model": xr.Variable(("model",), models, {"long_name": "cargo model (linear: bilateral saddles)", "units": "1"}),
-            # not "method": xarray's .sel(method=...) is taken
-            "estimate_method": xr.Variable(
-                ("estimate_method",), methods, {"long_name": "method of the extremes (seastate.csv column 'method')", "units": "1"}
-            ),
-            **(
-                {"design_wave": _var(("design_wave",), np.arange(len(design.waves)), "design wave index", "1")}
-                if design is not None
-                else {}
-            ),
-        },
-        attrs={
-            "title": f"seafast sea state: {case.name}",
-            "seafast_version": seafast.__version__,
-            "spectrum": sp.description,
-            "significant_height_m": sp.significant_height_m,
-            "peak_period_s": sp.peak_period_s,
-            "duration_s": case.sea_state.duration_s,
-            "variance_outside_grid_m2": sp.variance_outside_grid_m2,
-            "max_saddle_force_N": case.limits.max_saddle_force_N,
-            "max_bending_stress_Pa": case.limits.max_bending_stress_Pa,
-            "pitch_reference_x_m": tf.pitch_reference_x_m,
-            "case_json": case.model_dump_json(),
-            "conventions": "x(t) = Re(X exp(i omega t)) per metre of wave amplitude, wave zeta = zeta_a cos(omega t) amidships "
-            "(head seas); z up; sagging moment +; saddle compression + when compressed; maxima are most probable maxima "
-            "over duration_s, still water included",
-        },
-    )
+    ds = xr.Dataset(v, coords=_seastate_coords(analysis, design), attrs=_seastate_attrs(analysis))
     if monte_carlo is not None:
         ds = xr.merge([ds, monte_carlo], combine_attrs="override")
         ds.attrs.update(monte_carlo.attrs)
-        ds.attrs["title"] = f"seafast sea state: {case.name}"
+        ds.attrs["title"] = f"seafast sea state: {analysis.case.name}"
     return ds
 
 

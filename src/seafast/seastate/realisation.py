@@ -67,6 +67,7 @@ from seafast.solvers.transient import (
     MarchState,
     MomentOutput,
     NewmarkStep,
+    WindowOutcome,
     march_window,
     newmark_step,
     reference_frequency_rad_s,
@@ -375,34 +376,20 @@ def _model_record(F: float, M: float, S: float, us: float, ud: float, lifted: fl
     }
 
 
-def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = False) -> tuple[dict[str, Any], RealisationTimeSeries | None]:
-    """Maxima and uplift statistics of realisation ``index``, linear and nonlinear.
+def _linear_maxima(plan: RealisationPlan, d_tot: NDArray, g: NDArray) -> tuple[dict[str, Any], NDArray, NDArray]:
+    """The linear model's record, its per-sample maxima (n_tc, 4) and the moment's standard deviation per point [N m].
 
-    Returns
-    -------
-    record, series
-        ``record``: ``{"index", "linear": {...}, "nonlinear": {...}, "solved", "windows",
-        "window_steps", "std_saddle_force_N", "std_bending_moment_Nm", "seconds"}`` (plain
-        JSON types; per model the :data:`QUANTITIES` maxima, ``time_lifted_fraction`` [-] and
-        ``uplift_events``; the linear standard deviations per saddle and per moment point
-        over the record); ``series`` the downsampled time series when ``capture`` is set.
+    ``d_tot``: the total saddle compressions (n_tc, n_s) [m]; ``g``: the moment field's
+    coordinates on ``plan.moment_basis`` (n_tc, n_r) [N m]. Columns of the per-sample maxima:
+    saddle force [N], compression [m], absolute moment [N m], stress [Pa].
     """
-    t0 = time.perf_counter()
-    grid, n_s, ratio = plan.grid, plan.saddle_count, plan.ratio
-    n_tc = grid.samples
-    phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
-    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
-    X = synthesise(grid, phases, plan.transfer, factors)  # (n_tc, n_s + n_r)
-    k = plan.stiffness_N_per_m
-    d_tot = plan.compression_static_m + X[:, :n_s]
-    g = X[:, n_s:]
-    # ------------------------------------------------------------ linear model, per coarse sample
     U = plan.moment_basis
+    k = plan.stiffness_N_per_m
     per_sample = _linear_samples(np.ascontiguousarray(d_tot), k, np.ascontiguousarray(g), U, plan.moment_static_Nm, plan.section_modulus_m3)
     force_t, comp_t, moment_t, stress_t = per_sample.T
     below = d_tot < 0.0
     lifted_t = below.any(axis=1)
-    linear = _model_record(
+    record = _model_record(
         force_t.max(),
         moment_t.max(),
         stress_t.max(),
@@ -413,20 +400,50 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
     )
     cov = np.cov(g, rowvar=False, bias=True).reshape(g.shape[1], g.shape[1])
     std_moment = np.sqrt(np.maximum(np.einsum("xr,rs,xs->x", U, cov, U), 0.0))
-    # ------------------------------------------------------------ nonlinear model: windows
+    return record, per_sample, std_moment
+
+
+@dataclass
+class _Windows:
+    """What the nonlinear windows of one realisation found, summed (maxima: F, M_b, sigma_b, u_s, u_d)."""
+
+    covered: NDArray[np.bool_]
+    capture_every: int
+    capture_compression: NDArray[np.float64]
+    capture_lifted: NDArray[np.bool_]
+    maxima: NDArray[np.float64] = field(default_factory=lambda: np.zeros(5))
+    lifted_steps: int = 0
+    events: int = 0
+    windows: int = 0
+    window_steps: int = 0
+    solved: bool = True
+
+    def add(self, out: WindowOutcome, start: int, ratio: int) -> None:
+        """Count window ``out``, marched from fine step ``start``."""
+        self.covered[start // ratio + 1 : out.end // ratio + 1] = True
+        self.maxima = np.maximum(
+            self.maxima,
+            [out.max_saddle_force_N, out.max_bending_moment_Nm, out.max_bending_stress_Pa, out.max_compression_m, out.max_gap_m],
+        )
+        self.lifted_steps += out.lifted_steps
+        self.events += out.uplift_events
+        self.solved = self.solved and out.solved
+        self.windows += 1
+        self.window_steps += out.end - start
+
+
+def _nonlinear_windows(plan: RealisationPlan, X: NDArray, d_tot: NDArray, factors: NDArray, capture: bool) -> _Windows:
+    """March the correction in every window the linear compressions trigger (the module docstring, step 2)."""
+    grid, n_s, ratio = plan.grid, plan.saddle_count, plan.ratio
+    n_tc = grid.samples
     abs_spec = np.abs(plan.transfer[:, :n_s]) * (grid.amplitude_m * factors)[:, None]  # this record's amplitudes
     margin = grid.time_step_s**2 / 8.0 * (grid.omega_rad_s**2 @ abs_spec)  # largest dip between samples
     trigger = np.any(d_tot < margin, axis=1)
     n_fine = n_tc * ratio
     coef = np.ascontiguousarray(spline_filter1d(X, order=3, axis=0, mode="grid-wrap"))
-    covered = np.zeros(n_tc, dtype=bool)
-    nl = np.zeros(5)
-    lifted_steps = events = windows = window_steps = 0
-    solved = True
     every = max(round(plan.settings.capture_step_s / grid.time_step_s), 1) if capture else 0
     n_b = n_tc // every if capture else 0
-    cap_comp = np.zeros((n_b, n_s))
-    cap_lift = np.zeros((n_b, n_s), dtype=bool)
+    tally = _Windows(np.zeros(n_tc, dtype=bool), every, np.zeros((n_b, n_s)), np.zeros((n_b, n_s), dtype=bool))
     starts = np.flatnonzero(trigger)
     position = -1  # last fine step marched
     while True:
@@ -436,9 +453,9 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
         i = int(later[0])
         if i == 0:
             start, state = 0, MarchState.quasi_static(plan.system, d_tot[0])
-            covered[0] = True
+            tally.covered[0] = True
             if capture:
-                cap_comp[0] = d_tot[0] - plan.system.saddle_displacement_m(state.eta, state.force_N)
+                tally.capture_compression[0] = d_tot[0] - plan.system.saddle_displacement_m(state.eta, state.force_N)
         else:
             start, state = (i - 1) * ratio, MarchState.at_rest(plan.system)
         out = march_window(
@@ -453,49 +470,72 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
             tolerance_m=plan.tolerance_m,
             moments=plan.moments,
             capture_every=every * ratio,
-            capture_compression=cap_comp,
-            capture_lifted=cap_lift,
+            capture_compression=tally.capture_compression,
+            capture_lifted=tally.capture_lifted,
         )
-        covered[start // ratio + 1 : out.end // ratio + 1] = True
-        nl = np.maximum(
-            nl, [out.max_saddle_force_N, out.max_bending_moment_Nm, out.max_bending_stress_Pa, out.max_compression_m, out.max_gap_m]
-        )
-        lifted_steps += out.lifted_steps
-        events += out.uplift_events
-        solved = solved and out.solved
-        windows += 1
-        window_steps += out.end - start
+        tally.add(out, start, ratio)
         position = out.end
         if out.end >= n_fine - 1:
             break
-    free = ~covered
-    if free.any():
+    return tally
+
+
+def _time_series(
+    plan: RealisationPlan, index: int, phases: NDArray, factors: NDArray, d_tot: NDArray, tally: _Windows
+) -> RealisationTimeSeries:
+    """The downsampled saddle forces of both models and the lift-off marks of a captured realisation."""
+    grid, k = plan.grid, plan.stiffness_N_per_m
+    rows = np.arange(tally.capture_lifted.shape[0]) * tally.capture_every
+    lin_force = k * d_tot[rows]
+    nl_comp = np.where(tally.covered[rows][:, None], tally.capture_compression, d_tot[rows])
+    wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size), factors)[rows]
+    return RealisationTimeSeries(
+        int(index),
+        np.asarray(rows * grid.time_step_s, dtype=np.float64),
+        wave,
+        lin_force,
+        k * np.maximum(nl_comp, 0.0),
+        tally.capture_lifted,
+        plan.saddle_x_m,
+    )
+
+
+def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = False) -> tuple[dict[str, Any], RealisationTimeSeries | None]:
+    """Maxima and uplift statistics of realisation ``index``, linear and nonlinear.
+
+    Returns
+    -------
+    record, series
+        ``record``: ``{"index", "linear": {...}, "nonlinear": {...}, "solved", "windows",
+        "window_steps", "std_saddle_force_N", "std_bending_moment_Nm", "seconds"}`` (plain
+        JSON types; per model the :data:`QUANTITIES` maxima, ``time_lifted_fraction`` [-] and
+        ``uplift_events``; the linear standard deviations per saddle and per moment point
+        over the record); ``series`` the downsampled time series when ``capture`` is set.
+    """
+    t0 = time.perf_counter()
+    grid, n_s = plan.grid, plan.saddle_count
+    phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
+    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
+    X = synthesise(grid, phases, plan.transfer, factors)  # (n_tc, n_s + n_r)
+    d_tot = plan.compression_static_m + X[:, :n_s]
+    linear, per_sample, std_moment = _linear_maxima(plan, d_tot, X[:, n_s:])
+    tally = _nonlinear_windows(plan, X, d_tot, factors, capture)
+    nl = tally.maxima
+    free = ~tally.covered
+    if free.any():  # outside the windows the nonlinear response is the linear one
+        force_t, comp_t, moment_t, stress_t = per_sample.T
         nl[:4] = np.maximum(nl[:4], [force_t[free].max(), moment_t[free].max(), stress_t[free].max(), comp_t[free].max()])
-    nonlinear = _model_record(nl[0], nl[1], nl[2], nl[3], nl[4], lifted_steps / n_fine, events)
+    nonlinear = _model_record(nl[0], nl[1], nl[2], nl[3], nl[4], tally.lifted_steps / (grid.samples * plan.ratio), tally.events)
     record = {
         "index": int(index),
         "linear": linear,
         "nonlinear": nonlinear,
-        "solved": bool(solved),
-        "windows": int(windows),
-        "window_steps": int(window_steps),
-        "std_saddle_force_N": (k * X[:, :n_s].std(axis=0)).tolist(),
+        "solved": bool(tally.solved),
+        "windows": int(tally.windows),
+        "window_steps": int(tally.window_steps),
+        "std_saddle_force_N": (plan.stiffness_N_per_m * X[:, :n_s].std(axis=0)).tolist(),
         "std_bending_moment_Nm": std_moment.tolist(),
         "seconds": time.perf_counter() - t0,
     }
-    series = None
-    if capture:
-        rows = np.arange(n_b) * every
-        lin_force = k * d_tot[rows]
-        nl_comp = np.where(covered[rows][:, None], cap_comp, d_tot[rows])
-        wave = synthesise(grid, phases, np.ones(grid.omega_rad_s.size), factors)[rows]
-        series = RealisationTimeSeries(
-            int(index),
-            np.asarray(rows * grid.time_step_s, dtype=np.float64),
-            wave,
-            lin_force,
-            k * np.maximum(nl_comp, 0.0),
-            cap_lift,
-            plan.saddle_x_m,
-        )
+    series = _time_series(plan, index, phases, factors, d_tot, tally) if capture else None
     return record, series

@@ -51,6 +51,7 @@ from seafast.solvers.contact import ContactLaw
 from seafast.solvers.floquet import Stability, floquet_multipliers, stability_system
 from seafast.solvers.hbm import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import truncation_error
+from seafast.solvers.modal_correction import ModalCorrectionSystem
 
 __all__ = [
     "FOLD_SEPARATION",
@@ -298,6 +299,154 @@ def _still_water(
     return law.force(compression_m[0], ops.saddle_stiffness_N_per_m), _moments(model, X, static, 2)[0]
 
 
+@dataclass(frozen=True)
+class _PointSetting:
+    """What every branch point's columns are computed with (the loop's invariants)."""
+
+    model: StructuralModel
+    law: ContactLaw
+    harmonics: int
+    time_samples: int
+    system: ModalCorrectionSystem
+    unilateral_stiffness_N_per_m: NDArray[np.float64]
+    inverse_dft: NDArray[np.float64]
+    limits: RangeLimits
+    wave_amplitude_m: float | None
+    still_water: tuple[NDArray, NDArray] | None
+
+
+_POINT_COLUMNS = ("moment", "u_c", "lin_force", "lin_moment", "accel", "mu", "to_one", "trunc", "f_rao", "lf_rao", "m_rao", "lm_rao")
+
+
+def _point_columns(
+    setting: _PointSetting, excitation: HarmonicExcitation, omega_rad_s: float, U: NDArray, max_gap_m: float
+) -> tuple[dict[str, float], tuple[RangeLimit, ...]]:
+    """One branch point's entries of the columns (:data:`_POINT_COLUMNS`) and the range limits it breaks."""
+    model, law, N, k_u = setting.model, setting.law, setting.time_samples, setting.unilateral_stiffness_N_per_m
+    ops = condensed_operators(model, excitation, setting.harmonics)
+    n_k = excitation.harmonic_count
+    X = _cargo_harmonics(ops, U, law, N)
+    moment = _moments(model, X, excitation, N)  # nonlinear: on the HBM's samples, as seafast run
+    # the linear model lives on the excitation's harmonics: its extremes exactly
+    lin_force = k_u * real_to_complex_harmonics(ops.linear_compression_m)[:n_k]
+    lin_moment = _moment_harmonics(model, ops.linear_cargo_displacement, excitation)
+    accel = deck_acceleration_m_per_s2(model, excitation)
+    floquet = floquet_multipliers(model, omega_rad_s, U, law, system=setting.system)
+    row = {
+        "moment": float(np.max(np.abs(moment))),
+        "u_c": _max_deflection_from_baseline(model, excitation, X, N),
+        "lin_force": float(np.max(time_extremes(lin_force)[0])),
+        "lin_moment": float(np.max(time_extremes(lin_moment)[1])),
+        "accel": accel,
+        "mu": floquet.max_modulus,
+        "to_one": float(np.min(np.abs(floquet.multipliers - 1.0), initial=np.inf)),
+        "trunc": float(np.max(truncation_error(model, omega_rad_s, U, law))),
+    }
+    why = []
+    if accel > setting.limits.gravity_m_per_s2:
+        why.append(RangeLimit.DECK_ACCELERATION)
+    if max_gap_m > setting.limits.max_gap_m:
+        why.append(RangeLimit.GAP)
+    if setting.still_water is not None and setting.wave_amplitude_m is not None:
+        row.update(_wave_point_columns(setting, setting.still_water, setting.wave_amplitude_m, U, moment, lin_force, lin_moment))
+        steepness = 2.0 * setting.wave_amplitude_m * omega_rad_s**2 / (2.0 * np.pi * setting.limits.gravity_m_per_s2)
+        if steepness > setting.limits.breaking_steepness:
+            why.append(RangeLimit.WAVE_BREAKING)
+    return row, tuple(why)
+
+
+def _wave_point_columns(
+    setting: _PointSetting,
+    still_water: tuple[NDArray, NDArray],
+    wave_amplitude_m: float,
+    U: NDArray,
+    moment: NDArray,
+    lin_force: NDArray,
+    lin_moment: NDArray,
+) -> dict[str, float]:
+    """A wave sweep point's RAOs: the largest rise above the still-water value per metre of wave amplitude.
+
+    ``still_water``: the nonlinear still-water saddle forces [N] and moment line [N m]; ``moment``
+    the point's nonlinear moment samples, ``lin_force`` and ``lin_moment`` the linear model's
+    harmonics.
+    """
+    sw_force, sw_moment = still_water
+    force = setting.law.force(setting.inverse_dft @ U, setting.unilateral_stiffness_N_per_m)
+    dynamic_force, dynamic_moment = lin_force.copy(), lin_moment.copy()
+    dynamic_force[0], dynamic_moment[0] = 0.0, 0.0  # the rise above the linear still-water state
+    return {
+        "f_rao": float(np.max(np.max(force, axis=0) - sw_force)) / wave_amplitude_m,
+        "lf_rao": float(np.max(time_extremes(dynamic_force)[0])) / wave_amplitude_m,
+        "m_rao": float(np.max(np.abs(moment - sw_moment))) / wave_amplitude_m,
+        "lm_rao": float(np.max(time_extremes(dynamic_moment)[1])) / wave_amplitude_m,
+    }
+
+
+def _wave_columns(
+    branch: FrequencyResponseBranch,
+    limits: RangeLimits,
+    wave_amplitude_m: float,
+    rao_at: Callable[[float], tuple[complex, complex]],
+    cols: dict[str, list[float]],
+) -> WaveColumns:
+    """The wave sweep's columns of the branch (``cols``: the points' RAO entries)."""
+    omegas = branch.omega_rad_s
+    length = 2.0 * np.pi * limits.gravity_m_per_s2 / omegas**2
+    raos = [rao_at(float(x)) for x in omegas]
+    return WaveColumns(
+        wave_length_m=length,
+        wave_amplitude_m=np.full(omegas.size, float(wave_amplitude_m)),
+        wave_steepness=2.0 * wave_amplitude_m / length,
+        heave_rao_m_per_m=np.array([abs(r[0]) for r in raos]),
+        pitch_rao_rad_per_m=np.array([abs(r[1]) for r in raos]),
+        saddle_force_rao_N_per_m=np.array(cols["f_rao"]),
+        linear_saddle_force_rao_N_per_m=np.array(cols["lf_rao"]),
+        bending_moment_rao_Nm_per_m=np.array(cols["m_rao"]),
+        linear_bending_moment_rao_Nm_per_m=np.array(cols["lm_rao"]),
+    )
+
+
+def _table_of(
+    branch: FrequencyResponseBranch,
+    cols: dict[str, list[float]],
+    reasons: tuple[tuple[RangeLimit, ...], ...],
+    limits: RangeLimits,
+    wave: WaveColumns | None,
+) -> SweepTable:
+    """The :class:`SweepTable` of the branch and its points' columns: folds and stability decided on all points."""
+    n = branch.omega_rad_s.size
+    clusters = with_multipliers(fold_clusters(branch), np.array(cols["to_one"], dtype=float))
+    fold = np.zeros(n, dtype=bool)
+    fold[[c.index for c in clusters]] = True
+    mu = np.array(cols["mu"], dtype=float)
+    tolerance = stability_tolerances(clusters, n)
+    stability = classify_stability(mu, tolerance)
+    return SweepTable(
+        omega_rad_s=branch.omega_rad_s,
+        max_saddle_force_N=branch.max_saddle_force_N,
+        max_gap_m=branch.max_gap_m,
+        max_cargo_deflection_m=branch.max_cargo_deflection_m,
+        converged=branch.converged,
+        contact_preserved=branch.contact_preserved,
+        max_bending_moment_Nm=np.array(cols["moment"]),
+        linear_max_saddle_force_N=np.array(cols["lin_force"]),
+        linear_max_bending_moment_Nm=np.array(cols["lin_moment"]),
+        max_deck_acceleration_m_per_s2=np.array(cols["accel"]),
+        stable=np.array([v is Stability.STABLE for v in stability], dtype=bool),
+        floquet_max_modulus=mu,
+        fold=fold,
+        truncation_error=np.array(cols["trunc"]),
+        beyond_range=reasons,
+        u_c_m=np.array(cols["u_c"]),
+        stability=stability,
+        stability_tolerance=tolerance,
+        truncation_tolerance=branch.truncation_tolerance or 1e-3,
+        folds=clusters,
+        limits=limits,
+        wave=wave,
+    )
+
+
 def sweep_table(
     model: StructuralModel,
     branch: FrequencyResponseBranch,
@@ -334,95 +483,29 @@ def sweep_table(
     n = branch.omega_rad_s.size
     H = branch.compression_harmonics_m.shape[1] // 2
     N = branch.time_samples or 128
-    system = stability_system(model, float(np.max(branch.omega_rad_s)) if n else 1.0, H)
-    k_u = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
-    inverse, _ = real_dft_matrices(H, N)
-    names = ("moment", "u_c", "lin_force", "lin_moment", "accel", "mu", "to_one", "trunc", "f_rao", "lf_rao", "m_rao", "lm_rao")
-    cols: dict[str, list[float]] = {name: [] for name in names}
-    sw = (
-        _still_water(model, excitation_at(float(branch.omega_rad_s[0])), law, np.asarray(still_water_compression_m)) if wave_sweep else None
+    setting = _PointSetting(
+        model,
+        law,
+        H,
+        N,
+        stability_system(model, float(np.max(branch.omega_rad_s)) if n else 1.0, H),
+        np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float),
+        real_dft_matrices(H, N)[0],
+        limits,
+        wave_amplitude_m,
+        _still_water(model, excitation_at(float(branch.omega_rad_s[0])), law, np.asarray(still_water_compression_m))
+        if wave_sweep
+        else None,
     )
+    cols: dict[str, list[float]] = {name: [] for name in _POINT_COLUMNS}
     reasons: list[tuple[RangeLimit, ...]] = []
     for i in range(n):
-        w, U = float(branch.omega_rad_s[i]), branch.compression_harmonics_m[i]
-        ex = excitation_at(w)
-        ops = condensed_operators(model, ex, H)
-        n_k = ex.harmonic_count
-        X = _cargo_harmonics(ops, U, law, N)
-        moment = _moments(model, X, ex, N)  # nonlinear: on the HBM's samples, as seafast run
-        # the linear model lives on the excitation's harmonics: its extremes exactly
-        lin_force = k_u * real_to_complex_harmonics(ops.linear_compression_m)[:n_k]
-        lin_moment = _moment_harmonics(model, ops.linear_cargo_displacement, ex)
-        accel = deck_acceleration_m_per_s2(model, ex)
-        floquet = floquet_multipliers(model, w, U, law, system=system)
-        cols["moment"].append(float(np.max(np.abs(moment))))
-        cols["u_c"].append(_max_deflection_from_baseline(model, ex, X, N))
-        cols["lin_force"].append(float(np.max(time_extremes(lin_force)[0])))
-        cols["lin_moment"].append(float(np.max(time_extremes(lin_moment)[1])))
-        cols["accel"].append(accel)
-        cols["mu"].append(floquet.max_modulus)
-        cols["to_one"].append(float(np.min(np.abs(floquet.multipliers - 1.0), initial=np.inf)))
-        cols["trunc"].append(float(np.max(truncation_error(model, w, U, law))))
-        why = []
-        if accel > limits.gravity_m_per_s2:
-            why.append(RangeLimit.DECK_ACCELERATION)
-        if branch.max_gap_m[i] > limits.max_gap_m:
-            why.append(RangeLimit.GAP)
-        if sw is not None and wave_amplitude_m is not None:
-            force = law.force(inverse @ U, k_u)
-            dynamic_force, dynamic_moment = lin_force.copy(), lin_moment.copy()
-            dynamic_force[0], dynamic_moment[0] = 0.0, 0.0  # the rise above the linear still-water state
-            cols["f_rao"].append(float(np.max(np.max(force, axis=0) - sw[0])) / wave_amplitude_m)
-            cols["lf_rao"].append(float(np.max(time_extremes(dynamic_force)[0])) / wave_amplitude_m)
-            cols["m_rao"].append(float(np.max(np.abs(moment - sw[1]))) / wave_amplitude_m)
-            cols["lm_rao"].append(float(np.max(time_extremes(dynamic_moment)[1])) / wave_amplitude_m)
-            steepness = 2.0 * wave_amplitude_m * w**2 / (2.0 * np.pi * limits.gravity_m_per_s2)
-            if steepness > limits.breaking_steepness:
-                why.append(RangeLimit.WAVE_BREAKING)
-        reasons.append(tuple(why))
-    clusters = with_multipliers(fold_clusters(branch), np.array(cols["to_one"], dtype=float))
-    fold = np.zeros(n, dtype=bool)
-    fold[[c.index for c in clusters]] = True
-    mu = np.array(cols["mu"], dtype=float)
-    tolerance = stability_tolerances(clusters, n)
-    stability = classify_stability(mu, tolerance)
+        w = float(branch.omega_rad_s[i])
+        row, why = _point_columns(setting, excitation_at(w), w, branch.compression_harmonics_m[i], branch.max_gap_m[i])
+        for name, value in row.items():
+            cols[name].append(value)
+        reasons.append(why)
     wave = None
-    if wave_sweep and rao_at is not None and wave_amplitude_m is not None:
-        omegas = branch.omega_rad_s
-        length = 2.0 * np.pi * limits.gravity_m_per_s2 / omegas**2
-        raos = [rao_at(float(x)) for x in omegas]
-        wave = WaveColumns(
-            wave_length_m=length,
-            wave_amplitude_m=np.full(n, float(wave_amplitude_m)),
-            wave_steepness=2.0 * wave_amplitude_m / length,
-            heave_rao_m_per_m=np.array([abs(r[0]) for r in raos]),
-            pitch_rao_rad_per_m=np.array([abs(r[1]) for r in raos]),
-            saddle_force_rao_N_per_m=np.array(cols["f_rao"]),
-            linear_saddle_force_rao_N_per_m=np.array(cols["lf_rao"]),
-            bending_moment_rao_Nm_per_m=np.array(cols["m_rao"]),
-            linear_bending_moment_rao_Nm_per_m=np.array(cols["lm_rao"]),
-        )
-    return SweepTable(
-        omega_rad_s=branch.omega_rad_s,
-        max_saddle_force_N=branch.max_saddle_force_N,
-        max_gap_m=branch.max_gap_m,
-        max_cargo_deflection_m=branch.max_cargo_deflection_m,
-        converged=branch.converged,
-        contact_preserved=branch.contact_preserved,
-        max_bending_moment_Nm=np.array(cols["moment"]),
-        linear_max_saddle_force_N=np.array(cols["lin_force"]),
-        linear_max_bending_moment_Nm=np.array(cols["lin_moment"]),
-        max_deck_acceleration_m_per_s2=np.array(cols["accel"]),
-        stable=np.array([v is Stability.STABLE for v in stability], dtype=bool),
-        floquet_max_modulus=mu,
-        fold=fold,
-        truncation_error=np.array(cols["trunc"]),
-        beyond_range=tuple(reasons),
-        u_c_m=np.array(cols["u_c"]),
-        stability=stability,
-        stability_tolerance=tolerance,
-        truncation_tolerance=branch.truncation_tolerance or 1e-3,
-        folds=clusters,
-        limits=limits,
-        wave=wave,
-    )
+    if rao_at is not None and wave_amplitude_m is not None:
+        wave = _wave_columns(branch, limits, wave_amplitude_m, rao_at, cols)
+    return _table_of(branch, cols, tuple(reasons), limits, wave)

@@ -26,8 +26,8 @@ from seafast.output.report.common import (
     findings_html,
     study_keys,
 )
-from seafast.output.report.figures import run_figures
 from seafast.output.report.findings import run_findings, study_findings
+from seafast.output.report.run_figures import run_figures
 from seafast.output.report.study_figures import study_figures
 from seafast.output.report.tables import coupling_rows, diagnostics_rows, display_unit, input_rows, ranking_rows, summary_table_rows
 

@@ -17,7 +17,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import ReportFigure, base_value, coord_labels, design_limits, study_keys, total_response
-from seafast.output.report.figures import model_line, model_order, plotly_go, style_figure, subplots
+from seafast.output.report.plotly_style import model_line, model_order, plotly_go, style_figure, subplots
 from seafast.output.style import cell_boundary, scaled_axis_label
 
 __all__ = ["study_surface_figure", "study_profile_figure", "compliance_map_figure", "study_figures"]
