@@ -21,7 +21,7 @@ from pathlib import Path
 
 FULL_STACK = (
     "import scipy.linalg, threadpoolctl, matplotlib.pyplot, seafast.cli, seafast.analyses.run, seafast.output.files, "
-    "seafast.output.report.write, seafast.studies.runner, seafast.seastate.monte_carlo, seafast.operability.allowable"
+    "seafast.output.report.write, seafast.studies.runner, seafast.analyses.seastate.monte_carlo, seafast.analyses.operability.allowable"
 )
 
 

@@ -27,10 +27,10 @@ import numpy as np
 from scipy.ndimage import spline_filter1d
 
 import seafast
+from seafast.analyses.seastate.monte_carlo import BENCHMARK_SEA_STATE, MonteCarloSettings, benchmark_realisation, build_plan
+from seafast.analyses.seastate.realisation import evaluate_realisation
+from seafast.analyses.seastate.synthesis import realisation_phases, synthesise
 from seafast.parallel.threads import one_blas_thread
-from seafast.seastate.monte_carlo import BENCHMARK_SEA_STATE, MonteCarloSettings, benchmark_realisation, build_plan
-from seafast.seastate.realisation import evaluate_realisation
-from seafast.seastate.synthesis import realisation_phases, synthesise
 from seafast.solvers.transient import MarchState, march_window
 
 

@@ -4,7 +4,7 @@ against the Monte Carlo reference of the same sea state.
 Run as ``python benchmarks/bench_operability.py [--skip-monte-carlo]`` (the BEM must be in the disk
 cache: any earlier ``seafast run`` puts it there). Figures, all in one process, base case:
 
-* ``design_wave_ms``: :func:`~seafast.seastate.design_wave.sea_state_design_waves` of Hs = 3 m,
+* ``design_wave_ms``: :func:`~seafast.analyses.seastate.design_wave.sea_state_design_waves` of Hs = 3 m,
   Tp = 10 s once the transfer functions exist (the spectral analysis done): selecting the 33 design
   waves of the five quantities (three per location: every saddle, the moment's governing point),
   forming the operators of each wave shape and solving the 12 distinct waves by harmonic balance
@@ -34,10 +34,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import seafast
 from benchutil import timed
-from seafast.operability.allowable import allowable_sea_states
+from seafast.analyses.operability.allowable import allowable_sea_states
+from seafast.analyses.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation
+from seafast.analyses.seastate.spectral import spectral_analysis
 from seafast.parallel.threads import one_blas_thread
-from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, sea_state_design_waves, still_water_excitation
-from seafast.seastate.spectral import spectral_analysis
 
 RAISED = {"limits.max_saddle_force_N": 11.5e6, "limits.max_bending_stress_Pa": 28.0e6}
 
@@ -101,7 +101,7 @@ def main() -> None:
             / 1e3
         )
         if not skip_mc:
-            from seafast.seastate.monte_carlo import run_monte_carlo
+            from seafast.analyses.seastate.monte_carlo import run_monte_carlo
 
             with tempfile.TemporaryDirectory() as d:
                 t0 = time.perf_counter()

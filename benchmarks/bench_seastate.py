@@ -28,14 +28,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import seafast
 from benchutil import timed
+from seafast.analyses.seastate.spectral import spectral_analysis
+from seafast.analyses.seastate.transfer import transfer_functions
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.vessel import vessel_excitation
 from seafast.hull.deck import deck_harmonics_at
 from seafast.hull.transfer import wave_transfer_functions
 from seafast.hull.wave import wave_response
 from seafast.model.from_case import build_model
-from seafast.seastate.spectral import spectral_analysis
-from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.linear import solve_harmonic
 
 
@@ -105,7 +105,7 @@ def main() -> None:
 
     realisation = float("nan")
     try:
-        from seafast.seastate.monte_carlo import benchmark_realisation
+        from seafast.analyses.seastate.monte_carlo import benchmark_realisation
     except ImportError:
         print("one 3-hour nonlinear realisation: the Monte Carlo engine is not in this version")
     else:

@@ -28,11 +28,11 @@ from pathlib import Path
 import numpy as np
 
 import seafast
-from seafast.seastate.conditioned_wave import conditioned_wave, solve_conditioned_wave
-from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes, still_water_excitation
-from seafast.seastate.monte_carlo import run_monte_carlo
-from seafast.seastate.spectral import spectral_analysis
-from seafast.seastate.wave_response import moment_map
+from seafast.analyses.seastate.conditioned_wave import conditioned_wave, solve_conditioned_wave
+from seafast.analyses.seastate.design_wave import DesignWaveSettings, design_wave_extremes, still_water_excitation
+from seafast.analyses.seastate.monte_carlo import run_monte_carlo
+from seafast.analyses.seastate.spectral import spectral_analysis
+from seafast.analyses.seastate.wave_response import moment_map
 
 SOFT_OUTER = [1.1e8, 1.1e9, 1.1e8]
 SEA_STATES: dict[str, dict[str, object]] = {

@@ -22,7 +22,7 @@ import seafast
 
 HEAVY = ("numpy", "scipy", "xarray", "matplotlib", "capytaine", "dask", "numba", "pydantic", "plotly")
 SRC = Path(seafast.__file__).resolve().parent
-LAZY_PACKAGES = ("seafast.studies", "seafast.seastate", "seafast.operability", "seafast.output.report")
+LAZY_PACKAGES = ("seafast.studies", "seafast.analyses.seastate", "seafast.analyses.operability", "seafast.output.report")
 
 
 def _python(code: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:

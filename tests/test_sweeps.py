@@ -14,6 +14,7 @@ import pytest
 from threadpoolctl import threadpool_limits
 
 from seafast.analyses.run import run_case
+from seafast.analyses.seastate.transfer import transfer_functions
 from seafast.analyses.sweep.frequency import SweepKind, frequency_sweep, wave_excitation
 from seafast.analyses.sweep.range import RangeLimit, deck_acceleration_m_per_s2
 from seafast.analyses.sweep.table import STRUCTURAL_COLUMNS, WAVE_COLUMNS
@@ -24,7 +25,6 @@ from seafast.excitation.vessel import vessel_excitation
 from seafast.fourier import real_dft_matrices
 from seafast.model.from_case import build_model
 from seafast.output.sweep import structural_figure
-from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd
 from seafast.solvers.floquet import Stability
 from seafast.solvers.from_case import hbm_options

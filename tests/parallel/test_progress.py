@@ -105,5 +105,5 @@ def test_one_progress_helper_in_the_package():
     """The study runner and the Monte Carlo both report through seafast.parallel.progress; no other module draws a bar."""
     users = sorted(str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if re.search(r"^\s*(from|import) tqdm", p.read_text(), re.M))
     assert users == ["parallel/progress.py"]
-    for module in ("studies/runner.py", "seastate/monte_carlo.py"):
+    for module in ("studies/runner.py", "analyses/seastate/monte_carlo.py"):
         assert re.search(r"^from seafast\.parallel\.progress import progress\b", (SRC / module).read_text(), re.M), module

@@ -8,10 +8,10 @@ import csv
 import pytest
 
 import seafast
+from seafast.analyses.seastate.design_wave import sea_state_design_waves
+from seafast.analyses.seastate.spectral import spectral_analysis
 from seafast.cli import main
 from seafast.parallel.executor import ExecutionOptions
-from seafast.seastate.design_wave import sea_state_design_waves
-from seafast.seastate.spectral import spectral_analysis
 from seafast.studies.runner import run_study
 from seafast.studies.spec import StudyError, build_grid, study_spec_from_mapping
 
@@ -88,8 +88,8 @@ def test_study_command_response_option(tmp_path, capsys):
 def test_sea_state_rows_carry_the_models_typed_warnings():
     """Two saddles at 2.57e9 N/m: the Rayleigh fit misses 2 % by 21 % (see tests/analyses/test_run.py); the
     damping shapes the spectral and the design-wave responses alike, so both rows raise rayleigh_fallback."""
+    from seafast.analyses.seastate.study import evaluate_sea_state
     from seafast.model.warning import ModelWarning
-    from seafast.seastate.study import evaluate_sea_state
 
     overrides = {"sea_state.significant_height_m": 2.0, "seafastening.saddle_count": 2, "seafastening.saddle_stiffness_N_per_m": 2.569e9}
     rows = evaluate_sea_state(seafast.load_case(None, overrides))

@@ -79,14 +79,14 @@ def default_peak_periods(case: Case) -> list[float]:
     """The peak periods [s] of :data:`DEFAULT_PEAK_PERIODS`, the start raised to the case's spectrum.
 
     The start is the larger of 5 s and the shortest peak period whose spectrum the transfer
-    functions resolve (:func:`seafast.seastate.spectrum.shortest_peak_period_s`), rounded up to
+    functions resolve (:func:`seafast.analyses.seastate.spectrum.shortest_peak_period_s`), rounded up to
     the 0.5 s step: 5 s for JONSWAP with gamma = 3.3 (4.72 s), 5.5 s for Pierson-Moskowitz (5.25 s).
     A spectrum table gives the fixed range (operability refuses it with its own message).
     """
     start, stop, step = (float(v) for v in DEFAULT_PEAK_PERIODS.split(":"))
     ss = case.sea_state
     if ss.spectrum in ("jonswap", "pierson_moskowitz"):
-        from seafast.seastate.spectrum import shortest_peak_period_s
+        from seafast.analyses.seastate.spectrum import shortest_peak_period_s
 
         gamma = 1.0 if ss.spectrum == "pierson_moskowitz" else float(ss.peak_enhancement)
         start = max(start, math.ceil(shortest_peak_period_s(gamma) / step - 1e-9) * step)
@@ -94,10 +94,10 @@ def default_peak_periods(case: Case) -> list[float]:
 
 
 def _cmd_operability(args: argparse.Namespace) -> int:
+    from seafast.analyses.operability.allowable import allowable_sea_states
+    from seafast.analyses.operability.family import sea_state_family
+    from seafast.analyses.operability.scatter import assess_scatter, read_scatter_diagram
     from seafast.config import CaseError, load_case, parse_overrides
-    from seafast.operability.allowable import allowable_sea_states
-    from seafast.operability.family import sea_state_family
-    from seafast.operability.scatter import assess_scatter, read_scatter_diagram
     from seafast.output.operability import format_operability_table, write_operability_outputs
 
     try:

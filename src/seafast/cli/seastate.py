@@ -35,9 +35,9 @@ seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state 
 def _monte_carlo_engine() -> tuple[Any, str]:
     """``(run_monte_carlo, "")`` when the engine loads, else ``(None, why not)``."""
     try:
-        from seafast.seastate import monte_carlo
+        from seafast.analyses.seastate import monte_carlo
     except ModuleNotFoundError as exc:
-        if exc.name == "seafast.seastate.monte_carlo":
+        if exc.name == "seafast.analyses.seastate.monte_carlo":
             return None, "the Monte Carlo engine is not in this version"
         return None, f"the Monte Carlo engine cannot be loaded: {exc} (a missing dependency; reinstall seafast)"
     engine = getattr(monte_carlo, "run_monte_carlo", None)
@@ -45,10 +45,10 @@ def _monte_carlo_engine() -> tuple[Any, str]:
 
 
 def _cmd_seastate(args: argparse.Namespace) -> int:
+    from seafast.analyses.seastate.design_wave import sea_state_design_waves
+    from seafast.analyses.seastate.spectral import spectral_analysis
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.output.seastate import ROWS, format_seastate_table, monte_carlo_row, not_computed_row, write_seastate_outputs
-    from seafast.seastate.design_wave import sea_state_design_waves
-    from seafast.seastate.spectral import spectral_analysis
 
     if args.workers is not None and args.workers < 1:
         return error(f"--workers {args.workers}: allowed: 1 (serial) or more processes")

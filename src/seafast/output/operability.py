@@ -23,8 +23,8 @@ import xarray as xr
 import yaml
 
 import seafast
-from seafast.operability.allowable import OperabilityResult
-from seafast.operability.scatter import ScatterAssessment
+from seafast.analyses.operability.allowable import OperabilityResult
+from seafast.analyses.operability.scatter import ScatterAssessment
 from seafast.results.labelled import labelled_variable as _var
 
 __all__ = [

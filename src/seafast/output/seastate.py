@@ -1,6 +1,6 @@
 """What ``seafast seastate`` writes: seastate.csv, seastate.nc and the sea-state figures.
 
-``seastate.csv`` has exactly :data:`~seafast.seastate.spectral.SEASTATE_COLUMNS`, one row per
+``seastate.csv`` has exactly :data:`~seafast.analyses.seastate.spectral.SEASTATE_COLUMNS`, one row per
 (model, method): (linear, spectral), (linear, monte_carlo), (nonlinear, monte_carlo), (nonlinear,
 design_wave). A row whose method was not run has empty cells (read as NaN), never made-up numbers.
 
@@ -24,9 +24,9 @@ import xarray as xr
 import yaml
 
 import seafast
+from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
+from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
 from seafast.results.labelled import labelled_variable as _var
-from seafast.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
-from seafast.seastate.wave_maxima import SADDLE_QUANTITIES
 
 __all__ = [
     "ROWS",
@@ -335,7 +335,7 @@ def write_seastate_outputs(
 ) -> dict[str, Path]:
     """Write seastate.csv, seastate.nc, case.yaml and (``plots``) the PNG figures; return their paths.
 
-    ``design``: the :class:`~seafast.seastate.design_wave.DesignWaveExtremes` (its waves go to seastate.nc).
+    ``design``: the :class:`~seafast.analyses.seastate.design_wave.DesignWaveExtremes` (its waves go to seastate.nc).
     """
     from seafast.output.files import write_netcdf
 

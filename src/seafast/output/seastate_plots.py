@@ -163,7 +163,7 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
     import matplotlib.pyplot as plt
     from scipy.stats import gumbel_r
 
-    from seafast.seastate.extremes import gumbel_fit  # the engine's fit: its mode is the MPM reported
+    from seafast.analyses.seastate.extremes import gumbel_fit  # the engine's fit: its mode is the MPM reported
 
     fig, axes = plt.subplots(2, 1, figsize=(10, 8))
     for ax, q, scale, unit in ((axes[0], "F_N", 1e-6, "MN"), (axes[1], "M_b_Nm", 1e-6, "MN m")):

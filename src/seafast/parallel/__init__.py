@@ -3,7 +3,7 @@
 Generic: it knows tasks, records and fingerprints, not studies or sea states, and imports nothing
 else of seafast (it sits beside :mod:`seafast.fourier` at the bottom of the layers). The parametric
 studies (:mod:`seafast.studies`) and the Monte Carlo reference
-(:mod:`seafast.seastate.monte_carlo`) both run on it.
+(:mod:`seafast.analyses.seastate.monte_carlo`) both run on it.
 
 * :mod:`seafast.parallel.store` - :class:`~seafast.parallel.store.RecordStore`, the resumable,
   kill-safe, append-only JSON-lines store of a run's finished tasks (a manifest with the run's

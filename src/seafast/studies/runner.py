@@ -45,7 +45,7 @@ from seafast.studies.store import POINTS_FILE, PointRecord, point_store
 
 logger = logging.getLogger(__name__)
 
-SEA_STATE_EVALUATOR = "seafast.seastate.study:evaluate_sea_state"
+SEA_STATE_EVALUATOR = "seafast.analyses.seastate.study:evaluate_sea_state"
 """The evaluator of studies judged on their sea state (``response: sea_state``)."""
 
 __all__ = ["StudyRun", "run_study", "SEA_STATE_EVALUATOR"]

@@ -15,7 +15,7 @@ or unstable (Floquet multipliers), and say where the branch leaves the physicall
     points.
 ``wave``
     At each frequency the wave of the case's amplitude at that frequency: the hull's quasi-static
-    wave deflection (the linear hull transfer function of :func:`seafast.seastate.transfer.transfer_functions`,
+    wave deflection (the linear hull transfer function of :func:`seafast.analyses.seastate.transfer.transfer_functions`,
     on a fine grid with a cubic spline in omega), heave and pitch from the RAOs at that frequency
     (:func:`seafast.excitation.rao_extension.extended_rao`), assembled as ``seafast run`` assembles
     its wave (:func:`seafast.excitation.deck_motion.assemble_excitation`). Its table adds the
@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
+from seafast.analyses.seastate.transfer import transfer_functions
 from seafast.analyses.sweep.range import RangeLimits, deck_acceleration_m_per_s2
 from seafast.analyses.sweep.table import SweepTable, sweep_table
 from seafast.config.modes import HullCargoCoupling
@@ -45,7 +46,6 @@ from seafast.excitation.rao_extension import extended_rao
 from seafast.excitation.vessel import vessel_excitation
 from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
-from seafast.seastate.transfer import transfer_functions
 from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
 from seafast.solvers.continuation import CONTINUATION_HARMONICS, frequency_response
 from seafast.solvers.from_case import hbm_options

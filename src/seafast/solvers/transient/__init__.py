@@ -1,7 +1,7 @@
 """The transient integrator of the saddles' contact problem: any loading, from any state, compiled.
 
 One integrator serves every march of the nonlinear cargo: the Monte Carlo reference of a sea
-state (:mod:`seafast.seastate.realisation`: windows, states, moment outputs, 3-hour records at a few
+state (:mod:`seafast.analyses.seastate.realisation`: windows, states, moment outputs, 3-hour records at a few
 microseconds a step) and the periodic march that starts the high-harmonic harmonic balance solves
 (:func:`march_periodic`, used by :mod:`seafast.solvers.hbm.harmonics`). (The exact periodic references,
 :mod:`seafast.solvers.references`, integrate all cargo DOFs on their own, independently of this.)

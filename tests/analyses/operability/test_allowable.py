@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 import seafast
+from seafast.analyses.operability.allowable import OperabilitySettings, allowable_sea_states
+from seafast.analyses.operability.family import analysis_at, rescaled, sea_state_family
+from seafast.analyses.seastate.design_wave import sea_state_design_waves
+from seafast.analyses.seastate.spectral import spectral_analysis, spectral_extremes
+from seafast.analyses.seastate.spectrum import jonswap_density, sea_state_spectrum
+from seafast.analyses.seastate.transfer import transfer_functions
 from seafast.config.schema import max_significant_height_m
-from seafast.operability.allowable import OperabilitySettings, allowable_sea_states
-from seafast.operability.family import analysis_at, rescaled, sea_state_family
-from seafast.seastate.design_wave import sea_state_design_waves
-from seafast.seastate.spectral import spectral_analysis, spectral_extremes
-from seafast.seastate.spectrum import jonswap_density, sea_state_spectrum
-from seafast.seastate.transfer import transfer_functions
 
 RAISED = {"limits.max_saddle_force_N": 11.5e6, "limits.max_bending_stress_Pa": 28.0e6}
 """Limits the base case reaches only after its saddles lift off (the source's 7 MN is reached in still water + 0.4 m)."""

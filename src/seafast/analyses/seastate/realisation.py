@@ -7,8 +7,8 @@ plan and the realisation index.
 Per realisation
 ---------------
 1. Linear model (every saddle bilateral): the dynamic saddle compressions and the cargo's
-   bending-moment field (its r leading singular components, :func:`~seafast.seastate.synthesis.low_rank`)
-   synthesised by inverse FFT on the coarse grid ``dt_c`` (:mod:`seafast.seastate.synthesis`), plus
+   bending-moment field (its r leading singular components, :func:`~seafast.analyses.seastate.synthesis.low_rank`)
+   synthesised by inverse FFT on the coarse grid ``dt_c`` (:mod:`seafast.analyses.seastate.synthesis`), plus
    the still-water state. Maxima over the coarse samples: ``F = max_s k_u (delta_0 + delta)``,
    ``u_s = max(delta_0 + delta, 0)``, ``M_b = max_x |M_0 + M|``, ``sigma_b = max_x |M_0 + M| / Z``,
    ``u_d = 0`` (bilateral saddles never open, as in ``seafast run``); time lifted and uplift
@@ -47,11 +47,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.ndimage import spline_filter1d
 
-from seafast.config.schema import Case
-from seafast.model.beam import bending_moment_line
-from seafast.model.structure import StructuralModel
-from seafast.seastate.spectrum import WaveSpectrum, jonswap_density
-from seafast.seastate.synthesis import (
+from seafast.analyses.seastate.spectrum import WaveSpectrum, jonswap_density
+from seafast.analyses.seastate.synthesis import (
     SynthesisGrid,
     amplitude_factors,
     interpolate_transfer,
@@ -60,7 +57,10 @@ from seafast.seastate.synthesis import (
     synthesis_grid,
     synthesise,
 )
-from seafast.seastate.transfer import MOMENT_POINTS_PER_ELEMENT, StillWater, TransferFunctions
+from seafast.analyses.seastate.transfer import MOMENT_POINTS_PER_ELEMENT, StillWater, TransferFunctions
+from seafast.config.schema import Case
+from seafast.model.beam import bending_moment_line
+from seafast.model.structure import StructuralModel
 from seafast.solvers.transient import (
     DEFAULT_CUTOFF_FACTOR,
     DEFAULT_STEPS_PER_PERIOD,
@@ -129,7 +129,7 @@ class RealisationPlan:
     seed, duration_s
         Phase seed and record length [s].
     random_amplitudes
-        Rayleigh-distributed component amplitudes (``sea_state.random_amplitudes``; :mod:`seafast.seastate.synthesis`).
+        Rayleigh-distributed component amplitudes (``sea_state.random_amplitudes``; :mod:`seafast.analyses.seastate.synthesis`).
     grid
         The synthesis grid (frequencies, amplitudes, coarse sampling).
     transfer
@@ -270,12 +270,12 @@ def realisation_plan(
     case, model
         The case (its ``sea_state``) and its structural model.
     spectrum
-        The case's sea-state spectrum (:func:`~seafast.seastate.spectrum.sea_state_spectrum`): its
+        The case's sea-state spectrum (:func:`~seafast.analyses.seastate.spectrum.sea_state_spectrum`): its
         grid's band is the synthesis band.
     transfer_at
         ``omega -> TransferFunctions`` (e.g. ``lambda w: transfer_functions(case, model, w)``).
     still
-        The linear still-water state (:func:`~seafast.seastate.transfer.still_water`).
+        The linear still-water state (:func:`~seafast.analyses.seastate.transfer.still_water`).
     settings
         Numerical settings.
     """

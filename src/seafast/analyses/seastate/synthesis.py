@@ -7,7 +7,7 @@ A realisation of the (head) sea at midship is
 on the uniform grid ``omega_j = j d_omega`` with ``d_omega = 2 pi / T`` (T the duration): the
 record is periodic with period T, so it does not repeat within the duration, and every linear
 response ``x(t) = Re sum_j a_j H_x(omega_j) exp(i (omega_j t + phi_j))`` (transfer function
-H_x per metre of wave amplitude, convention of :mod:`seafast.seastate.transfer`) is one inverse
+H_x per metre of wave amplitude, convention of :mod:`seafast.analyses.seastate.transfer`) is one inverse
 real FFT. The phases phi_j are uniform on [0, 2 pi), drawn by ``numpy.random.default_rng`` from
 ``SeedSequence(seed, spawn_key=(index,))`` (the ``index``-th child of ``SeedSequence(seed)``), so
 realisation ``index`` is reproducible on its own, in any order, on any worker.

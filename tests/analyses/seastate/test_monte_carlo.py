@@ -15,14 +15,14 @@ import pytest
 from scipy import stats
 
 import seafast
+from seafast.analyses.seastate.extremes import gumbel_fit, most_probable_maximum
+from seafast.analyses.seastate.monte_carlo import MonteCarloSettings, build_plan, run_monte_carlo
+from seafast.analyses.seastate.realisation import QUANTITIES, evaluate_realisation
+from seafast.analyses.seastate.spectral import rayleigh_mpm, spectral_analysis
+from seafast.analyses.seastate.spectrum import jonswap_density
+from seafast.analyses.seastate.synthesis import amplitude_factors, realisation_phases, synthesis_grid, synthesise
+from seafast.analyses.seastate.transfer import transfer_functions
 from seafast.parallel.errors import ForeignStoreError
-from seafast.seastate.extremes import gumbel_fit, most_probable_maximum
-from seafast.seastate.monte_carlo import MonteCarloSettings, build_plan, run_monte_carlo
-from seafast.seastate.realisation import QUANTITIES, evaluate_realisation
-from seafast.seastate.spectral import rayleigh_mpm, spectral_analysis
-from seafast.seastate.spectrum import jonswap_density
-from seafast.seastate.synthesis import amplitude_factors, realisation_phases, synthesis_grid, synthesise
-from seafast.seastate.transfer import transfer_functions
 
 
 def case_of(**sea_state):

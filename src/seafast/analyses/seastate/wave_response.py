@@ -1,9 +1,9 @@
 """Nonlinear periodic response of the cargo to one regular (or periodic) wave built from transfer functions.
 
-The building block of the design-wave method (:mod:`seafast.seastate.design_wave`), the
-conditioned wave (:mod:`seafast.seastate.conditioned_wave`) and the operability search
-(:mod:`seafast.operability`): the excitation of a wave of any amplitude is the still-water part
-plus the amplitude times the transfer functions of :mod:`seafast.seastate.transfer` (linear hull,
+The building block of the design-wave method (:mod:`seafast.analyses.seastate.design_wave`), the
+conditioned wave (:mod:`seafast.analyses.seastate.conditioned_wave`) and the operability search
+(:mod:`seafast.analyses.operability`): the excitation of a wave of any amplitude is the still-water part
+plus the amplitude times the transfer functions of :mod:`seafast.analyses.seastate.transfer` (linear hull,
 RAOs, inertia loads), and the compression-only saddles are solved by the condensed harmonic
 balance (:func:`~seafast.solvers.hbm.condensed_operators`, :func:`~seafast.solvers.hbm.solve_condensed`).
 
@@ -12,7 +12,7 @@ Everything that does not depend on the amplitude is formed once per wave shape
 unit amplitude, and the bending moment's influence lines. A solve at amplitude A
 (:func:`solve_wave`) only scales the linear solution's dynamic harmonics and runs Newton, started
 from a neighbouring amplitude's solution when one is given (warm start). The maxima are taken
-over the period (:mod:`seafast.seastate.wave_maxima`): ``F_N`` the largest saddle contact force
+over the period (:mod:`seafast.analyses.seastate.wave_maxima`): ``F_N`` the largest saddle contact force
 (compression-only part), ``u_s_m`` the largest compression, ``u_d_m`` the largest gap, ``M_b_Nm``
 and ``sigma_b_Pa`` the largest absolute bending moment and stress over the moment sample points of
 the cargo (element ends and midpoints, as ``seafast run``), still water included; and, on request,
@@ -29,12 +29,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.transfer import MOMENT_POINTS_PER_ELEMENT
+from seafast.analyses.seastate.wave_maxima import location_maxima, location_maximum, period_maxima
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
-from seafast.seastate.transfer import MOMENT_POINTS_PER_ELEMENT
-from seafast.seastate.wave_maxima import location_maxima, location_maximum, period_maxima
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, HBMOptions, condensed_operators, solve_condensed, solve_hbm
 
@@ -220,7 +220,7 @@ class WaveSolution:
         The same of the linear (bilateral-saddle) model in the same wave (``u_d_m`` = 0), when asked for.
     linear_location_maxima
         With :attr:`linear_maxima`: the linear model's maximum of each quantity at each location,
-        (n_s,) per saddle quantity and (n_x,) per moment quantity (:func:`~seafast.seastate.wave_maxima.location_maxima`).
+        (n_s,) per saddle quantity and (n_x,) per moment quantity (:func:`~seafast.analyses.seastate.wave_maxima.location_maxima`).
     converged
         Whether the harmonic balance met its tolerance (never raised).
     residual_norm, iterations
@@ -265,7 +265,7 @@ class WaveSolution:
 
         ``location``: the saddle index (``F_N`` [N], ``u_s_m`` [m], ``u_d_m`` [m]) or the index of
         the moment sample point (``M_b_Nm`` [N m], ``sigma_b_Pa`` [Pa]), or an array of them; read
-        between the samples as :attr:`maxima` (:func:`~seafast.seastate.wave_maxima.location_maximum`).
+        between the samples as :attr:`maxima` (:func:`~seafast.analyses.seastate.wave_maxima.location_maximum`).
         """
         if self.moment_harmonics_Nm is None or self.saddle_stiffness_N_per_m is None or self.section_modulus_m3 is None:
             raise ValueError("WaveSolution.maximum_at: this solution does not carry its harmonics")

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from seafast.analyses.operability.scatter import assess_scatter, read_scatter_diagram
 from seafast.cli import main
 from seafast.cli.operability import default_peak_periods, parse_peak_periods
 from seafast.config import CaseError, load_case
-from seafast.operability.scatter import assess_scatter, read_scatter_diagram
 from seafast.output.operability import OPERABILITY_COLUMNS
 
 RAISED = ["--set", "limits.max_saddle_force_N=11.5e6", "--set", "limits.max_bending_stress_Pa=28e6"]
@@ -134,7 +134,7 @@ def test_without_tp_the_default_range_runs_and_holds_the_response_peak(tmp_path,
 
 
 def test_the_default_range_starts_where_the_spectrum_is_resolved():
-    from seafast.seastate.spectrum import sea_state_spectrum
+    from seafast.analyses.seastate.spectrum import sea_state_spectrum
 
     for spectrum, gamma, first in (("jonswap", 3.3, 5.0), ("pierson_moskowitz", 1.0, 5.5), ("jonswap", 10.0, 5.0)):
         shape = {"sea_state.spectrum": spectrum, "sea_state.peak_enhancement": gamma, "sea_state.significant_height_m": 1.0}

@@ -1,7 +1,7 @@
 """Operability: allowable significant wave heights per peak period, linear and nonlinear.
 
-* :mod:`~seafast.operability.allowable` - the allowable Hs per Tp (closed forms; bracketing with design waves).
-* :mod:`~seafast.operability.scatter` - a wave scatter diagram's share of sea states within the limits.
+* :mod:`~seafast.analyses.operability.allowable` - the allowable Hs per Tp (closed forms; bracketing with design waves).
+* :mod:`~seafast.analyses.operability.scatter` - a wave scatter diagram's share of sea states within the limits.
 
 Its files (operability.csv / .nc, the chart): :mod:`seafast.output.operability`.
 Theory, rules and verification: ``docs/operability.md``.
@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 from seafast.lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from seafast.operability.allowable import (
+    from seafast.analyses.operability.allowable import (
         GOVERNING,
         OperabilityPoint,
         OperabilityResult,
@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 
 # imported on first use (seafast.lazy), so the command line's parser does not load numpy/xarray
 EXPORTS = {
-    "seafast.operability.allowable": (
+    "seafast.analyses.operability.allowable": (
         "GOVERNING",
         "OperabilityPoint",
         "OperabilityResult",

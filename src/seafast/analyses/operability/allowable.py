@@ -10,13 +10,13 @@ proportional to Hs (``MPM = sigma sqrt(2 ln(D / Tz))``, sigma proportional to Hs
   saddle's compression reaches its still-water compression (where Rice's expected number of
   uplift events over the duration is exactly one); empty above the steepness limit;
 * **nonlinear allowable**: the Hs at which the design-wave estimate
-  (:mod:`seafast.seastate.design_wave`) of F or sigma_b reaches its limit, by bracketing from the
+  (:mod:`seafast.analyses.seastate.design_wave`) of F or sigma_b reaches its limit, by bracketing from the
   linear allowable (steps of :attr:`OperabilitySettings.expansion`) and Brent's method
   (``scipy.optimize.brentq``); the design frequencies do not change with Hs, so every evaluation
   reuses the wave operators and starts each solve from the previous Hs's solution at that
   frequency.
 
-The sea states share their transfer functions (:mod:`seafast.operability.family`).
+The sea states share their transfer functions (:mod:`seafast.analyses.operability.family`).
 """
 
 from __future__ import annotations
@@ -31,10 +31,10 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
+from seafast.analyses.operability.family import MASTER_STEP_RAD_S, SeaStateFamily, analysis_at, rescaled, sea_state_family
+from seafast.analyses.seastate.design_wave import DesignWaveSettings, design_wave_extremes
+from seafast.analyses.seastate.wave_response import WaveOperators, WaveSolution
 from seafast.config.schema import Case, max_significant_height_m
-from seafast.operability.family import MASTER_STEP_RAD_S, SeaStateFamily, analysis_at, rescaled, sea_state_family
-from seafast.seastate.design_wave import DesignWaveSettings, design_wave_extremes
-from seafast.seastate.wave_response import WaveOperators, WaveSolution
 
 __all__ = [
     "GOVERNING",
@@ -303,7 +303,7 @@ def allowable_sea_states(
     settings
         Numerical settings.
     family
-        The shared part (:func:`~seafast.operability.family.sea_state_family`) when already computed for these Tp.
+        The shared part (:func:`~seafast.analyses.operability.family.sea_state_family`) when already computed for these Tp.
     progress
         Called with (done, total) after each peak period.
 
@@ -315,7 +315,7 @@ def allowable_sea_states(
     Raises
     ------
     seafast.config.CaseError
-        See :func:`~seafast.operability.family.sea_state_family`.
+        See :func:`~seafast.analyses.operability.family.sea_state_family`.
     """
     tps = [float(t) for t in peak_periods_s]
     fam = sea_state_family(case, tps, settings.master_step_rad_s) if family is None else family

@@ -9,9 +9,9 @@ import pytest
 import xarray as xr
 
 import seafast
+from seafast.analyses.seastate.design_wave import sea_state_design_waves
+from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, spectral_analysis
 from seafast.cli import main
-from seafast.seastate.design_wave import sea_state_design_waves
-from seafast.seastate.spectral import SEASTATE_COLUMNS, spectral_analysis
 
 
 @pytest.fixture(scope="module")

@@ -7,10 +7,8 @@ import numpy as np
 import pytest
 
 import seafast
-from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.results.summary import RowSolution, summary_rows
-from seafast.seastate.conditioned_wave import conditioned_wave, solve_conditioned_wave
-from seafast.seastate.design_wave import (
+from seafast.analyses.seastate.conditioned_wave import conditioned_wave, solve_conditioned_wave
+from seafast.analyses.seastate.design_wave import (
     DesignWaveSettings,
     design_wave_extremes,
     read_locations,
@@ -19,8 +17,10 @@ from seafast.seastate.design_wave import (
     still_water_excitation,
     unit_wave_excitation,
 )
-from seafast.seastate.spectral import spectral_analysis
-from seafast.seastate.wave_response import moment_map, solve_wave, wave_operators
+from seafast.analyses.seastate.spectral import spectral_analysis
+from seafast.analyses.seastate.wave_response import moment_map, solve_wave, wave_operators
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.results.summary import RowSolution, summary_rows
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 
 QUANTITIES = ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m")
@@ -294,7 +294,7 @@ def test_the_conditioned_wave_reaches_its_target_at_t0_and_equals_the_linear_mpm
 def test_design_wave_estimate_within_ten_percent_of_the_monte_carlo_reference(tmp_path, overrides, linear_off):
     # the design waves' target on F and M_b (10 %); a short reference (6 one-hour records; the design wave is
     # computed for the same one-hour duration) keeps the test to tens of seconds
-    from seafast.seastate.monte_carlo import run_monte_carlo
+    from seafast.analyses.seastate.monte_carlo import run_monte_carlo
 
     case = seafast.load_case(None, {**overrides, "sea_state.duration_s": 3600.0, "sea_state.realisations": 6})
     an = spectral_analysis(case)

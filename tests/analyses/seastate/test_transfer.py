@@ -9,6 +9,8 @@ import pytest
 
 import seafast
 from seafast.analyses.run import run_case
+from seafast.analyses.seastate.spectrum import sea_state_spectrum
+from seafast.analyses.seastate.transfer import still_water, transfer_functions
 from seafast.cli import main
 from seafast.config import CaseError
 from seafast.excitation.rao_extension import extended_rao
@@ -16,8 +18,6 @@ from seafast.excitation.vessel import vessel_excitation
 from seafast.hull.transfer import wave_transfer_functions
 from seafast.hull.wave import wave_response
 from seafast.model.from_case import build_model
-from seafast.seastate.spectrum import sea_state_spectrum
-from seafast.seastate.transfer import still_water, transfer_functions
 from seafast.solvers.linear import solve_harmonic
 
 G = 9.81

@@ -28,10 +28,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.spectral import SpectralAnalysis
+from seafast.analyses.seastate.synthesis import interpolate_transfer
+from seafast.analyses.seastate.wave_response import MomentMap, WaveSolution, solve_wave, wave_operators
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.seastate.spectral import SpectralAnalysis
-from seafast.seastate.synthesis import interpolate_transfer
-from seafast.seastate.wave_response import MomentMap, WaveSolution, solve_wave, wave_operators
 from seafast.solvers.hbm import HBMOptions
 
 __all__ = ["ConditionedWave", "conditioned_wave", "solve_conditioned_wave", "DEFAULT_BASE_PERIODS"]

@@ -1,6 +1,6 @@
 """Maxima over one period of a periodic response given by its harmonics, read between the samples.
 
-Used by :mod:`seafast.seastate.wave_response` for the design and conditioned waves. A peak is
+Used by :mod:`seafast.analyses.seastate.wave_response` for the design and conditioned waves. A peak is
 located on the N time samples of the period, then read between the neighbouring samples (a
 sampled peak falls short by up to ``1 - cos(pi / N)``, 3e-4 at N = 128): 33 evaluations of the
 Fourier series over the two sample intervals around it and a parabola through the best three

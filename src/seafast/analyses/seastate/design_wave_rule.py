@@ -7,7 +7,7 @@ spectrum is at least :attr:`DesignWaveSettings.band_fraction` of the peak, and a
 frequency the regular wave whose linear response there equals the location's linear spectral
 MPM (:func:`select_design_waves`); a wave is read for its quantity only where it is at most an
 MPM wave (:func:`read_locations`). The harmonic balance of the waves and the estimates are in
-:mod:`seafast.seastate.design_wave`. Units SI.
+:mod:`seafast.analyses.seastate.design_wave`. Units SI.
 """
 
 from __future__ import annotations
@@ -18,9 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.seastate.spectral import ResponseStatistics, SpectralAnalysis
-from seafast.seastate.wave_maxima import SADDLE_QUANTITIES
-from seafast.seastate.wave_response import RESPONSE_QUANTITIES
+from seafast.analyses.seastate.spectral import ResponseStatistics, SpectralAnalysis
+from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
+from seafast.analyses.seastate.wave_response import RESPONSE_QUANTITIES
 from seafast.solvers.hbm import SAFE_HARMONICS, HBMOptions
 
 __all__ = ["DesignWaveSettings", "DesignWave", "select_design_waves", "read_locations"]

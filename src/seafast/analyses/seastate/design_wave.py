@@ -23,11 +23,11 @@ waves, Lloyd's Register's characteristic wave), per reported quantity q:
 Where no saddle lifts off in a design wave its nonlinear answer equals the linear one, so the
 method returns the linear spectral total there (to the solvers' round-off, ~1e-8). Waves that
 coincide (same frequency and amplitude: ``F_N``, ``u_s_m`` and ``u_d_m`` at one saddle) are solved
-once; waves at one frequency share their operators (:mod:`seafast.seastate.wave_response`).
+once; waves at one frequency share their operators (:mod:`seafast.analyses.seastate.wave_response`).
 ``uplift_per_hour`` is Rice's rate of the linear compressions (the nonlinear model equals the
 linear one until a saddle separates, so the rate of first separations is the same; bounces after
 a re-contact are not counted). The rule itself (steps 1-3 and where a wave is read) is
-:mod:`seafast.seastate.design_wave_rule`, re-exported here.
+:mod:`seafast.analyses.seastate.design_wave_rule`, re-exported here.
 """
 
 from __future__ import annotations
@@ -39,11 +39,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.seastate.design_wave_rule import DesignWave, DesignWaveSettings, read_locations, select_design_waves
-from seafast.seastate.spectral import SpectralAnalysis
-from seafast.seastate.transfer import TransferFunctions
-from seafast.seastate.wave_response import (
+from seafast.analyses.seastate.design_wave_rule import DesignWave, DesignWaveSettings, read_locations, select_design_waves
+from seafast.analyses.seastate.spectral import SpectralAnalysis
+from seafast.analyses.seastate.transfer import TransferFunctions
+from seafast.analyses.seastate.wave_response import (
     RESPONSE_QUANTITIES,
     MomentMap,
     WaveOperators,
@@ -53,6 +52,7 @@ from seafast.seastate.wave_response import (
     solve_wave_adaptive,
     wave_operators,
 )
+from seafast.excitation.harmonic import HarmonicExcitation
 
 __all__ = [
     "DesignWaveSettings",
@@ -88,7 +88,7 @@ class DesignWaveExtremes:
     waves
         The design waves (:func:`select_design_waves`).
     solutions
-        One :class:`~seafast.seastate.wave_response.WaveSolution` per wave, same order.
+        One :class:`~seafast.analyses.seastate.wave_response.WaveSolution` per wave, same order.
     totals
         Per quantity, the largest over its design waves of the nonlinear maximum at the wave's own
         location, still water included (at least the still-water value) [N, N m, Pa, m, m], and

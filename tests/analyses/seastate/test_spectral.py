@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 import seafast
-from seafast.seastate.spectral import (
+from seafast.analyses.seastate.spectral import (
     downcrossing_rate_per_s,
     rayleigh_mpm,
     response_statistics,
     spectral_analysis,
 )
-from seafast.seastate.spectrum import sea_state_spectrum
+from seafast.analyses.seastate.spectrum import sea_state_spectrum
 
 
 @pytest.fixture(scope="module")
@@ -86,8 +86,8 @@ def test_longer_duration_raises_the_mpm_as_sqrt_ln_cycles(base):
 
 def test_grid_convergence_of_the_response_moments(base):
     # the 256-point grid integrates the response spectra as a 2048-point one does, within 0.5 %
-    from seafast.seastate.spectral import spectral_extremes
-    from seafast.seastate.transfer import still_water, transfer_functions
+    from seafast.analyses.seastate.spectral import spectral_extremes
+    from seafast.analyses.seastate.transfer import still_water, transfer_functions
 
     fine_sp = sea_state_spectrum(base.case, n_points=2048)
     fine = spectral_extremes(

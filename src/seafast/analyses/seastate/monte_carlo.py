@@ -1,16 +1,16 @@
 """The nonlinear Monte Carlo reference of a sea state: realisations, extreme-value statistics, resumable runs.
 
 ``run_monte_carlo(case, directory)`` draws ``sea_state.realisations`` random-phase records of
-``sea_state.duration_s`` (:mod:`seafast.seastate.synthesis`), evaluates each for the linear
+``sea_state.duration_s`` (:mod:`seafast.analyses.seastate.synthesis`), evaluates each for the linear
 (bilateral-saddle) and the nonlinear (compression-only saddles, exact contact) model
-(:mod:`seafast.seastate.realisation`, integrator :mod:`seafast.solvers.transient`), stores each
+(:mod:`seafast.analyses.seastate.realisation`, integrator :mod:`seafast.solvers.transient`), stores each
 realisation as it finishes in ``DIR/monte_carlo/`` (``manifest.json``, ``records.jsonl``: the
 shared resumable store :class:`seafast.parallel.store.RecordStore`; a killed run resumes without
 loss or duplication; more realisations later extend the same store, since realisation i depends
 only on ``sea_state.seed`` and i), runs them on the shared executor
 (:func:`seafast.parallel.executor.map_batches`: serial, local worker processes or Dask, one
 realisation a task), and estimates per quantity the most probable maximum over the duration with
-a bootstrap confidence interval (:mod:`seafast.seastate.extremes`).
+a bootstrap confidence interval (:mod:`seafast.analyses.seastate.extremes`).
 
 The linear Monte Carlo is the exact frequency-domain synthesis of the linear model (the
 integrator with bilateral saddles has no correction to march: q_c = 0); it checks the synthesis
@@ -37,13 +37,8 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
-from seafast.config.schema import Case
-from seafast.parallel.executor import ExecutionOptions, error_text, map_batches, plan_batches
-from seafast.parallel.progress import progress as progress_reporter
-from seafast.parallel.store import DICT_RECORDS, RecordStore
-from seafast.parallel.threads import one_blas_thread
-from seafast.seastate.extremes import CONFIDENCE_LEVEL, MPMEstimate, most_probable_maximum
-from seafast.seastate.realisation import (
+from seafast.analyses.seastate.extremes import CONFIDENCE_LEVEL, MPMEstimate, most_probable_maximum
+from seafast.analyses.seastate.realisation import (
     QUANTITIES,
     MonteCarloSettings,
     RealisationPlan,
@@ -51,6 +46,11 @@ from seafast.seastate.realisation import (
     evaluate_realisation,
     realisation_plan,
 )
+from seafast.config.schema import Case
+from seafast.parallel.executor import ExecutionOptions, error_text, map_batches, plan_batches
+from seafast.parallel.progress import progress as progress_reporter
+from seafast.parallel.store import DICT_RECORDS, RecordStore
+from seafast.parallel.threads import one_blas_thread
 
 __all__ = [
     "MODELS",
@@ -93,7 +93,7 @@ class MonteCarloStatistics:
         Per realisation (n_r,), keys ``F_N, M_b_Nm, sigma_b_Pa, u_s_m, u_d_m``: maxima over the
         duration, totals including still water [N, N m, Pa, m, m]; NaN for a failed realisation.
     mpm
-        Most probable maximum over the duration per key (see :mod:`seafast.seastate.extremes`).
+        Most probable maximum over the duration per key (see :mod:`seafast.analyses.seastate.extremes`).
     mpm_interval
         (low, high) bootstrap confidence interval of the MPM at ``confidence_level``.
     uplift_per_hour
@@ -304,9 +304,9 @@ def build_plan(case: Case, settings: MonteCarloSettings = MonteCarloSettings()) 
     seafast.config.CaseError
         Invalid or unresolvable sea state, or a vessel set-up without per-frequency hull response.
     """
+    from seafast.analyses.seastate.spectrum import sea_state_spectrum
+    from seafast.analyses.seastate.transfer import still_water, transfer_functions
     from seafast.model.from_case import build_model
-    from seafast.seastate.spectrum import sea_state_spectrum
-    from seafast.seastate.transfer import still_water, transfer_functions
 
     model = build_model(case)
     spectrum = sea_state_spectrum(case)

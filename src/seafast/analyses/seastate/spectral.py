@@ -28,11 +28,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.spectrum import WaveSpectrum, sea_state_spectrum
+from seafast.analyses.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
 from seafast.config.schema import Case
 from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
-from seafast.seastate.spectrum import WaveSpectrum, sea_state_spectrum
-from seafast.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
 
 __all__ = [
     "ResponseStatistics",

@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 
 import seafast
+from seafast.analyses.seastate.monte_carlo import STORE_DIRECTORY, build_plan
+from seafast.analyses.seastate.realisation import evaluate_realisation
 from seafast.parallel.store import DICT_RECORDS
-from seafast.seastate.monte_carlo import STORE_DIRECTORY, build_plan
-from seafast.seastate.realisation import evaluate_realisation
 
 OVERRIDES = {"sea_state.significant_height_m": 3.0, "sea_state.duration_s": 900.0, "sea_state.realisations": 12}
 
@@ -25,7 +25,7 @@ SCRIPT = textwrap.dedent(
     f"""
     import json, sys
     import seafast
-    from seafast.seastate.monte_carlo import run_monte_carlo
+    from seafast.analyses.seastate.monte_carlo import run_monte_carlo
 
     def main():
         case = seafast.load_case(None, {OVERRIDES!r})
@@ -86,7 +86,7 @@ def test_sigkill_then_resume_loses_and_repeats_nothing(tmp_path: Path):
 def test_dask_scheduler_gives_the_serial_records(tmp_path: Path):
     from distributed import LocalCluster
 
-    from seafast.seastate.monte_carlo import run_monte_carlo
+    from seafast.analyses.seastate.monte_carlo import run_monte_carlo
 
     case = seafast.load_case(None, {"sea_state.significant_height_m": 3.0, "sea_state.duration_s": 600.0, "sea_state.realisations": 3})
     serial = run_monte_carlo(case, tmp_path / "serial", workers=1, progress=False)

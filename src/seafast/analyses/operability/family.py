@@ -20,22 +20,22 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
-from seafast.config.loader import CaseError
-from seafast.config.schema import Case
-from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.vessel import vessel_excitation
-from seafast.model.from_case import build_model
-from seafast.model.structure import StructuralModel
-from seafast.seastate.spectral import (
+from seafast.analyses.seastate.spectral import (
     ResponseStatistics,
     SpectralAnalysis,
     SpectralExtremes,
     downcrossing_rate_per_s,
     spectral_extremes,
 )
-from seafast.seastate.spectrum import sea_state_spectrum
-from seafast.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
-from seafast.seastate.wave_response import MomentMap, moment_map
+from seafast.analyses.seastate.spectrum import sea_state_spectrum
+from seafast.analyses.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
+from seafast.analyses.seastate.wave_response import MomentMap, moment_map
+from seafast.config.loader import CaseError
+from seafast.config.schema import Case
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.excitation.vessel import vessel_excitation
+from seafast.model.from_case import build_model
+from seafast.model.structure import StructuralModel
 
 __all__ = ["MASTER_STEP_RAD_S", "SeaStateFamily", "sea_state_family", "analysis_at", "rescaled", "case_at"]
 
@@ -178,7 +178,7 @@ def _scaled_statistics(stats: ResponseStatistics, k: float) -> ResponseStatistic
 def rescaled(analysis: SpectralAnalysis, hs: float) -> SpectralAnalysis:
     """The same sea state at significant height ``hs``: the spectrum scales with Hs^2, every MPM with Hs.
 
-    Equal to :func:`~seafast.seastate.spectral.spectral_extremes` on the scaled spectrum (tested),
+    Equal to :func:`~seafast.analyses.seastate.spectral.spectral_extremes` on the scaled spectrum (tested),
     without integrating the response spectra again.
     """
     sp, e = analysis.spectrum, analysis.extremes

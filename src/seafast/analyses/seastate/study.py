@@ -3,7 +3,7 @@
 A study with ``response: sea_state`` (or an axis over a ``sea_state.*`` key) evaluates every
 point with :func:`evaluate_sea_state` instead of ``seafast run``'s regular wave: the rows are
 ``load_case = sea_state`` for the ``linear`` model (the linear spectral MPMs) and the
-``nonlinear`` model (the design-wave MPMs, :mod:`seafast.seastate.design_wave`), so that the
+``nonlinear`` model (the design-wave MPMs, :mod:`seafast.analyses.seastate.design_wave`), so that the
 study's compliance and ranking (which judge the nonlinear model's total response) rank the
 arrangements by their nonlinear MPM in the design sea state. ``u_c_m`` is not computed (empty);
 ``contact_preserved`` says that no design wave lifts a saddle off (the linear model then holds);
@@ -15,10 +15,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from seafast.analyses.seastate.design_wave import sea_state_design_waves
+from seafast.analyses.seastate.spectral import spectral_analysis
 from seafast.config.schema import Case
 from seafast.results.dataset import row_warnings
-from seafast.seastate.design_wave import sea_state_design_waves
-from seafast.seastate.spectral import spectral_analysis
 
 __all__ = ["SEA_STATE_LOAD_CASE", "evaluate_sea_state"]
 

@@ -9,8 +9,7 @@ import pytest
 from scipy.integrate import quad
 
 import seafast
-from seafast.config import CaseError, load_case
-from seafast.seastate.spectrum import (
+from seafast.analyses.seastate.spectrum import (
     MAX_VARIANCE_OUTSIDE,
     OMEGA_MAX_RAD_S,
     OMEGA_MIN_RAD_S,
@@ -19,6 +18,7 @@ from seafast.seastate.spectrum import (
     pierson_moskowitz_density,
     sea_state_spectrum,
 )
+from seafast.config import CaseError, load_case
 
 
 def _case(**sea):

@@ -3,7 +3,7 @@
 The scatter diagram is a CSV file with the columns ``significant_height_m,peak_period_s,occurrence``
 (one row per Hs x Tp cell; the occurrence in any unit - counts, per mille, probability - is
 normalised by its sum). A cell is within the limits when its Hs is at most the allowable Hs at
-its Tp (:mod:`seafast.operability.allowable`, evaluated at the diagram's own peak periods, so no
+its Tp (:mod:`seafast.analyses.operability.allowable`, evaluated at the diagram's own peak periods, so no
 interpolation between peak periods); the share is the occurrence-weighted fraction of such cells,
 linear and nonlinear. A cell whose nonlinear search failed counts as not within the limits and
 is reported.
