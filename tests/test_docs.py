@@ -191,3 +191,16 @@ def test_every_test_file_is_described():
     assert "tests/test_docs.py" in files
     missing = [f for f in files if f"`{f}`" not in ALL_DOCS]
     assert not missing, f"test files not described in docs/ (verification.md, or the feature's page): {missing}"
+
+
+def test_no_page_docstring_comment_or_test_cites_an_issue_number():
+    """The software's own words describe it as it is: history goes to CHANGELOG.md, and no page, docstring,
+    comment or test refers to an issue (the pattern is tests/test_readme.py's, checked there on its forms)."""
+    from test_readme import ISSUE_NUMBER
+
+    found = []
+    for root in ("src", "tests", "docs", "benchmarks", "examples"):
+        for path in (ROOT / root).rglob("*"):
+            if path.suffix in (".py", ".md", ".yaml") and path.name != "test_readme.py" and "egg-info" not in str(path):
+                found += [f"{path.relative_to(ROOT)}: {m.group(0)}" for m in ISSUE_NUMBER.finditer(_text(path))]
+    assert not found, found
