@@ -173,3 +173,33 @@ def test_the_hull_girder_imports_only_the_floors_below_it():
     assert len(hull) >= 9
     upward = {name: sorted(e for e in GRAPH[name][0] if not any(e == b or e.startswith(b + ".") for b in below)) for name in hull}
     assert {name: edges for name, edges in upward.items() if edges} == {}
+
+
+def test_every_dft_goes_through_fourier():
+    """One Fourier vocabulary: no module but seafast.fourier calls numpy's FFT itself."""
+    calls = []
+    for name, (path, _) in MODULES.items():
+        if name == "seafast.fourier":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Attribute) and node.value.attr == "fft":
+                calls.append(f"{name}:{node.lineno} {node.attr}")
+    assert calls == []
+
+
+def _is_compiled(node: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
+    return any("njit" in ast.unparse(d) or "numba" in ast.unparse(d) for d in node.decorator_list)
+
+
+def test_no_function_over_100_lines_and_no_module_over_600():
+    """Compiled (numba) kernels excepted: a kernel's loop is kept whole so its arrays stay in registers."""
+    long_functions, long_modules = [], []
+    for name, (path, _) in MODULES.items():
+        text = path.read_text(encoding="utf-8")
+        if len(text.splitlines()) > 600:
+            long_modules.append(name)
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not _is_compiled(node):
+                if node.end_lineno is not None and node.end_lineno - node.lineno + 1 > 100:
+                    long_functions.append(f"{name}.{node.name}")
+    assert long_functions == [] and long_modules == []

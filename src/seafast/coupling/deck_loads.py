@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import harmonics_to_time
+from seafast.fourier import harmonics_to_time, time_to_harmonics
 from seafast.hull.girder import HullGirder
 from seafast.hull.loads import deck_load_influence
 from seafast.model.structure import StructuralModel
@@ -184,12 +184,9 @@ def deck_forces_N(
         n_t = x_c.shape[0]
         x_o = harmonics_to_time(excitation.deck_displacement, n_t)
         p_t = (x_c @ Kco + x_o @ Koo)[:, sad] + np.asarray(response.saddle_force_time_N, dtype=float)
-        c = np.fft.rfft(p_t, axis=0) / n_t
         P = np.zeros((harmonic_count, sad.size), dtype=complex)
-        m = min(harmonic_count, c.shape[0])
-        P[:m] = c[:m]
-        P[1:m] *= 2.0
-        P[0] = P[0].real
+        m = min(harmonic_count, n_t // 2 + 1)
+        P[:m] = time_to_harmonics(p_t, m - 1)
     else:
         X = np.asarray(response.cargo_displacement)
         Xo = excitation.deck_displacement

@@ -17,6 +17,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from seafast.fourier import harmonics_up_to
 from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, scaled_unit
 
 __all__ = [
@@ -211,9 +212,7 @@ def plot_aft_picture(ds: xr.Dataset, path: Path) -> Path:
     comp = sel["saddle_compression_m"].isel(saddle=j).values
     force = sel["saddle_force_N"].isel(saddle=j).values
     H = int(ds.attrs.get("harmonics", 5))
-    spec = np.fft.rfft(force)
-    spec[H + 1 :] = 0.0
-    recon = np.fft.irfft(spec, n=force.size)
+    recon = harmonics_up_to(force, H)
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(11, 6), sharex=True)
     ax1.plot(s, comp * 1e3, "k.-", ms=3)
     ax1.axhline(0.0, color="0.5", lw=0.8)

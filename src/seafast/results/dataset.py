@@ -257,8 +257,28 @@ def summary_rows_from_arrays(
 def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mapping[str, Any] | None = None) -> xr.Dataset:
     """The case Dataset (what ``results.nc`` holds) from the case arrays."""
     a = arrays
+    data_vars = {**_period_variables(a), **_row_variables(a, model)}
+    for name, values in a.maxima().items():
+        data_vars[name] = _var(("load_case", "model"), values.astype(np.int8) if values.dtype == bool else values, *_SUMMARY_ATTRS[name])
+    return xr.Dataset(
+        data_vars,
+        coords={
+            "load_case": list(LOAD_CASES),
+            "model": list(MODELS),
+            "period_fraction": _var(("period_fraction",), a.period_fraction, "time over wave period t/T", "1"),
+            "saddle": np.arange(model.saddle_count),
+            "x_cargo_m": _var(("x_cargo_m",), model.cargo.node_x_m, "position along the cargo from its aft end", "m"),
+            "x_moment_m": _var(("x_moment_m",), a.x_moment_m, "position along the cargo from its aft end", "m"),
+            "solver_warning": _var(("solver_warning",), list(SOLVER_WARNINGS), "solver warning (SolverWarning value)", "1"),
+        },
+        attrs=dict(attrs or {}),
+    )
+
+
+def _period_variables(a: CaseArrays) -> dict[str, xr.Variable]:
+    """The responses over the period: deflections, saddle compressions and forces, moments, stresses, the deck."""
     dims4 = ("load_case", "model", "period_fraction")
-    data_vars = {
+    return {
         "cargo_deflection_m": _var(
             dims4 + ("x_cargo_m",),
             a.cargo_deflection_m,
@@ -309,6 +329,12 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
             "deck deflection under each saddle relative to the sea-fastening baseline, per model (up positive)",
             "m",
         ),
+    }
+
+
+def _row_variables(a: CaseArrays, model: StructuralModel) -> dict[str, xr.Variable]:
+    """The saddles' properties, and each row's solver diagnostics, outcome and typed warnings."""
+    return {
         "saddle_stiffness_N_per_m": _var(("saddle",), model.saddle_stiffness_N_per_m, "saddle compression stiffness", "N/m"),
         "saddle_lashed": _var(("saddle",), np.asarray(model.seafastening.lashed).astype(np.int8), "saddle carries lashings", "1"),
         "saddle_x_m": _var(("saddle",), model.saddle_x_m, "saddle position along the cargo from its aft end", "m"),
@@ -341,18 +367,3 @@ def build_case_dataset(arrays: CaseArrays, model: StructuralModel, attrs: Mappin
             "1",
         ),
     }
-    for name, values in a.maxima().items():
-        data_vars[name] = _var(("load_case", "model"), values.astype(np.int8) if values.dtype == bool else values, *_SUMMARY_ATTRS[name])
-    return xr.Dataset(
-        data_vars,
-        coords={
-            "load_case": list(LOAD_CASES),
-            "model": list(MODELS),
-            "period_fraction": _var(("period_fraction",), a.period_fraction, "time over wave period t/T", "1"),
-            "saddle": np.arange(model.saddle_count),
-            "x_cargo_m": _var(("x_cargo_m",), model.cargo.node_x_m, "position along the cargo from its aft end", "m"),
-            "x_moment_m": _var(("x_moment_m",), a.x_moment_m, "position along the cargo from its aft end", "m"),
-            "solver_warning": _var(("solver_warning",), list(SOLVER_WARNINGS), "solver warning (SolverWarning value)", "1"),
-        },
-        attrs=dict(attrs or {}),
-    )

@@ -183,116 +183,133 @@ class MonteCarloResult:
         ``realisation``, ``saddle``, ``x_moment_m`` and ``mc_example_time_s``; ``units`` and
         ``long_name`` on every variable.
         """
-        n_r = self.linear.time_lifted_fraction.size
-        dv: dict[str, Any] = {}
-        stats = (self.linear, self.nonlinear)
         random_amplitudes = bool(self.settings.get("random_amplitudes", True))
         # deterministic amplitudes: the maxima scatter less between records than in a Gaussian sea (docs/monte_carlo.md)
         caveat = "" if random_amplitudes else " (deterministic amplitudes: narrower than for a Gaussian sea)"
+        dv: dict[str, Any] = {}
         for q in QUANTITIES:
-            u, ln = _UNITS[q], _LONG[q]
-            dv[f"mc_{q}"] = (
-                ("model", "realisation"),
-                np.stack([s.maxima[q] for s in stats]),
-                {"units": u, "long_name": f"{ln}, per realisation"},
-            )
-            dv[f"mc_mpm_{q}"] = (
-                ("model",),
-                np.array([s.mpm[q] for s in stats]),
-                {"units": u, "long_name": f"most probable maximum: {ln}", "method": ", ".join(s.mpm_method.get(q, "") for s in stats)},
-            )
-            dv[f"mc_mpm_low_{q}"] = (
-                ("model",),
-                np.array([s.mpm_interval[q][0] for s in stats]),
-                {
-                    "units": u,
-                    "long_name": f"lower bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}{caveat}",
-                },
-            )
-            dv[f"mc_mpm_high_{q}"] = (
-                ("model",),
-                np.array([s.mpm_interval[q][1] for s in stats]),
-                {
-                    "units": u,
-                    "long_name": f"upper bound of the {self.linear.confidence_level:.0%} bootstrap interval of the MPM of {q}{caveat}",
-                },
-            )
-        dv["mc_time_lifted_fraction"] = (
+            dv.update(_quantity_variables(self, q, caveat))
+        dv.update(_record_variables(self))
+        coords = _coordinates(self)
+        if self.example is not None:
+            coords.update(_example_coordinate(self.example))
+            dv.update(_example_variables(self.example))
+        return xr.Dataset(dv, coords=coords, attrs=_attributes(self, random_amplitudes))
+
+
+def _quantity_variables(result: MonteCarloResult, q: str, caveat: str) -> dict[str, Any]:
+    """One quantity's per-realisation maxima, MPMs and interval bounds, both models."""
+    stats, u, ln = (result.linear, result.nonlinear), _UNITS[q], _LONG[q]
+    level = f"{result.linear.confidence_level:.0%}"
+    return {
+        f"mc_{q}": (("model", "realisation"), np.stack([s.maxima[q] for s in stats]), {"units": u, "long_name": f"{ln}, per realisation"}),
+        f"mc_mpm_{q}": (
+            ("model",),
+            np.array([s.mpm[q] for s in stats]),
+            {"units": u, "long_name": f"most probable maximum: {ln}", "method": ", ".join(s.mpm_method.get(q, "") for s in stats)},
+        ),
+        f"mc_mpm_low_{q}": (
+            ("model",),
+            np.array([s.mpm_interval[q][0] for s in stats]),
+            {"units": u, "long_name": f"lower bound of the {level} bootstrap interval of the MPM of {q}{caveat}"},
+        ),
+        f"mc_mpm_high_{q}": (
+            ("model",),
+            np.array([s.mpm_interval[q][1] for s in stats]),
+            {"units": u, "long_name": f"upper bound of the {level} bootstrap interval of the MPM of {q}{caveat}"},
+        ),
+    }
+
+
+def _record_variables(result: MonteCarloResult) -> dict[str, Any]:
+    """Uplift statistics per record and model, the records' linear standard deviations, wall times."""
+    stats = (result.linear, result.nonlinear)
+    return {
+        "mc_time_lifted_fraction": (
             ("model", "realisation"),
             np.stack([s.time_lifted_fraction for s in stats]),
             {"units": "1", "long_name": "fraction of the duration with at least one saddle detached (linear: compression below zero)"},
-        )
-        dv["mc_uplift_events"] = (
+        ),
+        "mc_uplift_events": (
             ("model", "realisation"),
             np.stack([s.uplift_events for s in stats]),
             {"units": "1", "long_name": "saddle separations (compressed to detached), summed over saddles"},
-        )
-        dv["mc_uplift_per_hour"] = (
+        ),
+        "mc_uplift_per_hour": (
             ("model",),
             np.array([s.uplift_per_hour for s in stats]),
             {"units": "1/h", "long_name": "mean saddle separations per hour, summed over saddles"},
-        )
-        dv["mc_std_saddle_force_N"] = (
+        ),
+        "mc_std_saddle_force_N": (
             ("realisation", "saddle"),
-            self.std_saddle_force_N,
+            result.std_saddle_force_N,
             {"units": "N", "long_name": "standard deviation of the linear saddle force over the record"},
-        )
-        dv["mc_std_bending_moment_Nm"] = (
+        ),
+        "mc_std_bending_moment_Nm": (
             ("realisation", "x_moment_m"),
-            self.std_bending_moment_Nm,
+            result.std_bending_moment_Nm,
             {"units": "N m", "long_name": "standard deviation of the linear bending moment over the record"},
-        )
-        dv["mc_seconds"] = (
+        ),
+        "mc_seconds": (
             ("realisation",),
-            self.seconds,
+            result.seconds,
             {"units": "s", "long_name": "wall time of the realisation (NaN: reused from the store)"},
-        )
-        coords: dict[str, Any] = {
-            "model": ("model", list(MODELS), {"long_name": "response model (linear: bilateral saddles)"}),
-            "realisation": (
-                "realisation",
-                np.arange(n_r),
-                {"units": "1", "long_name": "realisation index (phases from SeedSequence(seed) child i)"},
-            ),
-            "saddle": ("saddle", np.arange(self.saddle_x_m.size), {"units": "1", "long_name": "saddle index, aft to fore"}),
-            "x_moment_m": ("x_moment_m", self.moment_x_m, {"units": "m", "long_name": "position along the cargo from its aft end"}),
-        }
-        ex = self.example
-        if ex is not None:
-            coords["mc_example_time_s"] = (
-                "mc_example_time_s",
-                ex.time_s,
-                {"units": "s", "long_name": f"time in example realisation {ex.index}"},
-            )
-            dv["mc_example_wave_elevation_m"] = (
-                ("mc_example_time_s",),
-                ex.wave_elevation_m,
-                {"units": "m", "long_name": "wave elevation at midship"},
-            )
-            dv["mc_example_saddle_force_N"] = (
-                ("model", "mc_example_time_s", "saddle"),
-                np.stack([ex.linear_saddle_force_N, ex.nonlinear_saddle_force_N]),
-                {"units": "N", "long_name": "saddle normal force (compression-only part; linear may be negative)"},
-            )
-            dv["mc_example_saddle_lifted"] = (
-                ("mc_example_time_s", "saddle"),
-                ex.saddle_lifted.astype(np.int8),
-                {"units": "1", "long_name": "saddle detached (nonlinear) within the sample's interval"},
-            )
-        attrs = {
-            "mc_duration_s": self.duration_s,
-            "mc_seed": self.seed,
-            "mc_realisations": n_r,
-            "mc_confidence_level": self.linear.confidence_level,
-            "mc_mpm_estimator": (
-                "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); "
-                "percentile bootstrap interval"
-            ),
-            "mc_random_amplitudes": int(random_amplitudes),
-            "mc_example_realisation": -1 if ex is None else ex.index,
-            "mc_settings_json": json.dumps(dict(self.settings)),
-        }
-        return xr.Dataset(dv, coords=coords, attrs=attrs)
+        ),
+    }
+
+
+def _coordinates(result: MonteCarloResult) -> dict[str, Any]:
+    n_r = result.linear.time_lifted_fraction.size
+    return {
+        "model": ("model", list(MODELS), {"long_name": "response model (linear: bilateral saddles)"}),
+        "realisation": (
+            "realisation",
+            np.arange(n_r),
+            {"units": "1", "long_name": "realisation index (phases from SeedSequence(seed) child i)"},
+        ),
+        "saddle": ("saddle", np.arange(result.saddle_x_m.size), {"units": "1", "long_name": "saddle index, aft to fore"}),
+        "x_moment_m": ("x_moment_m", result.moment_x_m, {"units": "m", "long_name": "position along the cargo from its aft end"}),
+    }
+
+
+def _example_coordinate(ex: RealisationTimeSeries) -> dict[str, Any]:
+    return {"mc_example_time_s": ("mc_example_time_s", ex.time_s, {"units": "s", "long_name": f"time in example realisation {ex.index}"})}
+
+
+def _example_variables(ex: RealisationTimeSeries) -> dict[str, Any]:
+    """The example realisation's wave, saddle forces (both models) and lift-off over its window."""
+    return {
+        "mc_example_wave_elevation_m": (
+            ("mc_example_time_s",),
+            ex.wave_elevation_m,
+            {"units": "m", "long_name": "wave elevation at midship"},
+        ),
+        "mc_example_saddle_force_N": (
+            ("model", "mc_example_time_s", "saddle"),
+            np.stack([ex.linear_saddle_force_N, ex.nonlinear_saddle_force_N]),
+            {"units": "N", "long_name": "saddle normal force (compression-only part; linear may be negative)"},
+        ),
+        "mc_example_saddle_lifted": (
+            ("mc_example_time_s", "saddle"),
+            ex.saddle_lifted.astype(np.int8),
+            {"units": "1", "long_name": "saddle detached (nonlinear) within the sample's interval"},
+        ),
+    }
+
+
+def _attributes(result: MonteCarloResult, random_amplitudes: bool) -> dict[str, Any]:
+    return {
+        "mc_duration_s": result.duration_s,
+        "mc_seed": result.seed,
+        "mc_realisations": result.linear.time_lifted_fraction.size,
+        "mc_confidence_level": result.linear.confidence_level,
+        "mc_mpm_estimator": (
+            "mode of a maximum-likelihood Gumbel fit to the maxima (1/e quantile where some maxima are 0); percentile bootstrap interval"
+        ),
+        "mc_random_amplitudes": int(random_amplitudes),
+        "mc_example_realisation": -1 if result.example is None else result.example.index,
+        "mc_settings_json": json.dumps(dict(result.settings)),
+    }
 
 
 # ---------------------------------------------------------------------------- plan and fingerprint

@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from seafast.analyses.seastate.transfer import MOMENT_POINTS_PER_ELEMENT
 from seafast.analyses.seastate.wave_maxima import location_maxima, location_maximum, period_maxima
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics
+from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics, time_to_harmonics
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
@@ -369,10 +369,7 @@ def solve_wave_adaptive(
     line[:m] = exc.cargo_line_load_N_per_m[:m]
     moment = _real_map(mm.displacement_map, X.T).T + _real_map(mm.load_map, line.T).T
     moment[0] = moment[0].real + mm.gravity_moment_Nm
-    spectrum = np.fft.rfft(r.saddle_compression_time_m, axis=0) / N
-    C = np.zeros((H + 1, model.saddle_count), dtype=complex)
-    C[0] = spectrum[0].real
-    C[1:] = 2.0 * spectrum[1 : H + 1]
+    C = time_to_harmonics(r.saddle_compression_time_m, H)
     inverse, _ = real_dft_matrices(H, N)
     law = opts.law
     compression, moment_real = complex_to_real_harmonics(C), complex_to_real_harmonics(moment)

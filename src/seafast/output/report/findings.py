@@ -31,6 +31,76 @@ def _warning_title(value: str) -> str:
         return f"solver warning '{value}'"
 
 
+def _row_findings(ds: xr.Dataset, lc: str, m: str) -> list[Finding]:
+    """The WARNINGs of one (load case, model) row: convergence, validity, orbit, truncation, typed warnings."""
+    out: list[Finding] = []
+    sel = ds.sel(load_case=lc, model=m)
+    coupling_failed = "coupling_converged" in sel and not bool(sel["coupling_converged"])
+    if coupling_failed:
+        out.append(
+            Finding(
+                "WARNING",
+                f"{lc} {m}: the two-way hull-cargo coupling did NOT converge ({sel['coupling_outcome'].values.item()})",
+                f"coupling residual {float(sel['coupling_residual_m']):.2e} m > "
+                f"tolerance {float(sel['coupling_tolerance_m']):.2e} m "
+                f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): "
+                "the deck under the saddles and the hull under the cargo's forces disagree, "
+                "so this row's numbers and the coupled hull must not be trusted.",
+            )
+        )
+    elif "converged" in sel and not bool(sel["converged"]):
+        res = float(sel["residual_norm"]) if "residual_norm" in sel else math.nan
+        out.append(
+            Finding(
+                "WARNING",
+                f"{lc} {m}: the solver did NOT converge",
+                f"residual norm {res:.3e}. Its numbers (summary, figures) must not be trusted; "
+                "try more harmonics/time samples, the 'newton' solver or another contact law.",
+            )
+        )
+    if "within_validity" in sel and not bool(sel["within_validity"]):
+        prefix = f"{lc} {m}: "
+        lines = [line.removeprefix(prefix) for line in str(ds.attrs.get("validity_issues", "")).splitlines() if line.startswith(prefix)]
+        out.append(
+            Finding(
+                "WARNING",
+                f"{lc} {m}: results beyond the model's small-displacement validity",
+                "; ".join(lines) + ". The row is written but is not a valid answer (docs/theory.md, validity): "
+                "check the units of the inputs that set it (a saddle stiffness in N/m, say).",
+            )
+        )
+    if "solver_outcome" in sel and str(sel["solver_outcome"].values.item()) == SolverOutcome.OTHER_ORBIT.value:
+        distance = float(ds.attrs.get("time_domain_orbit_distance_from_start", math.nan))
+        out.append(
+            Finding(
+                "WARNING",
+                f"{lc} {m}: the time-domain reference left the orbit it started on",
+                f"started on the {ds.attrs.get('time_domain_start', 'given')} solution, it settled on another periodic "
+                f"state (RMS saddle-force distance {distance:.2e} > {ds.attrs.get('time_domain_orbit_tolerance', '?')}): "
+                "the starting orbit is unstable or not unique (docs/orbits.md). The numbers shown are the orbit reached.",
+            )
+        )
+    if "harmonic_truncation_indicator" in sel:
+        ind = np.asarray(sel["harmonic_truncation_indicator"].values, dtype=float)
+        if np.any(ind > TRUNCATION_LIMIT):
+            j = int(np.nanargmax(ind))
+            out.append(
+                Finding(
+                    "WARNING",
+                    f"{lc} {m}: harmonic truncation indicator {np.nanmax(ind):.2e} > {TRUNCATION_LIMIT:g}",
+                    f"at {saddle_label(ds, j)}: a noticeable share of the contact force lies above harmonic "
+                    f"H = {ds.attrs.get('harmonics', '?')}; increase solver.harmonics (and solver.time_samples) "
+                    "until the maxima stop changing.",
+                )
+            )
+    if "solver_warning_flag" in sel:
+        msg = str(sel["solver_message"].values.item()) if "solver_message" in sel else ""
+        for name in coord_labels(ds["solver_warning"]):
+            if bool(sel["solver_warning_flag"].sel(solver_warning=name)):
+                out.append(Finding("WARNING", f"{lc} {m}: {_warning_title(name)}", msg))
+    return out
+
+
 def run_findings(ds: xr.Dataset) -> list[Finding]:
     """Diagnostics of a run that decide whether its numbers can be trusted.
 
@@ -47,72 +117,7 @@ def run_findings(ds: xr.Dataset) -> list[Finding]:
     lcs, models = coord_labels(ds["load_case"]), coord_labels(ds["model"])
     for lc in lcs:
         for m in models:
-            sel = ds.sel(load_case=lc, model=m)
-            coupling_failed = "coupling_converged" in sel and not bool(sel["coupling_converged"])
-            if coupling_failed:
-                out.append(
-                    Finding(
-                        "WARNING",
-                        f"{lc} {m}: the two-way hull-cargo coupling did NOT converge ({sel['coupling_outcome'].values.item()})",
-                        f"coupling residual {float(sel['coupling_residual_m']):.2e} m > "
-                        f"tolerance {float(sel['coupling_tolerance_m']):.2e} m "
-                        f"after {int(sel['coupling_iterations'])} quasi-Newton step(s): "
-                        "the deck under the saddles and the hull under the cargo's forces disagree, "
-                        "so this row's numbers and the coupled hull must not be trusted.",
-                    )
-                )
-            elif "converged" in sel and not bool(sel["converged"]):
-                res = float(sel["residual_norm"]) if "residual_norm" in sel else math.nan
-                out.append(
-                    Finding(
-                        "WARNING",
-                        f"{lc} {m}: the solver did NOT converge",
-                        f"residual norm {res:.3e}. Its numbers (summary, figures) must not be trusted; "
-                        "try more harmonics/time samples, the 'newton' solver or another contact law.",
-                    )
-                )
-            if "within_validity" in sel and not bool(sel["within_validity"]):
-                prefix = f"{lc} {m}: "
-                lines = [
-                    line.removeprefix(prefix) for line in str(ds.attrs.get("validity_issues", "")).splitlines() if line.startswith(prefix)
-                ]
-                out.append(
-                    Finding(
-                        "WARNING",
-                        f"{lc} {m}: results beyond the model's small-displacement validity",
-                        "; ".join(lines) + ". The row is written but is not a valid answer (docs/theory.md, validity): "
-                        "check the units of the inputs that set it (a saddle stiffness in N/m, say).",
-                    )
-                )
-            if "solver_outcome" in sel and str(sel["solver_outcome"].values.item()) == SolverOutcome.OTHER_ORBIT.value:
-                distance = float(ds.attrs.get("time_domain_orbit_distance_from_start", math.nan))
-                out.append(
-                    Finding(
-                        "WARNING",
-                        f"{lc} {m}: the time-domain reference left the orbit it started on",
-                        f"started on the {ds.attrs.get('time_domain_start', 'given')} solution, it settled on another periodic "
-                        f"state (RMS saddle-force distance {distance:.2e} > {ds.attrs.get('time_domain_orbit_tolerance', '?')}): "
-                        "the starting orbit is unstable or not unique (docs/orbits.md). The numbers shown are the orbit reached.",
-                    )
-                )
-            if "harmonic_truncation_indicator" in sel:
-                ind = np.asarray(sel["harmonic_truncation_indicator"].values, dtype=float)
-                if np.any(ind > TRUNCATION_LIMIT):
-                    j = int(np.nanargmax(ind))
-                    out.append(
-                        Finding(
-                            "WARNING",
-                            f"{lc} {m}: harmonic truncation indicator {np.nanmax(ind):.2e} > {TRUNCATION_LIMIT:g}",
-                            f"at {saddle_label(ds, j)}: a noticeable share of the contact force lies above harmonic "
-                            f"H = {ds.attrs.get('harmonics', '?')}; increase solver.harmonics (and solver.time_samples) "
-                            "until the maxima stop changing.",
-                        )
-                    )
-            if "solver_warning_flag" in sel:
-                msg = str(sel["solver_message"].values.item()) if "solver_message" in sel else ""
-                for name in coord_labels(ds["solver_warning"]):
-                    if bool(sel["solver_warning_flag"].sel(solver_warning=name)):
-                        out.append(Finding("WARNING", f"{lc} {m}: {_warning_title(name)}", msg))
+            out += _row_findings(ds, lc, m)
     if "contact_preserved" in ds and "linear" in models:
         lost = [lc for lc in lcs if not bool(ds["contact_preserved"].sel(load_case=lc, model="linear"))]
         if lost:
