@@ -11,9 +11,12 @@ cycle). ``from a.b import c`` is an edge to the module ``a.b.c`` when that is a 
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "seafast"
+ARCHITECTURE = Path(__file__).resolve().parents[1] / "docs" / "architecture.md"
+LAYER_TABLE_START = "| floor | rooms |"
 MAX_LINES = 400
 SIZE_MARKER = "Size:"
 # Over MAX_LINES and being changed on other branches when the package was split: their
@@ -166,15 +169,6 @@ def test_long_modules_say_why():
     assert SIZE_PENDING <= set(unexplained), f"remove from SIZE_PENDING: {SIZE_PENDING - set(unexplained)}"
 
 
-def test_the_hull_girder_imports_only_the_floors_below_it():
-    """``seafast.hull`` sits on ``fourier``, ``config``, ``model`` and ``vessel``; the excitation and everything above build on it."""
-    below = ("seafast.fourier", "seafast.config", "seafast.model", "seafast.vessel", "seafast.hull")
-    hull = [name for name in MODULES if name == "seafast.hull" or name.startswith("seafast.hull.")]
-    assert len(hull) >= 9
-    upward = {name: sorted(e for e in GRAPH[name][0] if not any(e == b or e.startswith(b + ".") for b in below)) for name in hull}
-    assert {name: edges for name, edges in upward.items() if edges} == {}
-
-
 def test_every_dft_goes_through_fourier():
     """One Fourier vocabulary: no module but seafast.fourier calls numpy's FFT itself."""
     calls = []
@@ -203,3 +197,60 @@ def test_no_function_over_100_lines_and_no_module_over_600():
                 if node.end_lineno is not None and node.end_lineno - node.lineno + 1 > 100:
                     long_functions.append(f"{name}.{node.name}")
     assert long_functions == [] and long_modules == []
+
+
+def _declared_floors() -> dict[str, int]:
+    """The layer order, read from docs/architecture.md (the one place it is declared): package -> floor."""
+    text = ARCHITECTURE.read_text(encoding="utf-8")
+    table = text[text.index(LAYER_TABLE_START) :]
+    floors: dict[str, int] = {}
+    for line in table.splitlines()[2:]:
+        if not line.startswith("|"):
+            break
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        for package in re.findall(r"`(\w+)/?`", cells[1]):
+            floors[package] = int(cells[0])
+    return floors
+
+
+FLOORS = _declared_floors()
+
+
+def _room(module: str) -> str:
+    """The package (room) a module lives in: ``seafast.solvers.hbm.solve`` -> ``solvers``; the root -> ``seafast``."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "seafast"
+
+
+def test_every_room_has_a_floor():
+    rooms = {_room(name) for name in MODULES} - {"seafast"}
+    assert rooms == set(FLOORS), f"rooms without a floor: {rooms - set(FLOORS)}; floors without a room: {set(FLOORS) - rooms}"
+
+
+def _upward(name: str, edges: set[str]) -> list[str]:
+    """The imports of module ``name`` from its own floor or above (its own room and the package root excepted)."""
+    here = _room(name)
+    out = []
+    for target in sorted(edges):
+        there = _room(target)
+        if here == "seafast" or there in (here, "seafast"):
+            continue
+        if FLOORS[there] >= FLOORS[here]:
+            out.append(f"{name} (floor {FLOORS[here]}) imports {target} (floor {FLOORS[there]})")
+    return out
+
+
+def test_no_import_from_a_higher_floor_or_a_sibling():
+    """Each room imports only from rooms on lower floors (the package root, a lazy facade, excepted)."""
+    offences = [line for name, (edges, _) in GRAPH.items() for line in _upward(name, edges)]
+    assert offences == [], "\n".join(offences)
+
+
+def test_the_floor_table_is_read_and_has_teeth():
+    """Guards the check against passing vacuously: the table is parsed, and a planted upward import is found."""
+    assert FLOORS["fourier"] == 0 and FLOORS["cli"] == max(FLOORS.values()) and FLOORS["model"] == FLOORS["vessel"]
+    assert _upward("seafast.solvers.linear", {"seafast.results.dataset"}) == [
+        "seafast.solvers.linear (floor 5) imports seafast.results.dataset (floor 7)"
+    ]
+    assert _upward("seafast.model.beam", {"seafast.vessel.loading"})  # a sibling on the same floor
+    assert _upward("seafast.cli.run", {"seafast.analyses.run", "seafast", "seafast.cli.common"}) == []
