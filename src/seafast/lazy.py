@@ -18,7 +18,7 @@ Usage in a package's ``__init__.py``::
     lazy_exports(__name__, EXPORTS)
 
 The three lists (the static imports, ``EXPORTS`` and ``__all__``) name the same objects;
-``tests/test_cli_startup.py`` checks that they agree.
+``tests/cli/test_startup.py`` checks that they agree.
 
 A submodule not listed (``seafast.studies.limits`` itself) is imported on attribute access too,
 as it was when the package imported it eagerly. Mechanism: the package module's class becomes

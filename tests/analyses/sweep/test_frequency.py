@@ -31,7 +31,7 @@ from seafast.solvers.from_case import hbm_options
 from seafast.solvers.hbm import solve_hbm
 from seafast.solvers.stepped_sine import stepped_sine_sweep
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[3]
 SOFT = {"seafastening.saddle_stiffness_N_per_m": 1.1e7}  # 1 % of the base saddles: bounce mode at 4.5 rad/s
 
 

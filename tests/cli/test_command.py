@@ -274,7 +274,7 @@ def test_the_library_prints_nothing_unless_logging_is_configured(tmp_path):
         "    logging.basicConfig(level=logging.WARNING)\n"
         "    solve_quasi_static(model, ex)\n"
     )
-    root = __import__("pathlib").Path(__file__).resolve().parents[1]
+    root = __import__("pathlib").Path(__file__).resolve().parents[2]
     silent = subprocess.run([sys.executable, "-c", script], cwd=root, capture_output=True, text=True, check=True)
     assert silent.stdout == "" and silent.stderr == ""
     logged = subprocess.run([sys.executable, "-c", script, "log"], cwd=root, capture_output=True, text=True, check=True)
