@@ -93,3 +93,13 @@ def test_the_references_options_are_keyword_only_frozen_and_hold_enum_members():
     assert o.steps == 16 * 64 and TimeDomainOptions(time_samples=64, steps_per_period=128).steps == 128
     with pytest.raises(dataclasses.FrozenInstanceError):
         o.time_samples = 32  # type: ignore[misc]
+
+
+def test_a_reference_given_a_number_for_its_options_names_what_it_takes(case):
+    """A script written for an older signature (``solve_time_domain(model, ex, 128)``) gets a clear error, not an
+    attribute error from deep inside."""
+    model, ex = case
+    with pytest.raises(TypeError, match=r"options = 128: allowed a TimeDomainOptions"):
+        solve_time_domain(model, ex, 128)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"options = 64: allowed a QuasiStaticOptions"):
+        solve_quasi_static(model, ex, 64)  # type: ignore[arg-type]

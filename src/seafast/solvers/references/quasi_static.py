@@ -68,6 +68,8 @@ def solve_quasi_static(
         ``effective_harmonic``, ``lowest_natural_frequency_rad_s`` and ``frequency_ratio``.
     """
     options = QuasiStaticOptions() if options is None else options
+    if not isinstance(options, QuasiStaticOptions):
+        raise TypeError(f"options = {options!r}: allowed a QuasiStaticOptions (e.g. QuasiStaticOptions(time_samples=128)) or None")
     N = int(options.time_samples)
     q = quadratic_matrices(model, True)
     B = saddle_selection(model)

@@ -116,6 +116,8 @@ def solve_time_domain(
         solves it), or a ``start`` of another frequency or model.
     """
     options = TimeDomainOptions() if options is None else options
+    if not isinstance(options, TimeDomainOptions):
+        raise TypeError(f"options = {options!r}: allowed a TimeDomainOptions (e.g. TimeDomainOptions(time_samples=128)) or None")
     if start is None and options.start is TimeDomainStart.HBM:
         raise ValueError(
             "start: options.start = 'hbm' needs the harmonic balance's solution; allowed: start=<its PeriodicResponse>, "
