@@ -19,6 +19,7 @@ from scipy.linalg import cho_factor, cho_solve, lu_factor, lu_solve
 
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
+from seafast.solvers.dynamic_stiffness import linear_force_harmonics, quadratic_matrices, solve_dynamic_stack
 
 __all__ = ["LinearResponse", "solve_linear", "solve_harmonic"]
 
@@ -64,19 +65,20 @@ def solve_harmonic(
 
 
 def solve_linear(model: StructuralModel, excitation: HarmonicExcitation) -> LinearResponse:
-    """Linear response of the cargo to the excitation (all harmonics), static part included."""
+    """Linear response of the cargo to the excitation (all harmonics), static part included.
+
+    One banded LU per harmonic (:func:`~seafast.solvers.dynamic_stiffness.solve_dynamic_stack`, the
+    factorisation the harmonic balance's condensation uses, so both see the same linear solution to the bit).
+    """
     n_k = excitation.harmonic_count
-    X = np.zeros((n_k, model.cargo_dof_count), dtype=complex)
+    q = quadratic_matrices(model, True)
+    loads = linear_force_harmonics(model, excitation, quasi_static=False)  # f_static + f_vessel - K_d^co x_o
+    X = solve_dynamic_stack(q, excitation.omega_rad_s * np.arange(n_k), loads[:, :, None])[:, :, 0]
+    X[0] = X[0].real
     F_o = np.zeros((n_k, model.deck_dof_count), dtype=complex)
     for k in range(n_k):
-        w = k * excitation.omega_rad_s
-        f = excitation.cargo_load_N[k] + (model.static_load_N if k == 0 else 0.0)
-        xo = excitation.deck_displacement[k]
-        if k > 0 and not np.any(f) and not np.any(xo):
-            continue
-        X[k] = solve_harmonic(model, w, f, xo)
-        _, _, Kd_oc, Kd_oo = model.dynamic_stiffness(w, True)
-        F_o[k] = Kd_oc @ X[k] + Kd_oo @ xo
+        _, _, Kd_oc, Kd_oo = model.dynamic_stiffness(k * excitation.omega_rad_s, True)
+        F_o[k] = Kd_oc @ X[k] + Kd_oo @ excitation.deck_displacement[k]
     delta = excitation.deck_displacement[:, model.saddle_deck_dof] - X[:, model.saddle_cargo_dof]
     force = delta * model.saddle_unilateral_stiffness_N_per_m
     return LinearResponse(excitation.omega_rad_s, X, delta, force, F_o)
