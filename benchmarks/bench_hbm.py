@@ -196,7 +196,7 @@ def main() -> None:
         )
     e_f, e_m, e_own = errors[rows[-1][0]]
     meets = abs(e_f) <= 0.005 and abs(e_m) <= 0.005 and e_own <= 0.01
-    print(f"issue target (default: F and M_b within 0.5 %, each saddle's own peak within 1 %): {'met' if meets else 'NOT met'}")
+    print(f"accuracy target (default: F and M_b within 0.5 %, each saddle's own peak within 1 %): {'met' if meets else 'NOT met'}")
 
     print("\nother methods (base case, one BLAS thread):")
     others = (
