@@ -25,6 +25,7 @@ from seafast.analyses.axial_coupling import friction_moment_effect_N, saddle_mom
 from seafast.config.modes import SolverMethod
 from seafast.config.schema import Case
 from seafast.excitation.axial import AxialLoad, axial_load_of
+from seafast.excitation.vessel import VesselExcitation
 from seafast.fourier import harmonics_to_time
 from seafast.model.axial import AxialRestraint
 from seafast.model.from_case import axial_restraint
@@ -211,7 +212,7 @@ def axial_options(case: Case, vertical_samples: int) -> AxialHBMOptions:
 
 
 def run_axial_analysis(
-    case: Case, model: StructuralModel, vessel: Any, series: Mapping[tuple[str, str], PeriodTimeSeries]
+    case: Case, model: StructuralModel, vessel: VesselExcitation | None, series: Mapping[tuple[str, str], PeriodTimeSeries]
 ) -> AxialCaseArrays:
     """The axial analysis of ``case`` from its vertical responses (``series``) and vessel motions.
 

@@ -107,12 +107,11 @@ def solve_rows(
         say("two-way hull-cargo coupling (still water and wave, linear and nonlinear)")
         compliance = case_compliance(case, model, vessel)
         couplings = couple_hull_and_cargo(case, model, excitation, vessel, compliance)
-        responses = {key: c.response for key, c in couplings.items()}
         return CaseRows(
-            responses[("static", "linear")],
-            responses[("dynamic", "linear")],
-            responses[("static", "nonlinear")],
-            responses[("dynamic", "nonlinear")],
+            _linear_response(couplings[("static", "linear")]),
+            _linear_response(couplings[("dynamic", "linear")]),
+            _nonlinear_response(couplings[("static", "nonlinear")]),
+            _nonlinear_response(couplings[("dynamic", "nonlinear")]),
             {key: (c.excitation.static_part() if key[0] == "static" else c.excitation) for key, c in couplings.items()},
             couplings,
             compliance,
@@ -125,6 +124,18 @@ def solve_rows(
         solve_nonlinear(model, excitation, case, static=False),
         {(lc, m): (static if lc == "static" else excitation) for lc in LOAD_CASES for m in MODELS},
     )
+
+
+def _linear_response(coupling: DeckCoupling) -> LinearResponse:
+    """A linear row's response on its coupled deck (the linear solver's, by construction)."""
+    assert isinstance(coupling.response, LinearResponse)
+    return coupling.response
+
+
+def _nonlinear_response(coupling: DeckCoupling) -> PeriodicResponse:
+    """A nonlinear row's response on its coupled deck (a periodic solver's, by construction)."""
+    assert isinstance(coupling.response, PeriodicResponse)
+    return coupling.response
 
 
 def _row_solution(rows: CaseRows, load_case: str, model: str, time_samples: int) -> RowSolution | None:

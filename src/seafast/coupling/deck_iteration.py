@@ -14,12 +14,11 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.coupling.deck_loads import HullCompliance, spread_load_N
+from seafast.coupling.deck_loads import CargoResponse, HullCompliance, spread_load_N
 from seafast.coupling.status import CouplingOutcome, CouplingStatus
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
@@ -63,7 +62,7 @@ class DeckCoupling:
     """
 
     excitation: HarmonicExcitation
-    response: Any
+    response: CargoResponse
     deck_change: NDArray[np.complex128]
     deck_force_N: NDArray[np.complex128]
     spread_load_N: NDArray[np.complex128]
@@ -169,8 +168,8 @@ class _CouplingResidual:
         self,
         excitation: HarmonicExcitation,
         compliance: HullCompliance,
-        solve: Callable[[HarmonicExcitation], object],
-        deck_forces: Callable[[HarmonicExcitation, object], NDArray],
+        solve: Callable[[HarmonicExcitation], CargoResponse],
+        deck_forces: Callable[[HarmonicExcitation, CargoResponse], NDArray],
         spread_load: NDArray,
         harmonic_count: int,
         dof_count: int,
@@ -181,7 +180,7 @@ class _CouplingResidual:
         self.harmonic_count, self.dof_count = harmonic_count, dof_count
         self.size = dof_count * (2 * harmonic_count - 1)
         self.weight = np.where(np.arange(self.size) % 2 == 0, 1.0, lever_arm_m)
-        self.response: object = None
+        self.response: CargoResponse | None = None
         self.deck_force: NDArray | None = None
 
     def __call__(self, v: NDArray) -> NDArray:
@@ -285,8 +284,8 @@ def couple_deck(
     model: StructuralModel,
     excitation: HarmonicExcitation,
     compliance: HullCompliance,
-    solve: Callable[[HarmonicExcitation], object],
-    deck_forces: Callable[[HarmonicExcitation, object], NDArray],
+    solve: Callable[[HarmonicExcitation], CargoResponse],
+    deck_forces: Callable[[HarmonicExcitation, CargoResponse], NDArray],
     harmonic_count: int,
     *,
     jacobian0: NDArray | None = None,
@@ -359,4 +358,5 @@ def couple_deck(
         label=label,
     )
     coupled = _with_deck_change(excitation, V, "two-way coupled deck")
+    assert residual.response is not None  # the residual was evaluated at least once
     return DeckCoupling(coupled, residual.response, V, np.asarray(residual.deck_force), Q, status)

@@ -31,7 +31,6 @@ applied to the hull. The iteration that makes the deck and the cargo agree is
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,9 +40,14 @@ from seafast.fourier import harmonics_to_time, time_to_harmonics
 from seafast.hull.girder import HullGirder
 from seafast.hull.loads import deck_load_influence
 from seafast.model.structure import StructuralModel
+from seafast.solvers.linear import LinearResponse
+from seafast.solvers.periodic import PeriodicResponse
 from seafast.vessel.loading import VesselLoading
 
-__all__ = ["HullCompliance", "hull_compliance", "spread_load_N", "deck_forces_N"]
+CargoResponse = LinearResponse | PeriodicResponse
+"""The cargo's response to a deck: the linear (bilateral) model's or a nonlinear solver's."""
+
+__all__ = ["CargoResponse", "HullCompliance", "hull_compliance", "spread_load_N", "deck_forces_N"]
 
 
 @dataclass(frozen=True)
@@ -157,7 +161,11 @@ def spread_load_N(model: StructuralModel, excitation: HarmonicExcitation, harmon
 
 
 def deck_forces_N(
-    model: StructuralModel, excitation: HarmonicExcitation, response: Any, nonlinear: bool, harmonic_count: int = 1
+    model: StructuralModel,
+    excitation: HarmonicExcitation,
+    response: CargoResponse,
+    nonlinear: bool,
+    harmonic_count: int = 1,
 ) -> NDArray:
     """``P_k``: downward force of one cargo unit on the deck at each sea-fastening point [N].
 
@@ -179,7 +187,7 @@ def deck_forces_N(
     """
     _, Kco, Koo = model.spring_matrices(include_saddles=not nonlinear)
     sad = model.saddle_deck_dof
-    if nonlinear:  # every method has samples (the references have no harmonics)
+    if isinstance(response, PeriodicResponse):  # every method has samples (the references have no harmonics)
         x_c = np.asarray(response.cargo_displacement_time_m, dtype=float)
         n_t = x_c.shape[0]
         x_o = harmonics_to_time(excitation.deck_displacement, n_t)

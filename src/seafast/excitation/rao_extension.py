@@ -24,16 +24,16 @@ Deep-water wave numbers ``k = omega^2 / g`` (as the quasi-static hull-girder wav
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 
 __all__ = ["extended_rao"]
 
 
 def extended_rao(
-    motions: Any,
+    motions: RigidBodyMotions,
     omega_rad_s: ArrayLike,
     *,
     gravity_m_per_s2: float,

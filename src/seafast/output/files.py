@@ -7,6 +7,7 @@ from typing import Any
 
 import yaml
 
+from seafast.analyses.run import CaseResult
 from seafast.output.tables import write_summary_csv
 
 __all__ = ["write_run_outputs", "write_netcdf"]
@@ -19,7 +20,7 @@ def write_netcdf(ds: Any, path: Path) -> Path:
     return path
 
 
-def write_run_outputs(result: Any, out_dir: str | Path) -> dict[str, Path]:
+def write_run_outputs(result: CaseResult, out_dir: str | Path) -> dict[str, Path]:
     """Write everything ``seafast run`` produces for ``result`` (a :class:`seafast.analyses.run.CaseResult`)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

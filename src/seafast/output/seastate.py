@@ -24,6 +24,8 @@ import xarray as xr
 import yaml
 
 import seafast
+from seafast.analyses.seastate.design_wave import DesignWaveExtremes
+from seafast.analyses.seastate.monte_carlo import MonteCarloResult, MonteCarloStatistics
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
 from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
 from seafast.results.labelled import labelled_variable as _var
@@ -66,7 +68,7 @@ def not_computed_row(model: str, method: str) -> dict[str, Any]:
     return {"model": model, "method": method, **dict.fromkeys(QUANTITIES), "converged": None}
 
 
-def monte_carlo_row(statistics: Any) -> dict[str, Any]:
+def monte_carlo_row(statistics: MonteCarloStatistics) -> dict[str, Any]:
     """The row of one model's Monte Carlo statistics (``MonteCarloStatistics``)."""
     row: dict[str, Any] = {"model": statistics.model, "method": "monte_carlo"}
     for q in ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m"):
@@ -308,7 +310,10 @@ def _seastate_attrs(analysis: SpectralAnalysis) -> dict[str, Any]:
 
 
 def seastate_dataset(
-    analysis: SpectralAnalysis, rows: Sequence[Mapping[str, Any]], monte_carlo: xr.Dataset | None = None, design: Any = None
+    analysis: SpectralAnalysis,
+    rows: Sequence[Mapping[str, Any]],
+    monte_carlo: xr.Dataset | None = None,
+    design: DesignWaveExtremes | None = None,
 ) -> xr.Dataset:
     """The content of seastate.nc (see the module docstring); ``design``: the DesignWaveExtremes, if computed."""
     v = _transfer_variables(analysis)
@@ -329,9 +334,9 @@ def write_seastate_outputs(
     rows: Sequence[Mapping[str, Any]],
     out_dir: str | Path,
     *,
-    monte_carlo: Any = None,
+    monte_carlo: MonteCarloResult | None = None,
     plots: bool = True,
-    design: Any = None,
+    design: DesignWaveExtremes | None = None,
 ) -> dict[str, Path]:
     """Write seastate.csv, seastate.nc, case.yaml and (``plots``) the PNG figures; return their paths.
 

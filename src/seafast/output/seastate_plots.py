@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from seafast.analyses.seastate.monte_carlo import MonteCarloResult
 from seafast.output.style import legend_outside
 
 __all__ = ["write_seastate_figures", "FIGURE_DPI"]
@@ -193,7 +194,7 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
     return path
 
 
-def write_seastate_figures(ds: xr.Dataset, out_dir: str | Path, monte_carlo: Any = None) -> list[Path]:
+def write_seastate_figures(ds: xr.Dataset, out_dir: str | Path, monte_carlo: MonteCarloResult | None = None) -> list[Path]:
     """Write the sea-state PNGs into ``out_dir``; the Monte Carlo ones only when it ran."""
     import matplotlib
 

@@ -22,8 +22,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.sweep.frequency import SweepResult
 from seafast.analyses.sweep.range import RangeLimit
 from seafast.analyses.sweep.table import BASE_COLUMNS, SweepTable
+from seafast.model.structure import StructuralModel
 from seafast.solvers.floquet import Stability
 
 __all__ = [
@@ -104,7 +106,7 @@ def _branch(ax: plt.Axes, table: SweepTable, values: NDArray) -> None:
         ax.plot(omega[few], values[few], "x", color="0.4", ms=3, lw=0.6, label=label)
 
 
-def structural_figure(table: SweepTable, model: Any, acceleration_limit_rad_s: float | None) -> plt.Figure:
+def structural_figure(table: SweepTable, model: StructuralModel, acceleration_limit_rad_s: float | None) -> plt.Figure:
     """The structural sweep's figure: saddle force, gap and bending moment against omega, natural frequencies marked."""
     omega = table.omega_rad_s
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
@@ -207,7 +209,7 @@ def _save(fig: plt.Figure, path: Path) -> Path:
     return path
 
 
-def write_sweep_outputs(result: Any, out_dir: str | Path, *, plots: bool = True) -> list[Path]:
+def write_sweep_outputs(result: SweepResult, out_dir: str | Path, *, plots: bool = True) -> list[Path]:
     """Write ``frequency_response.csv`` (and ``frequency_response.png`` with ``plots``) of a
     :class:`~seafast.analyses.sweep.frequency.SweepResult`; return their paths."""
     out = Path(out_dir)
@@ -222,7 +224,7 @@ def write_sweep_outputs(result: Any, out_dir: str | Path, *, plots: bool = True)
     return paths
 
 
-def format_sweep_summary(result: Any) -> list[str]:
+def format_sweep_summary(result: SweepResult) -> list[str]:
     """Lines for people: how the branch ended, its folds and stability, the deck-acceleration limit, the peak RAO."""
     t, b = result.table, result.branch
     unstable = sum(v is Stability.UNSTABLE for v in t.stability)
@@ -273,7 +275,7 @@ def format_sweep_summary(result: Any) -> list[str]:
     return lines
 
 
-def range_warning(result: Any) -> str | None:
+def range_warning(result: SweepResult) -> str | None:
     """One sentence when points lie beyond the physically meaningful range (which limits, where), else None."""
     t = result.table
     out = ~t.valid
@@ -288,7 +290,7 @@ def range_warning(result: Any) -> str | None:
     )
 
 
-def truncation_warning(result: Any) -> str | None:
+def truncation_warning(result: SweepResult) -> str | None:
     """One sentence when points' truncation error exceeds the tolerance (how many, the worst, what to do), else None."""
     t = result.table
     few = t.too_few_harmonics
@@ -306,7 +308,7 @@ def truncation_warning(result: Any) -> str | None:
     )
 
 
-def fold_warning(result: Any) -> str | None:
+def fold_warning(result: SweepResult) -> str | None:
     """One sentence when folds are not confirmed by the Floquet multipliers (no multiplier near +1), else None."""
     t = result.table
     unconfirmed = [c for c in t.folds if not c.confirmed]

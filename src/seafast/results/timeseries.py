@@ -14,6 +14,7 @@ from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import LinearResponse
 from seafast.solvers.outcome import SolverOutcome, SolverWarning
+from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = ["PeriodTimeSeries", "linear_time_series", "from_periodic_response", "moment_lines"]
 
@@ -45,7 +46,7 @@ def linear_time_series(response: LinearResponse, time_samples: int) -> PeriodTim
     )
 
 
-def from_periodic_response(response: Any, time_samples: int | None = None) -> PeriodTimeSeries:
+def from_periodic_response(response: PeriodicResponse, time_samples: int | None = None) -> PeriodTimeSeries:
     """Adapt a nonlinear solver's ``PeriodicResponse`` (HBM or reference) to the common form.
 
     A static (time-invariant) response is repeated over ``time_samples``.

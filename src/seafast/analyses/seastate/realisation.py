@@ -259,7 +259,7 @@ def realisation_plan(
     case: Case,
     model: StructuralModel,
     spectrum: WaveSpectrum,
-    transfer_at: Any,
+    transfer_at: Callable[[NDArray[np.float64]], TransferFunctions],
     still: StillWater,
     settings: MonteCarloSettings = MonteCarloSettings(),
 ) -> RealisationPlan:
