@@ -17,14 +17,17 @@ __all__ = ["SolverMethod", "Formulation", "ContactLawKind", "NonlinearSolver", "
 class SolverMethod(StrEnum):
     """How the nonlinear (unilateral-saddle) periodic response is solved (``solver.method``).
 
-    ``HBM``: harmonic balance with AFT (:func:`seafast.solvers.hbm.solve_hbm`); ``QUASI_STATIC``: the
-    exact-contact quasi-static reference; ``TIME_DOMAIN``: the exact-contact time-domain reference
-    (:mod:`seafast.solvers.references`).
+    ``HBM``: harmonic balance with AFT (:func:`seafast.solvers.hbm.solve_hbm`); with ``solver.harmonics``
+    unset its converged limit (every harmonic) is computed in closed form by exact-event shooting where the
+    contact law is exact; ``QUASI_STATIC``: the exact-contact quasi-static reference; ``TIME_DOMAIN``: the
+    exact-contact time-domain reference (:mod:`seafast.solvers.references`); ``SHOOTING``: exact-event
+    shooting on the piecewise-linear contact problem (:func:`seafast.solvers.shooting.solve_shooting`).
     """
 
     HBM = "hbm"
     QUASI_STATIC = "quasi_static"
     TIME_DOMAIN = "time_domain"
+    SHOOTING = "shooting"
 
 
 class Formulation(StrEnum):

@@ -326,7 +326,12 @@ class SolverConfig(_Strict):
         "method); a preset only fills the keys the case leaves unset",
     )
     # the modes are Literals of enum members: the values are the members, the JSON Schema lists them inline
-    method: Literal[SolverMethod.HBM, SolverMethod.QUASI_STATIC, SolverMethod.TIME_DOMAIN] = SolverMethod.HBM
+    method: Literal[SolverMethod.HBM, SolverMethod.QUASI_STATIC, SolverMethod.TIME_DOMAIN, SolverMethod.SHOOTING] = Field(
+        SolverMethod.HBM,
+        description="hbm (harmonic balance, default; with solver.harmonics unset and the exact contact law its converged "
+        "limit, every harmonic, computed by exact-event shooting), quasi_static or time_domain (the exact-contact "
+        "references), or shooting (exact-event shooting on the piecewise-linear contact problem)",
+    )
     formulation: Literal[Formulation.CONDENSED, Formulation.FULL] = Formulation.CONDENSED
     # a case starts the time-domain reference from the linear or the harmonic balance's solution only
     time_domain_start: Literal[TimeDomainStart.LINEAR, TimeDomainStart.HBM] = Field(
@@ -341,11 +346,14 @@ class SolverConfig(_Strict):
     regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
     harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] | None = Field(
         None,
-        description="Number of harmonics H; default (null): chosen adaptively until the saddle-force peaks settle to "
-        "solver.truncation_tolerance",
+        description="Number of harmonics H; default (null): the converged answer (with the exact contact law and the "
+        "condensed formulation every harmonic, by exact-event shooting; otherwise H chosen adaptively until the "
+        "saddle-force peaks settle to solver.truncation_tolerance)",
     )
     time_samples: Annotated[int, Field(ge=4, le=16384), NotBool] | None = Field(
-        None, description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references)"
+        None,
+        description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references; "
+        "for shooting, 16 samples per period of the third cargo mode on bilateral saddles, a power of 2)",
     )
     nonlinear_solver: Literal[NonlinearSolver.HYBR, NonlinearSolver.NEWTON] = Field(
         NonlinearSolver.NEWTON, description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"

@@ -11,6 +11,7 @@ method             solver                                                options
 ``HBM``            :func:`seafast.solvers.hbm.solve_hbm`                  :class:`~seafast.solvers.hbm.HBMOptions`
 ``QUASI_STATIC``   :func:`seafast.solvers.references.solve_quasi_static`  :class:`~seafast.solvers.references.QuasiStaticOptions`
 ``TIME_DOMAIN``    :func:`seafast.solvers.references.solve_time_domain`   :class:`~seafast.solvers.references.TimeDomainOptions`
+``SHOOTING``       :func:`seafast.solvers.shooting.solve_shooting`        :class:`~seafast.solvers.shooting.ShootingOptions`
 =================  ====================================================  =================================
 
 A time-domain reference started from the harmonic balance's solution (``TimeDomainOptions(start=HBM)``)
@@ -30,16 +31,19 @@ from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.options import QuasiStaticOptions, TimeDomainOptions
 from seafast.solvers.references.quasi_static import solve_quasi_static
 from seafast.solvers.references.time_domain import solve_time_domain
+from seafast.solvers.shooting.options import ShootingOptions
+from seafast.solvers.shooting.solve import solve_shooting
 
 __all__ = ["PeriodicOptions", "OPTIONS_CLASSES", "solve_periodic"]
 
-PeriodicOptions = HBMOptions | QuasiStaticOptions | TimeDomainOptions
+PeriodicOptions = HBMOptions | QuasiStaticOptions | TimeDomainOptions | ShootingOptions
 """The settings of any method of :func:`solve_periodic`."""
 
 OPTIONS_CLASSES: dict[SolverMethod, type[PeriodicOptions]] = {
     SolverMethod.HBM: HBMOptions,
     SolverMethod.QUASI_STATIC: QuasiStaticOptions,
     SolverMethod.TIME_DOMAIN: TimeDomainOptions,
+    SolverMethod.SHOOTING: ShootingOptions,
 }
 """Each method's options class."""
 
@@ -59,8 +63,8 @@ def solve_periodic(
     model, excitation
         The cargo and sea-fastening model, and its deck motion and vessel loads per harmonic.
     method
-        :class:`~seafast.config.modes.SolverMethod` (or its value): ``HBM`` (default), ``QUASI_STATIC``
-        or ``TIME_DOMAIN``.
+        :class:`~seafast.config.modes.SolverMethod` (or its value): ``HBM`` (default), ``QUASI_STATIC``,
+        ``TIME_DOMAIN`` or ``SHOOTING``.
     options
         The method's settings (:data:`OPTIONS_CLASSES`); None: that class's defaults.
     initial_compression_m
@@ -90,5 +94,7 @@ def solve_periodic(
         return solve_hbm(model, excitation, chosen, initial_compression_m=initial_compression_m)
     if isinstance(chosen, QuasiStaticOptions):
         return solve_quasi_static(model, excitation, chosen)
+    if isinstance(chosen, ShootingOptions):
+        return solve_shooting(model, excitation, chosen)
     start = solve_hbm(model, excitation, chosen.hbm) if chosen.start is TimeDomainStart.HBM else None
     return solve_time_domain(model, excitation, chosen, start=start)

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from seafast.config.modes import Formulation, SolverMethod
+from seafast.config.modes import ContactLawKind, Formulation, SolverMethod
 from seafast.config.schema import Case
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.model.structure import StructuralModel
@@ -20,8 +20,9 @@ from seafast.solvers.dispatch import PeriodicOptions, solve_periodic
 from seafast.solvers.hbm.options import HBMOptions
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.references.options import QuasiStaticOptions, TimeDomainOptions
+from seafast.solvers.shooting.options import ShootingOptions
 
-__all__ = ["hbm_options", "nonlinear_options", "solve_nonlinear"]
+__all__ = ["hbm_options", "shooting_options", "converged_by_shooting", "nonlinear_options", "solve_nonlinear"]
 
 
 def hbm_options(case: Case, **changes: Any) -> HBMOptions:
@@ -41,16 +42,39 @@ def hbm_options(case: Case, **changes: Any) -> HBMOptions:
     return replace(options, **changes) if changes else options
 
 
+def shooting_options(case: Case) -> ShootingOptions:
+    """Exact-event shooting options from the case's solver settings (``solver.time_samples``: the event grid)."""
+    return ShootingOptions(time_samples=case.solver.time_samples)
+
+
+def converged_by_shooting(case: Case) -> bool:
+    """Whether the case's harmonic balance asks for its converged limit and shooting computes it.
+
+    ``solver.method: hbm`` with ``solver.harmonics`` unset, the exact contact law and the condensed formulation:
+    the harmonic balance with every harmonic is the periodic solution of the piecewise-linear problem, which
+    exact-event shooting finds in closed form (the adaptive harmonic balance is the fallback when it cannot).
+    """
+    s = case.solver
+    return bool(
+        s.method == SolverMethod.HBM
+        and s.harmonics is None
+        and s.contact_law == ContactLawKind.EXACT
+        and s.formulation == Formulation.CONDENSED
+    )
+
+
 def nonlinear_options(case: Case, static: bool) -> tuple[SolverMethod, PeriodicOptions]:
     """The method and options :func:`solve_nonlinear` solves the case with.
 
     The still-water state (``static``): the harmonic balance at H = 0, or for the references their
     exact-law quasi-static state. The time-domain reference integrates all cargo DOFs (its full
     formulation) from the case's ``time_domain_start``, the HBM start with the case's HBM settings.
+    The converged harmonic balance (:func:`converged_by_shooting`) and ``solver.method: shooting``: exact-event
+    shooting.
     """
     s = case.solver
     if static:
-        if s.method == SolverMethod.HBM:
+        if s.method in (SolverMethod.HBM, SolverMethod.SHOOTING):
             return SolverMethod.HBM, hbm_options(case, harmonics=0, time_samples=2)
         return SolverMethod.QUASI_STATIC, QuasiStaticOptions(time_samples=2)
     if s.method == SolverMethod.QUASI_STATIC:
@@ -59,6 +83,8 @@ def nonlinear_options(case: Case, static: bool) -> tuple[SolverMethod, PeriodicO
         # both formulations start from one state: the linear periodic solution, or the HBM's orbit (docs/orbits.md)
         options = TimeDomainOptions(time_samples=s.reference_time_samples, start=s.time_domain_start, hbm=hbm_options(case))
         return SolverMethod.TIME_DOMAIN, options
+    if s.method == SolverMethod.SHOOTING or converged_by_shooting(case):
+        return SolverMethod.SHOOTING, shooting_options(case)
     return SolverMethod.HBM, hbm_options(case)
 
 
@@ -74,4 +100,12 @@ def solve_nonlinear(
     start = None
     if warm_start is not None and not static and isinstance(options, HBMOptions) and options.formulation is Formulation.CONDENSED:
         start = np.asarray(warm_start.saddle_compression_time_m)
-    return solve_periodic(model, excitation.static_part() if static else excitation, method, options=options, initial_compression_m=start)
+    exc = excitation.static_part() if static else excitation
+    response = solve_periodic(model, exc, method, options=options, initial_compression_m=start)
+    if not response.converged and not static and converged_by_shooting(case):
+        # the harmonic balance's converged limit by its own adaptive route instead (a contact state without
+        # stiffness, a chattering contact, or more saddles than the shooting solver's table)
+        fallback = solve_periodic(model, exc, SolverMethod.HBM, options=hbm_options(case))
+        note = f"; exact-event shooting did not converge ({response.message}), so the adaptive harmonic balance answered"
+        return replace(fallback, message=fallback.message + note)
+    return response

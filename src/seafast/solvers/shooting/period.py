@@ -1,0 +1,124 @@
+"""One period of the piecewise-linear correction system, from a state, with exact contact events.
+
+Between events the state follows its contact state's closed form (:mod:`seafast.solvers.shooting.states`), in
+the state's modal coordinates. The compiled march (:func:`~seafast.solvers.shooting.kernel.march_events`)
+evaluates every saddle's compression sample by sample on the period's grid ``t_n = n T / N``; the first sample
+where one has the wrong sign (a compressed saddle below zero, a lifted one above) brackets the event, and
+safeguarded Newton iterations on the closed form find its time to :data:`EVENT_TIME_TOLERANCE` of the period.
+The saddle changes state there and the march goes on. An event that starts and ends between two samples is
+missed: the grid resolves the fastest mode the saddles drive (:func:`~seafast.solvers.shooting.solve.event_samples`).
+
+Units: SI (m, rad, N, s).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.solvers.shooting.kernel import DONE, TOO_MANY_EVENTS, march_events
+from seafast.solvers.shooting.states import ContactStates
+
+__all__ = ["EVENT_TIME_TOLERANCE", "PeriodFlow", "PeriodGrid", "TooManyEventsError", "flow_period", "initial_contact"]
+
+EVENT_TIME_TOLERANCE = 1e-12
+"""Event times are found to this fraction of the period."""
+
+
+class TooManyEventsError(RuntimeError):
+    """More contact events in one period than allowed (a chattering contact)."""
+
+
+@dataclass(frozen=True)
+class PeriodFlow:
+    """One period marched from a state.
+
+    Attributes
+    ----------
+    end_state
+        ``x(T) = [eta; eta']`` (2m,).
+    monodromy
+        ``d x(T) / d x(0)`` (2m, 2m): the product of each segment's ``e^{A_L tau}``.
+    state_samples
+        ``x(t_n)`` at the samples (N, 2m) when recorded, else None.
+    state_codes
+        The contact state at each sample (N,), bit i set when saddle i is lifted, when recorded, else None.
+    events
+        Contact events in the period (state changes of one saddle each).
+    """
+
+    end_state: NDArray[np.float64]
+    monodromy: NDArray[np.float64]
+    state_samples: NDArray[np.float64] | None
+    state_codes: NDArray[np.int64] | None
+    events: int
+
+
+class PeriodGrid:
+    """The period's sample grid ``t_n = n T / N``, n = 0 .. N, and the excitation's phases on it."""
+
+    def __init__(self, states: ContactStates, samples: int):
+        self.samples = int(samples)
+        self.period_s = 2.0 * np.pi / states.omega_rad_s
+        self.times = np.arange(self.samples + 1) * (self.period_s / self.samples)
+        k = np.arange(states.harmonics.shape[0])
+        self.phase = np.ascontiguousarray(np.exp(1j * states.omega_rad_s * np.outer(self.times, k)))  # (N+1, n_k)
+
+
+def lifted_code(lifted: NDArray[np.bool_]) -> int:
+    """The contact state's code: bit i set when saddle i is lifted."""
+    return int(np.sum(np.left_shift(1, np.nonzero(lifted)[0]))) if np.any(lifted) else 0
+
+
+def initial_contact(states: ContactStates, x: NDArray[np.float64], t_s: float) -> NDArray[np.bool_]:
+    """The lifted set consistent with state ``x`` at time ``t_s``: an active-set iteration, enumeration as fallback."""
+    d = states.forcing(np.array([t_s]))[0]
+    n_s = d.size
+    lifted = np.zeros(n_s, dtype=bool)
+    for _ in range(2 * n_s + 2):
+        s = states.get(lifted)
+        proposed = (s.compression_state @ x + s.compression_forcing @ d) < 0.0
+        if np.array_equal(proposed, lifted):
+            return lifted
+        lifted = proposed
+    for code in range(2**n_s):
+        trial = np.array([(code >> i) & 1 == 1 for i in range(n_s)])
+        s = states.get(trial)
+        if np.array_equal((s.compression_state @ x + s.compression_forcing @ d) < 0.0, trial):
+            return trial
+    return lifted
+
+
+def flow_period(
+    states: ContactStates, x0: NDArray[np.float64], grid: PeriodGrid, *, record: bool = False, max_events: int = 100_000
+) -> PeriodFlow:
+    """March one period ``[0, T]`` from ``x(0) = x0`` with exact events (see the module docstring).
+
+    ``record``: keep the state and the contact state at every sample (the period a solve reports).
+
+    Raises
+    ------
+    TooManyEventsError
+        After ``max_events`` events in the period.
+    """
+    N, size = grid.samples, states.state_size
+    carry_t = np.zeros(1)
+    carry_i = np.array([0, lifted_code(initial_contact(states, x0, 0.0)), 0], dtype=np.int64)
+    x = np.array(x0, dtype=float)
+    monodromy = np.eye(size)
+    out_x = np.zeros((N, size))
+    out_code = np.zeros(N, dtype=np.int64)
+    while True:
+        arrays = states.arrays
+        status = march_events(
+            arrays.table, arrays.eigenvalues, arrays.eigenvectors, arrays.inverse_eigenvectors, arrays.modal_compression,
+            arrays.particular_compression, arrays.particular, arrays.lifted, states.omega_rad_s, grid.times, grid.phase,
+            EVENT_TIME_TOLERANCE, int(max_events), bool(record), carry_t, carry_i, x, monodromy, out_x, out_code,
+        )  # fmt: skip
+        if status == DONE:
+            return PeriodFlow(x, monodromy, out_x if record else None, out_code if record else None, int(carry_i[2]))
+        if status == TOO_MANY_EVENTS:
+            raise TooManyEventsError(f"more than {max_events} contact events in one period")
+        states.get(states.lifted_of(int(status)))  # a new contact state: build it, then resume

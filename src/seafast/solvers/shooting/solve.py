@@ -1,0 +1,232 @@
+"""The periodic response by shooting on the piecewise-linear correction system: exact events, closed-form segments.
+
+The saddles' contact problem is piecewise linear (:mod:`seafast.solvers.shooting.states`). A periodic solution is
+a state ``x0`` the period's flow maps onto itself, ``P(x0) = x0``; ``P`` is marched exactly
+(:func:`~seafast.solvers.shooting.period.flow_period`) and its Jacobian, the monodromy matrix ``Phi``, comes with
+it, so Newton's method ``x0 <- x0 - (Phi - I)^-1 (P(x0) - x0)`` converges in a few periods, whatever harmonics the
+ringing after a re-contact would need. The start is the attractor the physical system heads for from the linear
+periodic solution (``x0 = 0``, no correction): a few periods are marched before Newton takes over, and the orbit
+found is checked for stability by its Floquet multipliers (the eigenvalues of ``Phi``). The only approximation is
+the modal reduction of the correction system (modes up to ``cutoff_factor`` times the reference frequency, the
+rest static through the residual flexibility): docs/theory.md, section 6, measures it.
+
+Units: SI (m, rad, N, s). Nothing here prints, reads or writes files.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.config.modes import SolverMethod
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_to_complex_harmonics, time_to_harmonics
+from seafast.model.structure import StructuralModel
+from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
+from seafast.solvers.modal_correction import modal_basis, modal_correction_system
+from seafast.solvers.outcome import SolverOutcome
+from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.shooting.options import ShootingOptions
+from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period
+from seafast.solvers.shooting.states import ContactStates, SingularStateError
+
+__all__ = ["event_samples", "solve_shooting"]
+
+logger = logging.getLogger(__name__)
+
+_STABILITY_MARGIN = 1e-6  # a Floquet multiplier above 1 + this: an unstable orbit
+
+
+def _reference_frequency_rad_s(model: StructuralModel, modes: int) -> float:
+    """The highest of the cargo's ``modes`` lowest natural frequencies on bilateral saddles [rad/s] (cached modal basis)."""
+    basis = modal_basis(model, 0.0)
+    count = max(min(int(modes), model.saddle_count), 1)
+    if basis.natural_frequency_rad_s.size >= count:
+        return float(basis.natural_frequency_rad_s[count - 1])
+    return float(model.natural_frequencies_rad_s(True, count=count)[-1])
+
+
+def event_samples(model: StructuralModel, omega_rad_s: float, options: ShootingOptions) -> int:
+    """Samples per period of the event grid: ``samples_per_mode`` per period of the reference frequency, a power of 2."""
+    if options.time_samples is not None:
+        return int(options.time_samples)
+    need = options.samples_per_mode * _reference_frequency_rad_s(model, options.reference_modes) / float(omega_rad_s)
+    return int(2 ** math.ceil(math.log2(max(need, options.minimum_samples))))
+
+
+def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, options: ShootingOptions | None = None) -> PeriodicResponse:
+    """The periodic steady state of the cargo on its unilateral saddles by exact-event shooting.
+
+    Parameters
+    ----------
+    model, excitation
+        The cargo model and its periodic excitation (at least one dynamic harmonic).
+    options
+        :class:`~seafast.solvers.shooting.ShootingOptions` (None: the defaults).
+
+    Returns
+    -------
+    PeriodicResponse
+        ``method = SolverMethod.SHOOTING``; samples on ``t_n = n T / N`` (N the event grid), cargo harmonics
+        from them; ``options`` record the modes kept, the grid, the periods marched, the Newton steps, the
+        events per period, the contact states visited and the largest Floquet multiplier.
+    """
+    opts = ShootingOptions() if options is None else options
+    omega = float(excitation.omega_rad_s)
+    ops = condensed_operators(model, excitation, max(excitation.harmonic_count - 1, 1))
+    D = real_to_complex_harmonics(ops.linear_compression_m)
+    N = event_samples(model, omega, opts)
+    d_grid = harmonics_to_time(D, N)
+    record: dict[str, int | float | str | bool | list[int] | None] = {"time_samples": N, "samples_per_mode": opts.samples_per_mode}
+    if np.all(d_grid > 0.0):
+        # the linear solution is the answer: it lives on the excitation's harmonics, a coarse grid carries it exactly
+        note = "contact kept by the linear solution: exact"
+        N_linear = min(N, opts.minimum_samples)
+        record.update(time_samples=N_linear)
+        return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
+    cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
+    system = modal_correction_system(model, cutoff, minimum_modes=model.saddle_count)
+    states = ContactStates(system, D, omega)
+    record.update(modes=system.mode_count, cutoff_rad_s=cutoff)
+    scale = max(float(np.max(np.abs(d_grid))), 1e-6)
+    try:
+        flow, residual, periods, steps = _periodic_state(states, N, scale, opts)
+    except (SingularStateError, TooManyEventsError) as error:
+        note = f"shooting: {error}"
+        return _response(model, ops, opts, None, None, N, SolverOutcome.NOT_CONVERGED, math.inf, 0, 0, note, record)
+    multipliers = np.abs(np.linalg.eigvals(flow.monodromy))
+    largest = float(np.max(multipliers, initial=0.0))
+    converged = residual <= opts.tolerance and largest <= 1.0 + _STABILITY_MARGIN
+    record.update(periods=periods, newton_steps=steps, events=flow.events, contact_states=states.visited, floquet_multiplier_max=largest)
+    note = (
+        f"exact-event shooting: {system.mode_count} modes up to {cutoff:.4g} rad/s, {N} samples per period, "
+        f"{flow.events} events per period, {periods} period(s) marched, {steps} Newton step(s), residual {residual:.2g}, "
+        f"largest Floquet multiplier {largest:.4f}"
+    )
+    if not converged:
+        note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
+    outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
+    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record)
+
+
+def _periodic_state(states: ContactStates, N: int, scale_m: float, opts: ShootingOptions) -> tuple[PeriodFlow, float, int, int]:
+    """March from the linear solution, then Newton on ``P(x0) = x0``: (the last flow, its residual, periods, Newton steps)."""
+    size = states.state_size
+    grid = PeriodGrid(states, N)
+
+    def flow_from(x: NDArray) -> PeriodFlow:
+        return flow_period(states, x, grid, max_events=opts.max_events)
+
+    x0 = np.zeros(size)
+    periods = steps = 0
+    flow = flow_from(x0)
+    periods += 1
+    for _ in range(opts.march_periods):
+        x0 = flow.end_state
+        flow = flow_from(x0)
+        periods += 1
+    residual = _residual(states, flow, x0, scale_m)
+    best = (flow, residual, x0)
+    while residual > opts.tolerance and steps < opts.max_iterations:
+        try:
+            step = np.linalg.solve(flow.monodromy - np.eye(size), flow.end_state - x0)
+        except np.linalg.LinAlgError:
+            step = x0 - flow.end_state  # a multiplier at 1: march one period instead
+        trial = x0 - step
+        trial_flow = flow_from(trial)
+        periods += 1
+        steps += 1
+        trial_residual = _residual(states, trial_flow, trial, scale_m)
+        if trial_residual < best[1]:
+            x0, flow, residual = trial, trial_flow, trial_residual
+            best = (flow, residual, x0)
+        else:
+            # Newton did not improve: march on from the best state (towards the attractor), then try again
+            x0 = best[0].end_state
+            flow = flow_from(x0)
+            periods += 1
+            residual = _residual(states, flow, x0, scale_m)
+            if residual < best[1]:
+                best = (flow, residual, x0)
+    recorded = flow_period(states, best[2], grid, record=True, max_events=opts.max_events)
+    return recorded, best[1], periods, steps
+
+
+def _residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
+    """How far the period's end is from its start, as the compression and its rate over a period could move [-]."""
+    s = states.system
+    m = s.mode_count
+    change = flow.end_state - x0
+    bound = np.abs(s.saddle_mode_shape) @ np.hypot(change[:m], change[m:] / np.maximum(s.natural_frequency_rad_s, 1e-12))
+    return float(np.max(bound, initial=0.0) / scale_m)
+
+
+def _few_harmonics(harmonics: NDArray[np.complex128], omega_rad_s: float, t_s: NDArray) -> NDArray[np.float64]:
+    """``Re sum_k X_k e^{i k w t}`` at the times t for a few harmonics X (n_k, n) in real arithmetic, (n_t, n)."""
+    out = np.broadcast_to(harmonics[0].real, (t_s.size, harmonics.shape[1])).copy()
+    for k in range(1, harmonics.shape[0]):
+        out += np.outer(np.cos(k * omega_rad_s * t_s), harmonics[k].real) - np.outer(np.sin(k * omega_rad_s * t_s), harmonics[k].imag)
+    return out
+
+
+def _response(
+    model: StructuralModel,
+    ops: CondensedOperators,
+    opts: ShootingOptions,
+    states: ContactStates | None,
+    flow: PeriodFlow | None,
+    N: int,
+    outcome: SolverOutcome,
+    residual: float,
+    iterations: int,
+    periods: int,
+    note: str,
+    record: dict,
+) -> PeriodicResponse:
+    """The :class:`PeriodicResponse` of the samples (the linear solution where no correction is needed)."""
+    omega = ops.omega_rad_s
+    k_u = ops.saddle_stiffness_N_per_m
+    H = N // 2 - 1
+    t = np.arange(N, dtype=float) * (2.0 * np.pi / omega / N)
+    X_lin = ops.linear_cargo_displacement[: H + 1]
+    delta = _few_harmonics(real_to_complex_harmonics(ops.linear_compression_m), omega, t)
+    # q = basis @ coefficients: the linear solution's cos/sin columns, the modal coordinates and the correction forces
+    columns = [np.ones((N, 1))] + [f(k * omega * t)[:, None] for k in range(1, X_lin.shape[0]) for f in (np.cos, np.sin)]
+    rows = [X_lin[0].real[None, :]] + [r[None, :] for k in range(1, X_lin.shape[0]) for r in (X_lin[k].real, -X_lin[k].imag)]
+    if states is not None and flow is not None:
+        s = states.system
+        m = s.mode_count
+        d = states.forcing(t)
+        correction = np.zeros_like(delta)
+        assert flow.state_samples is not None and flow.state_codes is not None
+        for code in np.unique(flow.state_codes):
+            at = flow.state_codes == code
+            cs = states.get(states.lifted_of(int(code)))
+            correction[at] = flow.state_samples[at] @ cs.force_state.T + d[at] @ cs.force_forcing.T
+            delta[at] = flow.state_samples[at] @ cs.compression_state.T + d[at] @ cs.compression_forcing.T
+        columns += [flow.state_samples[:, :m], correction]
+        rows += [s.mode_shape.T, s.residual_displacement_m_per_N.T]
+    basis, coefficients = np.hstack(columns), np.vstack(rows)
+    q = basis @ coefficients
+    spectrum = time_to_harmonics(basis, H)  # the few channels' harmonics, then through the coefficients
+    X = spectrum.real @ coefficients + 1j * (spectrum.imag @ coefficients)
+    force = k_u * np.maximum(delta, 0.0)
+    record = dict(record, tolerance=float(opts.tolerance), cutoff_factor=float(opts.cutoff_factor))
+    return PeriodicResponse(
+        method=SolverMethod.SHOOTING,
+        omega_rad_s=float(omega),
+        cargo_displacement_time_m=q,
+        cargo_displacement_harmonics=X,
+        saddle_compression_time_m=delta,
+        saddle_force_time_N=force,
+        outcome=outcome,
+        residual_norm=float(residual),
+        iterations=int(iterations),
+        message=note,
+        harmonic_truncation_indicator=high_harmonic_energy_share(force, H),
+        function_evaluations=int(periods),
+        options=record,
+    )

@@ -1,0 +1,219 @@
+"""The dynamics of each contact state of the correction system, in closed form.
+
+The correction system of the saddles (:mod:`seafast.solvers.transient`, :mod:`seafast.solvers.modal_correction`):
+the cargo's modes on bilateral saddles, ``eta'' + Xi eta' + Omega^2 eta = Phi_s^T c``, the correction
+force ``c = k_u max(-delta, 0)`` where a saddle has lifted, and the compression
+``delta = d(t) - Phi_s eta - R c`` (``d`` the linear compressions, ``R`` the static residual
+flexibility of the modes left out). For a fixed set L of lifted saddles it is linear: on L,
+``c_L = W_L (Phi_L eta - d_L)`` with ``W_L = (I - K_L R_LL)^-1 K_L``, so the state ``x = [eta; eta']``
+obeys ``x' = A_L x + B_L d_L(t)`` with ``A_L = [[0, I], [-(Omega^2 - Phi_L^T W_L Phi_L), -Xi]]``. Its
+response is known exactly: ``x(t) = Re(V e^{Lambda (t - t0)} V^-1) (x(t0) - x_p(t0)) + x_p(t)``, with
+``x_p`` the particular solution of the excitation's harmonics (``(i k w - A_L) X_k = B_L D_k``).
+
+The vector field is continuous where a saddle changes state (``c_i = 0`` and ``delta_i = 0`` there from both
+sides), so the flow's Jacobian is continuous too: the monodromy matrix of a period is the product of the
+segments' ``e^{A_L tau}``, with no saltation terms.
+
+Units: SI (m, rad, N, s); compressions positive when the saddle is compressed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.solvers.modal_correction import ModalCorrectionSystem
+
+__all__ = ["ContactState", "ContactStates", "SingularStateError", "StateArrays", "modal_exponential"]
+
+_SMALLEST_EXPONENT = -300.0  # e^-300: a decayed mode, kept above the subnormal range (whose arithmetic is slow)
+
+
+def modal_exponential(exponent: NDArray[np.complex128]) -> NDArray[np.complex128]:
+    """``e^{exponent}`` with the real parts held at or above -300 (decayed modes stay 1e-130, never subnormal)."""
+    arg = np.asarray(exponent, dtype=complex)
+    return np.exp(np.maximum(arg.real, _SMALLEST_EXPONENT) + 1j * arg.imag)
+
+
+class SingularStateError(ValueError):
+    """A contact state with no stiffness left against a rigid-body motion (every support lifted, no lashing)."""
+
+
+@dataclass(frozen=True)
+class ContactState:
+    """One set of lifted saddles and its closed-form dynamics.
+
+    Attributes
+    ----------
+    lifted
+        (n_s,) which saddles are lifted (carry the correction force).
+    eigenvalues, eigenvectors, inverse_eigenvectors
+        ``A_L = V diag(Lambda) V^-1`` [1/s], complex, (2m,), (2m, 2m), (2m, 2m).
+    particular
+        ``X_k``, the particular solution's harmonics, complex (n_k, 2m): ``x_p(t) = Re sum_k X_k e^{i k w t}``.
+    compression_state, compression_forcing
+        ``delta = compression_state @ x + compression_forcing @ d`` [m per unit state], (n_s, 2m), (n_s, n_s).
+    force_state, force_forcing
+        ``c = force_state @ x + force_forcing @ d`` [N per unit state], (n_s, 2m), (n_s, n_s).
+    modal_compression
+        ``compression_state @ V`` (n_s, 2m): the compressions of the modal coordinates ``y = V^-1 x``.
+    particular_compression
+        The particular solution's compressions, complex harmonics (n_k, n_s) [m]: with ``z = V^-1 (x(t0) - x_p(t0))``,
+        ``delta(t) = Re(modal_compression (e^{Lambda (t - t0)} z)) + Re sum_k P_k e^{i k w t}``.
+    """
+
+    lifted: NDArray[np.bool_]
+    eigenvalues: NDArray[np.complex128]
+    eigenvectors: NDArray[np.complex128]
+    inverse_eigenvectors: NDArray[np.complex128]
+    particular: NDArray[np.complex128]
+    compression_state: NDArray[np.float64]
+    compression_forcing: NDArray[np.float64]
+    force_state: NDArray[np.float64]
+    force_forcing: NDArray[np.float64]
+    modal_compression: NDArray[np.complex128]
+    particular_compression: NDArray[np.complex128]
+
+    def propagator(self, tau_s: float) -> NDArray[np.float64]:
+        """``e^{A_L tau}`` (2m, 2m)."""
+        V = self.eigenvectors
+        return np.real((V * modal_exponential(self.eigenvalues * tau_s)[None, :]) @ self.inverse_eigenvectors)
+
+
+@dataclass(frozen=True)
+class StateArrays:
+    """The built contact states stacked for the compiled march, and each code's index (-1: not built).
+
+    ``table`` (2^n_s,): the index of the state with code c (bit i set when saddle i is lifted); the stacks
+    (n_states, ...): eigenvalues, eigenvectors and their inverse, the modal and the particular compressions, the
+    particular solution's harmonics and the lifted sets, as in :class:`ContactState`.
+    """
+
+    table: NDArray[np.int64]
+    eigenvalues: NDArray[np.complex128]
+    eigenvectors: NDArray[np.complex128]
+    inverse_eigenvectors: NDArray[np.complex128]
+    modal_compression: NDArray[np.complex128]
+    particular_compression: NDArray[np.complex128]
+    particular: NDArray[np.complex128]
+    lifted: NDArray[np.bool_]
+
+
+MAX_SADDLES = 24
+"""Saddles at most (the table of contact states has 2^n_s entries)."""
+
+
+class ContactStates:
+    """The contact states of one model and excitation, built on first use and kept (a solve's own cache).
+
+    Parameters
+    ----------
+    system
+        The reduced correction system (modes, modal damping, residual flexibility, k_u).
+    compression_harmonics
+        ``D_k``, the linear compressions' complex harmonics (n_k, n_s) [m]: ``d(t) = Re sum_k D_k e^{i k w t}``.
+    omega_rad_s
+        The fundamental frequency w [rad/s].
+    """
+
+    def __init__(self, system: ModalCorrectionSystem, compression_harmonics: NDArray[np.complex128], omega_rad_s: float):
+        self.system = system
+        self.harmonics = np.asarray(compression_harmonics, dtype=complex)
+        self.omega_rad_s = float(omega_rad_s)
+        if system.saddle_count > MAX_SADDLES:
+            raise ValueError(f"saddles: {system.saddle_count}; allowed: at most {MAX_SADDLES} for the shooting solver")
+        self._states: dict[bytes, ContactState] = {}
+        self._order: list[ContactState] = []
+        self._arrays: StateArrays | None = None
+
+    @property
+    def state_size(self) -> int:
+        return 2 * self.system.mode_count
+
+    @property
+    def visited(self) -> int:
+        """How many contact states were built."""
+        return len(self._states)
+
+    def get(self, lifted: NDArray[np.bool_]) -> ContactState:
+        """The state with these saddles lifted."""
+        key = np.asarray(lifted, dtype=bool).tobytes()
+        state = self._states.get(key)
+        if state is None:
+            state = self._build(np.asarray(lifted, dtype=bool).copy())
+            self._states[key] = state
+            self._order.append(state)
+            self._arrays = None
+        return state
+
+    def lifted_of(self, code: int) -> NDArray[np.bool_]:
+        """The lifted set of a state code (bit i: saddle i lifted)."""
+        return np.array([(int(code) >> i) & 1 == 1 for i in range(self.system.saddle_count)])
+
+    @property
+    def arrays(self) -> StateArrays:
+        """The built states stacked for the compiled march (rebuilt when a state was added)."""
+        if self._arrays is None:
+            states = self._order
+            table = np.full(2**self.system.saddle_count, -1, dtype=np.int64)
+            for index, st in enumerate(states):
+                table[int(np.sum(np.left_shift(1, np.nonzero(st.lifted)[0])))] = index
+            self._arrays = StateArrays(
+                table=table,
+                eigenvalues=np.ascontiguousarray(np.stack([st.eigenvalues for st in states])),
+                eigenvectors=np.ascontiguousarray(np.stack([st.eigenvectors for st in states])),
+                inverse_eigenvectors=np.ascontiguousarray(np.stack([st.inverse_eigenvectors for st in states])),
+                modal_compression=np.ascontiguousarray(np.stack([st.modal_compression for st in states])),
+                particular_compression=np.ascontiguousarray(np.stack([st.particular_compression for st in states])),
+                particular=np.ascontiguousarray(np.stack([st.particular for st in states])),
+                lifted=np.ascontiguousarray(np.stack([st.lifted for st in states])),
+            )
+        return self._arrays
+
+    def forcing(self, t_s: NDArray) -> NDArray[np.float64]:
+        """``d(t)`` at the given times (n_t, n_s) [m]."""
+        k = np.arange(self.harmonics.shape[0])
+        phase = np.exp(1j * self.omega_rad_s * np.outer(np.atleast_1d(t_s), k))
+        return np.real(phase @ self.harmonics)
+
+    def _build(self, lifted: NDArray[np.bool_]) -> ContactState:
+        s = self.system
+        m, n_s = s.mode_count, s.saddle_count
+        Phi, R, k_u = s.saddle_mode_shape, s.residual_flexibility_m_per_N, s.unilateral_stiffness_N_per_m
+        L = np.nonzero(lifted)[0]
+        W = np.linalg.solve(np.eye(L.size) - k_u[L, None] * R[np.ix_(L, L)], np.diag(k_u[L])) if L.size else np.zeros((0, 0))
+        stiffness = np.diag(s.natural_frequency_rad_s**2) - Phi[L].T @ W @ Phi[L]
+        A = np.zeros((2 * m, 2 * m))
+        A[:m, m:] = np.eye(m)
+        A[m:, :m] = -stiffness
+        A[m:, m:] = -s.modal_damping
+        input_matrix = np.zeros((2 * m, n_s))
+        input_matrix[m:, L] = -Phi[L].T @ W
+        force_state = np.zeros((n_s, 2 * m))
+        force_state[L, :m] = W @ Phi[L]
+        force_forcing = np.zeros((n_s, n_s))
+        force_forcing[np.ix_(L, L)] = -W
+        compression_state = -np.hstack([Phi, np.zeros((n_s, m))]) - R @ force_state
+        compression_forcing = np.eye(n_s) - R @ force_forcing
+        lam, V = np.linalg.eig(A)
+        if np.any(np.abs(lam) <= 1e-9 * max(float(np.max(np.abs(lam), initial=1.0)), 1.0)) or np.any(lam.real > 0.0):
+            raise SingularStateError(f"contact state with saddles {L.tolist()} lifted has no stiffness against a rigid-body motion")
+        V_inv = np.linalg.inv(V)
+        w_k = 1j * self.omega_rad_s * np.arange(self.harmonics.shape[0])
+        modal_input = V_inv @ (input_matrix @ self.harmonics.T)  # (2m, n_k)
+        particular = (V @ (modal_input / (w_k[None, :] - lam[:, None]))).T  # (n_k, 2m)
+        return ContactState(
+            lifted=lifted,
+            eigenvalues=np.asarray(lam, dtype=complex),
+            eigenvectors=np.asarray(V, dtype=complex),
+            inverse_eigenvectors=np.asarray(V_inv, dtype=complex),
+            particular=np.asarray(particular, dtype=complex),
+            compression_state=compression_state,
+            compression_forcing=compression_forcing,
+            force_state=force_state,
+            force_forcing=force_forcing,
+            modal_compression=np.asarray(compression_state @ V, dtype=complex),
+            particular_compression=np.asarray(particular @ compression_state.T + self.harmonics @ compression_forcing.T, dtype=complex),
+        )
