@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from seafast.analyses.axial import axial_options
+from seafast.analyses.axial import axial_options, solve_axial_row
 from seafast.analyses.run import run_case
 from seafast.cli import main
 from seafast.config import load_case
@@ -148,14 +148,16 @@ def test_just_below_shakedown_the_answer_is_the_reference(near):
     force's dips every period and settles where the lashings balance the walk. The row (whichever solver
     answered it) is the reference's periodic state, not a locked state the truncated series balances in
     its harmonics while the friction it needs exceeds the friction available (before: 0.5-8 % above the
-    reference's lashing force over this band, 3.7 % at its middle). The same for the HBM alone at a
-    quarter, half and three quarters of the band."""
+    reference's lashing force over this band, 3.7 % at its middle). The same for a row at a quarter, half and
+    three quarters of the band; there the HBM alone may converge on a sliding state 6.6 % above the reference
+    (its 100 harmonics cannot carry slips of 47 um), which the row's check against the reference catches."""
     res = near["below"]
     row, td = _row(res), _reference(res)
     assert row["axial_converged"] and td.converged and td.slip_m > 0.0
     assert row["axial_force_N"] == pytest.approx(td.axial_force_N, rel=0.01)
     message = str(res.axial.messages[1, 1])
-    assert ("time-domain reference" in message) == ("did not converge" in message)
+    # the reference is named exactly when it answered: the HBM did not converge, or slid off the reference's answer
+    assert ("time-domain reference" in message) == ("did not converge" in message or "off the time-domain reference" in message)
     mu_crit, mu_sd, *_ = _coefficients(res)
     normal = np.maximum(res.arrays.saddle_force_N[1, 1], 0.0)
     options = axial_options(res.case, normal.shape[0])
@@ -164,9 +166,9 @@ def test_just_below_shakedown_the_answer_is_the_reference(near):
         restraint = replace(base, friction_coefficient=np.full(base.saddle_count, mu_sd - frac * (mu_crit - mu_sd)))
         hbm = solve_axial_hbm(restraint, load, normal, options)
         ref = solve_axial_time_domain(restraint, load, normal, time_samples=options.time_samples)
-        if hbm.converged:
-            assert hbm.axial_force_N == pytest.approx(ref.axial_force_N, rel=0.01)
-        else:
+        answer = solve_axial_row(restraint, load, normal, False, "hbm", options, normal.shape[0])
+        assert answer.converged and answer.axial_force_N == pytest.approx(ref.axial_force_N, rel=0.01)
+        if not hbm.converged:
             assert hbm.lock_check in (LockCheck.VIOLATED, LockCheck.NOT_LOCKED)
 
 

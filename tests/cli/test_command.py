@@ -205,9 +205,12 @@ def test_sweep_says_it_cannot_couple(capsys):
 def test_a_nonlinear_solve_that_does_not_converge_exits_3_and_says_how_it_ended(tmp_path, capsys, monkeypatch):
     """The warning is built from the typed outcome and residual, not from the solver's message."""
     import seafast.solvers.from_case as from_case
+    from seafast.solvers.shooting import ShootingOptions
 
     original = from_case.hbm_options
     monkeypatch.setattr(from_case, "hbm_options", lambda case, **k: original(case, **{"max_iterations": 1, "continuation": False, **k}))
+    # the default's shooting cannot meet a tolerance below round-off; its fallback, the adaptive HBM, has one Newton step
+    monkeypatch.setattr(from_case, "shooting_options", lambda case: ShootingOptions(tolerance=1e-300, max_iterations=1))
     assert main(["run", "-o", str(tmp_path / "run"), *FAST]) == 3
     err = capsys.readouterr().err
     assert "dynamic nonlinear solution did NOT converge (not converged, residual" in err

@@ -137,15 +137,15 @@ def test_a_converged_coupling_reads_as_converged_everywhere(runs):
 def test_heavy_lift_off_couples_at_h16_then_solves_the_coupled_deck_with_the_adaptive_h():
     """Three saddles at 5e9 N/m lift off by 23 mm one-way (H = 512): the deck iterated at the adaptive H of each
     iterate stalled (docs/coupling.md). Now the deck converges at H = 16 (the same deck as a run at H = 16) and the
-    row's answer is the adaptive solve on that deck: converged, chosen adaptively, within its own truncation
-    tolerance, and within 0.5 % of the independent time-domain reference on the coupled deck (1024 steps a period:
+    row's answer is the converged default on that deck (exact-event shooting): converged, its sampled peaks within
+    the tolerance of the continuous ones, and within 0.5 % of the independent time-domain reference on the coupled deck (1024 steps a period:
     -0.15 %, -0.10 % at 4096, converging on it), where the H = 16 solution is 2.4 % low."""
     over = {"vessel.coupling": "two_way", "seafastening.saddle_count": 3, "seafastening.saddle_stiffness_N_per_m": 5e9}
     res = run_case(load_case(overrides=over))
     status = res.coupling[("dynamic", "nonlinear")]
     assert status.converged and status.residual_m <= status.tolerance_m
     final = res.rows.nonlinear_dynamic
-    assert final.converged and final.options["harmonics_selection"] == "adaptive"
+    assert final.converged and final.options["harmonics_selection"] == "shooting"
     assert float(np.max(final.truncation_error)) <= 1e-3
     at16 = run_case(load_case(overrides={**over, "solver.harmonics": 16}))
     deck = res.deck_couplings[("dynamic", "nonlinear")].excitation

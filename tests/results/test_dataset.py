@@ -139,7 +139,8 @@ def test_the_truncation_estimate_reaches_results_nc_and_agrees_with_the_warning(
     """``truncation_error`` (each saddle's estimated peak-force error from the harmonics above H) is in
     results.nc as the solver computed it: above the 0.1 % tolerance where a fixed H = 16 triggers
     ``too_few_harmonics`` (on the base case with motions H = 16 misses a saddle's own peak by 0.67 %
-    against the converged transient analysis, benchmarks/bench_hbm.py), below it where H is adaptive."""
+    against the converged transient analysis, benchmarks/bench_hbm.py), below it by default (the converged
+    answer by exact-event shooting, whose estimate is what its grid misses of the continuous peaks)."""
     fixed = run_case(load_case(overrides={"vessel.motions": "none", "solver.harmonics": 16}))
     adaptive = run_case(load_case(overrides={"vessel.motions": "none"}))
     for res, too_few in ((fixed, True), (adaptive, False)):

@@ -353,7 +353,7 @@ class SolverConfig(_Strict):
     time_samples: Annotated[int, Field(ge=4, le=16384), NotBool] | None = Field(
         None,
         description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references; "
-        "for shooting, 16 samples per period of the third cargo mode on bilateral saddles, a power of 2)",
+        "the shooting solver chooses its own grid from the cargo's modes and its peaks)",
     )
     nonlinear_solver: Literal[NonlinearSolver.HYBR, NonlinearSolver.NEWTON] = Field(
         NonlinearSolver.NEWTON, description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"

@@ -43,8 +43,9 @@ def hbm_options(case: Case, **changes: Any) -> HBMOptions:
 
 
 def shooting_options(case: Case) -> ShootingOptions:
-    """Exact-event shooting options from the case's solver settings (``solver.time_samples``: the event grid)."""
-    return ShootingOptions(time_samples=case.solver.time_samples)
+    """Exact-event shooting options of the case: the defaults (the grid follows the cargo's modes and the peaks, not
+    ``solver.time_samples``, which is the harmonic balance's N)."""
+    return ShootingOptions()
 
 
 def converged_by_shooting(case: Case) -> bool:

@@ -34,6 +34,11 @@ class ShootingOptions:
         Newton steps at most.
     max_events
         Contact events per period at most (a chattering contact ends the solve, not converged).
+    peak_tolerance
+        The grid is refined (doubled) until no saddle's sampled peak force is more than this share of the largest
+        peak force below its continuous peak (found from the closed form between samples) [-].
+    max_samples
+        Samples per period at most.
     """
 
     cutoff_factor: float = 8.0
@@ -45,6 +50,8 @@ class ShootingOptions:
     march_periods: int = 2
     max_iterations: int = 30
     max_events: int = 100_000
+    peak_tolerance: float = 2.5e-4
+    max_samples: int = 65536
 
     def __post_init__(self) -> None:
         def bad(name: str, allowed: str) -> ValueError:
@@ -70,6 +77,12 @@ class ShootingOptions:
             raise bad("time_samples", "None or an integer >= 16")
         if isinstance(self.tolerance, bool) or not isinstance(self.tolerance, (int, float)) or not 0.0 < float(self.tolerance) < 1.0:
             raise bad("tolerance", "a number in (0, 1)")
+        if (
+            isinstance(self.peak_tolerance, bool)
+            or not isinstance(self.peak_tolerance, (int, float))
+            or not 0.0 < self.peak_tolerance < 1.0
+        ):
+            raise bad("peak_tolerance", "a number in (0, 1)")
 
     def to_dict(self) -> Settings:
         """The settings as plain values."""
@@ -83,4 +96,6 @@ class ShootingOptions:
             "march_periods": int(self.march_periods),
             "max_iterations": int(self.max_iterations),
             "max_events": int(self.max_events),
+            "peak_tolerance": float(self.peak_tolerance),
+            "max_samples": int(self.max_samples),
         }

@@ -19,9 +19,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.solvers.shooting.kernel import DONE, TOO_MANY_EVENTS, march_events
-from seafast.solvers.shooting.states import ContactStates
+from seafast.solvers.shooting.states import ContactState, ContactStates, modal_exponential
 
-__all__ = ["EVENT_TIME_TOLERANCE", "PeriodFlow", "PeriodGrid", "TooManyEventsError", "flow_period", "initial_contact"]
+__all__ = ["EVENT_TIME_TOLERANCE", "PeriodFlow", "PeriodGrid", "TooManyEventsError", "flow_period", "initial_contact", "peak_compressions"]
 
 EVENT_TIME_TOLERANCE = 1e-12
 """Event times are found to this fraction of the period."""
@@ -60,11 +60,17 @@ class PeriodGrid:
     """The period's sample grid ``t_n = n T / N``, n = 0 .. N, and the excitation's phases on it."""
 
     def __init__(self, states: ContactStates, samples: int):
+        self.omega_rad_s = states.omega_rad_s
         self.samples = int(samples)
         self.period_s = 2.0 * np.pi / states.omega_rad_s
         self.times = np.arange(self.samples + 1) * (self.period_s / self.samples)
         k = np.arange(states.harmonics.shape[0])
         self.phase = np.ascontiguousarray(np.exp(1j * states.omega_rad_s * np.outer(self.times, k)))  # (N+1, n_k)
+
+    def particular_state(self, s: ContactState, t_s: float) -> NDArray[np.float64]:
+        """The particular solution's state at one time, (1, 2m)."""
+        k = np.arange(s.particular.shape[0])
+        return np.real(np.exp(1j * self.omega_rad_s * k * t_s) @ s.particular)[None, :]
 
 
 def lifted_code(lifted: NDArray[np.bool_]) -> int:
@@ -122,3 +128,33 @@ def flow_period(
         if status == TOO_MANY_EVENTS:
             raise TooManyEventsError(f"more than {max_events} contact events in one period")
         states.get(states.lifted_of(int(status)))  # a new contact state: build it, then resume
+
+
+def peak_compressions(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression_m: NDArray, points: int = 65) -> NDArray:
+    """Each saddle's largest compression in continuous time near its largest sample, from the closed form (n_s,) [m].
+
+    Around the sample n of the largest compression, ``delta(t)`` is evaluated at ``points`` times over
+    ``[t_{n-1}, t_{n+1}]`` in the contact state of sample n (a neighbour in another state bounds the interval at
+    ``t_n``: no event inside the interval evaluated), forward from its first sample. Compared with the largest sample it says how much of a
+    peak the grid misses.
+    """
+    assert flow.state_samples is not None and flow.state_codes is not None
+    N, dt = grid.samples, grid.times[1]
+    peaks = np.max(compression_m, axis=0)
+    for i in range(compression_m.shape[1]):
+        n = int(np.argmax(compression_m[:, i]))
+        code = int(flow.state_codes[n])
+        s = states.get(states.lifted_of(code))
+        # forward from the earlier sample only (backwards, a damped mode grows without bound)
+        first = n - 1 if n > 0 and flow.state_codes[n - 1] == code else n
+        last = n + 1 if n + 1 < N and flow.state_codes[n + 1] == code else n
+        if first == last:
+            continue
+        t_0 = grid.times[first]
+        z = s.inverse_eigenvectors @ (flow.state_samples[first] - grid.particular_state(s, t_0)[0])
+        tau = np.linspace(0.0, (last - first) * dt, points)
+        homogeneous = np.real((modal_exponential(np.outer(tau, s.eigenvalues)) * z[None, :]) @ s.modal_compression[i])
+        k = np.arange(s.particular_compression.shape[0])
+        particular = np.real(np.exp(1j * states.omega_rad_s * np.outer(t_0 + tau, k)) @ s.particular_compression[:, i])
+        peaks[i] = max(peaks[i], float(np.max(homogeneous + particular)))
+    return peaks

@@ -26,11 +26,12 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_to_complex_harmonics, time_to_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
+from seafast.solvers.hbm.harmonics import force_scale_N
 from seafast.solvers.modal_correction import modal_basis, modal_correction_system
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.shooting.options import ShootingOptions
-from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period
+from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
 
 __all__ = ["event_samples", "solve_shooting"]
@@ -92,39 +93,82 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     states = ContactStates(system, D, omega)
     record.update(modes=system.mode_count, cutoff_rad_s=cutoff)
     scale = max(float(np.max(np.abs(d_grid))), 1e-6)
+    x_start = np.zeros(states.state_size)
+    periods = steps = 0
     try:
-        flow, residual, periods, steps = _periodic_state(states, N, scale, opts)
+        while True:
+            grid = PeriodGrid(states, N)
+            flow, residual, marched, newton, x_start = _periodic_state(states, grid, scale, opts, x_start, fresh=periods == 0)
+            periods, steps = periods + marched, steps + newton
+            missed = _missed_peak(states, grid, flow, ops.saddle_stiffness_N_per_m)
+            if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > opts.tolerance:
+                break
+            N *= 2  # the grid misses part of a peak: the same orbit on a finer grid
     except (SingularStateError, TooManyEventsError) as error:
         note = f"shooting: {error}"
         return _response(model, ops, opts, None, None, N, SolverOutcome.NOT_CONVERGED, math.inf, 0, 0, note, record)
     multipliers = np.abs(np.linalg.eigvals(flow.monodromy))
     largest = float(np.max(multipliers, initial=0.0))
     converged = residual <= opts.tolerance and largest <= 1.0 + _STABILITY_MARGIN
-    record.update(periods=periods, newton_steps=steps, events=flow.events, contact_states=states.visited, floquet_multiplier_max=largest)
+    record.update(
+        time_samples=N,
+        periods=periods,
+        newton_steps=steps,
+        events=flow.events,
+        contact_states=states.visited,
+        floquet_multiplier_max=largest,
+        peak_missed_by_grid=float(np.max(missed, initial=0.0)),
+    )
     note = (
         f"exact-event shooting: {system.mode_count} modes up to {cutoff:.4g} rad/s, {N} samples per period, "
         f"{flow.events} events per period, {periods} period(s) marched, {steps} Newton step(s), residual {residual:.2g}, "
-        f"largest Floquet multiplier {largest:.4f}"
+        f"largest Floquet multiplier {largest:.4f}, sampled peaks within {float(np.max(missed, initial=0.0)):.1g} of the continuous ones"
     )
     if not converged:
         note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
-    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record)
+    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed)
 
 
-def _periodic_state(states: ContactStates, N: int, scale_m: float, opts: ShootingOptions) -> tuple[PeriodFlow, float, int, int]:
-    """March from the linear solution, then Newton on ``P(x0) = x0``: (the last flow, its residual, periods, Newton steps)."""
+def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, stiffness_N_per_m: NDArray) -> NDArray:
+    """Per saddle, how much of its peak force the grid misses, over its force scale (:func:`force_scale_N`) [-]."""
+    compression = _compressions(states, grid, flow)
+    sampled = np.max(compression, axis=0)
+    continuous = peak_compressions(states, grid, flow, compression)
+    k = np.asarray(stiffness_N_per_m, dtype=float)
+    peak = k * np.maximum(continuous, 0.0)
+    return np.asarray(k * (np.maximum(continuous, 0.0) - np.maximum(sampled, 0.0)) / force_scale_N(peak), dtype=float)
+
+
+def _compressions(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> NDArray:
+    """The saddle compressions at the recorded samples (N, n_s) [m]."""
+    assert flow.state_samples is not None and flow.state_codes is not None
+    d = states.forcing(grid.times[:-1])
+    delta = np.empty_like(d)
+    for code in np.unique(flow.state_codes):
+        at = flow.state_codes == code
+        cs = states.get(states.lifted_of(int(code)))
+        delta[at] = flow.state_samples[at] @ cs.compression_state.T + d[at] @ cs.compression_forcing.T
+    return delta
+
+
+def _periodic_state(
+    states: ContactStates, grid: PeriodGrid, scale_m: float, opts: ShootingOptions, x_start: NDArray, *, fresh: bool
+) -> tuple[PeriodFlow, float, int, int, NDArray]:
+    """Newton on ``P(x0) = x0`` from ``x_start`` (``fresh``: from the linear solution, marching a few periods first).
+
+    Returns the recorded flow of the best state, its residual, the periods marched, the Newton steps and the state.
+    """
     size = states.state_size
-    grid = PeriodGrid(states, N)
 
     def flow_from(x: NDArray) -> PeriodFlow:
         return flow_period(states, x, grid, max_events=opts.max_events)
 
-    x0 = np.zeros(size)
+    x0 = np.array(x_start, dtype=float)
     periods = steps = 0
     flow = flow_from(x0)
     periods += 1
-    for _ in range(opts.march_periods):
+    for _ in range(opts.march_periods if fresh else 0):
         x0 = flow.end_state
         flow = flow_from(x0)
         periods += 1
@@ -152,7 +196,7 @@ def _periodic_state(states: ContactStates, N: int, scale_m: float, opts: Shootin
             if residual < best[1]:
                 best = (flow, residual, x0)
     recorded = flow_period(states, best[2], grid, record=True, max_events=opts.max_events)
-    return recorded, best[1], periods, steps
+    return recorded, best[1], periods + 1, steps, best[2]
 
 
 def _residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
@@ -185,8 +229,13 @@ def _response(
     periods: int,
     note: str,
     record: dict,
+    missed: NDArray | None = None,
 ) -> PeriodicResponse:
-    """The :class:`PeriodicResponse` of the samples (the linear solution where no correction is needed)."""
+    """The :class:`PeriodicResponse` of the samples (the linear solution where no correction is needed).
+
+    ``missed``: per saddle, how much of its peak force the grid misses (the response's ``truncation_error``: the
+    error of the sampled peaks, the only discretisation the shooting has); None: nothing missed (zeros).
+    """
     omega = ops.omega_rad_s
     k_u = ops.saddle_stiffness_N_per_m
     H = N // 2 - 1
@@ -210,11 +259,16 @@ def _response(
         columns += [flow.state_samples[:, :m], correction]
         rows += [s.mode_shape.T, s.residual_displacement_m_per_N.T]
     basis, coefficients = np.hstack(columns), np.vstack(rows)
+    # without the Nyquist term: the samples are then exactly the harmonics 0 .. N/2 - 1 reported beside them
+    alternating = (-1.0) ** np.arange(N)
+    basis = basis - np.outer(alternating, alternating @ basis / N)
     q = basis @ coefficients
     spectrum = time_to_harmonics(basis, H)  # the few channels' harmonics, then through the coefficients
     X = spectrum.real @ coefficients + 1j * (spectrum.imag @ coefficients)
     force = k_u * np.maximum(delta, 0.0)
-    record = dict(record, tolerance=float(opts.tolerance), cutoff_factor=float(opts.cutoff_factor))
+    record = dict(
+        record, harmonics=H, harmonics_selection="shooting", tolerance=float(opts.tolerance), cutoff_factor=float(opts.cutoff_factor)
+    )
     return PeriodicResponse(
         method=SolverMethod.SHOOTING,
         omega_rad_s=float(omega),
@@ -229,4 +283,5 @@ def _response(
         harmonic_truncation_indicator=high_harmonic_energy_share(force, H),
         function_evaluations=int(periods),
         options=record,
+        truncation_error=np.zeros(k_u.size) if missed is None else np.asarray(missed, dtype=float),
     )
