@@ -138,8 +138,8 @@ def test_heavy_lift_off_couples_at_h16_then_solves_the_coupled_deck_with_the_ada
     """Three saddles at 5e9 N/m lift off by 23 mm one-way (H = 512): the deck iterated at the adaptive H of each
     iterate stalled (docs/coupling.md). Now the deck converges at H = 16 (the same deck as a run at H = 16) and the
     row's answer is the converged default on that deck (exact-event shooting): converged, its sampled peaks within
-    the tolerance of the continuous ones, and within 0.5 % of the independent time-domain reference on the coupled deck (1024 steps a period:
-    -0.15 %, -0.10 % at 4096, converging on it), where the H = 16 solution is 2.4 % low."""
+    the tolerance of the continuous ones, and within 0.5 % of the independent time-domain reference on the coupled
+    deck (1024 steps a period: -0.15 %, -0.10 % at 4096, converging on it), where the H = 16 solution is 2.4 % low."""
     over = {"vessel.coupling": "two_way", "seafastening.saddle_count": 3, "seafastening.saddle_stiffness_N_per_m": 5e9}
     res = run_case(load_case(overrides=over))
     status = res.coupling[("dynamic", "nonlinear")]
