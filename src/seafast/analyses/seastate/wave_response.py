@@ -16,8 +16,12 @@ over the period (:mod:`seafast.analyses.seastate.wave_maxima`): ``F_N`` the larg
 (compression-only part), ``u_s_m`` the largest compression, ``u_d_m`` the largest gap, ``M_b_Nm``
 and ``sigma_b_Pa`` the largest absolute bending moment and stress over the moment sample points of
 the cargo (element ends and midpoints, as ``seafast run``), still water included; and, on request,
-each at one location (:meth:`WaveSolution.maximum_at`). Units SI; compression positive when
-compressed; sagging moment positive.
+each at one location (:meth:`WaveSolution.maximum_at`). :func:`solve_wave_adaptive` is the converged
+answer of one wave (exact-event shooting), what the fixed-H waves are measured against. Units SI;
+compression positive when compressed; sagging moment positive.
+
+Size: the wave's operators, its solution record and its two solves (fixed H, converged) share the moment
+map and the maxima; cut apart they would pass the same half-dozen arrays back and forth.
 """
 
 from __future__ import annotations
@@ -31,12 +35,15 @@ from numpy.typing import NDArray
 
 from seafast.analyses.seastate.transfer import MOMENT_POINTS_PER_ELEMENT
 from seafast.analyses.seastate.wave_maxima import location_maxima, location_maximum, period_maxima
+from seafast.config.modes import ContactLawKind, Formulation
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import complex_to_real_harmonics, real_dft_matrices, real_to_complex_harmonics, time_to_harmonics
 from seafast.model.beam import bending_moment_line
 from seafast.model.structure import StructuralModel
 from seafast.solvers.contact import ContactLaw
 from seafast.solvers.hbm import CondensedOperators, HBMOptions, condensed_operators, solve_condensed, solve_hbm
+from seafast.solvers.hbm.options import samples_for
+from seafast.solvers.shooting import solve_shooting
 
 __all__ = [
     "MomentMap",
@@ -344,13 +351,19 @@ def solve_wave(
     )
 
 
+CONVERGED_WAVE_HARMONICS = 256
+"""Harmonics a converged wave solution carries (its maxima within 2e-5 of the exact orbit's on the base case)."""
+
+
 def solve_wave_adaptive(
     model: StructuralModel, unit: HarmonicExcitation, amplitude: float, moments: MomentMap | None = None, options: HBMOptions | None = None
 ) -> WaveSolution:
-    """The same as :func:`solve_wave` by the package's default harmonic balance (H chosen adaptively).
+    """The same as :func:`solve_wave`, converged: the package's default nonlinear solve.
 
-    Each call forms its own operators (H depends on the amplitude): the converged periodic
-    answer the fixed-H design waves are measured against, at tens to hundreds of times their cost.
+    The harmonic balance's converged limit by exact-event shooting (:func:`~seafast.solvers.shooting.solve_shooting`)
+    where the law is exact (its orbit's harmonics up to :data:`CONVERGED_WAVE_HARMONICS` kept), else (or if shooting
+    cannot answer) the adaptive harmonic balance: the converged periodic answer the fixed-H design waves are
+    measured against.
     """
     mm = moment_map(model) if moments is None else moments
     exc = HarmonicExcitation(
@@ -361,9 +374,15 @@ def solve_wave_adaptive(
         unit.source,
     )
     opts = HBMOptions() if options is None else options
-    r = solve_hbm(model, exc, opts)
-    X = np.asarray(r.cargo_displacement_harmonics)
-    H, N = X.shape[0] - 1, int(r.time_samples)
+    r = solve_shooting(model, exc) if opts.law.name is ContactLawKind.EXACT and opts.formulation is Formulation.CONDENSED else None
+    if r is not None and r.converged:
+        H = min(CONVERGED_WAVE_HARMONICS, r.time_samples // 2 - 1)
+        N = samples_for(H)
+        X = np.asarray(r.cargo_displacement_harmonics)[: H + 1]
+    else:
+        r = solve_hbm(model, exc, opts)
+        X = np.asarray(r.cargo_displacement_harmonics)
+        H, N = X.shape[0] - 1, int(r.time_samples)
     line = np.zeros((H + 1, model.cargo.element_count), dtype=complex)
     m = min(exc.harmonic_count, H + 1)
     line[:m] = exc.cargo_line_load_N_per_m[:m]

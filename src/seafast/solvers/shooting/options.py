@@ -41,13 +41,13 @@ class ShootingOptions:
         Samples per period at most.
     """
 
-    cutoff_factor: float = 8.0
+    cutoff_factor: float = 16.0
     reference_modes: int = 3
-    samples_per_mode: int = 16
+    samples_per_mode: int = 8
     minimum_samples: int = 256
     time_samples: int | None = None
     tolerance: float = 1e-9
-    march_periods: int = 2
+    march_periods: int = 1
     max_iterations: int = 30
     max_events: int = 100_000
     peak_tolerance: float = 2.5e-4

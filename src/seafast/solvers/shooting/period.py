@@ -130,31 +130,35 @@ def flow_period(
         states.get(states.lifted_of(int(status)))  # a new contact state: build it, then resume
 
 
-def peak_compressions(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression_m: NDArray, points: int = 65) -> NDArray:
-    """Each saddle's largest compression in continuous time near its largest sample, from the closed form (n_s,) [m].
+def peak_compressions(
+    states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression_m: NDArray, points: int = 33, candidates: int = 16
+) -> NDArray:
+    """Each saddle's largest compression in continuous time, from the closed form between samples (n_s,) [m].
 
-    Around the sample n of the largest compression, ``delta(t)`` is evaluated at ``points`` times over
-    ``[t_{n-1}, t_{n+1}]`` in the contact state of sample n (a neighbour in another state bounds the interval at
-    ``t_n``: no event inside the interval evaluated), forward from its first sample. Compared with the largest sample it says how much of a
-    peak the grid misses.
+    Around each of the (at most ``candidates``) highest local maxima of a saddle's sampled compression, ``delta(t)`` is
+    evaluated at ``points`` times over ``[t_{n-1}, t_{n+1}]`` in the contact state of sample n (a neighbour in another
+    state bounds the interval at ``t_n``: no event inside the interval evaluated), forward from its first sample
+    (backwards, a damped mode grows without bound). Compared with the largest sample it says how much of a peak the
+    grid misses.
     """
     assert flow.state_samples is not None and flow.state_codes is not None
     N, dt = grid.samples, grid.times[1]
     peaks = np.max(compression_m, axis=0)
+    codes = flow.state_codes
     for i in range(compression_m.shape[1]):
-        n = int(np.argmax(compression_m[:, i]))
-        code = int(flow.state_codes[n])
-        s = states.get(states.lifted_of(code))
-        # forward from the earlier sample only (backwards, a damped mode grows without bound)
-        first = n - 1 if n > 0 and flow.state_codes[n - 1] == code else n
-        last = n + 1 if n + 1 < N and flow.state_codes[n + 1] == code else n
-        if first == last:
-            continue
-        t_0 = grid.times[first]
-        z = s.inverse_eigenvectors @ (flow.state_samples[first] - grid.particular_state(s, t_0)[0])
-        tau = np.linspace(0.0, (last - first) * dt, points)
-        homogeneous = np.real((modal_exponential(np.outer(tau, s.eigenvalues)) * z[None, :]) @ s.modal_compression[i])
-        k = np.arange(s.particular_compression.shape[0])
-        particular = np.real(np.exp(1j * states.omega_rad_s * np.outer(t_0 + tau, k)) @ s.particular_compression[:, i])
-        peaks[i] = max(peaks[i], float(np.max(homogeneous + particular)))
+        c = compression_m[:, i]
+        local = np.nonzero((c >= np.roll(c, 1)) & (c >= np.roll(c, -1)) & (c > 0.0))[0]
+        for n in local[np.argsort(c[local])[::-1][:candidates]]:
+            first = n - 1 if n > 0 and codes[n - 1] == codes[n] else n
+            last = n + 1 if n + 1 < N and codes[n + 1] == codes[n] else n
+            if first == last:
+                continue
+            s = states.get(states.lifted_of(int(codes[n])))
+            t_0 = grid.times[first]
+            z = s.inverse_eigenvectors @ (flow.state_samples[first] - grid.particular_state(s, t_0)[0])
+            tau = np.linspace(0.0, (last - first) * dt, points)
+            homogeneous = np.real((modal_exponential(np.outer(tau, s.eigenvalues)) * z[None, :]) @ s.modal_compression[i])
+            k = np.arange(s.particular_compression.shape[0])
+            particular = np.real(np.exp(1j * states.omega_rad_s * np.outer(t_0 + tau, k)) @ s.particular_compression[:, i])
+            peaks[i] = max(peaks[i], float(np.max(homogeneous + particular)))
     return peaks
