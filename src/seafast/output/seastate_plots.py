@@ -17,13 +17,15 @@ Legends stand outside the axes and curves that coincide keep distinct styles
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xarray as xr
 
-from seafast.analyses.seastate.monte_carlo import MonteCarloResult
 from seafast.output.style import legend_outside, save_png
+
+if TYPE_CHECKING:  # imported by the engine's caller when it ran
+    from seafast.analyses.seastate.monte_carlo import MonteCarloResult
 
 __all__ = ["write_seastate_figures", "FIGURE_DPI"]
 
