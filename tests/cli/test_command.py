@@ -306,3 +306,38 @@ def test_an_explicitly_empty_mapping_runs_every_default(tmp_path):
 def _summary_of_base(tmp_path):
     assert main(["run", "-o", str(tmp_path / "base"), *FAST]) == 0
     return _summary(tmp_path / "base" / "summary.csv")[0]["F_N"]
+
+
+def test_run_prints_its_table_before_it_writes_the_files(tmp_path, capsys, monkeypatch):
+    """The summary table is on stdout as soon as the rows are known; results.nc and the figures come after."""
+    import seafast.output.files as files
+
+    real, printed_before = files.write_run_outputs, []
+
+    def spy(result, out_dir):
+        printed_before.append(capsys.readouterr())
+        return real(result, out_dir)
+
+    monkeypatch.setattr(files, "write_run_outputs", spy)
+    assert main(["run", "-o", str(tmp_path / "run"), "--set", "vessel.motions=none", "--no-plots"]) == 0
+    out = capsys.readouterr().out
+    before, progress = printed_before[0]
+    assert "maxima over the cargo" in before and "excitation: " in before
+    assert "wrote" not in before and out.startswith("wrote ")
+    assert progress.rstrip().endswith("writing the results to " + str(tmp_path / "run"))
+
+
+def test_seastate_prints_its_table_before_it_writes_the_files(tmp_path, capsys, monkeypatch):
+    import seafast.output.seastate as seastate_output
+
+    real, printed_before = seastate_output.write_seastate_outputs, []
+
+    def spy(*args, **kwargs):
+        printed_before.append(capsys.readouterr().out)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(seastate_output, "write_seastate_outputs", spy)
+    assert main(["seastate", "-o", str(tmp_path / "sea"), "--no-monte-carlo", "--no-plots"]) == 0
+    out = capsys.readouterr().out
+    assert "most probable maxima" in printed_before[0] and "design_wave" in printed_before[0]
+    assert "wrote" not in printed_before[0] and out.startswith("wrote ")

@@ -131,3 +131,22 @@ print(callable(report.{name}), type(report.{name}).__name__)
     out = _python(code)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split() == ["True", "function"]
+
+
+def test_the_script_freezes_the_collector_before_shutdown_and_main_with_arguments_does_not():
+    """``seafast`` (main with no arguments: the process's command line) leaves its objects to a
+    quick shutdown (``gc.freeze``); ``main([...])``, as tests and scripts call it, does not."""
+    code = """
+import contextlib, gc, io, sys
+from seafast.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    assert main(["schema"]) == 0
+after_list = gc.get_freeze_count()
+sys.argv = ["seafast", "schema"]
+with contextlib.redirect_stdout(io.StringIO()):
+    assert main() == 0
+print(after_list, gc.get_freeze_count() > 0)
+"""
+    out = _python(code)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["0", "True"]

@@ -16,6 +16,7 @@ as well).
 from __future__ import annotations
 
 import argparse
+import gc
 import logging
 import sys
 from collections.abc import Sequence
@@ -79,7 +80,13 @@ def _log_level(args: argparse.Namespace) -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``seafast`` command; returns the exit code."""
+    """Entry point of the ``seafast`` command; returns the exit code.
+
+    ``argv`` None (the ``seafast`` script: the process's own command line, which ends when main
+    returns): the objects left are then frozen out of the garbage collector (``gc.freeze``), so
+    that the interpreter's shutdown does not walk them all (after a run it took 0.8 s, frozen
+    0.08 s). A list of arguments (tests, scripts) leaves the collector as it was.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)  # --help and --version exit here, before numpy/scipy load
     if not getattr(args, "handler", None):
@@ -93,7 +100,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         # seafast's dense solves are small (~100-5000 unknowns): one BLAS thread is fastest on
         # few cores, and leaves the cores to study workers (the BEM step lifts this limit for itself).
         with one_blas_thread():
-            return int(args.handler(args))
+            code = int(args.handler(args))
+    if argv is None:
+        gc.freeze()
+    return code
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -48,7 +48,6 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from seafast.analyses.run import run_case
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.output.files import write_run_outputs
-    from seafast.output.tables import format_summary_table
     from seafast.results.dataset import LOAD_CASES, MODELS
 
     try:
@@ -65,17 +64,13 @@ def _cmd_run(args: argparse.Namespace) -> int:
         result = run_case(case, progress=logger.info)
     except (CaseError, ValueError) as exc:
         return error(str(exc))
-    paths = write_run_outputs(result, args.output)
     rows = result.summary
     if not args.quiet:
-        print(format_summary_table(rows, title=f"{case.name}: maxima over the cargo, the saddles and one wave period"))
-        if result.axial is not None:
-            from seafast.output.tables import format_axial_table
-
-            print(format_axial_table(rows))
-        print(f"excitation: {result.excitation.source}")
-        for status in result.coupling.values():
-            print(status.message)
+        # the table as soon as the rows are known: results.nc and the figures take longer than the solves
+        _print_tables(result, rows)
+    logger.info("writing the results to %s", args.output)
+    paths = write_run_outputs(result, args.output)
+    if not args.quiet:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     if result.axial is not None:
         for line in result.axial.warning_lines():
@@ -107,6 +102,19 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if bad:
         return EXIT_NOT_CONVERGED
     return EXIT_OUTSIDE_VALIDITY if _warn_validity(result) else EXIT_OK
+
+
+def _print_tables(result: CaseResult, rows: list[dict[str, Any]]) -> None:
+    """Print the summary table (and the axial one), the excitation and the coupling outcomes on stdout, flushed."""
+    from seafast.output.tables import format_axial_table, format_summary_table
+
+    print(format_summary_table(rows, title=f"{result.case.name}: maxima over the cargo, the saddles and one wave period"))
+    if result.axial is not None:
+        print(format_axial_table(rows))
+    print(f"excitation: {result.excitation.source}")
+    for status in result.coupling.values():
+        print(status.message)
+    sys.stdout.flush()  # a pipe or a file buffers stdout: the table must not wait for the files
 
 
 def _warn_validity(result: CaseResult) -> bool:

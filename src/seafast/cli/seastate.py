@@ -22,7 +22,7 @@ SEASTATE_EXAMPLES = """examples:
   seafast seastate                                         # the base case in Hs = 3 m, Tp = 10 s (JONSWAP, 3 h)
   seafast seastate case.yaml -o out/hs4 --set sea_state.significant_height_m=4 --set sea_state.peak_period_s=11
   seafast seastate --set sea_state.spectrum=hindcast.csv --set sea_state.peak_period_s=null
-  seafast seastate --no-monte-carlo                        # linear spectral extremes only (a fraction of a second)
+  seafast seastate --no-monte-carlo                        # spectral extremes and design waves only (about 4 s, figures included)
   seafast seastate --workers 1                              # Monte Carlo serially; --scheduler tcp://host:8786 for Dask
 
 Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged;
@@ -93,12 +93,15 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
             return error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
     rows.append(design.row())
-    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design)
-    if not args.quiet:
+    if not args.quiet:  # the table as soon as it is known: seastate.nc and the figures take longer
         sp = analysis.spectrum
         d = case.sea_state.duration_s
         span = f"{d / 3600:g} h" if d % 360 == 0 else f"{d:g} s"
         print(format_seastate_table(rows, title=f"{case.name}: {sp.description}, most probable maxima over {span}, still water included"))
+        sys.stdout.flush()
+    say(f"writing the results to {args.output}")
+    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design)
+    if not args.quiet:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if r["converged"] is False]
     for r in bad:

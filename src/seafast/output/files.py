@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -13,10 +16,44 @@ from seafast.output.tables import write_summary_csv
 __all__ = ["write_run_outputs", "write_netcdf"]
 
 
+@contextmanager
+def _no_dask_client_lookup() -> Iterator[None]:
+    """Inside the block, ``import distributed`` fails unless Dask's ``distributed`` is loaded already.
+
+    ``xarray.Dataset.to_netcdf`` asks Dask which scheduler is active, and Dask imports its
+    ``distributed`` package (about 0.3 s) to look for a client. No client can exist before
+    ``distributed`` was imported, so the answer is the same without it: no client, a local
+    scheduler (and an in-memory Dataset is written without Dask anyway).
+    """
+    if "distributed" in sys.modules:
+        yield
+        return
+    dask_base = sys.modules.get("dask.base")
+    known = getattr(dask_base, "_DISTRIBUTED_AVAILABLE", None)
+    sys.modules["distributed"] = None  # type: ignore[assignment]  # Python's documented "cannot be imported"
+    try:
+        yield
+    finally:
+        if sys.modules.get("distributed", ...) is None:
+            del sys.modules["distributed"]
+        dask_base = sys.modules.get("dask.base")
+        if known is None and getattr(dask_base, "_DISTRIBUTED_AVAILABLE", None) is False:
+            dask_base._DISTRIBUTED_AVAILABLE = None  # type: ignore[union-attr]  # Dask's memo of the hidden package, forgotten
+
+
 def write_netcdf(ds: Any, path: Path) -> Path:
-    """Write a Dataset to NetCDF4 (compressed)."""
+    """Write a Dataset to NetCDF4, its numeric variables zlib-compressed (level 4); return ``path``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The data (in memory).
+    path : Path
+        The file to write (replaced if it exists).
+    """
     encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items() if v.dtype.kind in "fiu"}
-    ds.to_netcdf(path, engine="netcdf4", encoding=encoding)
+    with _no_dask_client_lookup():
+        ds.to_netcdf(path, engine="netcdf4", encoding=encoding)
     return path
 
 

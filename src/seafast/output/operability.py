@@ -226,7 +226,7 @@ def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from seafast.output.style import legend_outside
+    from seafast.output.style import legend_outside, save_png
 
     tp = ds["peak_period_s"].values
     fig, ax = plt.subplots(figsize=(11.0, 5.0))
@@ -272,11 +272,7 @@ def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
     )
     ax.grid(True, alpha=0.3)
     legend_outside(ax)
-    fig.tight_layout()
-    out = Path(path)
-    fig.savefig(out, dpi=200)
-    plt.close(fig)
-    return out
+    return save_png(fig, path, 200)
 
 
 def write_operability_outputs(

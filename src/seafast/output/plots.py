@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.fourier import harmonics_up_to
-from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, scaled_unit
+from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, save_png, scaled_unit
 
 __all__ = [
     "plot_deflection",
@@ -37,10 +37,7 @@ DPI = 200
 
 
 def _save(fig: plt.Figure, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=DPI)
-    plt.close(fig)
-    return path
+    return save_png(fig, path, DPI)
 
 
 def plot_deflection(ds: xr.Dataset, path: Path) -> Path:

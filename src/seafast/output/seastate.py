@@ -17,7 +17,7 @@ import csv
 import io
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xarray as xr
@@ -25,10 +25,12 @@ import yaml
 
 import seafast
 from seafast.analyses.seastate.design_wave import DesignWaveExtremes
-from seafast.analyses.seastate.monte_carlo import MonteCarloResult, MonteCarloStatistics
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
 from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
 from seafast.results.labelled import labelled_variable as _var
+
+if TYPE_CHECKING:  # the Monte Carlo engine (half a second to import) only when it runs: --no-monte-carlo needs none of it
+    from seafast.analyses.seastate.monte_carlo import MonteCarloResult, MonteCarloStatistics
 
 __all__ = [
     "ROWS",

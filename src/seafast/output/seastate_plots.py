@@ -17,13 +17,15 @@ Legends stand outside the axes and curves that coincide keep distinct styles
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xarray as xr
 
-from seafast.analyses.seastate.monte_carlo import MonteCarloResult
-from seafast.output.style import legend_outside
+from seafast.output.style import legend_outside, save_png
+
+if TYPE_CHECKING:  # imported by the engine's caller when it ran
+    from seafast.analyses.seastate.monte_carlo import MonteCarloResult
 
 __all__ = ["write_seastate_figures", "FIGURE_DPI"]
 
@@ -69,10 +71,7 @@ def _spectrum_figure(ds: xr.Dataset, path: Path) -> Path:
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
     ax.set_title(f"Sea state: {ds.attrs.get('spectrum', '')}, duration {float(ds.attrs.get('duration_s', np.nan)) / 3600:g} h")
-    fig.tight_layout()
-    fig.savefig(path, dpi=FIGURE_DPI)
-    plt.close(fig)
-    return path
+    return save_png(fig, path, FIGURE_DPI)
 
 
 def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
@@ -107,10 +106,7 @@ def _transfer_figure(ds: xr.Dataset, path: Path) -> Path:
     for ax in axes[1]:
         ax.set_xlabel("wave frequency ω [rad/s]")
     fig.suptitle("Transfer functions per metre of wave amplitude (linear model, head seas)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=FIGURE_DPI)
-    plt.close(fig)
-    return path
+    return save_png(fig, path, FIGURE_DPI)
 
 
 def _realisation_figure(example: Any, path: Path) -> Path:
@@ -154,10 +150,7 @@ def _realisation_figure(example: Any, path: Path) -> Path:
     fig.suptitle(
         f"Realisation {getattr(example, 'index', '')}: saddle forces (nonlinear solid, linear dashed black), lift-off marked | on F = 0"
     )
-    fig.tight_layout()
-    fig.savefig(path, dpi=FIGURE_DPI)
-    plt.close(fig)
-    return path
+    return save_png(fig, path, FIGURE_DPI)
 
 
 def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
@@ -188,10 +181,7 @@ def _maxima_figure(monte_carlo: Any, ds: xr.Dataset, path: Path) -> Path:
         ax.grid(alpha=0.3)
         legend_outside(ax, fontsize=7)
     fig.suptitle("Distribution of the maxima (MPM: dotted = Gumbel mode, dashed = spectral)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=FIGURE_DPI)
-    plt.close(fig)
-    return path
+    return save_png(fig, path, FIGURE_DPI)
 
 
 def write_seastate_figures(ds: xr.Dataset, out_dir: str | Path, monte_carlo: MonteCarloResult | None = None) -> list[Path]:

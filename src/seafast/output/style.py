@@ -8,6 +8,7 @@
   tick labels are plain numbers in the unit the axis label names (:func:`plain_tick_labels`);
   never an SI letter on a tick ("200µ" on an axis labelled mm) and never a log-axis "1B".
 * Legends stand outside the axes (:func:`legend_outside`), so they cover no data.
+* A PNG is laid out tightly and rendered once (:func:`save_png`).
 
 matplotlib is imported inside the functions that draw; the unit scaling is plain Python, used
 by the plotly figures too.
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from pathlib import Path
 from typing import Any
 
 __all__ = [
@@ -28,7 +30,14 @@ __all__ = [
     "plain_tick_labels",
     "value_ticks",
     "cell_boundary",
+    "save_png",
+    "PNG_COMPRESS_LEVEL",
 ]
+
+PNG_COMPRESS_LEVEL = 1
+"""zlib level of the PNG files [-]: lossless at every level (the same pixels); 1 encodes a run's
+figure (2400 x 1500 pixels) in about 0.7 of the time of Pillow's default 6, for a file a fifth to
+a third larger (about 300 kB)."""
 
 # matplotlib line keywords per model: the thick solid nonlinear line under the thin dashed linear one
 MODEL_LINES: dict[str, dict[str, Any]] = {
@@ -155,3 +164,35 @@ def cell_boundary(x_edges: Any, y_edges: Any, inside: Any) -> tuple[list[float |
                 xs += [float(x_edges[j]), float(x_edges[j]), None]
                 ys += [float(y_edges[i]), float(y_edges[i + 1]), None]
     return xs, ys
+
+
+def save_png(fig: Any, path: str | Path, dpi: float, rect: tuple[float, float, float, float] | None = None) -> Path:
+    """Lay ``fig`` out tightly, write it to ``path`` at ``dpi`` and close it; return the path.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, drawn.
+    path : str or Path
+        The file; a ``.png`` name is written with :data:`PNG_COMPRESS_LEVEL`, any other suffix
+        in its own format.
+    dpi : float
+        Resolution [dots per inch].
+    rect : tuple of float, optional
+        ``(left, bottom, right, top)`` in figure fractions [-] the tight layout fits the axes into.
+
+    Notes
+    -----
+    After ``tight_layout`` the figure keeps a placeholder layout engine, and ``savefig`` then
+    draws it once more before the rendering that is written; the layout is done, so the engine is
+    dropped and the figure is drawn once (the same pixels).
+    """
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout(rect=rect)
+    fig.set_layout_engine(None)
+    target = Path(path)
+    options: dict[str, Any] = {"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL}} if target.suffix.lower() == ".png" else {}
+    fig.savefig(target, dpi=dpi, **options)
+    plt.close(fig)
+    return target

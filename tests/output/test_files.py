@@ -1,0 +1,47 @@
+"""Writing a run's files: results.nc as xarray writes it, without loading Dask's distributed package."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import xarray as xr
+
+from seafast.output.files import write_netcdf
+
+PROBE = """
+import json, sys
+import numpy as np, xarray as xr
+import dask  # as the numerical stack loads it
+from seafast.output.files import write_netcdf
+ds = xr.Dataset({"F_N": (("t",), np.arange(4.0), {"units": "N"})}, attrs={"title": "probe"})
+write_netcdf(ds, sys.argv[1])
+import dask.base
+print(json.dumps({
+    "distributed": "distributed" in sys.modules,
+    "none_left": [name for name, module in sys.modules.items() if module is None and name.startswith("distributed")],
+    "dask_memo": getattr(dask.base, "_DISTRIBUTED_AVAILABLE", None),
+    "same": xr.open_dataset(sys.argv[1]).identical(ds),
+}))
+"""
+
+
+def test_results_nc_is_written_without_importing_distributed_and_reads_back_identical(tmp_path):
+    """A fresh interpreter: the write leaves ``distributed`` unloaded and importable, and Dask's memo of it unset."""
+    probe = [sys.executable, "-c", PROBE, str(tmp_path / "probe.nc")]
+    done = subprocess.run(probe, capture_output=True, text=True, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == {"distributed": False, "none_left": [], "dask_memo": None, "same": True}
+
+
+def test_write_netcdf_compresses_the_numbers_and_keeps_the_attributes(tmp_path):
+    ds = xr.Dataset(
+        {"M_b_Nm": (("t", "x"), np.outer(np.arange(50.0), np.ones(20)), {"units": "N m"}), "ok": (("t",), np.ones(50, bool))},
+        attrs={"title": "t"},
+    )
+    path = write_netcdf(ds, tmp_path / "r.nc")
+    with xr.open_dataset(path) as back:
+        assert back.identical(ds)
+        assert back["M_b_Nm"].encoding["zlib"] and back["M_b_Nm"].encoding["complevel"] == 4
