@@ -90,7 +90,12 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
     cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
     system = modal_correction_system(model, cutoff, minimum_modes=model.saddle_count)
-    states = ContactStates(system, D, omega)
+    # the states' eigendecompositions depend on the model and the modes kept, not on the excitation: the model keeps them
+    key = f"shooting_states {system.mode_count} {cutoff:.17g}"
+    dynamics = model.derived_cache.get(key)
+    if not isinstance(dynamics, dict):
+        dynamics = model.derived_cache[key] = {}
+    states = ContactStates(system, D, omega, dynamics)
     record.update(modes=system.mode_count, cutoff_rad_s=cutoff)
     scale = max(float(np.max(np.abs(d_grid))), 1e-6)
     x_start = np.zeros(states.state_size)

@@ -116,9 +116,18 @@ class ContactStates:
         ``D_k``, the linear compressions' complex harmonics (n_k, n_s) [m]: ``d(t) = Re sum_k D_k e^{i k w t}``.
     omega_rad_s
         The fundamental frequency w [rad/s].
+    dynamics
+        A cache of the states' excitation-independent parts (eigendecompositions) for this ``system``, kept by its
+        owner (the model's ``derived_cache``) so that another excitation of the same model reuses them; None: none.
     """
 
-    def __init__(self, system: ModalCorrectionSystem, compression_harmonics: NDArray[np.complex128], omega_rad_s: float):
+    def __init__(
+        self,
+        system: ModalCorrectionSystem,
+        compression_harmonics: NDArray[np.complex128],
+        omega_rad_s: float,
+        dynamics: dict[bytes, StateDynamics] | None = None,
+    ):
         self.system = system
         self.harmonics = np.asarray(compression_harmonics, dtype=complex)
         self.omega_rad_s = float(omega_rad_s)
@@ -127,6 +136,7 @@ class ContactStates:
         self._states: dict[bytes, ContactState] = {}
         self._order: list[ContactState] = []
         self._arrays: StateArrays | None = None
+        self._dynamics = dynamics
 
     @property
     def state_size(self) -> int:
@@ -179,36 +189,21 @@ class ContactStates:
         return np.real(phase @ self.harmonics)
 
     def _build(self, lifted: NDArray[np.bool_]) -> ContactState:
-        s = self.system
-        m, n_s = s.mode_count, s.saddle_count
-        Phi, R, k_u = s.saddle_mode_shape, s.residual_flexibility_m_per_N, s.unilateral_stiffness_N_per_m
-        L = np.nonzero(lifted)[0]
-        W = np.linalg.solve(np.eye(L.size) - k_u[L, None] * R[np.ix_(L, L)], np.diag(k_u[L])) if L.size else np.zeros((0, 0))
-        stiffness = np.diag(s.natural_frequency_rad_s**2) - Phi[L].T @ W @ Phi[L]
-        A = np.zeros((2 * m, 2 * m))
-        A[:m, m:] = np.eye(m)
-        A[m:, :m] = -stiffness
-        A[m:, m:] = -s.modal_damping
-        input_matrix = np.zeros((2 * m, n_s))
-        input_matrix[m:, L] = -Phi[L].T @ W
-        force_state = np.zeros((n_s, 2 * m))
-        force_state[L, :m] = W @ Phi[L]
-        force_forcing = np.zeros((n_s, n_s))
-        force_forcing[np.ix_(L, L)] = -W
-        compression_state = -np.hstack([Phi, np.zeros((n_s, m))]) - R @ force_state
-        compression_forcing = np.eye(n_s) - R @ force_forcing
-        lam, V = np.linalg.eig(A)
-        if np.any(np.abs(lam) <= 1e-9 * max(float(np.max(np.abs(lam), initial=1.0)), 1.0)) or np.any(lam.real > 0.0):
-            raise SingularStateError(f"contact state with saddles {L.tolist()} lifted has no stiffness against a rigid-body motion")
-        V_inv = np.linalg.inv(V)
+        key = np.asarray(lifted, dtype=bool).tobytes()
+        dynamics = self._dynamics.get(key) if self._dynamics is not None else None
+        if dynamics is None:
+            dynamics = _state_dynamics(self.system, lifted)
+            if self._dynamics is not None:
+                self._dynamics[key] = dynamics
+        lam, V, V_inv, input_matrix, force_state, force_forcing, compression_state, compression_forcing = dynamics
         w_k = 1j * self.omega_rad_s * np.arange(self.harmonics.shape[0])
         modal_input = V_inv @ (input_matrix @ self.harmonics.T)  # (2m, n_k)
         particular = (V @ (modal_input / (w_k[None, :] - lam[:, None]))).T  # (n_k, 2m)
         return ContactState(
             lifted=lifted,
-            eigenvalues=np.asarray(lam, dtype=complex),
-            eigenvectors=np.asarray(V, dtype=complex),
-            inverse_eigenvectors=np.asarray(V_inv, dtype=complex),
+            eigenvalues=lam,
+            eigenvectors=V,
+            inverse_eigenvectors=V_inv,
             particular=np.asarray(particular, dtype=complex),
             compression_state=compression_state,
             compression_forcing=compression_forcing,
@@ -217,3 +212,43 @@ class ContactStates:
             modal_compression=np.asarray(compression_state @ V, dtype=complex),
             particular_compression=np.asarray(particular @ compression_state.T + self.harmonics @ compression_forcing.T, dtype=complex),
         )
+
+
+StateDynamics = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]
+"""A contact state's excitation-independent part: eigenvalues, eigenvectors and their inverse, the input matrix, the
+force and compression maps (state, forcing)."""
+
+
+def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> StateDynamics:
+    """The closed form of one contact state, whatever the excitation (see the module docstring)."""
+    m, n_s = s.mode_count, s.saddle_count
+    Phi, R, k_u = s.saddle_mode_shape, s.residual_flexibility_m_per_N, s.unilateral_stiffness_N_per_m
+    L = np.nonzero(lifted)[0]
+    W = np.linalg.solve(np.eye(L.size) - k_u[L, None] * R[np.ix_(L, L)], np.diag(k_u[L])) if L.size else np.zeros((0, 0))
+    stiffness = np.diag(s.natural_frequency_rad_s**2) - Phi[L].T @ W @ Phi[L]
+    A = np.zeros((2 * m, 2 * m))
+    A[:m, m:] = np.eye(m)
+    A[m:, :m] = -stiffness
+    A[m:, m:] = -s.modal_damping
+    input_matrix = np.zeros((2 * m, n_s))
+    input_matrix[m:, L] = -Phi[L].T @ W
+    force_state = np.zeros((n_s, 2 * m))
+    force_state[L, :m] = W @ Phi[L]
+    force_forcing = np.zeros((n_s, n_s))
+    force_forcing[np.ix_(L, L)] = -W
+    compression_state = -np.hstack([Phi, np.zeros((n_s, m))]) - R @ force_state
+    compression_forcing = np.eye(n_s) - R @ force_forcing
+    lam, V = np.linalg.eig(A)
+    if np.any(np.abs(lam) <= 1e-9 * max(float(np.max(np.abs(lam), initial=1.0)), 1.0)) or np.any(lam.real > 0.0):
+        raise SingularStateError(f"contact state with saddles {L.tolist()} lifted has no stiffness against a rigid-body motion")
+    V = np.asarray(V, dtype=complex)
+    return (
+        np.asarray(lam, dtype=complex),
+        V,
+        np.asarray(np.linalg.inv(V), dtype=complex),
+        input_matrix,
+        force_state,
+        force_forcing,
+        compression_state,
+        compression_forcing,
+    )
