@@ -27,6 +27,10 @@ EVENT_TIME_TOLERANCE = 1e-12
 """Event times are found to this fraction of the period."""
 
 
+PEAK_REACH = 0.05
+"""Local maxima of a sampled compression this share of its range below the largest one are refined."""
+
+
 class TooManyEventsError(RuntimeError):
     """More contact events in one period than allowed (a chattering contact)."""
 
@@ -131,11 +135,12 @@ def flow_period(
 
 
 def peak_compressions(
-    states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression_m: NDArray, points: int = 33, candidates: int = 16
+    states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression_m: NDArray, points: int = 33, candidates: int = 8
 ) -> NDArray:
     """Each saddle's largest compression in continuous time, from the closed form between samples (n_s,) [m].
 
-    Around each of the (at most ``candidates``) highest local maxima of a saddle's sampled compression, ``delta(t)`` is
+    Around each of the (at most ``candidates``) highest local maxima of a saddle's sampled compression within
+    :data:`PEAK_REACH` of its range below the largest sample (only those can hide a higher peak), ``delta(t)`` is
     evaluated at ``points`` times over ``[t_{n-1}, t_{n+1}]`` in the contact state of sample n (a neighbour in another
     state bounds the interval at ``t_n``: no event inside the interval evaluated), forward from its first sample
     (backwards, a damped mode grows without bound). Compared with the largest sample it says how much of a peak the
@@ -147,7 +152,8 @@ def peak_compressions(
     codes = flow.state_codes
     for i in range(compression_m.shape[1]):
         c = compression_m[:, i]
-        local = np.nonzero((c >= np.roll(c, 1)) & (c >= np.roll(c, -1)) & (c > 0.0))[0]
+        reach = peaks[i] - PEAK_REACH * (peaks[i] - float(np.min(c)))
+        local = np.nonzero((c >= np.roll(c, 1)) & (c >= np.roll(c, -1)) & (c > 0.0) & (c >= reach))[0]
         for n in local[np.argsort(c[local])[::-1][:candidates]]:
             first = n - 1 if n > 0 and codes[n - 1] == codes[n] else n
             last = n + 1 if n + 1 < N and codes[n + 1] == codes[n] else n

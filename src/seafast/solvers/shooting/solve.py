@@ -264,11 +264,11 @@ def _response(
         columns += [flow.state_samples[:, :m], correction]
         rows += [s.mode_shape.T, s.residual_displacement_m_per_N.T]
     basis, coefficients = np.hstack(columns), np.vstack(rows)
-    # without the Nyquist term: the samples are then exactly the harmonics 0 .. N/2 - 1 reported beside them
-    alternating = (-1.0) ** np.arange(N)
-    basis = basis - np.outer(alternating, alternating @ basis / N)
+    # the cargo's displacements on harmonics 0 .. N/2 - 1 (the samples then exactly those harmonics, without the
+    # Nyquist term): the few channels' harmonics, then through the coefficients
+    spectrum = time_to_harmonics(basis, H)
+    basis = harmonics_to_time(spectrum, N)
     q = basis @ coefficients
-    spectrum = time_to_harmonics(basis, H)  # the few channels' harmonics, then through the coefficients
     X = spectrum.real @ coefficients + 1j * (spectrum.imag @ coefficients)
     force = k_u * np.maximum(delta, 0.0)
     record = dict(
