@@ -114,7 +114,8 @@ def main() -> None:
                 f"({mc_s / (dw_ms / 1e3):.0f}x against the design waves alone)"
             )
     print(
-        f"design_wave_ms={dw_ms:.2f} design_wave_cpu_ms={dw_cpu_ms:.2f} design_wave_adaptive_ms={adaptive_ms:.0f} design_wave_converged_vs_h16={adaptive_ms / dw_ms:.2f} operability_s={op_s:.2f} "
+        f"design_wave_ms={dw_ms:.2f} design_wave_cpu_ms={dw_cpu_ms:.2f} design_wave_adaptive_ms={adaptive_ms:.0f} "
+        f"design_wave_converged_vs_h16={adaptive_ms / dw_ms:.2f} operability_s={op_s:.2f} "
         f"operability_cpu_s={op_cpu_s:.2f} operability_base_s={base_s:.2f} "
         f"design_wave_full_s={full_s:.3f} monte_carlo_s={mc_s:.1f} speedup_vs_monte_carlo={speedup:.0f}"
     )
