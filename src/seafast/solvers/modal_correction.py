@@ -29,7 +29,7 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import eigh
+from scipy.linalg import eigh, solve_banded
 
 from seafast.model.structure import StructuralModel
 
@@ -167,45 +167,48 @@ def modal_basis(model: StructuralModel, cutoff_rad_s: float) -> ModalBasis:
     cached = model.derived_cache.get(_BASIS_KEY)
     if isinstance(cached, ModalBasis) and (cached.complete or cached.natural_frequency_rad_s[-1] > cutoff_rad_s):
         return cached
-    K = np.asarray(model.dynamic_stiffness(0.0, True)[0], dtype=float)  # every saddle bilateral
-    M = np.asarray(model.cargo.mass, dtype=float)
-    n = K.shape[0]
+    n = model.cargo_dof_count
     sad = model.saddle_cargo_dof
     B = np.zeros((n, sad.size))
     B[sad, np.arange(sad.size)] = 1.0
-    dense = n <= _DENSE_EIGEN_LIMIT or not math.isfinite(cutoff_rad_s)
-    static = np.linalg.solve(K, B) if n <= _DENSE_EIGEN_LIMIT else _sparse_static(K, B)
-    if dense:
-        w2, phi = eigh(K, M)
+    if n <= _DENSE_EIGEN_LIMIT or not math.isfinite(cutoff_rad_s):
+        K = np.asarray(model.dynamic_stiffness(0.0, True)[0], dtype=float)  # every saddle bilateral
+        w2, phi = eigh(K, np.asarray(model.cargo.mass, dtype=float))
+        static = np.linalg.solve(K, B)
+        damping_phi = model.damping_cc @ phi
         complete = True
     else:
-        from scipy.sparse import csc_matrix
-        from scipy.sparse.linalg import eigsh
-
+        # a long or finely meshed cargo: the lowest modes by the model's banded shift-invert Lanczos, doubling the
+        # count until the cutoff is passed, and every product with K and D in band storage (O(n), no n x n array)
+        b, K_band, _, D_band, _ = model.banded_quadratic(True)
         count = 8
         while True:
             count = min(count, n - 2)
-            w2, phi = eigsh(csc_matrix(K), k=count, M=csc_matrix(M), sigma=0.0, which="LM")
-            order = np.argsort(w2)
-            w2, phi = w2[order], phi[:, order]
-            complete = False
-            if np.sqrt(max(w2[-1], 0.0)) > cutoff_rad_s or count >= n - 2:
+            w, phi_or_none = model.lowest_modes(True, count, vectors=True)
+            assert phi_or_none is not None
+            phi, w2 = phi_or_none, w**2
+            if w[-1] > cutoff_rad_s or count >= n - 2:
                 break
             count *= 2
+        static = solve_banded((b, b), K_band, B)
+        damping_phi = _band_product(D_band, b, phi)
+        complete = False
     flexibility = static[sad]
     phi = np.ascontiguousarray(phi)
-    basis = ModalBasis(
-        np.sqrt(np.maximum(w2, 0.0)), phi, static, 0.5 * (flexibility + flexibility.T), phi.T @ model.damping_cc @ phi, complete
-    )
+    basis = ModalBasis(np.sqrt(np.maximum(w2, 0.0)), phi, static, 0.5 * (flexibility + flexibility.T), phi.T @ damping_phi, complete)
     model.derived_cache[_BASIS_KEY] = basis
     return basis
 
 
-def _sparse_static(K: NDArray, B: NDArray) -> NDArray:
-    from scipy.sparse import csc_matrix
-    from scipy.sparse.linalg import splu
-
-    return np.asarray(splu(csc_matrix(K)).solve(B))
+def _band_product(band: NDArray[np.float64], bandwidth: int, X: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``A @ X`` for A in full band storage ``band[b + i - j, j] = A[i, j]`` (the layout of ``solve_banded``)."""
+    n = band.shape[1]
+    out = np.zeros((n,) + X.shape[1:])
+    for r in range(2 * bandwidth + 1):
+        shift = r - bandwidth  # i - j
+        lo, hi = max(0, -shift), min(n, n - shift)
+        out[lo + shift : hi + shift] += band[r, lo:hi, None] * X[lo:hi]
+    return out
 
 
 def modal_correction_system(model: StructuralModel, cutoff_rad_s: float, *, minimum_modes: int = 0) -> ModalCorrectionSystem:
