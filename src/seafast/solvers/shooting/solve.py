@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import logging
 import math
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -39,6 +40,13 @@ __all__ = ["event_samples", "solve_shooting"]
 logger = logging.getLogger(__name__)
 
 _STABILITY_MARGIN = 1e-6  # a Floquet multiplier above 1 + this: an unstable orbit
+
+STIFF_CANCELLATION = 1e8
+"""Above this stiffness cancellation (:attr:`~seafast.solvers.shooting.states.ContactStates.cancellation`; 1e7 on
+1.1e10 N/m saddles, 1.6e9 on 1e14 N/m) the modal reduction is checked with twice the cutoff."""
+
+MODAL_TOLERANCE = 1e-3
+"""Largest change of a saddle's peak force (over its force scale) the cutoff check accepts."""
 
 
 def _reference_frequency_rad_s(model: StructuralModel, modes: int) -> float:
@@ -131,8 +139,27 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     )
     if not converged:
         note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
+    if converged and opts.cutoff_check and states.cancellation > STIFF_CANCELLATION:
+        # near-rigid saddles: the lifted states are what is left of cancelling bilateral modes, so the modal
+        # reduction is checked by the same solve with twice the cutoff
+        finer = solve_shooting(model, excitation, replace(opts, cutoff_factor=2.0 * opts.cutoff_factor, cutoff_check=False))
+        sampled = np.max(_compressions(states, PeriodGrid(states, N), flow), axis=0) * ops.saddle_stiffness_N_per_m
+        change = _peak_change(sampled, finer) if finer.converged else math.inf
+        record.update(stiffness_cancellation=states.cancellation, cutoff_check_change=change)
+        if change > MODAL_TOLERANCE:
+            converged = False
+            note += (
+                f"; not converged in the modal reduction: near-rigid saddles (stiffness cancellation {states.cancellation:.1e}), "
+                f"the peak forces move {change:.2g} with twice the cutoff" + ("" if finer.converged else f" ({finer.message})")
+            )
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
     return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed)
+
+
+def _peak_change(peaks_N: NDArray, finer: PeriodicResponse) -> float:
+    """How far each saddle's peak force moves to the finer solve's, over its force scale (the largest over saddles) [-]."""
+    other = np.max(finer.saddle_force_time_N, axis=0)
+    return float(np.max(np.abs(other - peaks_N) / force_scale_N(np.maximum(other, peaks_N)), initial=0.0))
 
 
 def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, stiffness_N_per_m: NDArray) -> NDArray:

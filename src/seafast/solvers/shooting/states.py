@@ -137,6 +137,9 @@ class ContactStates:
         self._order: list[ContactState] = []
         self._arrays: StateArrays | None = None
         self._dynamics = dynamics
+        self.cancellation = 0.0
+        """The largest, over the states built, of ``||Phi_L^T W_L Phi_L|| / lambda_min(Omega^2 - Phi_L^T W_L Phi_L)``:
+        how much of the bilateral modes' stiffness a lifted state cancels (near-rigid saddles: above 1e8)."""
 
     @property
     def state_size(self) -> int:
@@ -195,7 +198,8 @@ class ContactStates:
             dynamics = _state_dynamics(self.system, lifted)
             if self._dynamics is not None:
                 self._dynamics[key] = dynamics
-        lam, V, V_inv, input_matrix, force_state, force_forcing, compression_state, compression_forcing = dynamics
+        lam, V, V_inv, input_matrix, force_state, force_forcing, compression_state, compression_forcing, cancellation = dynamics
+        self.cancellation = max(self.cancellation, cancellation)
         w_k = 1j * self.omega_rad_s * np.arange(self.harmonics.shape[0])
         modal_input = V_inv @ (input_matrix @ self.harmonics.T)  # (2m, n_k)
         particular = (V @ (modal_input / (w_k[None, :] - lam[:, None]))).T  # (n_k, 2m)
@@ -214,9 +218,9 @@ class ContactStates:
         )
 
 
-StateDynamics = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]
+StateDynamics = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, float]
 """A contact state's excitation-independent part: eigenvalues, eigenvectors and their inverse, the input matrix, the
-force and compression maps (state, forcing)."""
+force and compression maps (state, forcing), and its stiffness cancellation (:attr:`ContactStates.cancellation`)."""
 
 
 def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> StateDynamics:
@@ -225,7 +229,10 @@ def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> Stat
     Phi, R, k_u = s.saddle_mode_shape, s.residual_flexibility_m_per_N, s.unilateral_stiffness_N_per_m
     L = np.nonzero(lifted)[0]
     W = np.linalg.solve(np.eye(L.size) - k_u[L, None] * R[np.ix_(L, L)], np.diag(k_u[L])) if L.size else np.zeros((0, 0))
-    stiffness = np.diag(s.natural_frequency_rad_s**2) - Phi[L].T @ W @ Phi[L]
+    removed = Phi[L].T @ W @ Phi[L]
+    stiffness = np.diag(s.natural_frequency_rad_s**2) - removed
+    softest = float(np.min(np.linalg.eigvalsh(0.5 * (stiffness + stiffness.T)), initial=np.inf))
+    cancellation = float(np.linalg.norm(removed, 2) / softest) if L.size and softest > 0.0 else 0.0
     A = np.zeros((2 * m, 2 * m))
     A[:m, m:] = np.eye(m)
     A[m:, :m] = -stiffness
@@ -251,4 +258,5 @@ def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> Stat
         force_forcing,
         compression_state,
         compression_forcing,
+        cancellation,
     )
