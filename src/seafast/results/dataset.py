@@ -347,8 +347,9 @@ def _row_variables(a: CaseArrays, model: StructuralModel) -> dict[str, xr.Variab
         "truncation_error": _var(
             ("load_case", "model", "saddle"),
             a.truncation_error,
-            "estimated error of each saddle's peak force from the harmonics above H, over the saddle's force scale"
-            " (NaN where the solver gives none; compare solver.truncation_tolerance)",
+            "estimated error of each saddle's peak force from the harmonics above H (exact-event shooting: the part of"
+            " the continuous peak its sample grid misses), over the saddle's force scale (NaN where the solver gives none;"
+            " compare solver.truncation_tolerance)",
             "1",
         ),
         "tensile_force_error_N": _var(
