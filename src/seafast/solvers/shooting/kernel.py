@@ -179,7 +179,7 @@ def march_events(  # pragma: no cover - compiled
         E = np.empty(size, dtype=np.complex128)
         for j in range(size):
             E[j] = _exp(lam[j] * (tau_end - t))
-        P = np.real((V * E) @ Vinv)
+        P = np.ascontiguousarray(np.real((V * E) @ Vinv))
         monodromy[:, :] = P @ monodromy
         xe = np.real(V @ (E * zz))
         for k in range(ps.shape[0]):

@@ -140,7 +140,8 @@ def peak_compressions(
     """Each saddle's largest compression in continuous time, from the closed form between samples (n_s,) [m].
 
     Around each of the (at most ``candidates``) highest local maxima of a saddle's sampled compression within
-    :data:`PEAK_REACH` of its range below the largest sample (only those can hide a higher peak), ``delta(t)`` is
+    :data:`PEAK_REACH` of its range below the largest sample whose parabola through the neighbours could, with three
+    times its rise, pass the largest sample (only those can hide a higher peak), ``delta(t)`` is
     evaluated at ``points`` times over ``[t_{n-1}, t_{n+1}]`` in the contact state of sample n (a neighbour in another
     state bounds the interval at ``t_n``: no event inside the interval evaluated), forward from its first sample
     (backwards, a damped mode grows without bound). Compared with the largest sample it says how much of a peak the
@@ -154,6 +155,12 @@ def peak_compressions(
         c = compression_m[:, i]
         reach = peaks[i] - PEAK_REACH * (peaks[i] - float(np.min(c)))
         local = np.nonzero((c >= np.roll(c, 1)) & (c >= np.roll(c, -1)) & (c > 0.0) & (c >= reach))[0]
+        # a parabola through each maximum and its neighbours estimates what lies between the samples: refine only
+        # those that could, with three times that margin, pass the largest sample
+        left, right = c[(local - 1) % N], c[(local + 1) % N]
+        curvature = np.maximum(2.0 * c[local] - left - right, 1e-300)
+        rise = (right - left) ** 2 / (8.0 * curvature)
+        local = local[c[local] + 3.0 * rise >= peaks[i]]
         for n in local[np.argsort(c[local])[::-1][:candidates]]:
             first = n - 1 if n > 0 and codes[n - 1] == codes[n] else n
             last = n + 1 if n + 1 < N and codes[n + 1] == codes[n] else n
