@@ -111,8 +111,14 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     try:
         while True:
             grid = PeriodGrid(states, N)
-            flow, residual, marched, newton, x_start = _periodic_state(states, grid, scale, opts, x_start, fresh=periods == 0)
-            periods, steps = periods + marched, steps + newton
+            flow = flow_period(states, x_start, grid, record=True, max_events=opts.max_events) if periods else None
+            residual = _residual(states, flow, x_start, scale) if flow is not None else math.inf
+            if flow is None or residual > opts.tolerance:
+                # the events are exact whatever the grid, so a finer grid usually keeps the orbit: Newton only if not
+                flow, residual, marched, newton, x_start = _periodic_state(states, grid, scale, opts, x_start, fresh=periods == 0)
+                periods, steps = periods + marched, steps + newton
+            else:
+                periods += 1
             missed = _missed_peak(states, grid, flow, ops.saddle_stiffness_N_per_m)
             if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > opts.tolerance:
                 break
