@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.solvers.shooting.kernel import DONE, TOO_MANY_EVENTS, march_events
-from seafast.solvers.shooting.states import ContactState, ContactStates, modal_exponential
+from seafast.solvers.shooting.states import ContactState, ContactStates, lifted_code, modal_exponential
 
 __all__ = ["EVENT_TIME_TOLERANCE", "PeriodFlow", "PeriodGrid", "TooManyEventsError", "flow_period", "initial_contact", "peak_compressions"]
 
@@ -75,11 +75,6 @@ class PeriodGrid:
         """The particular solution's state at one time, (1, 2m)."""
         k = np.arange(s.particular.shape[0])
         return np.real(np.exp(1j * self.omega_rad_s * k * t_s) @ s.particular)[None, :]
-
-
-def lifted_code(lifted: NDArray[np.bool_]) -> int:
-    """The contact state's code: bit i set when saddle i is lifted."""
-    return int(np.sum(np.left_shift(1, np.nonzero(lifted)[0]))) if np.any(lifted) else 0
 
 
 def initial_contact(states: ContactStates, x: NDArray[np.float64], t_s: float) -> NDArray[np.bool_]:

@@ -119,7 +119,8 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
                 periods, steps = periods + marched, steps + newton
             else:
                 periods += 1
-            missed = _missed_peak(states, grid, flow, ops.saddle_stiffness_N_per_m)
+            samples = _contact_samples(states, grid, flow)
+            missed = _missed_peak(states, grid, flow, samples[0], ops.saddle_stiffness_N_per_m)
             if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > opts.tolerance:
                 break
             N *= 2  # the grid misses part of a peak: the same orbit on a finer grid
@@ -149,7 +150,7 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         # near-rigid saddles: the lifted states are what is left of cancelling bilateral modes, so the modal
         # reduction is checked by the same solve with twice the cutoff
         finer = solve_shooting(model, excitation, replace(opts, cutoff_factor=2.0 * opts.cutoff_factor, cutoff_check=False))
-        sampled = np.max(_compressions(states, PeriodGrid(states, N), flow), axis=0) * ops.saddle_stiffness_N_per_m
+        sampled = np.max(samples[0], axis=0) * ops.saddle_stiffness_N_per_m
         change = _peak_change(sampled, finer) if finer.converged else math.inf
         record.update(stiffness_cancellation=states.cancellation, cutoff_check_change=change)
         if change > MODAL_TOLERANCE:
@@ -159,7 +160,7 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
                 f"the peak forces move {change:.2g} with twice the cutoff" + ("" if finer.converged else f" ({finer.message})")
             )
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
-    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed)
+    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
 
 
 def _peak_change(peaks_N: NDArray, finer: PeriodicResponse) -> float:
@@ -168,9 +169,11 @@ def _peak_change(peaks_N: NDArray, finer: PeriodicResponse) -> float:
     return float(np.max(np.abs(other - peaks_N) / force_scale_N(np.maximum(other, peaks_N)), initial=0.0))
 
 
-def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, stiffness_N_per_m: NDArray) -> NDArray:
-    """Per saddle, how much of its peak force the grid misses, over its force scale (:func:`force_scale_N`) [-]."""
-    compression = _compressions(states, grid, flow)
+def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression: NDArray, stiffness_N_per_m: NDArray) -> NDArray:
+    """Per saddle, how much of its peak force the grid misses, over its force scale (:func:`force_scale_N`) [-].
+
+    ``compression``: the flow's sampled compressions (N, n_s) [m].
+    """
     sampled = np.max(compression, axis=0)
     continuous = peak_compressions(states, grid, flow, compression)
     k = np.asarray(stiffness_N_per_m, dtype=float)
@@ -178,16 +181,17 @@ def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, stif
     return np.asarray(k * (np.maximum(continuous, 0.0) - np.maximum(sampled, 0.0)) / force_scale_N(peak), dtype=float)
 
 
-def _compressions(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> NDArray:
-    """The saddle compressions at the recorded samples (N, n_s) [m]."""
+def _contact_samples(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> tuple[NDArray, NDArray]:
+    """The saddle compressions and correction forces at the recorded samples, each (N, n_s) [m], [N]."""
     assert flow.state_samples is not None and flow.state_codes is not None
     d = states.forcing(grid.times[:-1])
-    delta = np.empty_like(d)
+    delta, correction = np.empty_like(d), np.empty_like(d)
     for code in np.unique(flow.state_codes):
         at = flow.state_codes == code
         cs = states.get(states.lifted_of(int(code)))
         delta[at] = flow.state_samples[at] @ cs.compression_state.T + d[at] @ cs.compression_forcing.T
-    return delta
+        correction[at] = flow.state_samples[at] @ cs.force_state.T + d[at] @ cs.force_forcing.T
+    return delta, correction
 
 
 def _periodic_state(
@@ -246,14 +250,6 @@ def _residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: flo
     return float(np.max(bound, initial=0.0) / scale_m)
 
 
-def _few_harmonics(harmonics: NDArray[np.complex128], omega_rad_s: float, t_s: NDArray) -> NDArray[np.float64]:
-    """``Re sum_k X_k e^{i k w t}`` at the times t for a few harmonics X (n_k, n) in real arithmetic, (n_t, n)."""
-    out = np.broadcast_to(harmonics[0].real, (t_s.size, harmonics.shape[1])).copy()
-    for k in range(1, harmonics.shape[0]):
-        out += np.outer(np.cos(k * omega_rad_s * t_s), harmonics[k].real) - np.outer(np.sin(k * omega_rad_s * t_s), harmonics[k].imag)
-    return out
-
-
 def _response(
     model: StructuralModel,
     ops: CondensedOperators,
@@ -268,34 +264,30 @@ def _response(
     note: str,
     record: dict,
     missed: NDArray | None = None,
+    samples: tuple[NDArray, NDArray] | None = None,
 ) -> PeriodicResponse:
     """The :class:`PeriodicResponse` of the samples (the linear solution where no correction is needed).
 
     ``missed``: per saddle, how much of its peak force the grid misses (the response's ``truncation_error``: the
     error of the sampled peaks, the only discretisation the shooting has); None: nothing missed (zeros).
+    ``samples``: the flow's compressions and correction forces (:func:`_contact_samples`).
     """
     omega = ops.omega_rad_s
     k_u = ops.saddle_stiffness_N_per_m
     H = N // 2 - 1
     t = np.arange(N, dtype=float) * (2.0 * np.pi / omega / N)
     X_lin = ops.linear_cargo_displacement[: H + 1]
-    delta = _few_harmonics(real_to_complex_harmonics(ops.linear_compression_m), omega, t)
     # q = basis @ coefficients: the linear solution's cos/sin columns, the modal coordinates and the correction forces
     columns = [np.ones((N, 1))] + [f(k * omega * t)[:, None] for k in range(1, X_lin.shape[0]) for f in (np.cos, np.sin)]
     rows = [X_lin[0].real[None, :]] + [r[None, :] for k in range(1, X_lin.shape[0]) for r in (X_lin[k].real, -X_lin[k].imag)]
-    if states is not None and flow is not None:
+    if states is not None and flow is not None and samples is not None:
+        assert flow.state_samples is not None
         s = states.system
-        m = s.mode_count
-        d = states.forcing(t)
-        correction = np.zeros_like(delta)
-        assert flow.state_samples is not None and flow.state_codes is not None
-        for code in np.unique(flow.state_codes):
-            at = flow.state_codes == code
-            cs = states.get(states.lifted_of(int(code)))
-            correction[at] = flow.state_samples[at] @ cs.force_state.T + d[at] @ cs.force_forcing.T
-            delta[at] = flow.state_samples[at] @ cs.compression_state.T + d[at] @ cs.compression_forcing.T
-        columns += [flow.state_samples[:, :m], correction]
+        delta, correction = samples
+        columns += [flow.state_samples[:, : s.mode_count], correction]
         rows += [s.mode_shape.T, s.residual_displacement_m_per_N.T]
+    else:
+        delta = harmonics_to_time(real_to_complex_harmonics(ops.linear_compression_m), N)  # the linear solution
     basis, coefficients = np.hstack(columns), np.vstack(rows)
     # the cargo's displacements on harmonics 0 .. N/2 - 1 (the samples then exactly those harmonics, without the
     # Nyquist term): the few channels' harmonics, then through the coefficients

@@ -26,9 +26,14 @@ from numpy.typing import NDArray
 
 from seafast.solvers.modal_correction import ModalCorrectionSystem
 
-__all__ = ["ContactState", "ContactStates", "SingularStateError", "StateArrays", "modal_exponential"]
+__all__ = ["ContactState", "ContactStates", "SingularStateError", "StateArrays", "lifted_code", "modal_exponential"]
 
 _SMALLEST_EXPONENT = -300.0  # e^-300: a decayed mode, kept above the subnormal range (whose arithmetic is slow)
+
+
+def lifted_code(lifted: NDArray[np.bool_]) -> int:
+    """A contact state's code: bit i set when saddle i is lifted (:meth:`ContactStates.lifted_of` inverts it)."""
+    return int(np.sum(np.left_shift(1, np.nonzero(lifted)[0]))) if np.any(lifted) else 0
 
 
 def modal_exponential(exponent: NDArray[np.complex128]) -> NDArray[np.complex128]:
@@ -172,7 +177,7 @@ class ContactStates:
             states = self._order
             table = np.full(2**self.system.saddle_count, -1, dtype=np.int64)
             for index, st in enumerate(states):
-                table[int(np.sum(np.left_shift(1, np.nonzero(st.lifted)[0])))] = index
+                table[lifted_code(st.lifted)] = index
             self._arrays = StateArrays(
                 table=table,
                 eigenvalues=np.ascontiguousarray(np.stack([st.eigenvalues for st in states])),
