@@ -92,8 +92,9 @@ class StateArrays:
     """The built contact states stacked for the compiled march, and each code's index (-1: not built).
 
     ``table`` (2^n_s,): the index of the state with code c (bit i set when saddle i is lifted); the stacks
-    (n_states, ...): eigenvalues, eigenvectors and their inverse, the modal and the particular compressions, the
-    particular solution's harmonics and the lifted sets, as in :class:`ContactState`.
+    (capacity, ...), their rows beyond the states built unused (zeros): eigenvalues, eigenvectors and their
+    inverse, the modal and the particular compressions, the particular solution's harmonics and the lifted sets,
+    as in :class:`ContactState`.
     """
 
     table: NDArray[np.int64]
@@ -105,6 +106,17 @@ class StateArrays:
     particular: NDArray[np.complex128]
     lifted: NDArray[np.bool_]
 
+
+_STACKED_FIELDS = (
+    "eigenvalues",
+    "eigenvectors",
+    "inverse_eigenvectors",
+    "modal_compression",
+    "particular_compression",
+    "particular",
+    "lifted",
+)
+"""The :class:`ContactState` arrays that :class:`StateArrays` stacks."""
 
 MAX_SADDLES = 24
 """Saddles at most (the table of contact states has 2^n_s entries)."""
@@ -141,6 +153,9 @@ class ContactStates:
         self._states: dict[bytes, ContactState] = {}
         self._order: list[ContactState] = []
         self._arrays: StateArrays | None = None
+        self._table = np.full(2**system.saddle_count, -1, dtype=np.int64)
+        self._stacked: StateArrays | None = None
+        self._stacked_count = 0
         self._dynamics = dynamics
         self.cancellation = 0.0
         """The largest, over the states built, of ``||Phi_L^T W_L Phi_L|| / lambda_min(Omega^2 - Phi_L^T W_L Phi_L)``:
@@ -162,6 +177,7 @@ class ContactStates:
         if state is None:
             state = self._build(np.asarray(lifted, dtype=bool).copy())
             self._states[key] = state
+            self._table[lifted_code(state.lifted)] = len(self._order)
             self._order.append(state)
             self._arrays = None
         return state
@@ -172,23 +188,35 @@ class ContactStates:
 
     @property
     def arrays(self) -> StateArrays:
-        """The built states stacked for the compiled march (rebuilt when a state was added)."""
-        if self._arrays is None:
-            states = self._order
-            table = np.full(2**self.system.saddle_count, -1, dtype=np.int64)
-            for index, st in enumerate(states):
-                table[lifted_code(st.lifted)] = index
-            self._arrays = StateArrays(
-                table=table,
-                eigenvalues=np.ascontiguousarray(np.stack([st.eigenvalues for st in states])),
-                eigenvectors=np.ascontiguousarray(np.stack([st.eigenvectors for st in states])),
-                inverse_eigenvectors=np.ascontiguousarray(np.stack([st.inverse_eigenvectors for st in states])),
-                modal_compression=np.ascontiguousarray(np.stack([st.modal_compression for st in states])),
-                particular_compression=np.ascontiguousarray(np.stack([st.particular_compression for st in states])),
-                particular=np.ascontiguousarray(np.stack([st.particular for st in states])),
-                lifted=np.ascontiguousarray(np.stack([st.lifted for st in states])),
-            )
-        return self._arrays
+        """The built states stacked for the compiled march.
+
+        The stacks have room for twice the states built when they were last grown, so a march that meets a new
+        state adds one row to each instead of stacking them all again (a 7-saddle orbit visits some 20 states).
+        """
+        count = len(self._order)
+        arrays = self._arrays
+        if arrays is not None:
+            return arrays
+        previous = self._stacked
+        if previous is None or previous.eigenvalues.shape[0] < count:
+            capacity = max(2 * count, 4)
+            first = self._order[0]
+            fields = _STACKED_FIELDS
+            grown = {name: np.zeros((capacity,) + getattr(first, name).shape, dtype=getattr(first, name).dtype) for name in fields}
+            filled = 0 if previous is None else self._stacked_count
+            if previous is not None:
+                for name in fields:
+                    grown[name][:filled] = getattr(previous, name)[:filled]
+            previous = StateArrays(table=self._table, **grown)
+        else:
+            filled = self._stacked_count
+        for index in range(filled, count):
+            st = self._order[index]
+            for name in _STACKED_FIELDS:
+                getattr(previous, name)[index] = getattr(st, name)
+        self._stacked, self._stacked_count = previous, count
+        self._arrays = previous
+        return previous
 
     def forcing(self, t_s: NDArray) -> NDArray[np.float64]:
         """``d(t)`` at the given times (n_t, n_s) [m]."""
