@@ -289,3 +289,21 @@ def test_the_transfer_functions_at_a_heading_are_the_first_harmonic_of_the_wave_
         r.deflection_harmonics_m[1] / amplitude, tf.deflection_m_per_m[0], rtol=0, atol=1e-9 * np.max(np.abs(tf.deflection_m_per_m[0]))
     )
     assert np.max(np.abs(r.bending_moment_harmonics_Nm[2])) < 1e-9 * np.max(np.abs(r.bending_moment_harmonics_Nm[1]))
+
+
+def test_a_case_at_a_heading_gives_the_hull_girder_that_heading(base):
+    """``wave.heading_deg`` reaches the regular-wave hull response (the excitation's one hull call); a heading
+    outside [0, 360) is refused naming the key."""
+    from seafast.config import CaseError, load_case
+    from seafast.excitation.vessel import vessel_excitation
+
+    girder, loading, _ = base
+    wave = vessel_excitation(load_case(overrides={"vessel.motions": "none", "wave.heading_deg": 120.0})).wave
+    assert wave.heading_deg == 120.0
+    direct = wave_response(girder, loading, SHIP_LENGTH_WAVE, 3.0, heading_deg=120.0)
+    np.testing.assert_allclose(
+        wave.bending_moment_Nm, direct.bending_moment_Nm, rtol=0, atol=1e-9 * np.max(np.abs(direct.bending_moment_Nm))
+    )
+    for bad in (360.0, -1.0):
+        with pytest.raises(CaseError, match="heading_deg"):
+            load_case(overrides={"wave.heading_deg": bad})
