@@ -292,6 +292,12 @@ class WaveConfig(_Strict):
         3.0, description="Wave amplitude zeta_a [m]; the height 2 zeta_a is at most 1/7 of the length (breaking limit)"
     )
     frequency_rad_s: Positive | None = Field(None, description="Wave frequency [rad/s]; default from deep-water dispersion")
+    heading_deg: float = Field(
+        180.0,
+        ge=0.0,
+        lt=360.0,
+        description="Wave heading beta [deg]: the direction the waves travel, from the ship's x axis (forward) towards y (port); 180 = head seas, 90 = beam seas (waves from starboard), 0 = following seas",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> WaveConfig:

@@ -313,7 +313,7 @@ def _compute_vessel_excitation(case: Case, cache: VesselCache | None) -> VesselE
         )
         loading, loading_note = vessel_loading_of(case, hull)
         # the wave response balances the still-water state too (its first row): solved once
-        wave = wave_response(girder, loading, case.wave.length_m, amplitude) if amplitude > 0 else None
+        wave = wave_response(girder, loading, case.wave.length_m, amplitude, heading_deg=case.wave.heading_deg) if amplitude > 0 else None
         if v.still_water_bending_moment_table is not None:
             x, moment = read_two_column_table(
                 v.still_water_bending_moment_table, "vessel.still_water_bending_moment_table", ("x_m", "bending_moment_Nm")

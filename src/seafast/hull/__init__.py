@@ -39,7 +39,10 @@ shear force and bending moment of an element load), :mod:`~seafast.hull.grid` (t
 the weight on its elements), :mod:`~seafast.hull.balance` (sinkage and trim,
 :class:`HydrostaticBalanceError`), :mod:`~seafast.hull.still_water` (the still-water response; the
 deflection from a loading computer's moment table), :mod:`~seafast.hull.wave` (the quasi-static
-regular-wave response), :mod:`~seafast.hull.transfer` (transfer functions per metre of wave),
+regular-wave response, at any heading), :mod:`~seafast.hull.oblique` (a wave at a heading as the
+sections see it: apparent length along the ship, breadth factor), :mod:`~seafast.hull.transfer`
+(transfer functions per metre of wave), :mod:`~seafast.hull.torsion` (the wave-torsion estimate,
+not connected to the cargo),
 :mod:`~seafast.hull.loads` (deck-load influence and patch loads, for the two-way coupling),
 :mod:`~seafast.hull.rules` (IACS UR S11 wave coefficient and moments) and
 :mod:`~seafast.hull.deck` (sampling a response on deck, the deck rise).
