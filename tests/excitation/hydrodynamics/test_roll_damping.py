@@ -21,6 +21,7 @@ from scipy.integrate import solve_ivp
 
 from seafast.analyses.seastate.extremes import most_probable_maximum
 from seafast.analyses.seastate.spectrum import jonswap_density
+from seafast.config import CaseError, load_case
 from seafast.excitation.hydrodynamics.roll_damping import (
     FroudeDecrement,
     Linearisation,
@@ -84,6 +85,15 @@ def test_the_damping_description_is_validated_and_frozen():
     q = QuadraticRollDamping.from_nondimensional(0.25, INERTIA)
     assert q.coefficient_Nms2_per_rad2 == pytest.approx(0.25 * INERTIA, rel=1e-15)
     assert q.nondimensional_per_rad(INERTIA) == pytest.approx(0.25, rel=1e-15)
+
+
+def test_the_case_key_is_validated_and_builds_the_damping():
+    assert load_case().vessel.roll_damping_quadratic_Nms2_per_rad2 is None
+    case = load_case(overrides={"vessel.roll_damping_quadratic_Nms2_per_rad2": B2})
+    assert QuadraticRollDamping(case.vessel.roll_damping_quadratic_Nms2_per_rad2 or 0.0).coefficient_Nms2_per_rad2 == B2
+    for bad in (-1.0, "big", math.inf):
+        with pytest.raises(CaseError, match=r"vessel\.roll_damping_quadratic_Nms2_per_rad2"):
+            load_case(overrides={"vessel.roll_damping_quadratic_Nms2_per_rad2": bad})
 
 
 def test_the_roll_model_refuses_bad_input_naming_the_field():
