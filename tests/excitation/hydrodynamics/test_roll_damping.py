@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
 import numba
 import numpy as np
@@ -170,6 +171,19 @@ def test_harmonic_linearisation_at_resonance_has_the_closed_form():
         assert r.total_damping_Nms_per_rad[0] == pytest.approx(b_lin + k * exact, rel=1e-10)
 
 
+def test_no_linear_damping_at_a_grid_point_of_resonance_is_solved_without_warnings():
+    """Z = 0 at omega_n (no linear damping): g(0) is infinite; the sea state's B_eq is that of a grid beside it."""
+    grid = np.linspace(0.1, 3.0, 2001)
+    on = np.sort(np.append(grid, OMEGA_N))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s = stochastic_linearisation(model(on, 0.0), QuadraticRollDamping(B2), jonswap_density(on, 3.0, 12.0))
+        r = harmonic_linearisation(model(np.array([OMEGA_N]), 0.0), QuadraticRollDamping(B2), 2.0)
+    beside = stochastic_linearisation(model(grid, 0.0), QuadraticRollDamping(B2), jonswap_density(grid, 3.0, 12.0))
+    assert s.converged and s.equivalent_damping_Nms_per_rad == pytest.approx(beside.equivalent_damping_Nms_per_rad, rel=1e-3)
+    assert math.isfinite(s.roll_std_rad) and bool(r.converged[0]) and math.isfinite(float(r.roll_amplitude_rad[0]))
+
+
 def test_no_quadratic_damping_gives_the_linear_answer_exactly():
     w = np.linspace(0.2, 1.0, 41)
     m = model(w)
@@ -323,8 +337,9 @@ def monte_carlo(b_lin: float, b2: float, realisations: int, seed: int) -> tuple[
 @pytest.mark.parametrize(
     ("b2", "mpm_excess"),
     [
-        (1.0e9, 0.05),  # B_eq about half the linear damping: measured sigma +0.3 %, MPM +3.2 %
-        (B2, 0.10),  # B_eq about 1.3 times the linear damping: measured sigma -0.3 %, MPM +7.0 %
+        (1.0e9, 0.05),  # B_eq about half the linear damping: measured sigma +0.4 %, MPM +3.4 %
+        # B_eq about 1.3 times the linear damping: measured sigma -0.2 %, MPM +7.2 % (slow: a second Monte Carlo)
+        pytest.param(B2, 0.10, marks=pytest.mark.slow),
     ],
 )
 def test_stochastic_linearisation_matches_a_monte_carlo_of_the_quadratic_roll(b2: float, mpm_excess: float):
