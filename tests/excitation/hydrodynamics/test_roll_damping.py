@@ -74,7 +74,7 @@ def fundamental(signal: NDArray[np.float64]) -> complex:
 # --------------------------------------------------------------------------- descriptions
 def test_the_damping_description_is_validated_and_frozen():
     assert QuadraticRollDamping(0.0).coefficient_Nms2_per_rad2 == 0.0
-    for bad in (-1.0, math.nan, math.inf):
+    for bad in (-1.0, math.nan, math.inf, "big", True):
         with pytest.raises(ValueError, match="coefficient_Nms2_per_rad2"):
             QuadraticRollDamping(bad)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -288,6 +288,9 @@ def test_a_simulated_decay_gives_back_its_damping(start_deg: float, tolerance: f
     assert linear_only > 1.5 * B_POT
     with pytest.raises(ValueError, match="peak_magnitudes_rad"):
         fit_froude_decrement([0.2, 0.1])
+    # a constant decrement (Coulomb friction) is no linear-plus-quadratic decay: b < 0 is refused, with its value
+    with pytest.raises(ValueError, match=r"b_per_rad = -"):
+        fit_froude_decrement(0.3 - 0.01 * np.arange(12))
 
 
 # --------------------------------------------------------------------------- stochastic: Monte Carlo

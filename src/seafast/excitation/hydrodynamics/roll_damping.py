@@ -27,13 +27,13 @@ Why the fixed point has one root (and is found by bracketing): ``g(B) = k |phi(B
 ``c sigma_phidot(B)``) is non-increasing in ``B >= 0`` because ``|Z + i omega B|^2 = Re(Z)^2 +
 (Im Z + omega B)^2`` grows with ``B`` when ``Im Z >= 0`` (a passive hull: it absorbs energy).
 So ``h(B) = B - g(B)`` is strictly increasing, ``h(0) <= 0``, and ``h(B_up) >= 0`` at
-``B_up = min(g(0), sqrt(k |F| / omega))`` (since ``|phi| <= |F| / (omega B)``); the root in
+``B_up = min(g(0), sqrt(k |F| zeta_a / omega))`` (since ``|phi| <= |F| zeta_a / (omega B)``); the root in
 ``[0, B_up]`` is unique and is found by a bracketing root finder (Chandrupatla's method,
 ``scipy.optimize.elementwise.find_root``, per frequency; ``brentq`` for the one sea-state ``B_eq``).
 
-Decay-test coefficients (Froude's decrement law, ITTC recommended procedure 7.5-02-07-04.5,
-"Estimation of roll damping"; Himeno 1981, "Prediction of ship roll damping: state of the
-art"): the decrement per half cycle ``phi_{n} - phi_{n+1} = a phi_m + b phi_m^2`` of the
+Decay-test coefficients (Froude's decrement law; ITTC Recommended Procedure 7.5-02-07-04.5,
+"Numerical estimation of roll damping"; Himeno 1981, "Prediction of ship roll damping: state of
+the art"): the decrement per half cycle ``phi_{n} - phi_{n+1} = a phi_m + b phi_m^2`` of the
 successive peak magnitudes ``phi_n`` at the mean ``phi_m = (phi_n + phi_{n+1}) / 2`` [rad] gives,
 by the energy balance of a half cycle at the roll frequency ``omega``,
 ``B_lin = 2 a (I44 + A44) omega / pi`` and ``B44_2 = 3 b (I44 + A44) / 4``; in the normalised form
@@ -42,9 +42,10 @@ by the energy balance of a half cycle at the roll frequency ``omega``,
 
 Integrating (how the roll motions call it): build a :class:`RollModel` at the motion grid, a
 :class:`QuadraticRollDamping`, then :func:`harmonic_linearisation` (regular waves: one ``B_eq``
-per frequency) or :func:`stochastic_linearisation` (a sea state: one ``B_eq``); the result's
-``total_damping_Nms_per_rad`` is the damping to put in the roll row and ``roll_rao_rad_per_m``
-the converged roll RAO.
+per frequency) or :func:`stochastic_linearisation` (a sea state: one ``B_eq``); add the result's
+``equivalent_damping_Nms_per_rad`` to the roll diagonal of the damping (for a single DOF,
+``total_damping_Nms_per_rad`` is ``B44 + B_lin + B_eq``); ``roll_rao_rad_per_m`` is the converged
+roll RAO.
 
 Size: over 400 lines because the damping's description, its decay-test conversions, the roll
 model and the two linearisations with their typed outcomes are one documented model (mostly
@@ -95,9 +96,12 @@ class Linearisation(StrEnum):
 
 
 def _check_finite(name: str, value: float, minimum: float, strict: bool = False) -> float:
-    v = float(value)
+    allowed = f"a finite number {'>' if strict else '>='} {minimum:g}"
+    try:
+        v = math.nan if isinstance(value, bool) else float(value)
+    except (TypeError, ValueError):
+        v = math.nan
     if not math.isfinite(v) or v < minimum or (strict and v == minimum):
-        allowed = f"a finite number {'>' if strict else '>='} {minimum:g}"
         raise ValueError(f"{name} = {value!r} is not allowed: {allowed}")
     return v
 
@@ -196,13 +200,19 @@ def fit_froude_decrement(peak_magnitudes_rad: ArrayLike) -> FroudeDecrement:
     -------
     FroudeDecrement
         ``a, b`` minimising ``sum (Delta phi - a phi_m - b phi_m^2)^2``; a negative fitted value
-        (noise on a nearly linear or nearly quadratic decay) is refused with its value.
+        (noise on a nearly linear or nearly quadratic decay, or another damping law) is refused
+        with its value (``ValueError``).
     """
     peaks = np.abs(np.asarray(peak_magnitudes_rad, dtype=float))
     if peaks.ndim != 1 or peaks.size < 3 or not np.all(np.isfinite(peaks)):
         raise ValueError(f"peak_magnitudes_rad needs at least 3 finite peaks in a 1-D array; got shape {peaks.shape}")
     drop, mean = peaks[:-1] - peaks[1:], 0.5 * (peaks[:-1] + peaks[1:])
     (a, b), *_ = np.linalg.lstsq(np.column_stack([mean, mean**2]), drop, rcond=None)
+    if a < 0 or b < 0:
+        raise ValueError(
+            f"peak_magnitudes_rad: the fitted decrement law has a = {a:.6g}, b_per_rad = {b:.6g}; allowed: both >= 0 (the decay "
+            "is not linear-plus-quadratic: fit fewer or more peaks, or fit a single term)"
+        )
     return FroudeDecrement(float(a), float(b))
 
 
