@@ -184,6 +184,28 @@ def test_no_linear_damping_at_a_grid_point_of_resonance_is_solved_without_warnin
     assert math.isfinite(s.roll_std_rad) and bool(r.converged[0]) and math.isfinite(float(r.roll_amplitude_rad[0]))
 
 
+def test_frequency_dependent_coefficients_are_solved_frequency_by_frequency():
+    """The vectorised root finder on a grid with A44(omega), B44(omega) and one wave amplitude per frequency equals
+    one solve per frequency; the returned B_eq are the fixed points of both linearisations."""
+    w = np.linspace(0.25, 0.9, 27)
+    inertia = INERTIA * (1.0 + 0.1 * np.cos(3.0 * w))
+    damping = B_POT * (0.5 + np.sin(2.0 * w) ** 2)
+    force = excitation(w) * np.exp(1j * w)
+    zeta = 1.0 + w
+    m = RollModel.single_dof(w, inertia, damping, C44, force, additional_linear_damping_Nms_per_rad=0.3 * B_POT)
+    q = QuadraticRollDamping(B2)
+    r = harmonic_linearisation(m, q, zeta)
+    for j in (0, 9, 13, 26):
+        one = harmonic_linearisation(RollModel.single_dof(w[j], inertia[j], damping[j] + 0.3 * B_POT, C44, force[j]), q, zeta[j])
+        assert one.equivalent_damping_Nms_per_rad[0] == pytest.approx(r.equivalent_damping_Nms_per_rad[j], rel=1e-11)
+    assert np.allclose(r.equivalent_damping_Nms_per_rad, q.harmonic_equivalent_Nms_per_rad(w, r.roll_amplitude_rad), rtol=1e-11, atol=0)
+    assert np.allclose(r.total_damping_Nms_per_rad, damping + 0.3 * B_POT + r.equivalent_damping_Nms_per_rad, rtol=1e-12, atol=0)
+    s = stochastic_linearisation(m, q, jonswap_density(w, 3.0, 12.0))
+    assert s.equivalent_damping_Nms_per_rad == pytest.approx(q.stochastic_equivalent_Nms_per_rad(s.roll_velocity_std_rad_s), rel=1e-11)
+    velocity = math.sqrt(float(np.trapezoid(w**2 * np.abs(s.roll_rao_rad_per_m) ** 2 * jonswap_density(w, 3.0, 12.0), w)))
+    assert s.roll_velocity_std_rad_s == pytest.approx(velocity, rel=1e-14)
+
+
 def test_no_quadratic_damping_gives_the_linear_answer_exactly():
     w = np.linspace(0.2, 1.0, 41)
     m = model(w)
