@@ -28,8 +28,8 @@ Why the fixed point has one root (and is found by bracketing): ``g(B) = k |phi(B
 (Im Z + omega B)^2`` grows with ``B`` when ``Im Z >= 0`` (a passive hull: it absorbs energy).
 So ``h(B) = B - g(B)`` is strictly increasing, ``h(0) <= 0``, and ``h(B_up) >= 0`` at
 ``B_up = min(g(0), sqrt(k |F| zeta_a / omega))`` (since ``|phi| <= |F| zeta_a / (omega B)``); the root in
-``[0, B_up]`` is unique and is found by a bracketing root finder (Chandrupatla's method,
-``scipy.optimize.elementwise.find_root``, per frequency; ``brentq`` for the one sea-state ``B_eq``).
+``[0, B_up]`` is unique and is found by ``scipy.optimize.brentq`` on that bracket (per frequency
+in regular waves, once for a sea state).
 
 Decay-test coefficients (Froude's decrement law; ITTC Recommended Procedure 7.5-02-07-04.5,
 "Numerical estimation of roll damping"; Himeno 1981, "Prediction of ship roll damping: state of
@@ -62,7 +62,6 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
-from scipy.optimize.elementwise import find_root
 
 __all__ = [
     "HARMONIC_FACTOR",
@@ -436,32 +435,15 @@ def _upper_bound(g0: NDArray[np.float64], slope: NDArray[np.float64], force: NDA
         return np.fmin(np.where(np.isfinite(g0), g0, np.inf), np.sqrt(slope * force))
 
 
-def _bracketed_roots(
-    g: Callable[[NDArray[np.float64], NDArray[np.intp]], NDArray[np.float64]],
-    g0: NDArray[np.float64],
-    upper: NDArray[np.float64],
-    tolerance: float,
-    max_iterations: int,
-) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.bool_]]:
-    """Roots of ``B = g(B)`` per frequency in ``[0, upper]`` (Chandrupatla): ``B``, iterations, converged."""
-    # Z = 0 (no damping at resonance): g(B) = B_up^2 / B, the root is B_up itself
-    b_eq = np.where(np.isfinite(g0), 0.0, upper)
-    iterations, converged = np.zeros(g0.size, dtype=np.int64), np.ones(g0.size, dtype=bool)
-    active = (upper > 0) & np.isfinite(g0)
-    if np.any(active):
-
-        def h(b: NDArray[np.float64], i: NDArray[np.float64]) -> NDArray[np.float64]:
-            return b - g(b, i.astype(np.intp))
-
-        res = find_root(
-            h,
-            (np.zeros(int(active.sum())), upper[active]),
-            args=(np.flatnonzero(active).astype(float),),
-            tolerances={"xatol": 4.0 * float(np.finfo(float).tiny), "xrtol": tolerance},
-            maxiter=max_iterations,
-        )
-        b_eq[active], iterations[active], converged[active] = res.x, res.nit, res.success
-    return b_eq, iterations, converged
+def _fixed_point(
+    h: Callable[..., float], upper: float, tolerance: float, max_iterations: int, args: tuple[int, ...] = ()
+) -> tuple[float, int, bool]:
+    """Root of ``h(B, *args) = B - g(B)`` in ``[0, upper]`` by ``brentq`` (``h(0) <= 0 <= h(upper)``): ``B``, iterations, converged."""
+    root, info = brentq(
+        h, 0.0, upper, args=args, xtol=tolerance * upper * 1e-3, rtol=max(tolerance, 4.0 * float(np.finfo(float).eps)),
+        maxiter=max_iterations, full_output=True, disp=False,
+    )  # fmt: skip
+    return float(root), int(info.iterations), bool(info.converged)
 
 
 def harmonic_linearisation(
@@ -470,9 +452,8 @@ def harmonic_linearisation(
     """Roll in regular waves with the quadratic damping linearised harmonically, ``B_eq`` per frequency.
 
     Solves ``B = 8 / (3 pi) omega B44_2 zeta_a |F| / |Z + i omega B|`` at each frequency (a unique
-    root in ``[0, B_up]``; module docstring) by Chandrupatla's bracketing method
-    (``scipy.optimize.elementwise.find_root``). ``B44_2 = 0`` or ``zeta_a = 0`` gives the linear
-    answer exactly (0 iterations).
+    root in ``[0, B_up]``; module docstring) by ``scipy.optimize.brentq`` on that bracket.
+    ``B44_2 = 0`` or ``zeta_a = 0`` gives the linear answer exactly (0 iterations).
 
     Parameters
     ----------
@@ -500,16 +481,23 @@ def harmonic_linearisation(
     slope = HARMONIC_FACTOR * w * damping.coefficient_Nms2_per_rad2  # B_eq per rad of amplitude
     force = np.abs(model.excitation_Nm_per_m) * zeta / w  # |phi| <= force / B
 
-    def g(b: NDArray[np.float64], idx: NDArray[np.intp]) -> NDArray[np.float64]:
-        z = model.impedance_Nm_per_rad[idx] + 1j * w[idx] * b
-        with np.errstate(divide="ignore"):
-            return slope[idx] * np.abs(model.excitation_Nm_per_m[idx]) * zeta[idx] / np.abs(z)
+    def g(b: float, j: int) -> float:
+        return float(slope[j] * abs(model.excitation_Nm_per_m[j]) * zeta[j] / abs(model.impedance_Nm_per_rad[j] + 1j * w[j] * b))
 
-    index = np.arange(w.size)
-    g0 = g(np.zeros(w.size), index)
-    b_eq, iterations, converged = _bracketed_roots(g, g0, _upper_bound(g0, slope, force), tolerance, max_iterations)
+    def h(b: float, j: int) -> float:
+        return b - g(b, j)
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        g0 = slope * np.abs(model.excitation_Nm_per_m) * zeta / np.abs(model.impedance_Nm_per_rad)
+    upper = _upper_bound(g0, slope, force)
+    b_eq, iterations, converged = np.zeros(w.size), np.zeros(w.size, dtype=np.int64), np.ones(w.size, dtype=bool)
+    for j in np.flatnonzero(upper > 0):
+        if not np.isfinite(g0[j]):  # Z = 0, no damping at resonance: g(B) = B_up^2 / B, the root is B_up itself
+            b_eq[j] = upper[j]
+        else:
+            b_eq[j], iterations[j], converged[j] = _fixed_point(h, float(upper[j]), tolerance, max_iterations, (int(j),))
     rao = model.roll_rao_rad_per_m(b_eq)
-    residual = np.abs(b_eq - g(b_eq, index))
+    residual = np.array([abs(b_eq[j] - g(b_eq[j], j)) if upper[j] > 0 else 0.0 for j in range(w.size)])
     return HarmonicRollResponse(
         omega_rad_s=w,
         wave_amplitude_m=zeta,
@@ -579,11 +567,7 @@ def stochastic_linearisation(
     upper = float(_upper_bound(np.array([c * sigma(0.0)]), np.array([c]), np.array([force]))[0])
     b_eq, iterations, converged = 0.0, 0, True
     if upper > 0:
-        b_eq, info = brentq(
-            lambda b: b - c * sigma(b), 0.0, upper, xtol=tolerance * upper * 1e-3, rtol=max(tolerance, 4.0 * np.finfo(float).eps),
-            maxiter=max_iterations, full_output=True, disp=False,
-        )  # fmt: skip
-        iterations, converged = int(info.iterations), bool(info.converged)
+        b_eq, iterations, converged = _fixed_point(lambda b: b - c * sigma(b), upper, tolerance, max_iterations)
     rao = model.roll_rao_rad_per_m(b_eq)
     spectrum = np.abs(rao) ** 2 * density
     return StochasticRollResponse(
