@@ -267,6 +267,12 @@ class VesselConfig(_Strict):
         description="'one_way' (the source's: the hull carries the cargo as a spread weight, the cargo follows the deck) or "
         "'two_way' (hull and cargo solved together: the cargo's deck forces load the quasi-static hull girder, still water and wave)",
     )
+    roll_damping_quadratic_Nms2_per_rad2: NonNegative | None = Field(
+        None,
+        description="Quadratic roll damping B44_2 [N m s^2/rad^2]: the roll moment -B44_2 |phi'| phi' of bilge keels and eddies "
+        "(from a decay test: B44_2 = 3 b (I44 + A44) / 4, docs/roll_damping.md), linearised per regular wave or per sea state; "
+        "null = none (head seas have no roll and never read it)",
+    )
 
     @model_validator(mode="after")
     def _check_coupling(self) -> VesselConfig:
