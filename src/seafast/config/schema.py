@@ -5,9 +5,12 @@ keys, so a misspelt key is an error rather than silently ignored. The dotted key
 docs/interface.md#2-case-keys (``cargo.length_m``, ``solver.harmonics``, ...) are the attribute paths of
 :class:`Case`.
 
-Size: over 400 lines because every case key is declared here, with its unit, default, limits and
-description (one place for users to read the case format and for `seafast schema` to export it); the
-sections are small classes.
+The sections of the cargo, the sea-fastening, the vessel, the wave, the sea state and the limits are
+declared here, the numerical settings (solver, model, output) in :mod:`seafast.config.solver_settings`
+and the field types every section uses in :mod:`seafast.config.fields`; :class:`Case` gathers them.
+
+Size: over 400 lines because each of those sections declares every key with its unit, default, limits and
+description (one place for users to read the case format and for `seafast schema` to export it).
 """
 
 from __future__ import annotations
@@ -15,20 +18,14 @@ from __future__ import annotations
 import math
 from itertools import pairwise
 from pathlib import Path
-from typing import Annotated, Literal, get_args
+from typing import Annotated, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from seafast.config.arrangement import evenly_spaced_saddles
-from seafast.config.modes import (
-    ContactLawKind,
-    Formulation,
-    HullCargoCoupling,
-    MotionCoupling,
-    NonlinearSolver,
-    SolverMethod,
-    TimeDomainStart,
-)
+from seafast.config.fields import Finite, NonNegative, NotBool, Positive, StrictSection
+from seafast.config.modes import HullCargoCoupling, MotionCoupling
+from seafast.config.solver_settings import SOURCE_SOLVER_SETTINGS, ModelConfig, OutputConfig, SolverConfig
 
 __all__ = [
     "Case",
@@ -53,31 +50,7 @@ __all__ = [
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
 
 
-def _not_bool(value: object) -> object:
-    # pydantic's lax mode reads YAML true/yes/on as 1; a boolean is never a valid number here
-    if isinstance(value, bool):
-        raise ValueError(f"{value!r} is a yes/no value; a number is required")
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError("must be a finite number")
-    return value
-
-
-# The yes/no check is the last annotation, so it runs first (a before-validator wraps what precedes it) and
-# the bounds stay on the number itself, where pydantic exports them as JSON Schema's minimum /
-# exclusiveMinimum / maximum / exclusiveMaximum (before the check they come out as pydantic's own ge/gt/le/lt,
-# which a standard validator ignores).
-NotBool = BeforeValidator(_not_bool)
-Positive = Annotated[float, Field(gt=0, allow_inf_nan=False), NotBool]
-NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False), NotBool]
-Finite = Annotated[float, Field(allow_inf_nan=False), NotBool]
-Count = Annotated[int, NotBool]
-
-
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True)
-
-
-class CargoSectionConfig(_Strict):
+class CargoSectionConfig(StrictSection):
     """One segment of a piecewise (tapered) tube, positions along the cargo from its aft end."""
 
     x_start_m: NonNegative
@@ -96,7 +69,7 @@ class CargoSectionConfig(_Strict):
         return self
 
 
-class CargoConfig(_Strict):
+class CargoConfig(StrictSection):
     """The cargo: a steel tube (monopile), uniform or piecewise."""
 
     length_m: Positive = Field(74.0, description="Cargo length L_m [m]")
@@ -136,7 +109,7 @@ class CargoConfig(_Strict):
         return self
 
 
-class LashingConfig(_Strict):
+class LashingConfig(StrictSection):
     """Pretensioned lashing wires at the lashed saddles."""
 
     stiffness_N_per_m: NonNegative = Field(
@@ -154,7 +127,7 @@ class LashingConfig(_Strict):
     )
 
 
-class StopperConfig(_Strict):
+class StopperConfig(StrictSection):
     """Optional end stoppers fore and aft of the cargo: unilateral axial springs with a gap (axial analysis)."""
 
     gap_m: NonNegative | None = Field(
@@ -170,7 +143,7 @@ class StopperConfig(_Strict):
         return self
 
 
-class SeaFasteningConfig(_Strict):
+class SeaFasteningConfig(StrictSection):
     """Saddles and lashings."""
 
     saddle_count: Annotated[int, Field(ge=1, le=50), NotBool] = Field(
@@ -229,7 +202,7 @@ class SeaFasteningConfig(_Strict):
         return v
 
 
-class VesselConfig(_Strict):
+class VesselConfig(StrictSection):
     """Vessel particulars and the sources of the deck excitation."""
 
     length_m: Positive = Field(171.0, description="Length between perpendiculars L_s [m]")
@@ -290,7 +263,7 @@ BREAKING_STEEPNESS = 1.0 / 7.0
 """Wave height over length above which a deep-water wave breaks (Michell's limit, ~0.142) [-]."""
 
 
-class WaveConfig(_Strict):
+class WaveConfig(StrictSection):
     """Regular head-sea wave, no steeper than the breaking limit (height over length at most 1/7)."""
 
     length_m: Positive = Field(171.0, description="Wave length lambda [m]")
@@ -318,115 +291,6 @@ class WaveConfig(_Strict):
         return self
 
 
-#: The source's method (``solver.preset: source``): the values it gives the keys the case leaves unset.
-SOURCE_SOLVER_SETTINGS: dict[str, object] = {
-    "contact_law": ContactLawKind.TANH,
-    "regularisation_per_m": 1000.0,
-    "harmonics": 5,
-    "time_samples": 128,
-    "nonlinear_solver": NonlinearSolver.HYBR,
-}
-
-
-class SolverConfig(_Strict):
-    """Nonlinear (contact) solver settings."""
-
-    preset: Literal["default", "source"] = Field(
-        "default",
-        description="'default' (exact contact law, harmonics chosen adaptively until the saddle-force peaks settle) or "
-        "'source' (the source's method: tanh law with kappa = 1000 1/m, 5 harmonics, 128 samples, Powell's hybrid "
-        "method); a preset only fills the keys the case leaves unset",
-    )
-    # the modes are Literals of enum members: the values are the members, the JSON Schema lists them inline
-    method: Literal[SolverMethod.HBM, SolverMethod.QUASI_STATIC, SolverMethod.TIME_DOMAIN, SolverMethod.SHOOTING] = Field(
-        SolverMethod.HBM,
-        description="hbm (harmonic balance, default; with solver.harmonics unset and the exact contact law its converged "
-        "limit, every harmonic, computed by exact-event shooting), quasi_static or time_domain (the exact-contact "
-        "references), or shooting (exact-event shooting on the piecewise-linear contact problem)",
-    )
-    formulation: Literal[Formulation.CONDENSED, Formulation.FULL] = Formulation.CONDENSED
-    # a case starts the time-domain reference from the linear or the harmonic balance's solution only
-    time_domain_start: Literal[TimeDomainStart.LINEAR, TimeDomainStart.HBM] = Field(
-        TimeDomainStart.LINEAR,
-        description="State the time-domain reference (solver.method: time_domain) starts from: 'linear' (the "
-        "linear periodic solution at t = 0) or 'hbm' (the harmonic balance's solution with the case's settings: the "
-        "reference then reports whether it stays on that orbit, solver outcome 'other_orbit' when it does not)",
-    )
-    contact_law: Literal[ContactLawKind.TANH, ContactLawKind.SOFTPLUS, ContactLawKind.EXACT] = Field(
-        ContactLawKind.EXACT, description="Saddle contact law: exact (default), tanh (the source's regularisation) or softplus"
-    )
-    regularisation_per_m: Positive = Field(1000.0, description="Sharpness kappa of the regularised contact laws [1/m]")
-    harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] | None = Field(
-        None,
-        description="Number of harmonics H; default (null): the converged answer (with the exact contact law and the "
-        "condensed formulation every harmonic, by exact-event shooting; otherwise H chosen adaptively until the "
-        "saddle-force peaks settle to solver.truncation_tolerance)",
-    )
-    time_samples: Annotated[int, Field(ge=4, le=16384), NotBool] | None = Field(
-        None,
-        description="AFT time samples per period N; default (null): max(128, 2.5 H) (512 output samples for the references; "
-        "the shooting solver chooses its own grid from the cargo's modes and its peaks)",
-    )
-    nonlinear_solver: Literal[NonlinearSolver.HYBR, NonlinearSolver.NEWTON] = Field(
-        NonlinearSolver.NEWTON, description="newton (damped semi-smooth Newton, default) or hybr (Powell's hybrid method, as the source)"
-    )
-    tolerance: Positive = Field(1e-10, description="Relative residual tolerance")
-    axial_harmonics: Annotated[int, Field(ge=1, le=400), NotBool] = Field(
-        100, description="Number of harmonics of the axial (friction) harmonic balance (axial analysis only)"
-    )
-    truncation_tolerance: Annotated[float, Field(gt=0, lt=1), NotBool] = Field(
-        1e-3,
-        description="Largest estimated error of each saddle's peak force from the harmonics left out, relative to "
-        "its force scale [-]: the adaptive harmonics' target, and the level above which a fixed H is reported as too few",
-    )
-    max_harmonics: Annotated[int, Field(ge=1, le=1024), NotBool] = Field(512, description="Upper bound of the adaptive H")
-
-    @field_validator("method", "formulation", "time_domain_start", "contact_law", "nonlinear_solver", mode="before")
-    @classmethod
-    def _mode(cls, value: object, info: ValidationInfo) -> object:
-        # a mode by its value, the allowed ones named by their values (pydantic's own message prints the members' reprs)
-        allowed = get_args(cls.model_fields[str(info.field_name)].annotation)
-        if not isinstance(value, str) or value not in allowed:
-            names = [repr(str(m)) for m in allowed]
-            raise ValueError("Input should be " + (", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]))
-        return type(allowed[0])(value)
-
-    @model_validator(mode="before")
-    @classmethod
-    def _apply_preset(cls, data: object) -> object:
-        if isinstance(data, dict) and data.get("preset") == "source":
-            data = {**SOURCE_SOLVER_SETTINGS, **data}
-        return data
-
-    @model_validator(mode="after")
-    def _check(self) -> SolverConfig:
-        if self.harmonics is not None and self.time_samples is not None and self.time_samples < 2 * self.harmonics + 2:
-            raise ValueError(f"time_samples = {self.time_samples} must be at least 2 * harmonics + 2 = {2 * self.harmonics + 2} (aliasing)")
-        return self
-
-    @property
-    def reference_time_samples(self) -> int:
-        """Output samples per period of the exact references: ``time_samples``, else 512."""
-        return int(self.time_samples) if self.time_samples is not None else 512
-
-
-class ModelConfig(_Strict):
-    """Discretisation, damping and environment."""
-
-    element_length_m: Positive = Field(1.0, description="Target cargo finite-element length [m]")
-    damping_ratio: Annotated[float, Field(ge=0, lt=1), NotBool] = Field(
-        0.02, description="Rayleigh damping ratio at the first two cargo natural frequencies [-]"
-    )
-    gravity_m_per_s2: Positive = 9.81
-
-
-class OutputConfig(_Strict):
-    """What `seafast run` writes besides summary.csv."""
-
-    netcdf: bool = True
-    plots: bool = True
-
-
 def max_significant_height_m(peak_period_s: float, gravity_m_per_s2: float = 9.81) -> float:
     """Steepest sea state that occurs (DNV-RP-C205, 3.5.5.4): Hs at the limiting steepness [m].
 
@@ -438,7 +302,7 @@ def max_significant_height_m(peak_period_s: float, gravity_m_per_s2: float = 9.8
     return s_p * gravity_m_per_s2 * tp * tp / (2.0 * math.pi)
 
 
-class SeaStateConfig(_Strict):
+class SeaStateConfig(StrictSection):
     """Irregular head sea for ``seafast seastate`` (not used by ``seafast run``)."""
 
     significant_height_m: Positive | None = Field(
@@ -490,14 +354,14 @@ class SeaStateConfig(_Strict):
         return self
 
 
-class LimitsConfig(_Strict):
+class LimitsConfig(StrictSection):
     """Design limits the sea-state extremes are judged against (the studies' defaults)."""
 
     max_saddle_force_N: Positive = Field(7.0e6, description="Largest allowed saddle force F [N]")
     max_bending_stress_Pa: Positive = Field(20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]")
 
 
-class Case(_Strict):
+class Case(StrictSection):
     """One seafast case: cargo, sea-fastening, vessel, wave, solver (and a sea state, limits)."""
 
     name: str = "case"
