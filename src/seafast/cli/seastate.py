@@ -71,7 +71,10 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     rows = [analysis.extremes.row()]
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)
-    say(f"nonlinear design waves: {len(design.waves)} waves by harmonic balance ({(time.perf_counter() - t1) * 1e3:.0f} ms)")
+    how = (
+        "converged (exact-event shooting)" if design.settings.harmonics is None else f"by harmonic balance, H = {design.settings.harmonics}"
+    )
+    say(f"nonlinear design waves: {len(design.waves)} waves, {how} ({(time.perf_counter() - t1) * 1e3:.0f} ms)")
     monte_carlo = None
     engine, why = (None, "--no-monte-carlo") if args.no_monte_carlo else _monte_carlo_engine()
     if engine is None:

@@ -147,7 +147,8 @@ def _operability_attrs(result: OperabilityResult) -> dict[str, Any]:
         "duration_s": case.sea_state.duration_s,
         "max_saddle_force_N": case.limits.max_saddle_force_N,
         "max_bending_stress_Pa": case.limits.max_bending_stress_Pa,
-        "design_wave_harmonics": result.settings.design_wave.harmonics,
+        # the design waves' solve: their converged periodic answer (the default) or a fixed H
+        "design_wave_harmonics": "converged" if result.settings.design_wave.harmonics is None else result.settings.design_wave.harmonics,
         "design_wave_band_fraction": result.settings.design_wave.band_fraction,
         "design_wave_band_points": result.settings.design_wave.band_points,
         "hs_tolerance_m": result.settings.hs_tolerance_m,

@@ -198,15 +198,16 @@ def test_a_wave_is_read_only_where_it_is_designed_so_without_lift_off_the_row_is
 
 def test_a_moment_wave_is_read_where_it_is_at_most_an_mpm_wave_and_catches_a_peak_that_lift_off_moves():
     # four saddles, Hs 8.13 m, Tp 14 s (heavy lift-off): in the upper band wave designed for the
-    # governing point (over saddle 1) the largest moment is over saddle 2, 3 % above the governing
-    # point's, where that wave is slightly below the point's own MPM wave: it is read there
+    # governing point (over saddle 1) the largest moment is over saddle 2, 0.8 % above the governing
+    # point's (converged waves; 3 % at H = 16), where that wave is slightly below the point's own MPM
+    # wave: it is read there
     an = analysis_of(**{"seafastening.saddle_count": 4, "sea_state.significant_height_m": 8.13, "sea_state.peak_period_s": 14.0})
     dw = sea_state_design_waves(an)
     assert dw.converged
     e, tf = an.extremes, an.transfer
     waves = [(i, w, s) for i, (w, s) in enumerate(zip(dw.waves, dw.solutions, strict=True)) if w.quantity == "M_b_Nm"]
     at_point = max(s.maximum_at("M_b_Nm", w.location) for _, w, s in waves)
-    assert dw.totals["M_b_Nm"] > 1.01 * at_point
+    assert dw.totals["M_b_Nm"] > 1.005 * at_point
     for i, w, _ in waves:
         read = dw.read[i]
         severity = w.amplitude_m * np.abs(tf.bending_moment_Nm[w.frequency_index]) / e.bending_moment.mpm
@@ -250,8 +251,8 @@ def test_a_wave_the_truncated_balance_cannot_solve_falls_back_to_fewer_harmonics
     # wave has no solution near its start (Newton stalls near 1e-3), H = 12 converges; the H used is kept
     an = analysis_of(**{"sea_state.significant_height_m": 4.9, "sea_state.peak_period_s": 8.5})
     static = still_water_excitation(an)
-    assert not design_wave_extremes(an, static, DesignWaveSettings(fallback_harmonics=())).converged
-    dw = design_wave_extremes(an, static)
+    assert not design_wave_extremes(an, static, DesignWaveSettings(harmonics=16, fallback_harmonics=())).converged
+    dw = design_wave_extremes(an, static, DesignWaveSettings(harmonics=16))
     assert dw.converged
     used = {(w.role, s.harmonics) for w, s in zip(dw.waves, dw.solutions, strict=True)}
     assert ("band_high", 12) in used and ("peak", 16) in used

@@ -12,9 +12,9 @@ proportional to Hs (``MPM = sigma sqrt(2 ln(D / Tz))``, sigma proportional to Hs
 * **nonlinear allowable**: the Hs at which the design-wave estimate
   (:mod:`seafast.analyses.seastate.design_wave`) of F or sigma_b reaches its limit, by bracketing from the
   linear allowable (steps of :attr:`OperabilitySettings.expansion`) and Brent's method
-  (``scipy.optimize.brentq``); the design frequencies do not change with Hs, so every evaluation
-  reuses the wave operators and starts each solve from the previous Hs's solution at that
-  frequency.
+  (``scipy.optimize.brentq``); the design frequencies do not change with Hs, so at a fixed H every
+  evaluation reuses the wave operators and starts each solve from the previous Hs's solution at that
+  frequency (the converged design waves, the default, are solved afresh by exact-event shooting).
 
 The sea states share their transfer functions (:mod:`seafast.analyses.operability.family`).
 """
@@ -60,7 +60,9 @@ class OperabilitySettings:
     Attributes
     ----------
     design_wave
-        The design-wave rule and its harmonic balance.
+        The design-wave rule and its solve (by default each wave's converged periodic answer: near the saturation
+        of the saddle force in heavy lift-off the allowable Hs is sensitive to a per cent of the MPM, and the
+        H = 16 design waves, 2-3 % low there, can move it by metres: docs/operability.md).
     master_step_rad_s
         Spacing of the master grid the transfer functions are computed on [rad/s].
     hs_tolerance_m
