@@ -19,7 +19,7 @@ from typing import Annotated, Literal, get_args
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
-from seafast.config.arrangement import evenly_spaced_saddles
+from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles
 from seafast.config.modes import (
     ContactLawKind,
     Formulation,
@@ -113,6 +113,11 @@ class CargoConfig(_Strict):
     density_kg_per_m3: Positive = 7850.0
     units_abreast: Annotated[int, Field(ge=1, le=20), NotBool] = Field(
         4, description="Identical cargo items side by side (their weights add on the hull; one is modelled)"
+    )
+    transverse_position_m: Finite | None = Field(
+        None,
+        description="y of the analysed unit's axis from the centreline [m], + to port; default: the outermost unit to port, "
+        "the units_abreast units on equal lanes of vessel.breadth_m / units_abreast (docs/headings.md#3-the-loaded-ship)",
     )
 
     @model_validator(mode="after")
@@ -262,6 +267,21 @@ class VesselConfig(_Strict):
     deck_height_m: Positive = Field(
         12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
     )
+    vertical_centre_of_gravity_m: Positive | None = Field(
+        None,
+        description="Height of the loaded ship's centre of gravity above the keel, KG [m]; null = from the weight distribution "
+        "(docs/headings.md#3-the-loaded-ship); head seas keep the heave-pitch model's 8 m unless this is given",
+    )
+    roll_radius_of_gyration_m: Positive | None = Field(
+        None,
+        description="Roll radius of gyration of the loaded ship about the x axis through its centre of gravity [m]; "
+        "null = from the weight distribution (docs/headings.md#3-the-loaded-ship)",
+    )
+    roll_damping_ratio: Annotated[float, Field(ge=0, lt=1, allow_inf_nan=False), NotBool] = Field(
+        0.05,
+        description="Additional linear (viscous) roll damping as a fraction of critical, 2 sqrt((I44 + A44) C44) [-], added to the "
+        "BEM's radiation damping (docs/headings.md#5-roll-damping)",
+    )
     coupling: Literal[HullCargoCoupling.ONE_WAY, HullCargoCoupling.TWO_WAY] = Field(
         HullCargoCoupling.ONE_WAY,
         description="'one_way' (the source's: the hull carries the cargo as a spread weight, the cargo follows the deck) or "
@@ -292,6 +312,12 @@ class WaveConfig(_Strict):
         3.0, description="Wave amplitude zeta_a [m]; the height 2 zeta_a is at most 1/7 of the length (breaking limit)"
     )
     frequency_rad_s: Positive | None = Field(None, description="Wave frequency [rad/s]; default from deep-water dispersion")
+    heading_deg: float = Field(
+        180.0,
+        ge=0.0,
+        lt=360.0,
+        description="Wave heading beta [deg]: the direction the waves travel, from the ship's x axis (forward) towards y (port); 180 = head seas, 90 = beam seas (waves from starboard), 0 = following seas",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> WaveConfig:
@@ -536,6 +562,13 @@ class Case(_Strict):
                 f"{self.cargo.units_abreast * d_max:g} m of deck, more than vessel.breadth_m = {self.vessel.breadth_m:g}; "
                 f"allowed units_abreast <= {int(self.vessel.breadth_m // d_max)}"
             )
+        y = self.cargo.transverse_position_m
+        if y is not None and abs(y) + 0.5 * d_max > 0.5 * self.vessel.breadth_m:
+            raise ValueError(
+                f"cargo.transverse_position_m = {y} puts the cargo (diameter {d_max:g} m) beyond the ship's side; "
+                f"allowed {-(0.5 * self.vessel.breadth_m - 0.5 * d_max):g} .. {0.5 * self.vessel.breadth_m - 0.5 * d_max:g} "
+                "(+ to port, from the centreline)"
+            )
         if self.cargo.position_m is not None:
             half = L / 2
             if self.cargo.position_m - half < 0 or self.cargo.position_m + half > self.vessel.length_m:
@@ -581,6 +614,12 @@ class Case(_Strict):
     def cargo_position_m(self) -> float:
         """x of the cargo midpoint from the AP [m] (default: midship)."""
         return self.cargo.position_m if self.cargo.position_m is not None else 0.5 * self.vessel.length_m
+
+    def cargo_transverse_position_m(self) -> float:
+        """y of the analysed unit's axis from the centreline [m], + to port: given, or the outermost to port of the abreast lanes."""
+        if self.cargo.transverse_position_m is not None:
+            return float(self.cargo.transverse_position_m)
+        return float(abreast_lanes_m(self.cargo.units_abreast, self.vessel.breadth_m)[-1])
 
     def wave_frequency_rad_s(self) -> float:
         """Wave frequency [rad/s]: given, or deep-water dispersion omega = sqrt(2 pi g / lambda)."""
