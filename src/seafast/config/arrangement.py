@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["evenly_spaced_saddles", "abreast_lanes_m"]
+__all__ = ["evenly_spaced_saddles", "abreast_lanes_m", "transverse_position_error"]
 
 
 def evenly_spaced_saddles(count: int, cargo_length_m: float) -> NDArray[np.float64]:
@@ -28,3 +28,14 @@ def abreast_lanes_m(count: int, breadth_m: float) -> NDArray[np.float64]:
         raise ValueError(f"units abreast = {count}; must be >= 1")
     lane = float(breadth_m) / count
     return (np.arange(count, dtype=np.float64) - 0.5 * (count - 1)) * lane
+
+
+def transverse_position_error(y_m: float | None, diameter_m: float, breadth_m: float) -> str:
+    """The message refusing ``cargo.transverse_position_m`` when it puts a unit of ``diameter_m`` beyond the ship's side, else ``""``."""
+    limit = 0.5 * breadth_m - 0.5 * diameter_m
+    if y_m is None or abs(y_m) <= limit:
+        return ""
+    return (
+        f"cargo.transverse_position_m = {y_m} puts the cargo (diameter {diameter_m:g} m) beyond the ship's side; "
+        f"allowed {-limit:g} .. {limit:g} (+ to port, from the centreline)"
+    )

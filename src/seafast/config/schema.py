@@ -17,9 +17,9 @@ from itertools import pairwise
 from pathlib import Path
 from typing import Annotated, Literal, get_args
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationInfo, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
-from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles
+from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles, transverse_position_error
 from seafast.config.modes import (
     ContactLawKind,
     Formulation,
@@ -29,6 +29,7 @@ from seafast.config.modes import (
     SolverMethod,
     TimeDomainStart,
 )
+from seafast.config.numbers import Finite, NonNegative, NotBool, Positive
 
 __all__ = [
     "Case",
@@ -51,26 +52,6 @@ __all__ = [
 ]
 
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
-
-
-def _not_bool(value: object) -> object:
-    # pydantic's lax mode reads YAML true/yes/on as 1; a boolean is never a valid number here
-    if isinstance(value, bool):
-        raise ValueError(f"{value!r} is a yes/no value; a number is required")
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError("must be a finite number")
-    return value
-
-
-# The yes/no check is the last annotation, so it runs first (a before-validator wraps what precedes it) and
-# the bounds stay on the number itself, where pydantic exports them as JSON Schema's minimum /
-# exclusiveMinimum / maximum / exclusiveMaximum (before the check they come out as pydantic's own ge/gt/le/lt,
-# which a standard validator ignores).
-NotBool = BeforeValidator(_not_bool)
-Positive = Annotated[float, Field(gt=0, allow_inf_nan=False), NotBool]
-NonNegative = Annotated[float, Field(ge=0, allow_inf_nan=False), NotBool]
-Finite = Annotated[float, Field(allow_inf_nan=False), NotBool]
-Count = Annotated[int, NotBool]
 
 
 class _Strict(BaseModel):
@@ -115,9 +96,7 @@ class CargoConfig(_Strict):
         4, description="Identical cargo items side by side (their weights add on the hull; one is modelled)"
     )
     transverse_position_m: Finite | None = Field(
-        None,
-        description="y of the analysed unit's axis from the centreline [m], + to port; default: the outermost unit to port, "
-        "the units_abreast units on equal lanes of vessel.breadth_m / units_abreast (docs/headings.md#3-the-loaded-ship)",
+        None, description="y of the analysed unit's axis from the centreline, + to port [m]; null = the outermost abreast lane to port"
     )
 
     @model_validator(mode="after")
@@ -268,19 +247,13 @@ class VesselConfig(_Strict):
         12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
     )
     vertical_centre_of_gravity_m: Positive | None = Field(
-        None,
-        description="Height of the loaded ship's centre of gravity above the keel, KG [m]; null = from the weight distribution "
-        "(docs/headings.md#3-the-loaded-ship); head seas keep the heave-pitch model's 8 m unless this is given",
+        None, description="Loaded ship's KG above the keel [m]; null = from the weight distribution (head seas: the 8 m of before)"
     )
     roll_radius_of_gyration_m: Positive | None = Field(
-        None,
-        description="Roll radius of gyration of the loaded ship about the x axis through its centre of gravity [m]; "
-        "null = from the weight distribution (docs/headings.md#3-the-loaded-ship)",
+        None, description="Loaded ship's roll radius of gyration about its centre of gravity [m]; null = from the weight distribution"
     )
     roll_damping_ratio: Annotated[float, Field(ge=0, lt=1, allow_inf_nan=False), NotBool] = Field(
-        0.05,
-        description="Additional linear (viscous) roll damping as a fraction of critical, 2 sqrt((I44 + A44) C44) [-], added to the "
-        "BEM's radiation damping (docs/headings.md#5-roll-damping)",
+        0.05, description="Additional linear roll damping, fraction of critical 2 sqrt((I44 + A44) C44) [-] (docs/headings.md)"
     )
     coupling: Literal[HullCargoCoupling.ONE_WAY, HullCargoCoupling.TWO_WAY] = Field(
         HullCargoCoupling.ONE_WAY,
@@ -562,13 +535,9 @@ class Case(_Strict):
                 f"{self.cargo.units_abreast * d_max:g} m of deck, more than vessel.breadth_m = {self.vessel.breadth_m:g}; "
                 f"allowed units_abreast <= {int(self.vessel.breadth_m // d_max)}"
             )
-        y = self.cargo.transverse_position_m
-        if y is not None and abs(y) + 0.5 * d_max > 0.5 * self.vessel.breadth_m:
-            raise ValueError(
-                f"cargo.transverse_position_m = {y} puts the cargo (diameter {d_max:g} m) beyond the ship's side; "
-                f"allowed {-(0.5 * self.vessel.breadth_m - 0.5 * d_max):g} .. {0.5 * self.vessel.breadth_m - 0.5 * d_max:g} "
-                "(+ to port, from the centreline)"
-            )
+        off_deck = transverse_position_error(self.cargo.transverse_position_m, d_max, self.vessel.breadth_m)
+        if off_deck:
+            raise ValueError(off_deck)
         if self.cargo.position_m is not None:
             half = L / 2
             if self.cargo.position_m - half < 0 or self.cargo.position_m + half > self.vessel.length_m:
@@ -616,10 +585,9 @@ class Case(_Strict):
         return self.cargo.position_m if self.cargo.position_m is not None else 0.5 * self.vessel.length_m
 
     def cargo_transverse_position_m(self) -> float:
-        """y of the analysed unit's axis from the centreline [m], + to port: given, or the outermost to port of the abreast lanes."""
-        if self.cargo.transverse_position_m is not None:
-            return float(self.cargo.transverse_position_m)
-        return float(abreast_lanes_m(self.cargo.units_abreast, self.vessel.breadth_m)[-1])
+        """y of the analysed unit's axis from the centreline [m], + to port: given, or the outermost abreast lane to port."""
+        y = self.cargo.transverse_position_m
+        return float(abreast_lanes_m(self.cargo.units_abreast, self.vessel.breadth_m)[-1] if y is None else y)
 
     def wave_frequency_rad_s(self) -> float:
         """Wave frequency [rad/s]: given, or deep-water dispersion omega = sqrt(2 pi g / lambda)."""
