@@ -390,3 +390,60 @@ def test_sea_states_and_sweeps_refuse_other_headings():
     case = load_case(overrides={"wave.heading_deg": 90.0})
     with pytest.raises(CaseError, match=r"wave\.heading_deg = 90"):
         transfer_functions(case, build_model(case), np.array([0.5, 0.6]))
+
+
+# ------------------------------------------------------------------------------ the vessel excitation and results.nc
+def test_vessel_excitation_off_head_seas_folds_roll_into_the_deck_and_reports_accelerations():
+    from seafast.excitation.vessel import vessel_excitation
+
+    case = load_case(overrides={"wave.heading_deg": 120.0})
+    v = vessel_excitation(case)
+    assert v.motions is None and v.motions6 is not None and v.motion_amplitudes is not None
+    y, amplitude = case.cargo_transverse_position_m(), case.wave.amplitude_m
+    q = v.motions6.rao_at(case.wave_frequency_rad_s(), 120.0) * amplitude
+    np.testing.assert_allclose(v.motion_amplitudes, q, rtol=1e-12)
+    assert v.rigid_body.heave_m == pytest.approx(q[2] + q[3] * y, rel=1e-12)
+    assert v.rigid_body.surge_m == pytest.approx(q[0] - q[5] * y, rel=1e-12)
+    ds = v.to_dataset()
+    assert ds.sizes["heading_deg"] == 24 and ds.sizes["cargo_point"] == 3
+    for name in [f"{d}_rao6_{p}" for d in ("surge", "sway", "heave", "roll", "pitch", "yaw") for p in ("real", "imag")] + [
+        "cargo_acceleration_rao_real",
+        "cargo_acceleration_amplitude",
+    ]:
+        assert ds[name].attrs["units"] and ds[name].attrs["long_name"], name
+    assert ds["roll_rao6_real"].attrs["units"] == "rad/m" and ds["sway_rao6_imag"].attrs["units"] == "m/m"
+    rel = v.cargo_points.relative_to(v.motions6.reference_x_m, v.motions6.reference_z_m)
+    np.testing.assert_allclose(ds["cargo_acceleration_real"].values, acceleration_transfer(q, case.wave_frequency_rad_s(), rel, G).real)
+
+
+def test_head_seas_report_the_heave_pitch_model_on_one_heading():
+    from seafast.excitation.vessel import vessel_excitation
+
+    v = vessel_excitation(load_case())
+    ds = v.to_dataset()
+    assert v.motions6 is None and list(ds["heading_deg"].values) == [180.0]
+    np.testing.assert_array_equal(ds["heave_rao6_real"].values[:, 0], ds["heave_rao_real"].values)
+    assert np.all(ds["roll_rao6_real"].values == 0) and np.all(ds["sway_rao6_imag"].values == 0)
+    assert v.rigid_body.heave_m == v.motion_amplitudes[2] and ds["cargo_acceleration_amplitude"].values[:, 1].max() == 0.0
+
+
+def test_rao_figure_off_head_seas_shows_heave_roll_and_pitch_at_the_heading(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from seafast.excitation.vessel import vessel_excitation
+    from seafast.output.plots import plot_raos
+
+    ds = vessel_excitation(load_case(overrides={"wave.heading_deg": 90.0})).to_dataset()
+    ds.attrs["wave_frequency_rad_s"] = 0.6
+    assert "heave_rao_real" not in ds and plot_raos(ds, tmp_path / "raos.png").is_file()
+
+
+def test_report_rao_figure_off_head_seas():
+    from seafast.excitation.vessel import vessel_excitation
+    from seafast.output.report.vessel_figures import rao_figure
+
+    ds = vessel_excitation(load_case(overrides={"wave.heading_deg": 90.0})).to_dataset()
+    ds.attrs["wave_frequency_rad_s"] = 0.6
+    fig = rao_figure(ds)
+    assert fig is not None and {"roll amplitude (starboard down +)", "heave phase"} <= {a.text for a in fig.layout.annotations}
