@@ -447,3 +447,10 @@ def test_report_rao_figure_off_head_seas():
     ds.attrs["wave_frequency_rad_s"] = 0.6
     fig = rao_figure(ds)
     assert fig is not None and {"roll amplitude (starboard down +)", "heave phase"} <= {a.text for a in fig.layout.annotations}
+
+
+def test_a_wave_outside_the_bem_grid_is_refused_off_head_seas():
+    from seafast.excitation.vessel import vessel_excitation
+
+    with pytest.raises(ValueError, match=r"wave\.length_m = 3000"):
+        vessel_excitation(load_case(overrides={"wave.heading_deg": 90.0, "wave.length_m": 3000.0, "wave.amplitude_m": 1.0}))

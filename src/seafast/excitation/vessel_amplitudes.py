@@ -65,6 +65,13 @@ def six_dof_amplitudes(
     ``heave + roll y + pitch (x - x_G)``, so its "heave" is ``heave + roll y``; its axial motion (docs/axial.md) is
     ``surge - yaw y - pitch (z - z_G)``, so its "surge" is ``surge - yaw y``.
     """
+    lo, hi = motions6.omega_rad_s[0], motions6.omega_rad_s[-1]
+    if not lo <= omega <= hi:
+        raise ValueError(
+            f"wave.length_m = {case.wave.length_m:g} (omega = {omega:.4g} rad/s) at wave.heading_deg = {case.wave.heading_deg:g}: "
+            f"the six-DOF motions cover omega {lo:g} to {hi:g} rad/s only (deep-water waves "
+            f"{2 * np.pi * case.model.gravity_m_per_s2 / hi**2:.0f} to {2 * np.pi * case.model.gravity_m_per_s2 / lo**2:.0f} m)"
+        )
     q: NDArray[np.complex128] = np.asarray(motions6.rao_at(omega, case.wave.heading_deg), dtype=np.complex128) * amplitude
     y = case.cargo_transverse_position_m()
     rigid = RigidBodyAmplitudes(
