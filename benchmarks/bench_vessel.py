@@ -1,9 +1,9 @@
 """Vessel side and hull-cargo coupling: hull-girder solves, BEM, and one-way vs two-way runs.
 
-Run ``python benchmarks/bench_vessel.py`` (add ``--no-bem`` to skip the ~15 s BEM run). The BEM
-is timed on the production mesh with an empty temporary cache, as a first run on a new hull
-would be (target: under a minute). Prints the figures; the last line is ``key=value``
-pairs (docs/interface.md).
+Run ``python benchmarks/bench_vessel.py`` (add ``--no-bem`` to skip the ~15 s BEM run; ``--headings`` also times
+the six-DOF run over headings, docs/headings.md). The BEM is timed on the production mesh with an empty temporary
+cache, as a first run on a new hull would be (target: under a minute). Prints the figures; the last line is
+``key=value`` pairs (docs/interface.md).
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from seafast.parallel.threads import one_blas_thread
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--no-bem", action="store_true", help="skip the BEM run")
+    parser.add_argument("--headings", action="store_true", help="also time the six-DOF BEM over headings (against the head-sea run)")
     args = parser.parse_args()
 
     from seafast.analyses.run import run_case
@@ -30,7 +31,7 @@ def main() -> None:
     from seafast.coupling.deck_loads import hull_compliance
     from seafast.coupling.hull import coupled_hull
     from seafast.excitation.vessel import VesselCache, vessel_excitation
-    from seafast.excitation.vessel_inputs import hull_form_of, rigid_body_motions
+    from seafast.excitation.vessel_inputs import hull_form_of, rigid_body_motions, six_dof_motions_of
     from seafast.hull.still_water import still_water_response
     from seafast.hull.wave import wave_response
     from seafast.model.from_case import build_model
@@ -89,7 +90,7 @@ def main() -> None:
             f"({f2[key] / f1[key] - 1.0:+.1%})"
         )
 
-    t_bem = math.nan
+    t_bem = t_headings = math.nan
     if not args.no_bem:
         hull = hull_form_of(one_way)
         previous = os.environ.get("SEAFAST_CACHE_DIR")
@@ -99,6 +100,11 @@ def main() -> None:
                 t0 = time.perf_counter()
                 m = rigid_body_motions(one_way, hull, vessel.loading)
                 t_bem = time.perf_counter() - t0
+                if args.headings:
+                    beam = load_case(overrides={"wave.heading_deg": 90.0})
+                    t0 = time.perf_counter()
+                    six_dof_motions_of(beam, hull, vessel.loading)
+                    t_headings = time.perf_counter() - t0
             finally:
                 if previous is None:
                     os.environ.pop("SEAFAST_CACHE_DIR", None)
@@ -112,7 +118,8 @@ def main() -> None:
         )
     print(
         f"still_water_ms={t_still:.3g} wave_ms={t_wave:.3g} compliance_ms={t_comp:.3g} run_one_way_ms={t_one:.3g} "
-        f"run_two_way_ms={t_two:.3g} two_way_vs_one_way={t_two / t_one:.2f} coupled_hull_ms={t_hull:.3g} bem_s={t_bem:.3g}"
+        f"run_two_way_ms={t_two:.3g} two_way_vs_one_way={t_two / t_one:.2f} coupled_hull_ms={t_hull:.3g} bem_s={t_bem:.3g} "
+        f"bem_headings_s={t_headings:.3g} headings_vs_head_seas={t_headings / t_bem:.2f}"
     )
 
 

@@ -22,7 +22,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from seafast.config.arrangement import evenly_spaced_saddles
+from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles, transverse_position_error
 from seafast.config.fields import Finite, NonNegative, NotBool, Positive, StrictSection
 from seafast.config.modes import HullCargoCoupling, MotionCoupling
 from seafast.config.solver_settings import SOURCE_SOLVER_SETTINGS, ModelConfig, OutputConfig, SolverConfig
@@ -86,6 +86,9 @@ class CargoConfig(StrictSection):
     density_kg_per_m3: Positive = 7850.0
     units_abreast: Annotated[int, Field(ge=1, le=20), NotBool] = Field(
         4, description="Identical cargo items side by side (their weights add on the hull; one is modelled)"
+    )
+    transverse_position_m: Finite | None = Field(
+        None, description="y of the analysed unit's axis from the centreline, + to port [m]; null = the outermost abreast lane to port"
     )
 
     @model_validator(mode="after")
@@ -234,6 +237,15 @@ class VesselConfig(StrictSection):
     )
     deck_height_m: Positive = Field(
         12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
+    )
+    vertical_centre_of_gravity_m: Positive | None = Field(
+        None, description="Loaded ship's KG above the keel [m]; null = from the weight distribution (head seas: the 8 m of before)"
+    )
+    roll_radius_of_gyration_m: Positive | None = Field(
+        None, description="Loaded ship's roll radius of gyration about its centre of gravity [m]; null = from the weight distribution"
+    )
+    roll_damping_ratio: Annotated[float, Field(ge=0, lt=1, allow_inf_nan=False), NotBool] = Field(
+        0.05, description="Additional linear roll damping, fraction of critical 2 sqrt((I44 + A44) C44) [-] (docs/headings.md)"
     )
     coupling: Literal[HullCargoCoupling.ONE_WAY, HullCargoCoupling.TWO_WAY] = Field(
         HullCargoCoupling.ONE_WAY,
@@ -412,6 +424,9 @@ class Case(StrictSection):
                 f"{self.cargo.units_abreast * d_max:g} m of deck, more than vessel.breadth_m = {self.vessel.breadth_m:g}; "
                 f"allowed units_abreast <= {int(self.vessel.breadth_m // d_max)}"
             )
+        off_deck = transverse_position_error(self.cargo.transverse_position_m, d_max, self.vessel.breadth_m)
+        if off_deck:
+            raise ValueError(off_deck)
         if self.cargo.position_m is not None:
             half = L / 2
             if self.cargo.position_m - half < 0 or self.cargo.position_m + half > self.vessel.length_m:
@@ -457,6 +472,11 @@ class Case(StrictSection):
     def cargo_position_m(self) -> float:
         """x of the cargo midpoint from the AP [m] (default: midship)."""
         return self.cargo.position_m if self.cargo.position_m is not None else 0.5 * self.vessel.length_m
+
+    def cargo_transverse_position_m(self) -> float:
+        """y of the analysed unit's axis from the centreline [m], + to port: given, or the outermost abreast lane to port."""
+        y = self.cargo.transverse_position_m
+        return float(abreast_lanes_m(self.cargo.units_abreast, self.vessel.breadth_m)[-1] if y is None else y)
 
     def wave_frequency_rad_s(self) -> float:
         """Wave frequency [rad/s]: given, or deep-water dispersion omega = sqrt(2 pi g / lambda)."""

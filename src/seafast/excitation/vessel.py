@@ -40,27 +40,34 @@ import xarray as xr
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
-from seafast.config.modes import MotionCoupling
 from seafast.config.schema import Case
+from seafast.excitation.cargo_acceleration import CargoPoints
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.deck_table import DeckDeflectionTable, read_deck_deflection_table
 from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.excitation.hydrodynamics.heading_motions import SixDofMotions
 from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
-from seafast.excitation.rao_extension import extended_rao
+from seafast.excitation.vessel_amplitudes import rigid_body_amplitudes, six_dof_amplitudes
 from seafast.excitation.vessel_dataset import (
     moment_table_variables,
     rao_dataset,
     rigid_body_attributes,
+    six_motion_variables,
     still_water_variables,
     wave_variables,
 )
 from seafast.excitation.vessel_inputs import (
+    HEAD_SEAS_DEG,
     DeckLine,
+    cargo_axis_height_m,
+    cargo_points_of,
     cargo_unit_mass_kg,
     hull_form_of,
+    is_head_seas,
     read_two_column_table,
     rigid_body_motions,
+    six_dof_motions_of,
     vessel_loading_of,
 )
 from seafast.hull.girder import DEFAULT_SHEAR_AREA_M2, HullGirder
@@ -95,6 +102,17 @@ class VesselExcitation:
         The hull girder (computed hull only), for the two-way coupling.
     source
         Human-readable provenance.
+    heading_deg
+        Wave heading [deg] (180: head seas, the heave-pitch model; otherwise the six-DOF motions).
+    motions6
+        The six motions at every heading (off head seas; ``motions`` is then None), or None.
+    cargo_points
+        The analysed unit's points whose accelerations are reported (with motions), or None.
+    motion_amplitudes
+        The six motions at the case's wave (surge, sway, heave [m], roll, pitch bow up, yaw [rad]; complex), or None;
+        in head seas sway, roll and yaw are 0 and surge is the coupled one (NaN without surge in the data).
+    gravity_m_per_s2
+        g [m/s^2] (the gravity parts of the cargo's accelerations).
     """
 
     omega_rad_s: float
@@ -108,6 +126,11 @@ class VesselExcitation:
     loading: VesselLoading | None
     source: str
     girder: HullGirder | None = None
+    heading_deg: float = HEAD_SEAS_DEG
+    motions6: SixDofMotions | None = None
+    cargo_points: CargoPoints | None = None
+    motion_amplitudes: NDArray[np.complex128] | None = None
+    gravity_m_per_s2: float = 9.81
 
     def __getstate__(self) -> dict[str, Any]:
         # the cached interpolants below are closures: rebuilt after unpickling, not pickled
@@ -166,6 +189,9 @@ class VesselExcitation:
             ds = xr.merge([ds, rao_dataset(self.motions)])
             if self.rigid_body is not None:
                 ds.attrs.update(rigid_body_attributes(self.rigid_body))
+        ds = six_motion_variables(
+            ds, self.motions, self.motions6, self.cargo_points, self.omega_rad_s, self.motion_amplitudes, self.heading_deg
+        )
         ds.attrs.update(attrs)
         return ds
 
@@ -263,6 +289,9 @@ def _vessel_key(case: Case) -> str:
             "cargo_mass": case.cargo.units_abreast * cargo_unit_mass_kg(case),
             "cargo_length": case.cargo.length_m,
             "cargo_position": case.cargo_position_m(),
+            "cargo_transverse_position": case.cargo_transverse_position_m(),
+            "cargo_axis_height": cargo_axis_height_m(case),
+            "units_abreast": case.cargo.units_abreast,
             "g": case.model.gravity_m_per_s2,
         },
         sort_keys=True,
@@ -326,46 +355,37 @@ def _compute_vessel_excitation(case: Case, cache: VesselCache | None) -> VesselE
             parts.append(f"hull girder ({loading_note}, still water)")
         if wave is not None:
             parts.append(f"quasi-static wave lambda = {case.wave.length_m:g} m, zeta_a = {amplitude:g} m")
-    motions = rigid_body_motions(case, hull, loading, None if cache is None else cache.hydrodynamics)
-    rigid = None
+    memory = None if cache is None else cache.hydrodynamics
+    head = is_head_seas(case)
+    motions = rigid_body_motions(case, hull, loading, memory) if head else None
+    motions6 = None if head else six_dof_motions_of(case, hull, loading, memory)
+    rigid = q = None
     if motions is not None and amplitude > 0:
-        rigid, description = _rigid_body_amplitudes(case, motions, omega, amplitude)
+        rigid, description = rigid_body_amplitudes(case, motions, omega, amplitude)
+        q = np.array([rigid.surge_m if rigid.surge_m is not None else np.nan, 0.0, rigid.heave_m, 0.0, rigid.pitch_rad, 0.0], dtype=complex)
+        parts.append(description)
+    elif motions6 is not None and amplitude > 0:
+        rigid, q, description = six_dof_amplitudes(case, motions6, omega, amplitude)
         parts.append(description)
     elif v.motions == "none":
         parts.append("no rigid-body motion")
     girder_used = None if v.deck_deflection_table is not None else girder
-    return VesselExcitation(omega, amplitude, aft, still, wave, curve, motions, rigid, loading, "; ".join(parts), girder_used)
-
-
-def _rigid_body_amplitudes(case: Case, motions: RigidBodyMotions, omega: float, amplitude: float) -> tuple[RigidBodyAmplitudes, str]:
-    """Heave, pitch (and surge, coupled, when the data hold it) at the case's wave, and a description of their source.
-
-    The RAOs are the BEM's inside its grid, blended into the long-wave limits below it and decayed
-    above it (:func:`~seafast.excitation.rao_extension.extended_rao`); surge only inside the grid.
-    """
-    v = case.vessel
-    heave_rao, pitch_rao = extended_rao(motions, omega, gravity_m_per_s2=case.model.gravity_m_per_s2, draught_m=v.draft_m)
-    heave, pitch = complex(heave_rao), complex(pitch_rao)  # per metre of wave, at the one frequency
-    surge = coupled_pitch = None
-    inside = bool(motions.omega_rad_s[0] <= omega <= motions.omega_rad_s[-1])
-    if motions.has_surge and inside:
-        surge_c, heave_c, pitch_c = (complex(q) * amplitude for q in motions.coupled_at(omega))
-        surge, coupled_pitch = surge_c, pitch_c
-    vertical = "heave/pitch (2-DOF)"
-    if v.motion_coupling is MotionCoupling.SURGE_HEAVE_PITCH and motions.has_surge and inside:
-        heave, pitch = heave_c / amplitude, pitch_c / amplitude
-        vertical = "heave/pitch coupled with surge"
-    rigid = RigidBodyAmplitudes(
-        heave * amplitude,
-        pitch * amplitude,
-        float(motions.reference_x_m),
-        surge_m=surge,
-        reference_z_m=float(motions.reference_z_m),
-        coupled_pitch_rad=coupled_pitch,
+    points = cargo_points_of(case) if (motions is not None or motions6 is not None) else None
+    return VesselExcitation(
+        omega,
+        amplitude,
+        aft,
+        still,
+        wave,
+        curve,
+        motions,
+        rigid,
+        loading,
+        "; ".join(parts),
+        girder_used,
+        heading_deg=case.wave.heading_deg,
+        motions6=motions6,
+        cargo_points=points,
+        motion_amplitudes=q,
+        gravity_m_per_s2=case.model.gravity_m_per_s2,
     )
-    axial = (
-        ("; surge (coupled) for the axial analysis" if inside else "; no surge outside the BEM grid")
-        if motions.has_surge
-        else "; no surge in the data"
-    )
-    return rigid, f"{vertical} from {'capytaine BEM' if v.motions == 'bem' else Path(v.motions).name}{axial}"

@@ -13,8 +13,11 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
+from numpy.typing import NDArray
 
+from seafast.excitation.cargo_acceleration import CargoPoints, acceleration_transfer
 from seafast.excitation.deck_motion import RigidBodyAmplitudes
+from seafast.excitation.hydrodynamics.heading_motions import SIX_DOF_NAMES, SIX_DOF_UNITS, SixDofMotions
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
 from seafast.excitation.vessel_inputs import DeckLine
 from seafast.hull.still_water import HullGirderResponse
@@ -27,6 +30,11 @@ __all__ = [
     "wave_variables",
     "rao_dataset",
     "rigid_body_attributes",
+    "head_sea_six_raos",
+    "six_motion_dataset",
+    "acceleration_dataset",
+    "six_motion_attributes",
+    "six_motion_variables",
 ]
 
 Variables = dict[str, Any]
@@ -174,3 +182,139 @@ def rigid_body_attributes(rb: RigidBodyAmplitudes) -> dict[str, float]:
     if rb.surge_m is not None:
         attrs.update(surge_amplitude_m=abs(rb.surge_m), surge_phase_rad=float(np.angle(rb.surge_m)), pitch_reference_z_m=rb.reference_z_m)
     return attrs
+
+
+_SIX_MEANING = {
+    "surge": "surge (forward +) of the CoG",
+    "sway": "sway (to port +) of the CoG",
+    "heave": "heave (up +) of the CoG",
+    "roll": "roll about x (starboard down +)",
+    "pitch": "pitch theta = dz/dx (bow up +)",
+    "yaw": "yaw about z (bow to port +)",
+}
+
+_HEADING = {
+    "long_name": "wave heading: the direction the waves travel, from x (forward) towards y (port); 180 head seas",
+    "units": "degree",
+}
+
+
+def head_sea_six_raos(m: RigidBodyMotions) -> NDArray[np.complex128]:
+    """The six RAOs (n_w, 1, 6) of the head-sea model: coupled surge (NaN without surge), 0, heave, 0, pitch, 0.
+
+    Heave and pitch are the heave-pitch model's (what the cargo takes); sway, roll and yaw vanish in head seas by the
+    hull's symmetry.
+    """
+    n = m.omega_rad_s.size
+    out = np.zeros((n, 1, 6), dtype=complex)
+    out[:, 0, 0] = m.surge_rao_m_per_m if m.surge_rao_m_per_m is not None else np.nan
+    out[:, 0, 2] = m.heave_rao_m_per_m
+    out[:, 0, 4] = m.pitch_rao_rad_per_m
+    return out
+
+
+def six_motion_dataset(omega: NDArray[np.float64], headings: NDArray[np.float64], raos: NDArray[np.complex128], note: str) -> xr.Dataset:
+    """``<dof>_rao6_real``/``_imag`` over (``rao_omega_rad_s``, ``heading_deg``) for the six DOFs (m/m, rad/m)."""
+    data: Variables = {}
+    for i, (name, unit) in enumerate(zip(SIX_DOF_NAMES, SIX_DOF_UNITS, strict=True)):
+        for part, fn in (("real", np.real), ("imag", np.imag)):
+            long_name = f"{_SIX_MEANING[name]} RAO per metre of wave amplitude, {part} part (exp(+i omega t), crest amidships; {note})"
+            data[f"{name}_rao6_{part}"] = (("rao_omega_rad_s", "heading_deg"), fn(raos[:, :, i]), {"long_name": long_name, "units": unit})
+    coords = {
+        "rao_omega_rad_s": ("rao_omega_rad_s", omega, {"long_name": "wave frequency", "units": "rad/s"}),
+        "heading_deg": ("heading_deg", headings, _HEADING),
+    }
+    return xr.Dataset(data, coords=coords)
+
+
+def acceleration_dataset(
+    omega: NDArray[np.float64],
+    raos: NDArray[np.complex128],
+    wave_omega_rad_s: float,
+    amplitudes: NDArray[np.complex128] | None,
+    points: CargoPoints,
+    reference_m: tuple[float, float],
+    gravity_m_per_s2: float = 9.81,
+) -> xr.Dataset:
+    """The analysed unit's accelerations in the ship frame: transfer functions over (frequency, heading) and the case's wave.
+
+    ``cargo_acceleration_rao_real``/``_imag`` (rao_omega_rad_s, heading_deg, cargo_point, ship_axis) [m/s2 per m of wave]
+    and, at the case's wave, ``cargo_acceleration_real``/``_imag``/``_amplitude`` (cargo_point, ship_axis) [m/s2]: the
+    accelerometer's reading beyond g (rigid-body acceleration plus the dynamic gravity components of roll and pitch,
+    :mod:`seafast.excitation.cargo_acceleration`). ``reference_m`` = (x_G from the AP, KG above the keel) of the RAOs.
+    """
+    rel = points.relative_to(*reference_m)
+    tf = acceleration_transfer(raos, omega[:, None], rel, gravity_m_per_s2)  # (n_w, n_b, n_p, 3)
+    what = "acceleration of the analysed cargo unit's axis, ship frame, with gravity's roll and pitch parts (a + (g theta, g phi, 0))"
+    dims4 = ("rao_omega_rad_s", "heading_deg", "cargo_point", "ship_axis")
+    data: Variables = {
+        "cargo_acceleration_rao_real": (dims4, tf.real, {"long_name": f"{what} per metre of wave amplitude, real part", "units": "m/s2/m"}),
+        "cargo_acceleration_rao_imag": (
+            dims4,
+            tf.imag,
+            {"long_name": f"{what} per metre of wave amplitude, imaginary part", "units": "m/s2/m"},
+        ),
+    }
+    if amplitudes is not None:
+        a = acceleration_transfer(amplitudes, wave_omega_rad_s, rel, gravity_m_per_s2)  # (n_p, 3)
+        dims2 = ("cargo_point", "ship_axis")
+        data["cargo_acceleration_real"] = (dims2, a.real, {"long_name": f"{what} at the case's wave, real part", "units": "m/s2"})
+        data["cargo_acceleration_imag"] = (dims2, a.imag, {"long_name": f"{what} at the case's wave, imaginary part", "units": "m/s2"})
+        data["cargo_acceleration_amplitude"] = (dims2, np.abs(a), {"long_name": f"{what} at the case's wave, amplitude", "units": "m/s2"})
+    coords = {
+        "cargo_point": (
+            "cargo_point",
+            np.arange(points.x_cargo_m.size),
+            {"long_name": "point of the analysed unit (aft end, middle, fore end)", "units": "1"},
+        ),
+        "cargo_point_x_m": ("cargo_point", points.x_cargo_m, {"long_name": "cargo x of the point, from the cargo's aft end", "units": "m"}),
+        "ship_axis": ("ship_axis", ["x", "y", "z"], {"long_name": "ship-frame axis: x forward, y to port, z up"}),
+    }
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(cargo_point_y_m=float(points.y_m), cargo_point_z_m=float(points.z_m))
+    return ds
+
+
+def six_motion_attributes(q: NDArray[np.complex128], heading_deg: float) -> dict[str, float]:
+    """Amplitudes [m, rad] and phases [rad] of the six motions at the case's wave, and the heading [deg]."""
+    attrs: dict[str, float] = {"wave_heading_deg": float(heading_deg)}
+    for name, unit, value in zip(SIX_DOF_NAMES, ("m", "m", "m", "rad", "rad", "rad"), q, strict=True):
+        attrs[f"six_dof_{name}_amplitude_{unit}"] = float(abs(value))
+        attrs[f"six_dof_{name}_phase_rad"] = float(np.angle(value))
+    return attrs
+
+
+def six_motion_variables(
+    ds: xr.Dataset,
+    motions: RigidBodyMotions | None,
+    motions6: SixDofMotions | None,
+    points: CargoPoints | None,
+    wave_omega_rad_s: float,
+    amplitudes: NDArray[np.complex128] | None,
+    heading_deg: float,
+    gravity_m_per_s2: float = 9.81,
+) -> xr.Dataset:
+    """``ds`` with the six RAOs over headings and the cargo's accelerations (when the vessel moves).
+
+    Off head seas the six-DOF motions over every heading; in head seas the heave-pitch model's RAOs on one heading,
+    180 deg (:func:`head_sea_six_raos`).
+    """
+    if motions6 is not None:
+        omega, headings, raos = motions6.omega_rad_s, motions6.headings_deg, np.asarray(motions6.raos)
+        ref, note = (motions6.reference_x_m, motions6.reference_z_m), "six-DOF BEM over headings"
+        ds = xr.merge([ds, six_motion_dataset(omega, headings, raos, note)], combine_attrs="override")
+        ds.attrs.update(motions6.attributes())
+    elif motions is not None:
+        omega, headings, raos = motions.omega_rad_s, np.array([180.0]), head_sea_six_raos(motions)
+        ref = (motions.reference_x_m, motions.reference_z_m)
+        note = "head seas: heave-pitch model (surge coupled); sway, roll, yaw 0 by symmetry"
+        ds = xr.merge([ds, six_motion_dataset(omega, headings, raos, note)], combine_attrs="override")
+    else:
+        return ds
+    if points is not None:
+        ds = xr.merge(
+            [ds, acceleration_dataset(omega, raos, wave_omega_rad_s, amplitudes, points, ref, gravity_m_per_s2)], combine_attrs="override"
+        )
+    if amplitudes is not None:
+        ds.attrs.update(six_motion_attributes(amplitudes, heading_deg))
+    return ds

@@ -20,12 +20,17 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
+from seafast.config.arrangement import abreast_lanes_m
 from seafast.config.schema import Case
+from seafast.excitation.cargo_acceleration import CargoPoints
+from seafast.excitation.hydrodynamics.heading_motions import SixDofMotions
 from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
+from seafast.excitation.hydrodynamics.six_dof import LoadedShip
 from seafast.model.from_case import cargo_geometry
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.loading import VesselLoading, base_vessel_loading, mass_distribution_kg_per_m
+from seafast.vessel.mass_properties import loaded_ship_properties
 
 __all__ = [
     "BEM_FREQUENCIES_RAD_S",
@@ -35,7 +40,21 @@ __all__ = [
     "cargo_unit_mass_kg",
     "vessel_loading_of",
     "rigid_body_motions",
+    "HEAD_SEAS_DEG",
+    "is_head_seas",
+    "cargo_points_of",
+    "loaded_ship_of",
+    "six_dof_motions_of",
 ]
+
+HEAD_SEAS_DEG = 180.0
+"""The heading of the heave-pitch model [deg]: head seas keep it, and its answers, unchanged."""
+
+
+def is_head_seas(case: Case) -> bool:
+    """Whether ``wave.heading_deg`` is head seas (180 deg): the heave-pitch model, unchanged, serves it."""
+    return case.wave.heading_deg == HEAD_SEAS_DEG
+
 
 logger = logging.getLogger(__name__)
 
@@ -181,6 +200,8 @@ def rigid_body_motions(
     from seafast.excitation import hydrodynamics as hydro
 
     props = hydro.base_vessel_mass_properties(hull, water_density_kg_per_m3=v.water_density_kg_per_m3)
+    if v.vertical_centre_of_gravity_m is not None:
+        props["centre_of_gravity_m"] = (*props["centre_of_gravity_m"][:2], float(v.vertical_centre_of_gravity_m))
     if loading is not None:
         # mass, LCG and pitch inertia of the actual loading (not a uniform-density body)
         x = np.linspace(0.0, hull.length_m, 4001)
@@ -200,3 +221,90 @@ def rigid_body_motions(
             f"vessel.motions = '{v.motions}': no such file; allowed: bem, none, or a path to capytaine NetCDF / WAMIT .1 output"
         )
     return hydro.load_motions(path, hull, **common, memory_cache=memory_cache)
+
+
+def _cargo_sections(case: Case) -> tuple[float, float]:
+    """The cargo unit's mass-weighted mean outer radius [m] and own radius of gyration about its axis [m]."""
+    geometry = cargo_geometry(case)
+    x = np.linspace(0.0, geometry.length_m, 2001)
+    d, t = geometry.section_at(x)
+    r_o, r_i = 0.5 * d, 0.5 * d - t
+    area = r_o**2 - r_i**2  # proportional to the mass per metre
+    mean_r_o = float(np.trapezoid(area * r_o, x) / np.trapezoid(area, x))
+    own = float(np.trapezoid(area * 0.5 * (r_o**2 + r_i**2), x) / np.trapezoid(area, x))
+    return mean_r_o, math.sqrt(own)
+
+
+def cargo_axis_height_m(case: Case) -> float:
+    """Height of the cargo unit's axis above the keel [m]: deck + saddle height + the mean outer radius."""
+    return case.vessel.deck_height_m + case.seafastening.saddle_height_m + _cargo_sections(case)[0]
+
+
+def loaded_ship_of(case: Case, hull: HullForm, loading: VesselLoading | None) -> LoadedShip:
+    """The loaded ship of the six-DOF motions: :func:`~seafast.vessel.mass_properties.loaded_ship_properties` of the loading.
+
+    ``vessel.vertical_centre_of_gravity_m`` and ``vessel.roll_radius_of_gyration_m`` override KG and the roll radius;
+    ``vessel.roll_damping_ratio`` is the additional roll damping. Without a loading (a deck-deflection table) the
+    documented default loading with the case's cargo is used.
+    """
+    v = case.vessel
+    if loading is None:
+        loading = vessel_loading_of(case, hull)[0]
+    props = loaded_ship_properties(
+        loading,
+        length_m=hull.length_m,
+        breadth_m=hull.breadth_m,
+        depth_m=v.deck_height_m,
+        cargo_vcg_m=cargo_axis_height_m(case),
+        lanes_y_m=abreast_lanes_m(case.cargo.units_abreast, hull.breadth_m),
+        cargo_radius_of_gyration_m=_cargo_sections(case)[1],
+    )
+    kg = props.kg_m if v.vertical_centre_of_gravity_m is None else float(v.vertical_centre_of_gravity_m)
+    roll = props.roll_radius_m if v.roll_radius_of_gyration_m is None else float(v.roll_radius_of_gyration_m)
+    return LoadedShip(props.mass_kg, (props.lcg_m, 0.0, kg), roll, props.pitch_radius_m, props.yaw_radius_m, v.roll_damping_ratio)
+
+
+def cargo_points_of(case: Case) -> CargoPoints:
+    """The points of the analysed unit whose accelerations results.nc reports: its aft end, middle and fore end, on its axis."""
+    length = case.cargo.length_m
+    x_cargo = np.array([0.0, 0.5 * length, length])
+    aft = case.cargo_position_m() - 0.5 * length
+    return CargoPoints(x_cargo, aft + x_cargo, case.cargo_transverse_position_m(), cargo_axis_height_m(case))
+
+
+def six_dof_motions_of(
+    case: Case, hull: HullForm, loading: VesselLoading | None, memory_cache: HydrodynamicsCache | None = None
+) -> SixDofMotions | None:
+    """The six motions at every heading for ``vessel.motions``: the BEM over headings (its own disk cache file), a file, or None.
+
+    Only cases off head seas need it (:func:`is_head_seas`): head seas keep :func:`rigid_body_motions`.
+    """
+    v = case.vessel
+    if v.motions == "none":
+        return None
+    from seafast.excitation import hydrodynamics as hydro
+    from seafast.excitation.hydrodynamics.load import load_six_dof_coefficients
+    from seafast.excitation.hydrodynamics.six_dof import capytaine_six_dof_coefficients, six_dof_motions
+
+    g, rho = case.model.gravity_m_per_s2, v.water_density_kg_per_m3
+    if v.motions == "bem":
+        ds = hydro.six_dof_dataset(
+            hull,
+            omega_rad_s=BEM_FREQUENCIES_RAD_S,
+            panel_size_m=v.bem_panel_size_m,
+            water_density_kg_per_m3=rho,
+            gravity_m_per_s2=g,
+            memory_cache=memory_cache,
+        )
+        coefficients = capytaine_six_dof_coefficients(ds, float(ds.attrs["seafast_origin_x_m"]), g)
+        source = f"capytaine BEM over headings, cache key {ds.attrs.get('seafast_cache_key', '?')}"
+    else:
+        path = Path(v.motions)
+        if not path.exists():
+            raise ValueError(
+                f"vessel.motions = '{v.motions}': no such file; allowed: bem, none, or a path to capytaine NetCDF / WAMIT .1 output"
+            )
+        coefficients = load_six_dof_coefficients(path, hull, water_density_kg_per_m3=rho, gravity_m_per_s2=g, memory_cache=memory_cache)
+        source = f"file {path.name}"
+    ship = loaded_ship_of(case, hull, loading)
+    return six_dof_motions(coefficients, hull, ship, water_density_kg_per_m3=rho, gravity_m_per_s2=g, source=source)

@@ -18,6 +18,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.fourier import harmonics_up_to
+from seafast.output.report.common import rao_curves
 from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, save_png, scaled_unit
 
 __all__ = [
@@ -289,15 +290,14 @@ def plot_hull_girder(ds: xr.Dataset, path: Path) -> Path:
 
 
 def plot_raos(ds: xr.Dataset, path: Path) -> Path:
-    """Heave, pitch (and surge, when present) RAOs (amplitude and phase), the case's wave frequency marked."""
+    """Heave, pitch (and surge, when present) RAOs in head seas, or heave, roll and pitch at the case's heading (amplitude and
+    phase), the case's wave frequency marked."""
     w = ds["rao_omega_rad_s"].values
-    dofs = [("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m")]
-    if "surge_rao_real" in ds:
-        dofs.insert(0, ("surge", 1.0, "m/m"))
+    dofs, curves, where = rao_curves(ds)
     fig, axes = plt.subplots(2, len(dofs), figsize=(4.5 * len(dofs), 6.4), sharex=True, squeeze=False)
     omega = float(ds.attrs.get("wave_frequency_rad_s", np.nan))
     for col, (name, scale, unit) in enumerate(dofs):
-        z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
+        z = curves[name]
         axes[0, col].plot(w, np.abs(z) * scale, "k.-")
         axes[0, col].set_ylabel(f"{name} RAO [{unit}]")
         axes[1, col].plot(w, np.degrees(np.angle(z)), "k.-")
@@ -307,7 +307,12 @@ def plot_raos(ds: xr.Dataset, path: Path) -> Path:
             if np.isfinite(omega):
                 ax.axvline(omega, color="tab:red", ls=":")
             ax.grid(alpha=0.3)
-    titles = {"surge": "Surge (forward positive, head seas)", "heave": "Heave (head seas)", "pitch": "Pitch (bow up positive, head seas)"}
+    titles = {
+        "surge": f"Surge (forward positive, {where})",
+        "heave": f"Heave ({where})",
+        "pitch": f"Pitch (bow up positive, {where})",
+        "roll": f"Roll (starboard down positive, {where})",
+    }
     for col, (name, _, _) in enumerate(dofs):
         axes[0, col].set_title(titles[name])
     if np.isfinite(omega):  # said once, above the panels: no label inside an axes can cover a title or data

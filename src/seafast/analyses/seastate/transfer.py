@@ -139,6 +139,11 @@ def _check_supported(case: Case) -> None:
             "vessel.coupling = 'two_way': sea states support 'one_way' only (the coupled deck changes with frequency); "
             "use --set vessel.coupling=one_way"
         )
+    if case.wave.heading_deg != 180.0:
+        raise CaseError(
+            f"wave.heading_deg = {case.wave.heading_deg:g}: sea states and frequency sweeps support head seas (180) only; the other "
+            "headings are for seafast run (docs/headings.md#8-what-is-left-out); use --set wave.heading_deg=180"
+        )
 
 
 def _section_modulus_m3(model: StructuralModel) -> NDArray[np.float64]:
@@ -197,7 +202,7 @@ def transfer_functions(case: Case, model: StructuralModel, omega_rad_s: ArrayLik
     Raises
     ------
     CaseError
-        For a deck-deflection table or two-way coupling (no per-frequency hull response).
+        For a deck-deflection table or two-way coupling (no per-frequency hull response), or a heading other than head seas.
     """
     w = np.asarray(omega_rad_s, dtype=float)
     if w.ndim != 1 or w.size == 0 or not np.all(np.isfinite(w)) or np.any(w <= 0) or np.any(np.diff(w) <= 0):

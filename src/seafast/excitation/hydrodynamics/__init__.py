@@ -57,7 +57,15 @@ or WAMIT's DOFs to seafast motions: sign of pitch, wave phase, reference point, 
 :mod:`~seafast.excitation.hydrodynamics.strip_theory` (the independent strip-theory estimate).
 """
 
-from seafast.excitation.hydrodynamics.bem import BEM_DOFS, MESH_ALGORITHM_VERSION, compute_motions, default_cache_dir
+from seafast.excitation.hydrodynamics.bem import (
+    BEM_DOFS,
+    BEM_HEADINGS_DEG,
+    MESH_ALGORITHM_VERSION,
+    SIX_DOFS,
+    compute_motions,
+    default_cache_dir,
+    six_dof_dataset,
+)
 from seafast.excitation.hydrodynamics.equations import (
     base_vessel_mass_properties,
     hydrostatic_stiffness_matrix,
@@ -66,6 +74,7 @@ from seafast.excitation.hydrodynamics.equations import (
     solve_rigid_body,
     wavenumber_rad_per_m,
 )
+from seafast.excitation.hydrodynamics.heading_motions import SixDofMotions
 from seafast.excitation.hydrodynamics.load import load_motions
 from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
@@ -89,4 +98,8 @@ __all__ = [
     "wavenumber_rad_per_m",
     "default_cache_dir",
     "MESH_ALGORITHM_VERSION",
+    "SIX_DOFS",
+    "BEM_HEADINGS_DEG",
+    "SixDofMotions",
+    "six_dof_dataset",
 ]

@@ -3,6 +3,12 @@
 The cache key (:func:`compute_motions`, Notes) must not change without a reason: it names the
 files of every user's cache (``motions_<key>.nc``); bump :data:`MESH_ALGORITHM_VERSION` to
 invalidate them on purpose.
+
+The run over headings (:func:`six_dof_dataset`: six DOFs, diffraction at every 15 deg) has its own key and file
+(``motions6_<key>.nc``), so head seas never pay for it.
+
+Size: over 400 lines because the two runs, head seas and every heading, share one disk cache (its keys, its atomic
+writes, its reading through the memory cache), whose private helpers stay in one module.
 """
 
 from __future__ import annotations
@@ -29,7 +35,15 @@ from seafast.parallel.threads import blas_on_every_core
 from seafast.vessel.hull_form import HullForm
 from seafast.vessel.hull_mesh import hull_mesh_arrays
 
-__all__ = ["compute_motions", "default_cache_dir", "BEM_DOFS", "MESH_ALGORITHM_VERSION"]
+__all__ = [
+    "compute_motions",
+    "default_cache_dir",
+    "BEM_DOFS",
+    "MESH_ALGORITHM_VERSION",
+    "SIX_DOFS",
+    "BEM_HEADINGS_DEG",
+    "six_dof_dataset",
+]
 
 logger = logging.getLogger(__name__)
 
@@ -38,6 +52,13 @@ MESH_ALGORITHM_VERSION = "seafast-hull-mesh-1"
 
 #: Radiating DOFs of the BEM run (surge added for the axial analysis; part of the cache key).
 BEM_DOFS: tuple[str, ...] = ("Surge", "Heave", "Pitch")
+
+#: The six rigid-body DOFs of the run over headings (capytaine's names and order).
+SIX_DOFS: tuple[str, ...] = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
+
+#: Wave headings of the diffraction run over headings [deg]: 0 (following) to 180 (head seas) every 15 deg; the hull's
+#: port-starboard symmetry gives 180-360 (docs/headings.md#2-what-is-computed).
+BEM_HEADINGS_DEG: tuple[float, ...] = tuple(float(b) for b in range(0, 181, 15))
 
 
 def default_cache_dir() -> Path:
@@ -89,6 +110,131 @@ def _run_bem(
     ds.attrs["seafast_nb_panels_hull"] = hm.nb_hull_panels_full
     ds.attrs["seafast_nb_panels_lid"] = hm.nb_lid_panels_full
     return ds
+
+
+def _run_six_dof_bem(
+    hull: HullForm, omega: NDArray[np.float64], headings_deg: Sequence[float], panel_size_m: float, rho: float, g: float, depth: float
+) -> xr.Dataset:
+    """Radiation of the six rigid-body DOFs about (LCB, 0, waterline) and diffraction at ``headings_deg``; capytaine's dataset.
+
+    Frame: origin at midship on the waterline (see :mod:`seafast.vessel.hull_mesh`). Per frequency capytaine builds and
+    factorises the influence matrices once (its engine keeps the last ones), so the 13 diffraction problems cost a
+    back-substitution each.
+    """
+    import capytaine as cpt
+
+    hm = hull_mesh_arrays(hull, panel_size_m)
+    mesh, lid = hm.to_capytaine()
+    centre = np.array([hull.centre_of_buoyancy_x_m() - hm.x_mid_m, 0.0, 0.0])
+    body = cpt.FloatingBody(
+        mesh=mesh, lid_mesh=lid, dofs=cpt.rigid_body_dofs(rotation_center=centre), center_of_mass=centre, name="seafast_vessel"
+    )
+    problems = []
+    for w in omega:
+        kw = dict(body=body, omega=float(w), rho=rho, g=g, water_depth=depth)
+        problems += [cpt.RadiationProblem(radiating_dof=d, **kw) for d in SIX_DOFS]
+        problems += [cpt.DiffractionProblem(wave_direction=math.radians(b), **kw) for b in headings_deg]
+    with blas_on_every_core():
+        results = cpt.BEMSolver().solve_all(problems, progress_bar=False)
+    ds = cpt.assemble_dataset(results, hydrostatics=False)
+    ds.attrs["seafast_origin_x_m"] = float(hm.x_mid_m)
+    ds.attrs["seafast_panel_size_m"] = float(panel_size_m)
+    ds.attrs["seafast_nb_panels_hull"] = hm.nb_hull_panels_full
+    ds.attrs["seafast_nb_panels_lid"] = hm.nb_lid_panels_full
+    return ds
+
+
+@dataclass(frozen=True)
+class _SixDofRun:
+    """What the six-DOF run over headings depends on (and its cache key hashes): hull, frequencies, headings, panel size, water.
+
+    The rotation centre is fixed at the hull's LCB on the waterline, so the run depends on the hull alone: every loading
+    (KG, roll inertia) reuses it, the coefficients moved to the loading's CoG afterwards.
+    """
+
+    hull: HullForm
+    omega: NDArray[np.float64]
+    headings_deg: tuple[float, ...]
+    panel_size_m: float
+    rho: float
+    g: float
+    depth: float
+
+    def cache_key(self, capytaine_version: str) -> str:
+        """The disk cache's key of the run (file ``motions6_<key>.nc``)."""
+        hull = self.hull
+        payload = {
+            "stations": [repr(float(v)) for v in hull.station_x_m],
+            "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
+            "draft": repr(float(hull.draft_m)),
+            "cs": repr(float(hull.section_area_coefficient)),
+            "omega": [repr(float(v)) for v in self.omega],
+            "headings_deg": [repr(float(b)) for b in self.headings_deg],
+            "panel": repr(self.panel_size_m),
+            "rho": repr(self.rho),
+            "g": repr(self.g),
+            "depth": repr(self.depth),
+            "capytaine": capytaine_version,
+            "mesh": MESH_ALGORITHM_VERSION,
+            "dofs": list(SIX_DOFS),
+            "rotation_center": "lcb-waterline",
+        }
+        return _cache_key(payload)
+
+    def dataset(self) -> xr.Dataset:
+        """Run capytaine (:func:`_run_six_dof_bem`)."""
+        return _run_six_dof_bem(self.hull, self.omega, self.headings_deg, self.panel_size_m, self.rho, self.g, self.depth)
+
+
+def six_dof_dataset(
+    hull: HullForm,
+    *,
+    omega_rad_s: ArrayLike,
+    headings_deg: Sequence[float] = BEM_HEADINGS_DEG,
+    panel_size_m: float = 3.0,
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+    water_depth_m: float = math.inf,
+    cache_dir: str | os.PathLike | None = None,
+    use_cache: bool = True,
+    memory_cache: HydrodynamicsCache | None = None,
+) -> xr.Dataset:
+    """capytaine's dataset of the six rigid-body DOFs over headings, from the disk cache or computed (and cached).
+
+    Radiation of surge, sway, heave, roll, pitch and yaw about the hull's LCB on the waterline (capytaine's DOFs and
+    signs); diffraction at ``headings_deg`` (capytaine's ``wave_direction``, 0 to 180 deg: the hull's symmetry gives the
+    rest). Only the runs over headings pay for it: head seas keep :func:`compute_motions` and its three-DOF file.
+
+    Parameters
+    ----------
+    hull
+        Hull form, meshed as in :func:`compute_motions`.
+    omega_rad_s
+        Wave frequencies [rad/s] (> 0; sorted, duplicates removed).
+    headings_deg
+        Wave headings of the diffraction problems [deg], within [0, 180].
+    panel_size_m, water_density_kg_per_m3, gravity_m_per_s2, water_depth_m, cache_dir, use_cache, memory_cache
+        As in :func:`compute_motions`.
+
+    Returns
+    -------
+    xarray.Dataset
+        capytaine's dataset (``added_mass``, ``radiation_damping``, ``excitation_force`` over ``omega``,
+        ``wave_direction``, ``radiating_dof``, ``influenced_dof``), attributes ``seafast_origin_x_m`` and
+        ``seafast_cache_key``.
+    """
+    import capytaine as cpt
+
+    omega, _ = _checked_inputs(omega_rad_s, 1.0, 1.0, (0.0, 0.0, 0.0))
+    headings = tuple(sorted({float(b) for b in headings_deg}))
+    if not headings or headings[0] < 0.0 or headings[-1] > 180.0:
+        raise ValueError(f"six_dof_dataset: headings_deg = {list(headings_deg)!r}; must lie within [0, 180] deg")
+    run = _SixDofRun(
+        hull, omega, headings, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), float(water_depth_m)
+    )
+    key = run.cache_key(cpt.__version__)
+    cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
+    return _cached_or_computed(run, key, cdir, use_cache, memory_cache, prefix="motions6")
 
 
 def _checked_inputs(
@@ -143,9 +289,11 @@ class _BEMRun:
         return _run_bem(self.hull, self.omega, self.rotation_center, self.panel_size_m, self.rho, self.g, self.depth)
 
 
-def _cached_or_computed(run: _BEMRun, key: str, cdir: Path, use_cache: bool, memory_cache: HydrodynamicsCache | None) -> xr.Dataset:
+def _cached_or_computed(
+    run: _BEMRun | _SixDofRun, key: str, cdir: Path, use_cache: bool, memory_cache: HydrodynamicsCache | None, prefix: str = "motions"
+) -> xr.Dataset:
     """The run's capytaine dataset: read from ``cdir`` (through ``memory_cache`` when given), else computed and written there."""
-    path = cdir / f"motions_{key}.nc"
+    path = cdir / f"{prefix}_{key}.nc"
     if use_cache and path.is_file():
         try:
             ds = read_capytaine_netcdf(path) if memory_cache is None else memory_cache.dataset(path)

@@ -23,6 +23,8 @@ __all__ = [
     "solve_heave_pitch",
     "solve_rigid_body",
     "base_vessel_mass_properties",
+    "transverse_metacentric_height_m",
+    "roll_hydrostatic_stiffness_Nm_per_rad",
 ]
 
 
@@ -90,6 +92,40 @@ def hydrostatic_stiffness_matrix(
     zg = zg_keel - hull.draft_m
     c22 += rg * hull.displaced_volume_m3() * zb - mass_kg * gravity_m_per_s2 * zg
     return np.array([[c11, c12], [c12, c22]])
+
+
+def transverse_metacentric_height_m(hull: HullForm, vertical_centre_of_gravity_m: float) -> float:
+    """GM = KB + BM - KG of the wall-sided hull at its design draught [m] (all heights above the keel).
+
+    ``KB = T + z_B`` (``z_B`` the sectional-area centroid below the waterline: ``T/2`` for a box section) and
+    ``BM = I_T / V`` with the waterplane's transverse second moment ``I_T = int b^3 / 12 dx``. A box barge gives
+    ``T/2 + B^2 / (12 T) - KG``.
+    """
+    x = _x_grid(hull)
+    i_t = float(np.trapezoid(hull.breadth_at(x) ** 3, x)) / 12.0
+    volume = hull.displaced_volume_m3()
+    kb = hull.draft_m + _section_centroid_below_wl(hull)
+    return kb + i_t / volume - float(vertical_centre_of_gravity_m)
+
+
+def roll_hydrostatic_stiffness_Nm_per_rad(
+    hull: HullForm,
+    *,
+    mass_kg: float,
+    centre_of_gravity_m: Sequence[float],
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+) -> float:
+    """Roll restoring ``C44 = rho g (I_T + V z_B) - m g z_G`` [N m/rad] (heights from the waterline; z_G given above the keel).
+
+    With the ship floating freely (``m = rho V``) this is ``rho g V GM``
+    (:func:`transverse_metacentric_height_m`), the form of the pitch term of :func:`hydrostatic_stiffness_matrix`.
+    """
+    rg = water_density_kg_per_m3 * gravity_m_per_s2
+    x = _x_grid(hull)
+    i_t = float(np.trapezoid(hull.breadth_at(x) ** 3, x)) / 12.0
+    zg = float(centre_of_gravity_m[2]) - hull.draft_m
+    return rg * (i_t + hull.displaced_volume_m3() * _section_centroid_below_wl(hull)) - float(mass_kg) * gravity_m_per_s2 * zg
 
 
 def mass_matrix(mass_kg: float, pitch_radius_of_gyration_m: float) -> NDArray[np.float64]:

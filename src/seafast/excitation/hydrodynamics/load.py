@@ -16,10 +16,11 @@ from seafast.excitation.hydrodynamics.coefficients import motions_from_rigid_coe
 from seafast.excitation.hydrodynamics.equations import wavenumber_rad_per_m
 from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
 from seafast.excitation.hydrodynamics.motions import RigidBodyMotions
-from seafast.excitation.hydrodynamics.wamit import read_wamit_1, read_wamit_3, wamit_has_surge
+from seafast.excitation.hydrodynamics.six_dof import SixDofCoefficients, capytaine_six_dof_coefficients, mirrored_headings
+from seafast.excitation.hydrodynamics.wamit import read_wamit_1, read_wamit_3, read_wamit_3_headings, wamit_has_surge
 from seafast.vessel.hull_form import HullForm
 
-__all__ = ["load_motions"]
+__all__ = ["load_motions", "load_six_dof_coefficients"]
 
 
 def load_motions(
@@ -164,4 +165,64 @@ def _wamit_motions(
         pitch_radius_of_gyration_m=mass.pitch_radius_of_gyration_m,
         water_density_kg_per_m3=rho,
         gravity_m_per_s2=g,
+    )
+
+
+def load_six_dof_coefficients(
+    path: str | os.PathLike,
+    hull: HullForm,
+    *,
+    format: Literal["auto", "capytaine", "wamit"] = "auto",  # noqa: A002 - the keyword of load_motions
+    origin_x_m: float | None = None,
+    ulen_m: float = 1.0,
+    water_density_kg_per_m3: float = 1025.0,
+    gravity_m_per_s2: float = 9.81,
+    water_depth_m: float = math.inf,
+    frequency_column: Literal["period", "omega"] = "period",
+    memory_cache: HydrodynamicsCache | None = None,
+) -> SixDofCoefficients:
+    """Import the six-DOF coefficients over headings (docs/headings.md#2-what-is-computed) from a file.
+
+    A capytaine NetCDF file with the six rigid-body DOFs and a ``wave_direction`` dimension, or WAMIT ``.1``/``.3``
+    output with modes 1-6 and several headings (``BETA``). Headings within [0, 180] deg are used and mirrored to
+    [0, 360) by the hull's port-starboard symmetry. The WAMIT body origin lies on the waterline at ``x = origin_x_m``
+    (default midship); the other parameters as in :func:`load_motions`.
+
+    Raises
+    ------
+    ValueError
+        A missing DOF or mode, a single heading, files without common frequencies.
+    """
+    p = Path(path)
+    fmt = format if format != "auto" else ("capytaine" if p.suffix.lower() in (".nc", ".netcdf", ".cdf") else "wamit")
+    x_mid = 0.5 * (hull.station_x_m[0] + hull.station_x_m[-1])
+    if fmt == "capytaine":
+        ds = read_capytaine_netcdf(p) if memory_cache is None else memory_cache.dataset(p)
+        origin = float(ds.attrs.get("seafast_origin_x_m", x_mid)) if origin_x_m is None else float(origin_x_m)
+        return capytaine_six_dof_coefficients(ds, origin, gravity_m_per_s2)
+    if fmt != "wamit":
+        raise ValueError(f"load_six_dof_coefficients: unknown format {format!r}")
+    f1, f3 = _wamit_files(p)
+    rho, g = water_density_kg_per_m3, gravity_m_per_s2
+    modes = (1, 2, 3, 4, 5, 6)
+    w1, a, b = read_wamit_1(f1, ulen_m=ulen_m, water_density_kg_per_m3=rho, frequency_column=frequency_column, modes=modes)
+    w3, betas, x = read_wamit_3_headings(
+        f3, ulen_m=ulen_m, water_density_kg_per_m3=rho, gravity_m_per_s2=g, frequency_column=frequency_column
+    )
+    common = np.intersect1d(np.round(w1, 9), np.round(w3, 9))
+    if common.size == 0:
+        raise ValueError("load_six_dof_coefficients: the .1 and .3 files share no frequency")
+    i1, i3 = np.isin(np.round(w1, 9), common), np.isin(np.round(w3, 9), common)
+    headings, f = mirrored_headings(betas, x[i3])
+    origin = x_mid if origin_x_m is None else float(origin_x_m)
+    return SixDofCoefficients(
+        omega_rad_s=w1[i1],
+        wavenumber_rad_per_m=wavenumber_rad_per_m(w1[i1], water_depth_m, g),
+        headings_deg=headings,
+        added_mass=a[i1],
+        radiation_damping=b[i1],
+        excitation_force=f,
+        reference_x_m=origin,
+        reference_z_wl_m=0.0,
+        wave_phase_origin_x_m=origin,
     )

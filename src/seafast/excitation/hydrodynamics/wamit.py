@@ -17,7 +17,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["read_wamit_1", "read_wamit_3", "wamit_has_surge"]
+__all__ = ["read_wamit_1", "read_wamit_3", "read_wamit_3_headings", "wamit_has_surge"]
 
 
 def read_wamit_1(
@@ -113,6 +113,56 @@ def read_wamit_3(
             raise ValueError(f"WAMIT .3 file {path}: modes {sorted(set(modes) - set(rows[w]))} missing at omega = {w:.6g} rad/s")
         x[n] = [rows[w][m] for m in modes]
     return omega, x
+
+
+def read_wamit_3_headings(
+    path: str | os.PathLike,
+    *,
+    ulen_m: float,
+    water_density_kg_per_m3: float,
+    gravity_m_per_s2: float,
+    frequency_column: Literal["period", "omega"] = "period",
+    modes: tuple[int, ...] = (1, 2, 3, 4, 5, 6),
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.complex128]]:
+    """Read the wave excitation of ``modes`` at every heading of a WAMIT ``.3`` file.
+
+    WAMIT's ``BETA`` [deg] is the direction the waves travel, from ``+x`` towards ``+y``: seafast's heading. Scaling and
+    conventions as :func:`read_wamit_3`.
+
+    Returns
+    -------
+    omega [rad/s] (n_w,), headings [deg] (n_b,) ascending, X (n_w, n_b, n) complex per metre of wave amplitude.
+
+    Raises
+    ------
+    ValueError
+        No excitation of ``modes``, or a (frequency, heading) pair missing one of them.
+    """
+    headings: set[float] = set()
+    for line in Path(path).read_text().splitlines():
+        parts = line.split()
+        if len(parts) >= 7 and float(parts[0]) > 0 and int(parts[2]) in modes:
+            headings.add(round(float(parts[1]) % 360.0, 6))
+    if not headings:
+        raise ValueError(f"WAMIT .3 file {path}: no excitation of modes {modes} found")
+    betas = sorted(headings)
+    per_heading = [
+        read_wamit_3(
+            path,
+            ulen_m=ulen_m,
+            water_density_kg_per_m3=water_density_kg_per_m3,
+            gravity_m_per_s2=gravity_m_per_s2,
+            heading_deg=b,
+            frequency_column=frequency_column,
+            modes=modes,
+        )
+        for b in betas
+    ]
+    omega = per_heading[0][0]
+    for b, (w, _) in zip(betas, per_heading, strict=True):
+        if w.shape != omega.shape or not np.allclose(w, omega, rtol=1e-9):
+            raise ValueError(f"WAMIT .3 file {path}: heading {b} deg has other frequencies than heading {betas[0]} deg")
+    return omega, np.array(betas), np.stack([x for _, x in per_heading], axis=1)
 
 
 def wamit_has_surge(f1: Path, f3: Path) -> bool:

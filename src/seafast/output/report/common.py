@@ -15,9 +15,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # annotations only: the report's subcommand imports this module for its parser
+    import numpy as np
     import xarray as xr
+    from numpy.typing import NDArray
 
 __all__ = [
+    "rao_curves",
     "REPORT_FILENAME",
     "FIGURES_DIRNAME",
     "PDF_FILENAME",
@@ -188,3 +191,20 @@ def findings_html(findings: Sequence[Finding]) -> str:
         + "</div>"
         for f in findings
     )
+
+
+def rao_curves(ds: xr.Dataset) -> tuple[list[tuple[str, float, str]], dict[str, NDArray[np.complex128]], str]:
+    """The RAOs to plot: head seas' heave, pitch (and surge), or, off head seas, the six-DOF heave, roll and pitch at the case's heading."""
+    import numpy as np  # here: the report's parser imports this module
+
+    if "heave_rao_real" in ds:
+        dofs = [("heave", 1.0, "m/m"), ("pitch", 180 / np.pi, "deg/m")]
+        if "surge_rao_real" in ds:
+            dofs.insert(0, ("surge", 1.0, "m/m"))
+        curves = {n: ds[f"{n}_rao_real"].values + 1j * ds[f"{n}_rao_imag"].values for n, _, _ in dofs}
+        return dofs, curves, "head seas"
+    heading = float(ds.attrs.get("wave_heading_deg", 180.0))
+    j = int(np.argmin(np.abs((ds["heading_deg"].values - heading + 180.0) % 360.0 - 180.0)))
+    dofs = [("heave", 1.0, "m/m"), ("roll", 180 / np.pi, "deg/m"), ("pitch", 180 / np.pi, "deg/m")]
+    curves = {n: ds[f"{n}_rao6_real"].values[:, j] + 1j * ds[f"{n}_rao6_imag"].values[:, j] for n, _, _ in dofs}
+    return dofs, curves, f"heading {float(ds['heading_deg'].values[j]):g} deg"

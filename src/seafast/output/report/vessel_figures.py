@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seafast.output.report.common import attr_float, coord_labels, has_variables, saddle_label, total_load_case
+from seafast.output.report.common import attr_float, coord_labels, has_variables, rao_curves, saddle_label, total_load_case
 from seafast.output.report.plotly_style import plotly_go, style_figure, subplots
 
 __all__ = ["hull_girder_figure", "rao_figure", "deck_motion_figure"]
@@ -131,14 +131,13 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
 
     Returns ``None`` without RAOs (``vessel.motions: none``).
     """
-    if "rao_omega_rad_s" not in ds.coords or not has_variables(ds, "heave_rao_real", "heave_rao_imag", "pitch_rao_real", "pitch_rao_imag"):
+    head = has_variables(ds, "heave_rao_real", "heave_rao_imag", "pitch_rao_real", "pitch_rao_imag")
+    if "rao_omega_rad_s" not in ds.coords or not (head or has_variables(ds, "roll_rao6_real", "roll_rao6_imag")):
         return None
     go = plotly_go()
     w = ds["rao_omega_rad_s"].values
-    dofs = [("heave", 1.0, "m/m"), ("pitch", 180.0 / np.pi, "deg/m")]
-    if "surge_rao_real" in ds and "surge_rao_imag" in ds:
-        dofs.insert(0, ("surge", 1.0, "m/m"))
-    extra = {"pitch": " (bow up +)", "surge": " (forward +)"}
+    dofs, curves, where = rao_curves(ds)
+    extra = {"pitch": " (bow up +)", "surge": " (forward +)", "roll": " (starboard down +)"}
     fig = subplots(
         rows=2,
         cols=len(dofs),
@@ -148,7 +147,7 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
         subplot_titles=[f"{n} amplitude{extra.get(n, '')}" for n, _, _ in dofs] + [f"{n} phase" for n, _, _ in dofs],
     )
     for col, (name, scale, unit) in enumerate(dofs, start=1):
-        z = ds[f"{name}_rao_real"].values + 1j * ds[f"{name}_rao_imag"].values
+        z = curves[name]
         fig.add_trace(
             go.Scatter(
                 x=w,
@@ -191,8 +190,8 @@ def rao_figure(ds: xr.Dataset) -> Any | None:
             row=1,
             col=1,
         )
-    names = " and ".join(n for n, _, _ in dofs) if len(dofs) == 2 else "surge, heave and pitch"
-    return style_figure(fig, f"Rigid-body motions: {names} RAOs (head seas)", 560)
+    names = " and ".join(n for n, _, _ in dofs) if len(dofs) == 2 else ", ".join(n for n, _, _ in dofs[:-1]) + f" and {dofs[-1][0]}"
+    return style_figure(fig, f"Rigid-body motions: {names} RAOs ({where})", 560)
 
 
 def deck_motion_figure(ds: xr.Dataset) -> Any | None:
