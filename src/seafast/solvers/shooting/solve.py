@@ -28,14 +28,20 @@ from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import force_scale_N
-from seafast.solvers.modal_correction import modal_basis, modal_correction_system
+from seafast.solvers.modal_correction import (
+    CorrectionBasis,
+    ModalCorrectionSystem,
+    UnsupportedBasisError,
+    modal_basis,
+    modal_correction_system,
+)
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions
-from seafast.solvers.shooting.states import ContactStates, SingularStateError
+from seafast.solvers.shooting.states import ContactStates, SingularStateError, stiffness_cancellation
 
-__all__ = ["event_samples", "solve_shooting"]
+__all__ = ["correction_system", "event_samples", "settled_cutoff", "solve_shooting"]
 
 logger = logging.getLogger(__name__)
 
@@ -47,6 +53,9 @@ STIFF_CANCELLATION = 1e8
 
 MODAL_TOLERANCE = 1e-3
 """Largest change of a saddle's peak force (over its force scale) the cutoff check accepts."""
+
+MAX_CUTOFF_DOUBLINGS = 6
+"""Doublings of the cutoff at most (x 64; the model's every mode is usually reached before)."""
 
 
 def _reference_frequency_rad_s(model: StructuralModel, modes: int) -> float:
@@ -97,14 +106,14 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         record.update(time_samples=N_linear)
         return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
     cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
-    system = modal_correction_system(model, cutoff, minimum_modes=model.saddle_count)
+    system = correction_system(model, cutoff, opts)
     # the states' eigendecompositions depend on the model and the modes kept, not on the excitation: the model keeps them
-    key = f"shooting_states {system.mode_count} {cutoff:.17g}"
+    key = f"shooting_states {system.basis.value} {system.mode_count} {cutoff:.17g}"
     dynamics = model.derived_cache.get(key)
     if not isinstance(dynamics, dict):
         dynamics = model.derived_cache[key] = {}
     states = ContactStates(system, D, omega, dynamics)
-    record.update(modes=system.mode_count, cutoff_rad_s=cutoff)
+    record.update(modes=system.mode_count, cutoff_rad_s=cutoff, basis=system.basis.value, complete_basis=system.complete)
     scale = max(float(np.max(np.abs(d_grid))), 1e-6)
     x_start = np.zeros(states.state_size)
     periods = steps = 0
@@ -146,26 +155,88 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     )
     if not converged:
         note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
-    if converged and opts.cutoff_check and states.cancellation > STIFF_CANCELLATION:
-        # near-rigid saddles: the lifted states are what is left of cancelling bilateral modes, so the modal
-        # reduction is checked by the same solve with twice the cutoff
-        finer = solve_shooting(model, excitation, replace(opts, cutoff_factor=2.0 * opts.cutoff_factor, cutoff_check=False))
-        sampled = np.max(samples[0], axis=0) * ops.saddle_stiffness_N_per_m
-        change = _peak_change(sampled, finer) if finer.converged else math.inf
-        record.update(stiffness_cancellation=states.cancellation, cutoff_check_change=change)
-        if change > MODAL_TOLERANCE:
-            converged = False
-            note += (
-                f"; not converged in the modal reduction: near-rigid saddles (stiffness cancellation {states.cancellation:.1e}), "
-                f"the peak forces move {change:.2g} with twice the cutoff" + ("" if finer.converged else f" ({finer.message})")
-            )
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
-    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
+    response = _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
+    stiff = system.basis is CorrectionBasis.LIFTED or states.cancellation > STIFF_CANCELLATION
+    if converged and opts.cutoff_check and stiff and not system.complete:
+        # stiff saddles: the modal reduction is checked by the same solve with the cutoff doubled until the peaks settle
+        return settled_cutoff(model, excitation, opts, response, states.cancellation)
+    return response
 
 
-def _peak_change(peaks_N: NDArray, finer: PeriodicResponse) -> float:
+def correction_system(model: StructuralModel, cutoff_rad_s: float, opts: ShootingOptions) -> ModalCorrectionSystem:
+    """The reduced correction system the shooting marches: the modes up to ``cutoff_rad_s`` of the basis chosen.
+
+    ``opts.basis`` None: the bilateral saddles' modes, unless the state with every saddle lifted cancels more than
+    :data:`STIFF_CANCELLATION` of their stiffness (stiff saddles) and the lashings hold the lifted cargo: then the
+    lifted cargo's modes, on which contact adds stiffness instead (:class:`CorrectionBasis`).
+    """
+    n_s = model.saddle_count
+    if opts.basis is not None:
+        return modal_correction_system(model, cutoff_rad_s, minimum_modes=n_s, basis=opts.basis)
+    bilateral = modal_correction_system(model, cutoff_rad_s, minimum_modes=n_s)
+    if stiffness_cancellation(bilateral, np.ones(n_s, dtype=bool)) <= STIFF_CANCELLATION:
+        return bilateral
+    try:
+        return modal_correction_system(model, cutoff_rad_s, minimum_modes=n_s, basis=CorrectionBasis.LIFTED)
+    except UnsupportedBasisError:
+        return bilateral  # no lashing holds the lifted cargo: the bilateral modes, checked at twice the cutoff
+
+
+def settled_cutoff(
+    model: StructuralModel, excitation: HarmonicExcitation, opts: ShootingOptions, coarse: PeriodicResponse, cancellation: float
+) -> PeriodicResponse:
+    """The solve with the cutoff doubled until no saddle's peak force moves by more than :data:`MODAL_TOLERANCE`.
+
+    ``coarse``: the converged solve at ``opts.cutoff_factor`` (on stiff saddles; ``cancellation`` its states' stiffness
+    cancellation). Each doubling is solved in full; the finest solve is returned once its peaks are within
+    :data:`MODAL_TOLERANCE` of the previous one's, or once it keeps every mode of the model (no residual flexibility:
+    the reduction is exact). Otherwise -- a doubled solve does not converge, or :data:`MAX_CUTOFF_DOUBLINGS` are
+    spent -- the last converged one is returned not converged, with why. The changes are recorded
+    (``cutoff_check_change``: the last one; ``cutoff_doublings``: how many; the message lists each).
+    """
+    current, factor = coarse, float(opts.cutoff_factor)
+    changes: list[float] = []
+    why = ""
+    while True:
+        if len(changes) >= MAX_CUTOFF_DOUBLINGS:
+            why = f"the peak forces still move {changes[-1]:.2g} after {len(changes)} doublings of the cutoff"
+            break
+        factor *= 2.0
+        finer = solve_shooting(model, excitation, replace(opts, cutoff_factor=factor, cutoff_check=False))
+        if not finer.converged:
+            why = f"the solve with the cutoff factor {factor:g} is not converged ({finer.message})"
+            break
+        changes.append(_peak_change(current, finer))
+        current = finer
+        if changes[-1] <= MODAL_TOLERANCE or current.options.get("complete_basis"):
+            break
+    last = changes[-1] if changes else math.inf
+    record = dict(current.options, stiffness_cancellation=float(cancellation), cutoff_check_change=last, cutoff_doublings=len(changes))
+    steps = ", ".join(f"{c:.2g}" for c in changes)
+    note = f"{current.message}; cutoff settled by doubling (peak force changes {steps})"
+    if current.options.get("complete_basis") and changes and changes[-1] > MODAL_TOLERANCE:
+        note += "; every mode of the model kept: the reduction is exact"
+    if why and cancellation > STIFF_CANCELLATION:
+        why += f" (bilateral modes, a lifted state cancelling {cancellation:.1e} of their stiffness: no lashing holds the lifted cargo)"
+    if why:
+        note += f"; not converged in the modal reduction: {why}"
+        return replace(current, outcome=SolverOutcome.NOT_CONVERGED, message=note, options=record)
+    missed = current.options.get("peak_missed_by_grid", 0.0)
+    assert isinstance(missed, float)
+    if missed > opts.peak_tolerance:
+        # impacts too short for the finest grid allowed: the sampled peak is not the continuous one
+        note += (
+            f"; not converged on the event grid: {current.time_samples} samples per period (max_samples) miss {missed:.2g} of a peak "
+            f"force (impacts shorter than the grid resolves)"
+        )
+        return replace(current, outcome=SolverOutcome.NOT_CONVERGED, message=note, options=record)
+    return replace(current, message=note, options=record)
+
+
+def _peak_change(coarse: PeriodicResponse, finer: PeriodicResponse) -> float:
     """How far each saddle's peak force moves to the finer solve's, over its force scale (the largest over saddles) [-]."""
-    other = np.max(finer.saddle_force_time_N, axis=0)
+    peaks_N, other = np.max(coarse.saddle_force_time_N, axis=0), np.max(finer.saddle_force_time_N, axis=0)
     return float(np.max(np.abs(other - peaks_N) / force_scale_N(np.maximum(other, peaks_N)), initial=0.0))
 
 
