@@ -41,7 +41,7 @@ from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions
 from seafast.solvers.shooting.states import ContactStates, SingularStateError, stiffness_cancellation
 
-__all__ = ["correction_system", "event_samples", "settled_cutoff", "solve_shooting"]
+__all__ = ["contact_samples", "correction_system", "event_samples", "settled_cutoff", "solve_shooting"]
 
 logger = logging.getLogger(__name__)
 
@@ -53,6 +53,9 @@ STIFF_CANCELLATION = 1e8
 
 MODAL_TOLERANCE = 1e-3
 """Largest change of a saddle's peak force (over its force scale) the cutoff check accepts."""
+
+STIFF_SAMPLES_FACTOR = 8
+"""For stiff saddles' impacts, once the cutoff has settled: up to this multiple of ``max_samples`` (2^19 by default)."""
 
 MAX_CUTOFF_DOUBLINGS = 6
 """Doublings of the cutoff at most (x 64; the model's every mode is usually reached before)."""
@@ -107,6 +110,7 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
     cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
     system = correction_system(model, cutoff, opts)
+    N = max(N, contact_samples(system, omega, opts))
     # the states' eigendecompositions depend on the model and the modes kept, not on the excitation: the model keeps them
     key = f"shooting_states {system.basis.value} {system.mode_count} {cutoff:.17g}"
     dynamics = model.derived_cache.get(key)
@@ -164,6 +168,23 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     return response
 
 
+def contact_samples(system: ModalCorrectionSystem, omega_rad_s: float, opts: ShootingOptions) -> int:
+    """Samples per period for the impacts of stiff saddles on the lifted basis (1 on the bilateral one), a power of 2.
+
+    A saddle in contact rings at about ``sqrt(W_ii / m_i)``: ``W_ii`` its contact stiffness as the reduction sees it
+    (``(I + K_u R)^-1 K_u``, at most ``1 / R_ii``) on the modal mass ``1 / (Phi_s Phi_s^T)_ii`` the kept modes give
+    it. ``samples_per_mode`` samples per period of the fastest, at most ``max_samples``: a grid coarser than the
+    impacts would miss a bounce between two samples.
+    """
+    if system.basis is not CorrectionBasis.LIFTED or opts.time_samples is not None:
+        return 1
+    k_u, R, Phi = system.unilateral_stiffness_N_per_m, system.residual_flexibility_m_per_N, system.saddle_mode_shape
+    W = np.linalg.solve(np.eye(k_u.size) + k_u[:, None] * R, np.diag(k_u))
+    ringing = math.sqrt(max(float(np.max(np.diag(W) * np.sum(Phi**2, axis=1))), 0.0))
+    need = opts.samples_per_mode * ringing / float(omega_rad_s)
+    return int(min(2 ** math.ceil(math.log2(max(need, 1.0))), opts.max_samples))
+
+
 def correction_system(model: StructuralModel, cutoff_rad_s: float, opts: ShootingOptions) -> ModalCorrectionSystem:
     """The reduced correction system the shooting marches: the modes up to ``cutoff_rad_s`` of the basis chosen.
 
@@ -191,8 +212,11 @@ def settled_cutoff(
     ``coarse``: the converged solve at ``opts.cutoff_factor`` (on stiff saddles; ``cancellation`` its states' stiffness
     cancellation). Each doubling is solved in full; the finest solve is returned once its peaks are within
     :data:`MODAL_TOLERANCE` of the previous one's, or once it keeps every mode of the model (no residual flexibility:
-    the reduction is exact). Otherwise -- a doubled solve does not converge, or :data:`MAX_CUTOFF_DOUBLINGS` are
-    spent -- the last converged one is returned not converged, with why. The changes are recorded
+    the reduction is exact); if its grid still misses more than ``opts.peak_tolerance`` of a peak force, it is solved
+    once more with up to :data:`STIFF_SAMPLES_FACTOR` times ``opts.max_samples`` samples a period. Otherwise -- a
+    doubled solve does not converge,
+    :data:`MAX_CUTOFF_DOUBLINGS` are spent, or the finest grid still misses a peak -- the last converged one is
+    returned not converged, with why. The changes are recorded
     (``cutoff_check_change``: the last one; ``cutoff_doublings``: how many; the message lists each).
     """
     current, factor = coarse, float(opts.cutoff_factor)
@@ -225,9 +249,18 @@ def settled_cutoff(
     missed = current.options.get("peak_missed_by_grid", 0.0)
     assert isinstance(missed, float)
     if missed > opts.peak_tolerance:
+        # impacts shorter than the grid allowed resolves: the settled cutoff once more on a finer grid
+        finest = replace(opts, cutoff_factor=factor, cutoff_check=False, max_samples=STIFF_SAMPLES_FACTOR * opts.max_samples)
+        finer = solve_shooting(model, excitation, finest)
+        if finer.converged:
+            current, record = finer, dict(finer.options, **{k: v for k, v in record.items() if k not in finer.options})
+            missed = current.options.get("peak_missed_by_grid", 0.0)
+            assert isinstance(missed, float)
+            note = f"{current.message}; cutoff settled by doubling (peak force changes {steps})"
+    if missed > opts.peak_tolerance:
         # impacts too short for the finest grid allowed: the sampled peak is not the continuous one
         note += (
-            f"; not converged on the event grid: {current.time_samples} samples per period (max_samples) miss {missed:.2g} of a peak "
+            f"; not converged on the event grid: {current.time_samples} samples per period (the most allowed) miss {missed:.2g} of a peak "
             f"force (impacts shorter than the grid resolves)"
         )
         return replace(current, outcome=SolverOutcome.NOT_CONVERGED, message=note, options=record)
