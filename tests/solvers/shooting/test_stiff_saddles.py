@@ -23,8 +23,8 @@ from seafast.model.structure import build_structural_model
 from seafast.solvers.modal_correction import CorrectionBasis, UnsupportedBasisError, lashings_hold, modal_basis
 from seafast.solvers.references import TimeDomainOptions, solve_time_domain
 from seafast.solvers.shooting import ShootingOptions, solve_shooting
-from seafast.solvers.shooting import solve as shooting_solve
-from seafast.solvers.shooting.solve import correction_system
+from seafast.solvers.shooting import stiff as shooting_stiff
+from seafast.solvers.shooting.stiff import correction_system
 from solver_cases import base_model, peak_moment, wave_excitation
 
 
@@ -101,14 +101,14 @@ def test_stiff_saddles_take_the_lifted_basis_and_lashless_cargo_keeps_the_bilate
 def test_a_stiff_solve_that_cannot_settle_says_why(stiff, monkeypatch):
     model, ex = stiff
     # the modal reduction: one doubling allowed, a tolerance no doubling meets
-    monkeypatch.setattr(shooting_solve, "MAX_CUTOFF_DOUBLINGS", 1)
-    monkeypatch.setattr(shooting_solve, "MODAL_TOLERANCE", 1e-12)
+    monkeypatch.setattr(shooting_stiff, "MAX_CUTOFF_DOUBLINGS", 1)
+    monkeypatch.setattr(shooting_stiff, "MODAL_TOLERANCE", 1e-12)
     r = solve_shooting(model, ex, ShootingOptions(basis=CorrectionBasis.LIFTED))
     assert not r.converged and "not converged in the modal reduction: the peak forces still move" in r.message
     assert r.options["cutoff_doublings"] == 1 and 1e-12 < float(r.options["cutoff_check_change"]) < 0.05
     # the event grid: the cutoff settles at once, but a peak tolerance no grid up to twice the most allowed meets
-    monkeypatch.setattr(shooting_solve, "MODAL_TOLERANCE", 1.0)
-    monkeypatch.setattr(shooting_solve, "STIFF_SAMPLES_FACTOR", 2)
+    monkeypatch.setattr(shooting_stiff, "MODAL_TOLERANCE", 1.0)
+    monkeypatch.setattr(shooting_stiff, "STIFF_SAMPLES_FACTOR", 2)
     r = solve_shooting(model, ex, ShootingOptions(basis=CorrectionBasis.LIFTED, max_samples=16384, peak_tolerance=1e-9))
     assert not r.converged and "not converged on the event grid" in r.message
     assert r.time_samples == 2 * 16384 and float(r.options["peak_missed_by_grid"]) > 1e-9
@@ -117,8 +117,10 @@ def test_a_stiff_solve_that_cannot_settle_says_why(stiff, monkeypatch):
 @pytest.mark.slow
 def test_stiff_saddles_equal_the_full_dof_transient_analysis(stiff):
     model, ex = stiff
-    # every mode of the lifted cargo: no reduction left, the shooting is the FE model's periodic orbit
-    r = solve_shooting(model, ex, ShootingOptions(basis=CorrectionBasis.LIFTED, cutoff_factor=1e9))
+    # every mode of the lifted cargo: no reduction left, the shooting is the FE model's periodic orbit. Its residual
+    # is relative to the linear compression (1e-4 m on these saddles): 1e-8 of it, 1e-12 m, is the all-mode march's
+    # round-off floor (3e-9 measured), so the tolerance is 1e-8 here
+    r = solve_shooting(model, ex, ShootingOptions(basis=CorrectionBasis.LIFTED, cutoff_factor=1e9, tolerance=1e-8))
     assert r.converged and r.options["complete_basis"] and r.options["events"] >= 4
     assert r.max_gap_m > 0.01  # heavy lift-off and impacts at re-contact
     # the time-domain reference (average acceleration, every step an output sample), from the shooting's orbit:

@@ -41,13 +41,14 @@ class ShootingOptions:
     max_samples
         Samples per period at most.
     cutoff_check
-        With near-rigid saddles (a lifted state cancelling most of the bilateral modes' stiffness), check the modal
-        reduction by the same solve at twice the cutoff; a change of the peaks beyond 0.1 % is reported as not
-        converged.
+        On stiff saddles (the lifted basis, or a lifted state cancelling most of the bilateral modes' stiffness),
+        repeat the solve with the cutoff doubled until the peak forces move by at most 0.1 % (or every mode is kept),
+        and refine the grid beyond ``max_samples`` (8 times) if the peaks need it; what does not settle is reported
+        not converged, with why (:func:`~seafast.solvers.shooting.stiff.settled_cutoff`).
     basis
         The :class:`~seafast.solvers.modal_correction.CorrectionBasis` of the modal reduction; None (the default):
         the bilateral saddles' modes unless a lifted state would cancel more than
-        :data:`~seafast.solvers.shooting.solve.STIFF_CANCELLATION` of their stiffness (stiff saddles) and the
+        :data:`~seafast.solvers.shooting.stiff.STIFF_CANCELLATION` of their stiffness (stiff saddles) and the
         lashings hold the lifted cargo, then the lifted cargo's modes.
     """
 
