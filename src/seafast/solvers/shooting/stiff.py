@@ -141,22 +141,40 @@ def settled_cutoff(
     missed = current.options.get("peak_missed_by_grid", 0.0)
     assert isinstance(missed, float)
     if missed > opts.peak_tolerance:
-        # impacts shorter than the grid allowed resolves: the settled cutoff once more on a finer grid
-        finest = replace(opts, cutoff_factor=factor, cutoff_check=False, max_samples=STIFF_SAMPLES_FACTOR * opts.max_samples)
-        finer = solve(model, excitation, finest)
-        if finer.converged:
-            current, record = finer, dict(finer.options, **{k: v for k, v in record.items() if k not in finer.options})
-            missed = current.options.get("peak_missed_by_grid", 0.0)
-            assert isinstance(missed, float)
-            note = f"{current.message}; cutoff settled by doubling (peak force changes {steps})"
-    if missed > opts.peak_tolerance:
-        # impacts too short for the finest grid allowed: the sampled peak is not the continuous one
-        note += (
-            f"; not converged on the event grid: {current.time_samples} samples per period (the most allowed) miss {missed:.2g} of a peak "
-            f"force (impacts shorter than the grid resolves)"
-        )
-        return replace(current, outcome=SolverOutcome.NOT_CONVERGED, message=note, options=record)
+        # impacts shorter than the grid allowed resolves: the settled cutoff once more on finer grids
+        current, grid_note = _finer_grids(solve, model, excitation, replace(opts, cutoff_factor=factor, cutoff_check=False), current)
+        record = dict(current.options, **{k: v for k, v in record.items() if k not in current.options})
+        note = f"{current.message}; cutoff settled by doubling (peak force changes {steps}){grid_note}"
     return replace(current, message=note, options=record)
+
+
+def _finer_grids(
+    solve: Solve, model: StructuralModel, excitation: HarmonicExcitation, opts: ShootingOptions, current: PeriodicResponse
+) -> tuple[PeriodicResponse, str]:
+    """The solve on up to half, then all of :data:`STIFF_SAMPLES_FACTOR` times ``opts.max_samples`` samples a period.
+
+    Accepted when its grid misses at most ``opts.peak_tolerance`` of a peak (the closed-form estimate between
+    samples), or when its sampled peak forces are within ``opts.peak_tolerance`` of the previous grid's (the grid's
+    own measured convergence). Else the finest is returned not converged, with why. Returns it and a note.
+    """
+    previous = None
+    for factor in (STIFF_SAMPLES_FACTOR // 2, STIFF_SAMPLES_FACTOR):
+        finer = solve(model, excitation, replace(opts, max_samples=factor * opts.max_samples))
+        if not finer.converged:
+            return replace(current, outcome=SolverOutcome.NOT_CONVERGED), f"; not converged on a finer event grid ({finer.message})"
+        missed = finer.options.get("peak_missed_by_grid", 0.0)
+        assert isinstance(missed, float)
+        if missed <= opts.peak_tolerance:
+            return finer, ""
+        if previous is not None and _peak_change(previous, finer) <= opts.peak_tolerance:
+            change = _peak_change(previous, finer)
+            return finer, f"; sampled peak forces within {change:.2g} of those on half the samples"
+        previous = finer
+    why = (
+        f"; not converged on the event grid: {finer.time_samples} samples per period (the most allowed) miss {missed:.2g} of a peak "
+        f"force (impacts shorter than the grid resolves)"
+    )
+    return replace(finer, outcome=SolverOutcome.NOT_CONVERGED), why
 
 
 def _peak_change(coarse: PeriodicResponse, finer: PeriodicResponse) -> float:
