@@ -8,7 +8,9 @@ ringing after a re-contact would need. The start is the attractor the physical s
 periodic solution (``x0 = 0``, no correction): a few periods are marched before Newton takes over, and the orbit
 found is checked for stability by its Floquet multipliers (the eigenvalues of ``Phi``). The only approximation is
 the modal reduction of the correction system (modes up to ``cutoff_factor`` times the reference frequency, the
-rest static through the residual flexibility): docs/theory.md, section 6, measures it.
+rest static through the residual flexibility): docs/theory.md, section 6, measures it. On stiff saddles it is
+reduced on the lifted cargo's modes and the cutoff is doubled until the peaks settle
+(:mod:`seafast.solvers.shooting.stiff`).
 
 Units: SI (m, rad, N, s). Nothing here prints, reads or writes files.
 """
@@ -27,10 +29,7 @@ from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import force_scale_N
-from seafast.solvers.modal_correction import (
-    CorrectionBasis,
-    modal_basis,
-)
+from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.shooting.options import ShootingOptions
