@@ -10,6 +10,10 @@ obeys ``x' = A_L x + B_L d_L(t)`` with ``A_L = [[0, I], [-(Omega^2 - Phi_L^T W_L
 response is known exactly: ``x(t) = Re(V e^{Lambda (t - t0)} V^-1) (x(t0) - x_p(t0)) + x_p(t)``, with
 ``x_p`` the particular solution of the excitation's harmonics (``(i k w - A_L) X_k = B_L D_k``).
 
+On the lifted basis (:class:`~seafast.solvers.modal_correction.CorrectionBasis`, stiff saddles) the same holds with
+the saddles in contact C adding their stiffness instead, ``Omega^2 + Phi_C^T W_C Phi_C`` with
+``W_C = (I + K_C R_CC)^-1 K_C``, and the input ``g = f - K_u d`` in place of ``c`` (:func:`_lifted_state`).
+
 The vector field is continuous where a saddle changes state (``c_i = 0`` and ``delta_i = 0`` there from both
 sides), so the flow's Jacobian is continuous too: the monodromy matrix of a period is the product of the
 segments' ``e^{A_L tau}``, with no saltation terms.
