@@ -14,6 +14,17 @@ springs are undamped, so Rayleigh damping on the beam is not modal) plus the sta
 of the truncated modes (``K^-1 B - Phi Omega^-2 Phi_B^T``), so the modes above the cutoff respond
 quasi-statically and the reduced system is exact at zero frequency.
 
+**The lifted basis** (:attr:`CorrectionBasis.LIFTED`, for stiff saddles). With the bilateral modes, a lifted
+saddle's stiffness is *removed* from the modal stiffness (``Omega^2 - Phi_L^T W_L Phi_L``): with near-rigid
+saddles a difference of huge numbers. Written on the cargo with every saddle lifted (the lashings hold it,
+``K_f = K - B K_u B^T``), the same equations read::
+
+    M q_c'' + D q_c' + K_f q_c = B g,      g = f - K_u delta_lin,      f = k_u max(delta, 0)
+
+(``K_u delta_lin`` the bilateral linear saddle forces, finite however stiff the saddles): contact *adds* its
+stiffness to the lifted cargo's modes, and nothing cancels. The reduction is the same (the lifted cargo's modes
+below the cutoff plus the static residual flexibility of ``K_f``), with ``g`` the input in place of ``c``.
+
 This module is the reduction alone (no time step): the one transient integrator,
 :mod:`seafast.solvers.transient` (Newmark average acceleration, exact contact per step, compiled), marches
 it -- for the sea-state Monte Carlo, and periodically for the start of the high-harmonic HBM solves
@@ -25,6 +36,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import StrEnum
 from functools import cached_property
 
 import numpy as np
@@ -33,7 +45,27 @@ from scipy.linalg import eigh, solve_banded
 
 from seafast.model.structure import StructuralModel
 
-__all__ = ["ModalBasis", "ModalCorrectionSystem", "modal_basis", "modal_correction_system"]
+__all__ = [
+    "CorrectionBasis",
+    "ModalBasis",
+    "ModalCorrectionSystem",
+    "UnsupportedBasisError",
+    "lashings_hold",
+    "modal_basis",
+    "modal_correction_system",
+]
+
+
+class CorrectionBasis(StrEnum):
+    """Which cargo's modes the correction system is reduced on.
+
+    ``BILATERAL``: every saddle bilateral (the input is the correction force ``c = k_u max(-delta, 0)``);
+    ``LIFTED``: every saddle lifted, the lashings holding the cargo (the input is ``g = f - K_u delta_lin``, the
+    saddle force less the bilateral linear one): see the module docstring.
+    """
+
+    BILATERAL = "bilateral"
+    LIFTED = "lifted"
 
 
 @dataclass(frozen=True)
@@ -63,6 +95,12 @@ class ModalCorrectionSystem:
         Cargo DOF index of each saddle's z, (n_s,).
     cutoff_rad_s
         Modes at or below this frequency are kept [rad/s] (``inf``: every mode).
+    basis
+        :class:`CorrectionBasis`: the modes of the cargo on bilateral saddles (the input is the correction force
+        ``c``) or with every saddle lifted (the input is ``g = f - K_u delta_lin``); the residual flexibilities
+        and frequencies above are of that cargo.
+    complete
+        Whether every mode of the model is kept (the residual flexibility is then zero: the reduction is exact).
     """
 
     natural_frequency_rad_s: NDArray[np.float64]
@@ -75,6 +113,8 @@ class ModalCorrectionSystem:
     unilateral_stiffness_N_per_m: NDArray[np.float64]
     saddle_dof: NDArray[np.intp]
     cutoff_rad_s: float
+    basis: CorrectionBasis = CorrectionBasis.BILATERAL
+    complete: bool = False
 
     @property
     def mode_count(self) -> int:
@@ -153,18 +193,27 @@ class ModalBasis:
     complete: bool
 
 
-_BASIS_KEY = "modal_basis"  # the model's derived_cache entry
+_BASIS_KEY = "modal_basis"  # the model's derived_cache entry (the lifted basis: with " lifted")
 _DENSE_EIGEN_LIMIT = 400  # DOFs; above it, the few lowest modes come from a shift-invert Lanczos
 
 
-def modal_basis(model: StructuralModel, cutoff_rad_s: float) -> ModalBasis:
+class UnsupportedBasisError(ValueError):
+    """The cargo with every saddle lifted is not held (no lashing against a rigid-body motion): no lifted basis."""
+
+
+def modal_basis(model: StructuralModel, cutoff_rad_s: float, basis: CorrectionBasis = CorrectionBasis.BILATERAL) -> ModalBasis:
     """Modes of the model at least up to ``cutoff_rad_s`` (kept in the model's ``derived_cache``; grows when asked for more).
 
     Small models (or ``cutoff_rad_s = inf``) take every mode from a dense generalised eigensolve; large
     ones (long or finely meshed cargo) the lowest ones from ARPACK in shift-invert mode on the banded K,
-    doubling the count until the cutoff is passed.
+    doubling the count until the cutoff is passed. ``basis``: the cargo on bilateral saddles, or with every
+    saddle lifted (lashings only; :class:`UnsupportedBasisError` if they do not hold it).
     """
-    cached = model.derived_cache.get(_BASIS_KEY)
+    bilateral = basis is CorrectionBasis.BILATERAL
+    if not bilateral and not lashings_hold(model):
+        raise UnsupportedBasisError("the lashings do not hold the cargo with every saddle lifted against a rigid-body heave and pitch")
+    key = _BASIS_KEY if bilateral else f"{_BASIS_KEY} {basis.value}"
+    cached = model.derived_cache.get(key)
     if isinstance(cached, ModalBasis) and (cached.complete or cached.natural_frequency_rad_s[-1] > cutoff_rad_s):
         return cached
     n = model.cargo_dof_count
@@ -172,19 +221,23 @@ def modal_basis(model: StructuralModel, cutoff_rad_s: float) -> ModalBasis:
     B = np.zeros((n, sad.size))
     B[sad, np.arange(sad.size)] = 1.0
     if n <= _DENSE_EIGEN_LIMIT or not math.isfinite(cutoff_rad_s):
-        K = np.asarray(model.dynamic_stiffness(0.0, True)[0], dtype=float)  # every saddle bilateral
-        w2, phi = eigh(K, np.asarray(model.cargo.mass, dtype=float))
+        K = np.asarray(model.dynamic_stiffness(0.0, bilateral)[0], dtype=float)
+        M = np.asarray(model.cargo.mass, dtype=float)
+        w2, phi = eigh(K, M) if bilateral else _two_sided_modes(K, M)
+        complete = True
         static = np.linalg.solve(K, B)
         damping_phi = model.damping_cc @ phi
-        complete = True
     else:
         # a long or finely meshed cargo: the lowest modes by the model's banded shift-invert Lanczos, doubling the
         # count until the cutoff is passed, and every product with K and D in band storage (O(n), no n x n array)
-        b, K_band, _, D_band, _ = model.banded_quadratic(True)
+        b, K_band, _, D_band, _ = model.banded_quadratic(bilateral)
         count = 8
         while True:
             count = min(count, n - 2)
-            w, phi_or_none = model.lowest_modes(True, count, vectors=True)
+            try:
+                w, phi_or_none = model.lowest_modes(bilateral, count, vectors=True)
+            except (np.linalg.LinAlgError, RuntimeError, ValueError) as error:
+                raise UnsupportedBasisError(f"no modes of the cargo with every saddle lifted: {error}") from None
             assert phi_or_none is not None
             phi, w2 = phi_or_none, w**2
             if w[-1] > cutoff_rad_s or count >= n - 2:
@@ -195,9 +248,42 @@ def modal_basis(model: StructuralModel, cutoff_rad_s: float) -> ModalBasis:
         complete = False
     flexibility = static[sad]
     phi = np.ascontiguousarray(phi)
-    basis = ModalBasis(np.sqrt(np.maximum(w2, 0.0)), phi, static, 0.5 * (flexibility + flexibility.T), phi.T @ damping_phi, complete)
-    model.derived_cache[_BASIS_KEY] = basis
-    return basis
+    found = ModalBasis(np.sqrt(np.maximum(w2, 0.0)), phi, static, 0.5 * (flexibility + flexibility.T), phi.T @ damping_phi, complete)
+    model.derived_cache[key] = found
+    return found
+
+
+def _two_sided_modes(K: NDArray[np.float64], M: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Every mode of ``K phi = w^2 M phi`` (ascending, mass-normalised), each to its own relative precision.
+
+    ``eigh(K, M)`` finds each ``w^2`` to about ``eps w_max^2``: the soft modes of a cargo held by its lashings alone
+    (0.1 rad/s beside 9e5 rad/s) would carry percent errors. ``eigh(M, K)`` finds ``1 / w^2`` to ``eps / w_min^2``:
+    accurate at the bottom, not at the top. The modes below the spectrum's geometric mean come from the second,
+    the others from the first (both to about ``eps sqrt(w_max^2 / w_min^2)`` at the split).
+    """
+    w2, phi = eigh(K, M)
+    mu, psi = eigh(M, K)  # psi^T K psi = I, psi^T M psi = mu
+    low = np.sort(1.0 / mu)
+    split = math.sqrt(max(float(low[0]), 1e-300) * float(w2[-1]))
+    count = int(np.searchsorted(low, split))
+    order = np.argsort(1.0 / mu)[:count]
+    w2_low, phi_low = 1.0 / mu[order], psi[:, order] / np.sqrt(mu[order])[None, :]
+    return np.concatenate([w2_low, w2[count:]]), np.hstack([phi_low, phi[:, count:]])
+
+
+def lashings_hold(model: StructuralModel) -> bool:
+    """Whether the lashings alone hold the cargo against its rigid-body heave and pitch (the lifted basis exists).
+
+    A rigid motion ``w(x) = a + b x`` stores ``sum_i k_z,i (a + b x_i)^2 + k_theta,i b^2`` in the lashings: they hold
+    the cargo if that 2 x 2 form is positive definite (relative to its largest eigenvalue, beyond round-off).
+    """
+    sf = model.seafastening
+    x = np.asarray(model.saddle_x_m, dtype=float) - float(np.mean(model.saddle_x_m))
+    kz = np.asarray(sf.lashing_vertical_stiffness_N_per_m, dtype=float)
+    kt = np.asarray(sf.lashing_rotational_stiffness_Nm_per_rad, dtype=float)
+    form = np.array([[kz.sum(), kz @ x], [kz @ x, kz @ x**2 + kt.sum()]])
+    eig = np.linalg.eigvalsh(form)
+    return bool(eig[-1] > 0.0 and eig[0] > 1e-9 * eig[-1])
 
 
 def _band_product(band: NDArray[np.float64], bandwidth: int, X: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -211,7 +297,9 @@ def _band_product(band: NDArray[np.float64], bandwidth: int, X: NDArray[np.float
     return out
 
 
-def modal_correction_system(model: StructuralModel, cutoff_rad_s: float, *, minimum_modes: int = 0) -> ModalCorrectionSystem:
+def modal_correction_system(
+    model: StructuralModel, cutoff_rad_s: float, *, minimum_modes: int = 0, basis: CorrectionBasis = CorrectionBasis.BILATERAL
+) -> ModalCorrectionSystem:
     """Reduce the model's correction system to the modes at or below ``cutoff_rad_s``.
 
     Parameters
@@ -223,24 +311,40 @@ def modal_correction_system(model: StructuralModel, cutoff_rad_s: float, *, mini
         modes above it respond quasi-statically through the residual flexibility); ``inf`` keeps every mode.
     minimum_modes
         Keep at least this many modes (the lowest), whatever the cutoff.
+    basis
+        :class:`CorrectionBasis`: the modes of the cargo on bilateral saddles (the default) or with every saddle
+        lifted (:class:`UnsupportedBasisError` where the lashings do not hold the cargo).
     """
-    basis = modal_basis(model, cutoff_rad_s)
-    w = basis.natural_frequency_rad_s
+    modes = modal_basis(model, cutoff_rad_s, basis)
+    w = modes.natural_frequency_rad_s
     m = max(int(np.searchsorted(w, float(cutoff_rad_s), side="right")), min(int(minimum_modes), w.size))
-    w, phi = w[:m], basis.mode_shape[:, :m]
+    complete = bool(modes.complete and m == w.size)
+    w, phi = w[:m], modes.mode_shape[:, :m]
     sad = np.asarray(model.saddle_cargo_dof)
     phis = phi[sad]
-    residual = basis.static_saddle_response_m_per_N - phi @ (phis.T / w[:, None] ** 2) if m else basis.static_saddle_response_m_per_N
+    if modes.complete and basis is CorrectionBasis.LIFTED:
+        # every mode is known: the residual as the truncated modes' own static flexibility, without subtracting the
+        # soft lashing modes' large share from the static response (a difference of large numbers)
+        rest, shapes = modes.natural_frequency_rad_s[m:], modes.mode_shape[:, m:]
+        residual = shapes @ (shapes[sad].T / rest[:, None] ** 2)
+    elif m:
+        residual = modes.static_saddle_response_m_per_N - phi @ (phis.T / w[:, None] ** 2)
+    else:
+        residual = modes.static_saddle_response_m_per_N
+    if complete:
+        residual = np.zeros_like(residual)  # every mode kept: nothing is left to respond statically (round-off dropped)
     residual_s = residual[sad]
     return ModalCorrectionSystem(
         natural_frequency_rad_s=np.ascontiguousarray(w),
-        modal_damping=np.ascontiguousarray(basis.modal_damping[:m, :m]),
+        modal_damping=np.ascontiguousarray(modes.modal_damping[:m, :m]),
         mode_shape=np.ascontiguousarray(phi),
         saddle_mode_shape=np.ascontiguousarray(phis),
         residual_displacement_m_per_N=np.ascontiguousarray(residual),
         residual_flexibility_m_per_N=np.ascontiguousarray(0.5 * (residual_s + residual_s.T)),
-        static_flexibility_m_per_N=basis.static_saddle_flexibility_m_per_N,
+        static_flexibility_m_per_N=modes.static_saddle_flexibility_m_per_N,
         unilateral_stiffness_N_per_m=np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float).copy(),
         saddle_dof=sad,
         cutoff_rad_s=float(cutoff_rad_s),
+        basis=basis,
+        complete=complete,
     )

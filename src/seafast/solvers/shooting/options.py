@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from seafast.solvers.modal_correction import CorrectionBasis
 from seafast.solvers.periodic import Settings
 
 __all__ = ["ShootingOptions"]
@@ -40,9 +41,15 @@ class ShootingOptions:
     max_samples
         Samples per period at most.
     cutoff_check
-        With near-rigid saddles (a lifted state cancelling most of the bilateral modes' stiffness), check the modal
-        reduction by the same solve at twice the cutoff; a change of the peaks beyond 0.1 % is reported as not
-        converged.
+        On stiff saddles (the lifted basis, or a lifted state cancelling most of the bilateral modes' stiffness),
+        repeat the solve with the cutoff doubled until the peak forces move by at most 0.1 % (or every mode is kept),
+        and refine the grid beyond ``max_samples`` (8 times) if the peaks need it; what does not settle is reported
+        not converged, with why (:func:`~seafast.solvers.shooting.stiff.settled_cutoff`).
+    basis
+        The :class:`~seafast.solvers.modal_correction.CorrectionBasis` of the modal reduction; None (the default):
+        the bilateral saddles' modes unless a lifted state would cancel more than
+        :data:`~seafast.solvers.shooting.stiff.STIFF_CANCELLATION` of their stiffness (stiff saddles) and the
+        lashings hold the lifted cargo, then the lifted cargo's modes.
     """
 
     cutoff_factor: float = 16.0
@@ -57,6 +64,7 @@ class ShootingOptions:
     peak_tolerance: float = 2.5e-4
     max_samples: int = 65536
     cutoff_check: bool = True
+    basis: CorrectionBasis | None = None
 
     def __post_init__(self) -> None:
         def bad(name: str, allowed: str) -> ValueError:
@@ -88,6 +96,8 @@ class ShootingOptions:
             or not 0.0 < self.peak_tolerance < 1.0
         ):
             raise bad("peak_tolerance", "a number in (0, 1)")
+        if self.basis is not None and not isinstance(self.basis, CorrectionBasis):
+            raise bad("basis", "None or one of " + ", ".join(repr(b.value) for b in CorrectionBasis))
 
     def to_dict(self) -> Settings:
         """The settings as plain values."""
@@ -104,4 +114,5 @@ class ShootingOptions:
             "peak_tolerance": float(self.peak_tolerance),
             "max_samples": int(self.max_samples),
             "cutoff_check": bool(self.cutoff_check),
+            "basis": None if self.basis is None else self.basis.value,
         }

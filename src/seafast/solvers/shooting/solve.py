@@ -8,7 +8,9 @@ ringing after a re-contact would need. The start is the attractor the physical s
 periodic solution (``x0 = 0``, no correction): a few periods are marched before Newton takes over, and the orbit
 found is checked for stability by its Floquet multipliers (the eigenvalues of ``Phi``). The only approximation is
 the modal reduction of the correction system (modes up to ``cutoff_factor`` times the reference frequency, the
-rest static through the residual flexibility): docs/theory.md, section 6, measures it.
+rest static through the residual flexibility): docs/theory.md, section 6, measures it. On stiff saddles it is
+reduced on the lifted cargo's modes and the cutoff is doubled until the peaks settle
+(:mod:`seafast.solvers.shooting.stiff`).
 
 Units: SI (m, rad, N, s). Nothing here prints, reads or writes files.
 """
@@ -17,7 +19,6 @@ from __future__ import annotations
 
 import logging
 import math
-from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,25 +29,19 @@ from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
 from seafast.solvers.hbm.harmonics import force_scale_N
-from seafast.solvers.modal_correction import modal_basis, modal_correction_system
+from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
+from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, contact_samples, correction_system, settled_cutoff
 
 __all__ = ["event_samples", "solve_shooting"]
 
 logger = logging.getLogger(__name__)
 
 _STABILITY_MARGIN = 1e-6  # a Floquet multiplier above 1 + this: an unstable orbit
-
-STIFF_CANCELLATION = 1e8
-"""Above this stiffness cancellation (:attr:`~seafast.solvers.shooting.states.ContactStates.cancellation`; 1e7 on
-1.1e10 N/m saddles, 1.6e9 on 1e14 N/m) the modal reduction is checked with twice the cutoff."""
-
-MODAL_TOLERANCE = 1e-3
-"""Largest change of a saddle's peak force (over its force scale) the cutoff check accepts."""
 
 
 def _reference_frequency_rad_s(model: StructuralModel, modes: int) -> float:
@@ -97,14 +92,15 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         record.update(time_samples=N_linear)
         return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
     cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
-    system = modal_correction_system(model, cutoff, minimum_modes=model.saddle_count)
+    system = correction_system(model, cutoff, opts)
+    N = max(N, contact_samples(system, omega, opts))
     # the states' eigendecompositions depend on the model and the modes kept, not on the excitation: the model keeps them
-    key = f"shooting_states {system.mode_count} {cutoff:.17g}"
+    key = f"shooting_states {system.basis.value} {system.mode_count} {cutoff:.17g}"
     dynamics = model.derived_cache.get(key)
     if not isinstance(dynamics, dict):
         dynamics = model.derived_cache[key] = {}
     states = ContactStates(system, D, omega, dynamics)
-    record.update(modes=system.mode_count, cutoff_rad_s=cutoff)
+    record.update(modes=system.mode_count, cutoff_rad_s=cutoff, basis=system.basis.value, complete_basis=system.complete)
     scale = max(float(np.max(np.abs(d_grid))), 1e-6)
     x_start = np.zeros(states.state_size)
     periods = steps = 0
@@ -146,27 +142,13 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     )
     if not converged:
         note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
-    if converged and opts.cutoff_check and states.cancellation > STIFF_CANCELLATION:
-        # near-rigid saddles: the lifted states are what is left of cancelling bilateral modes, so the modal
-        # reduction is checked by the same solve with twice the cutoff
-        finer = solve_shooting(model, excitation, replace(opts, cutoff_factor=2.0 * opts.cutoff_factor, cutoff_check=False))
-        sampled = np.max(samples[0], axis=0) * ops.saddle_stiffness_N_per_m
-        change = _peak_change(sampled, finer) if finer.converged else math.inf
-        record.update(stiffness_cancellation=states.cancellation, cutoff_check_change=change)
-        if change > MODAL_TOLERANCE:
-            converged = False
-            note += (
-                f"; not converged in the modal reduction: near-rigid saddles (stiffness cancellation {states.cancellation:.1e}), "
-                f"the peak forces move {change:.2g} with twice the cutoff" + ("" if finer.converged else f" ({finer.message})")
-            )
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
-    return _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
-
-
-def _peak_change(peaks_N: NDArray, finer: PeriodicResponse) -> float:
-    """How far each saddle's peak force moves to the finer solve's, over its force scale (the largest over saddles) [-]."""
-    other = np.max(finer.saddle_force_time_N, axis=0)
-    return float(np.max(np.abs(other - peaks_N) / force_scale_N(np.maximum(other, peaks_N)), initial=0.0))
+    response = _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
+    stiff = system.basis is CorrectionBasis.LIFTED or states.cancellation > STIFF_CANCELLATION
+    if converged and opts.cutoff_check and stiff and not system.complete:
+        # stiff saddles: the modal reduction is checked by the same solve with the cutoff doubled until the peaks settle
+        return settled_cutoff(solve_shooting, model, excitation, opts, response, states.cancellation)
+    return response
 
 
 def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression: NDArray, stiffness_N_per_m: NDArray) -> NDArray:

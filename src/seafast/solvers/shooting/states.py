@@ -10,6 +10,10 @@ obeys ``x' = A_L x + B_L d_L(t)`` with ``A_L = [[0, I], [-(Omega^2 - Phi_L^T W_L
 response is known exactly: ``x(t) = Re(V e^{Lambda (t - t0)} V^-1) (x(t0) - x_p(t0)) + x_p(t)``, with
 ``x_p`` the particular solution of the excitation's harmonics (``(i k w - A_L) X_k = B_L D_k``).
 
+On the lifted basis (:class:`~seafast.solvers.modal_correction.CorrectionBasis`, stiff saddles) the same holds with
+the saddles in contact C adding their stiffness instead, ``Omega^2 + Phi_C^T W_C Phi_C`` with
+``W_C = (I + K_C R_CC)^-1 K_C``, and the input ``g = f - K_u d`` in place of ``c`` (:func:`_lifted_state`).
+
 The vector field is continuous where a saddle changes state (``c_i = 0`` and ``delta_i = 0`` there from both
 sides), so the flow's Jacobian is continuous too: the monodromy matrix of a period is the product of the
 segments' ``e^{A_L tau}``, with no saltation terms.
@@ -24,9 +28,17 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.solvers.modal_correction import ModalCorrectionSystem
+from seafast.solvers.modal_correction import CorrectionBasis, ModalCorrectionSystem
 
-__all__ = ["ContactState", "ContactStates", "SingularStateError", "StateArrays", "lifted_code", "modal_exponential"]
+__all__ = [
+    "ContactState",
+    "ContactStates",
+    "SingularStateError",
+    "StateArrays",
+    "lifted_code",
+    "modal_exponential",
+    "stiffness_cancellation",
+]
 
 _SMALLEST_EXPONENT = -300.0  # e^-300: a decayed mode, kept above the subnormal range (whose arithmetic is slow)
 
@@ -256,8 +268,18 @@ StateDynamics = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDAr
 force and compression maps (state, forcing), and its stiffness cancellation (:attr:`ContactStates.cancellation`)."""
 
 
-def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> StateDynamics:
-    """The closed form of one contact state, whatever the excitation (see the module docstring)."""
+def stiffness_cancellation(system: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> float:
+    """How much of the modal stiffness a contact state cancels (:attr:`ContactStates.cancellation`) [-]; 0 on the lifted basis."""
+    if system.basis is CorrectionBasis.LIFTED:
+        return 0.0
+    return _bilateral_state(system, np.asarray(lifted, dtype=bool))[4]
+
+
+def _bilateral_state(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> tuple[NDArray, NDArray, NDArray, NDArray, float]:
+    """The stiffness, input matrix (rows of eta''), force maps and stiffness cancellation of a state, bilateral basis.
+
+    The input is the correction force ``c``: ``c_L = W_L (Phi_L eta - d_L)`` on the lifted saddles, 0 elsewhere.
+    """
     m, n_s = s.mode_count, s.saddle_count
     Phi, R, k_u = s.saddle_mode_shape, s.residual_flexibility_m_per_N, s.unilateral_stiffness_N_per_m
     L = np.nonzero(lifted)[0]
@@ -266,20 +288,58 @@ def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> Stat
     stiffness = np.diag(s.natural_frequency_rad_s**2) - removed
     softest = float(np.min(np.linalg.eigvalsh(0.5 * (stiffness + stiffness.T)), initial=np.inf))
     cancellation = float(np.linalg.norm(removed, 2) / softest) if L.size and softest > 0.0 else 0.0
+    modal_input = np.zeros((m, n_s))
+    modal_input[:, L] = -Phi[L].T @ W
+    force_state = np.zeros((n_s, 2 * m))
+    force_state[L, :m] = W @ Phi[L]
+    force_forcing = np.zeros((n_s, n_s))
+    force_forcing[np.ix_(L, L)] = -W
+    return stiffness, modal_input, force_state, force_forcing, cancellation
+
+
+def _lifted_state(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> tuple[NDArray, NDArray, NDArray, NDArray, float]:
+    """As :func:`_bilateral_state` on the lifted basis: the saddles in contact (C) add their stiffness, nothing cancels.
+
+    The input is ``g = f - K_u d`` (:class:`~seafast.solvers.modal_correction.CorrectionBasis`): ``g_L = -K_L d_L``
+    on the lifted saddles and, with ``W_C = (I + K_C R_CC)^-1 K_C``, ``g_C = -W_C (Phi_C eta - R_CL K_L d_L)`` on the
+    saddles in contact (from ``delta_C = d_C - Phi_C eta - R_C. g`` and ``g_C = K_C (delta_C - d_C)``); the state's
+    stiffness is ``Omega^2 + Phi_C^T W_C Phi_C``.
+    """
+    m, n_s = s.mode_count, s.saddle_count
+    Phi, R, k_u = s.saddle_mode_shape, s.residual_flexibility_m_per_N, s.unilateral_stiffness_N_per_m
+    L, C = np.nonzero(lifted)[0], np.nonzero(~np.asarray(lifted, dtype=bool))[0]
+    W = np.linalg.solve(np.eye(C.size) + k_u[C, None] * R[np.ix_(C, C)], np.diag(k_u[C])) if C.size else np.zeros((0, 0))
+    W = 0.5 * (W + W.T)
+    stiffness = np.diag(s.natural_frequency_rad_s**2) + Phi[C].T @ W @ Phi[C]
+    force_state = np.zeros((n_s, 2 * m))
+    force_state[C, :m] = -W @ Phi[C]
+    force_forcing = np.zeros((n_s, n_s))
+    force_forcing[np.ix_(C, L)] = W @ R[np.ix_(C, L)] * k_u[None, L]
+    force_forcing[L, L] = -k_u[L]
+    modal_input = Phi.T @ force_forcing  # eta'' = ... + Phi_s^T g, the part of g driven by d
+    return stiffness, modal_input, force_state, force_forcing, 0.0
+
+
+def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> StateDynamics:
+    """The closed form of one contact state, whatever the excitation (see the module docstring)."""
+    m, n_s = s.mode_count, s.saddle_count
+    Phi, R = s.saddle_mode_shape, s.residual_flexibility_m_per_N
+    L = np.nonzero(lifted)[0]
+    build = _lifted_state if s.basis is CorrectionBasis.LIFTED else _bilateral_state
+    stiffness, modal_input, force_state, force_forcing, cancellation = build(s, lifted)
     A = np.zeros((2 * m, 2 * m))
     A[:m, m:] = np.eye(m)
     A[m:, :m] = -stiffness
     A[m:, m:] = -s.modal_damping
     input_matrix = np.zeros((2 * m, n_s))
-    input_matrix[m:, L] = -Phi[L].T @ W
-    force_state = np.zeros((n_s, 2 * m))
-    force_state[L, :m] = W @ Phi[L]
-    force_forcing = np.zeros((n_s, n_s))
-    force_forcing[np.ix_(L, L)] = -W
+    input_matrix[m:] = modal_input
     compression_state = -np.hstack([Phi, np.zeros((n_s, m))]) - R @ force_state
     compression_forcing = np.eye(n_s) - R @ force_forcing
     lam, V = np.linalg.eig(A)
-    if np.any(np.abs(lam) <= 1e-9 * max(float(np.max(np.abs(lam), initial=1.0)), 1.0)) or np.any(lam.real > 0.0):
+    # on the lifted basis every state is at least as stiff as the lashings (which hold the cargo: a slow root of a
+    # soft, damped lashing mode is no rigid-body motion); on the bilateral basis a vanishing root is one
+    vanishing = s.basis is CorrectionBasis.BILATERAL and np.any(np.abs(lam) <= 1e-9 * max(float(np.max(np.abs(lam), initial=1.0)), 1.0))
+    if vanishing or np.any(lam.real > 0.0):
         raise SingularStateError(f"contact state with saddles {L.tolist()} lifted has no stiffness against a rigid-body motion")
     V = np.asarray(V, dtype=complex)
     return (
