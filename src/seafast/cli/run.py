@@ -47,7 +47,7 @@ def add_run_subcommand(subparsers: Any) -> argparse.ArgumentParser:
 def _cmd_run(args: argparse.Namespace) -> int:
     from seafast.analyses.run import run_case
     from seafast.config import CaseError, load_case, parse_overrides
-    from seafast.output.files import write_run_outputs
+    from seafast.output.files import no_dask_array_lookup, write_run_outputs
     from seafast.results.dataset import LOAD_CASES, MODELS
 
     try:
@@ -60,16 +60,17 @@ def _cmd_run(args: argparse.Namespace) -> int:
     source = f"from {args.case}" if args.case else "(built-in base case)"
     logger.info("seafast %s: running '%s' %s", seafast.__version__, case.name, source)
     t0 = time.perf_counter()
-    try:
-        result = run_case(case, progress=logger.info)
-    except (CaseError, ValueError) as exc:
-        return error(str(exc))
-    rows = result.summary
-    if not args.quiet:
-        # the table as soon as the rows are known: results.nc and the figures take longer than the solves
-        _print_tables(result, rows)
-    logger.info("writing the results to %s", args.output)
-    paths = write_run_outputs(result, args.output)
+    with no_dask_array_lookup():  # a run makes no Dask array: xarray need not import dask.array to tell
+        try:
+            result = run_case(case, progress=logger.info)
+        except (CaseError, ValueError) as exc:
+            return error(str(exc))
+        rows = result.summary
+        if not args.quiet:
+            # the table as soon as the rows are known: results.nc and the figures take longer than the solves
+            _print_tables(result, rows)
+        logger.info("writing the results to %s", args.output)
+        paths = write_run_outputs(result, args.output)
     if not args.quiet:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     if result.axial is not None:

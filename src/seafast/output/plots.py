@@ -18,6 +18,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.fourier import harmonics_up_to
+from seafast.output.case_figures import case_figure_names, draw_case_figure
 from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, save_png, scaled_unit
 
 __all__ = [
@@ -354,19 +355,9 @@ def plot_stick_slip(ds: xr.Dataset, path: Path) -> Path:
 
 
 def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
-    """Write every figure the dataset supports into ``out_dir``; return the paths."""
-    out_dir = Path(out_dir)
-    paths = [
-        plot_deflection(ds, out_dir / "deflection.png"),
-        plot_forces_and_moments(ds, out_dir / "forces_moments.png"),
-        plot_saddle_time_histories(ds, out_dir / "saddle_time_histories.png"),
-        plot_saddle_surfaces(ds, out_dir / "saddle_surfaces.png"),
-        plot_aft_picture(ds, out_dir / "aft_most_loaded_saddle.png"),
-    ]
-    if "hull_x_m" in ds.coords:
-        paths.append(plot_hull_girder(ds, out_dir / "hull_girder.png"))
-    if "rao_omega_rad_s" in ds.coords:
-        paths.append(plot_raos(ds, out_dir / "raos.png"))
-    if "friction_force_N" in ds:
-        paths.append(plot_stick_slip(ds, out_dir / "stick_slip.png"))
-    return paths
+    """Write every figure the dataset supports into ``out_dir``, one after the other; return the paths.
+
+    The figures are those of :data:`seafast.output.case_figures.CASE_FIGURES`; ``seafast run``
+    draws the same ones, shared among processes (:func:`seafast.output.files.write_run_outputs`).
+    """
+    return [draw_case_figure(ds, name, out_dir) for name in case_figure_names(ds)]

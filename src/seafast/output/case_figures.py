@@ -1,0 +1,41 @@
+"""Which figures of one case a run's Dataset supports, and drawing one of them by its file name.
+
+Imports no matplotlib: ``seafast run`` plans its figures (:func:`case_figure_names`) before any
+process loads it, and each process that draws (:func:`draw_case_figure`) loads it itself.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+__all__ = ["CASE_FIGURES", "case_figure_names", "draw_case_figure"]
+
+CASE_FIGURES: tuple[tuple[str, str, str | None, float], ...] = (
+    ("deflection", "plot_deflection", None, 1.0),
+    ("forces_moments", "plot_forces_and_moments", None, 0.8),
+    ("saddle_time_histories", "plot_saddle_time_histories", None, 1.0),
+    ("saddle_surfaces", "plot_saddle_surfaces", None, 0.6),
+    ("aft_most_loaded_saddle", "plot_aft_picture", None, 0.55),
+    ("hull_girder", "plot_hull_girder", "hull_x_m", 0.65),
+    ("raos", "plot_raos", "rao_omega_rad_s", 1.1),
+    ("stick_slip", "plot_stick_slip", "friction_force_N", 0.8),
+)
+"""Each figure of a case: its file name (without ``.png``), its function in
+:mod:`seafast.output.plots`, the variable of the Dataset it needs (None: every run has what it
+needs) and its drawing time relative to ``deflection`` [-] (measured; it orders the shared work,
+costliest first). The order is the report's."""
+
+
+def case_figure_names(ds: Any) -> list[str]:
+    """The file names (without ``.png``) of the figures ``ds`` (a run's Dataset) supports, in the report's order."""
+    return [name for name, _, needs, _ in CASE_FIGURES if needs is None or needs in ds]
+
+
+def draw_case_figure(ds: Any, name: str, out_dir: str | Path) -> Path:
+    """Draw the figure ``name`` (a name of :data:`CASE_FIGURES`) of ``ds`` into ``out_dir/name.png``; return its path."""
+    from seafast.output import plots
+
+    function = {n: f for n, f, _, _ in CASE_FIGURES}[name]
+    path: Path = getattr(plots, function)(ds, Path(out_dir) / f"{name}.png")
+    return path
