@@ -19,6 +19,7 @@ other: the same results.
 
 from __future__ import annotations
 
+import gc
 import multiprocessing
 import os
 import sys
@@ -138,6 +139,12 @@ def share_work(
     results: dict[int, R] = {}
     sys.stdout.flush()
     sys.stderr.flush()
+    # what the helpers inherit is frozen out of their garbage collector, which then touches none
+    # of it: no copy-on-write of those pages (Python's gc.freeze documentation); thawed here after
+    # (where something had frozen objects before, nothing is frozen or thawed here)
+    thaw = gc.get_freeze_count() == 0
+    if thaw:
+        gc.freeze()
     try:
         for _ in range(count):
             receive, send = context.Pipe(duplex=False)
@@ -145,11 +152,16 @@ def share_work(
             process.start()
             send.close()  # the helper holds the only writing end: its exit ends the messages
             started.append((process, receive))
+        if thaw:
+            gc.unfreeze()
+            thaw = False
         if first is not None:
             first()
         while (index := _take(counter, len(items))) is not None:
             results[index] = work(items[index])
     except BaseException:
+        if thaw:
+            gc.unfreeze()
         with counter.get_lock():
             counter.value = len(items)
         for process, conn in started:
