@@ -13,8 +13,13 @@ subprocess per call, wall time; CPU time of the child from ``getrusage``).
   imports, the model and its vessel (hull girder, BEM cache read), the linear and nonlinear
   solves, the Dataset of results.nc, results.nc, summary.csv, the figures one after the other
   (matplotlib's import included, and shown apart); then, in other fresh interpreters, the files
-  as the command writes them (results.nc here while a forked helper draws figures:
-  ``files_shared_vs_serial`` against the sum of the steps).
+  as the command writes them on an idle two-core machine (results.nc here while one forked
+  helper draws figures, whatever the load: ``files_shared_vs_serial`` against the sum of the
+  steps), with the CPU time of each process: ``run_idle_two_cores_s``, the CPU time before the
+  files plus the longer of the two processes' shares, is the run's wall time on two idle cores
+  (on a loaded machine the command forks no helper, and its wall time is the load's).
+* The machine's load (1-minute load average) at the start and the end: ``load_start``,
+  ``load_end``.
 
 The last line is ``key=value`` pairs (docs/interface.md).
 """
@@ -23,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import shutil
 import statistics
@@ -39,8 +45,9 @@ FULL_STACK = (
 
 # the run of seafast.cli.run, step by step, in a fresh interpreter: prints one JSON object of seconds.
 # argv[2] "serial": results.nc, then matplotlib's import and the figures one after the other in
-# this process (each step's own cost); "shared": the files as the command writes them
-# (write_run_outputs: results.nc here while a forked helper draws figures, then this process too)
+# this process (each step's own cost); "shared": the files as the command writes them on an idle
+# two-core machine (write_run_outputs with one helper forked whatever the load: results.nc here
+# while the helper draws figures, then this process draws too)
 BREAKDOWN = """
 import json, resource, sys, time
 from pathlib import Path
@@ -66,7 +73,7 @@ with no_dask_array_lookup():  # as seafast run
     ds = result.dataset
     t["dataset"] = now()
     if sys.argv[2] == "shared":
-        paths = write_run_outputs(result, out)
+        paths = write_run_outputs(result, out, helpers=1)  # one helper, as on an idle two-core machine
         t["files"] = now()
         helper = resource.getrusage(resource.RUSAGE_CHILDREN)
         figure_count = len(paths) - 3
@@ -203,12 +210,12 @@ def _print_run(args: argparse.Namespace, seafast: list[str]) -> dict[str, float]
         print(f"  {label:70s} {b[key]:6.3f} s")
     files_serial = b["netcdf"] + b["csv"] + b["figures"]
     print(f"  {'results.nc, summary.csv and the figures, one process (the sum above)':70s} {files_serial:6.3f} s")
-    print(f"  {'the same as the command writes them, figures shared with a helper':70s} {shared['files']:6.3f} s")
+    print(f"  {'the same, figures shared with one helper (as on an idle 2-core machine)':70s} {shared['files']:6.3f} s")
     steps = ("imports", "model", "vessel", "solve", "table", "dataset")
     before_cpu = sum(shared[f"{k}_cpu"] for k in steps)
     files_cpu = max(shared["files_cpu"], shared["files_helper_cpu"])
     idle_s = before_cpu + files_cpu
-    print("CPU time of that shared run (what it needs of a core each; on an idle 2-core machine its wall time):")
+    print("CPU time of that shared run (what each process needs of a core; on an idle 2-core machine, its wall time):")
     print(f"  {'imports to the Dataset':70s} {before_cpu:6.3f} s")
     print(f"  {'the files: this process / the helper':70s} {shared['files_cpu']:6.3f} / {shared['files_helper_cpu']:.3f} s")
     print(f"  {'the run on two idle cores (the two above, the longer of the pair)':70s} {idle_s:6.3f} s")
@@ -239,9 +246,12 @@ def main() -> None:
     parser.add_argument("--no-run", action="store_true", help="start-up only (no seafast run)")
     args = parser.parse_args()
     seafast = _seafast_command()
+    load_start = os.getloadavg()[0]
     keys = _print_startup(args, seafast)
     if not args.no_run:
         keys.update(_print_run(args, seafast))
+    keys.update(load_start=load_start, load_end=os.getloadavg()[0])
+    print(f"load average (1 min) {load_start:.1f} at the start, {keys['load_end']:.1f} at the end, on {os.cpu_count()} cores")
     print(" ".join(f"{key}={value:.3f}" for key, value in keys.items()))
 
 

@@ -314,9 +314,9 @@ def test_run_prints_its_table_before_it_writes_the_files(tmp_path, capsys, monke
 
     real, printed_before = files.write_run_outputs, []
 
-    def spy(result, out_dir):
+    def spy(result, out_dir, **kwargs):
         printed_before.append(capsys.readouterr())
-        return real(result, out_dir)
+        return real(result, out_dir, **kwargs)
 
     monkeypatch.setattr(files, "write_run_outputs", spy)
     assert main(["run", "-o", str(tmp_path / "run"), "--set", "vessel.motions=none", "--no-plots"]) == 0

@@ -1,15 +1,20 @@
 """Which figures of one case a run's Dataset supports, and drawing one of them by its file name.
 
 Imports no matplotlib: ``seafast run`` plans its figures (:func:`case_figure_names`) before any
-process loads it, and each process that draws (:func:`draw_case_figure`) loads it itself.
+process loads it, and each process that draws (:func:`draw_case_figure`) loads it itself; a
+helper forked ahead (:func:`figure_helpers`) loads it while the run is solved
+(:func:`warm_figures`).
 """
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 from typing import Any
 
-__all__ = ["CASE_FIGURES", "case_figure_names", "draw_case_figure"]
+from seafast.output.sharing import HelperPool, helper_count
+
+__all__ = ["CASE_FIGURES", "case_figure_names", "draw_case_figure", "warm_figures", "figure_helpers"]
 
 CASE_FIGURES: tuple[tuple[str, str, str | None, float], ...] = (
     ("deflection", "plot_deflection", None, 1.0),
@@ -39,3 +44,31 @@ def draw_case_figure(ds: Any, name: str, out_dir: str | Path) -> Path:
     function = {n: f for n, f, _, _ in CASE_FIGURES}[name]
     path: Path = getattr(plots, function)(ds, Path(out_dir) / f"{name}.png")
     return path
+
+
+def warm_figures() -> None:
+    """Load what drawing a figure needs (matplotlib with Agg, :mod:`seafast.output.plots`, the font, the PNG encoder)."""
+    import matplotlib.pyplot as plt
+
+    from seafast.output import plots
+    from seafast.output.style import PNG_COMPRESS_LEVEL, PNG_COMPRESS_STRATEGY
+
+    fig, ax = plt.subplots(figsize=(2.0, 1.5))
+    ax.plot([0.0, 1.0], [0.0, 1.0], label="x")
+    ax.set_xlabel("x [m]")
+    ax.set_title("warm-up")
+    ax.legend()
+    fig.tight_layout()
+    pil_kwargs = {"compress_level": PNG_COMPRESS_LEVEL, "compress_type": PNG_COMPRESS_STRATEGY}
+    fig.savefig(io.BytesIO(), format="png", dpi=plots.DPI, pil_kwargs=pil_kwargs)
+    plt.close(fig)
+
+
+def figure_helpers(draws: bool = True) -> HelperPool:
+    """Helpers for a run's figures, forked now (one per further core) to load matplotlib while the run is solved.
+
+    ``draws`` False (no figures): an empty pool. Use as a context manager around the run and
+    :func:`seafast.output.files.write_run_outputs` (``helpers=``): leaving it stops helpers that
+    got no figure.
+    """
+    return HelperPool(helper_count(len(CASE_FIGURES)) if draws else 0, warm=warm_figures).start()

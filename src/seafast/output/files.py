@@ -5,15 +5,17 @@ from __future__ import annotations
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
+from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from seafast.analyses.run import CaseResult
 from seafast.output.case_figures import CASE_FIGURES, case_figure_names, draw_case_figure
-from seafast.output.sharing import share_work
-from seafast.output.tables import write_summary_csv
+from seafast.output.sharing import HelperPool, helper_count
+
+if TYPE_CHECKING:
+    from seafast.analyses.run import CaseResult
 
 __all__ = ["write_run_outputs", "write_netcdf", "no_dask_array_lookup"]
 
@@ -86,12 +88,12 @@ def write_netcdf(ds: Any, path: Path) -> Path:
     return path
 
 
-def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | None = None) -> dict[str, Path]:
+def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | HelperPool | None = None) -> dict[str, Path]:
     """Write everything ``seafast run`` produces for ``result`` (a :class:`seafast.analyses.run.CaseResult`).
 
     summary.csv and case.yaml first; then results.nc is written here while forked helper
     processes draw the figures, and this process draws those still left once the file is
-    written (:func:`seafast.output.sharing.share_work`; the costliest figures first).
+    written (:class:`seafast.output.sharing.HelperPool`; the costliest figures first).
 
     Parameters
     ----------
@@ -99,9 +101,11 @@ def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | No
         The run.
     out_dir : str or Path
         The directory (made if missing).
-    helpers : int, optional
-        Helper processes drawing figures; default: one per further core
-        (:func:`seafast.output.sharing.helper_count`); 0 draws everything in this process.
+    helpers : int or HelperPool, optional
+        Helper processes drawing figures: a pool started ahead
+        (:func:`seafast.output.case_figures.figure_helpers`), or how many to fork now; default
+        one per further core (:func:`seafast.output.sharing.helper_count`); 0 draws everything
+        in this process.
 
     Returns
     -------
@@ -109,6 +113,8 @@ def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | No
         The files by kind: ``summary``, ``case``, ``results`` (when ``outputs.netcdf``), then
         each figure by its name (when ``outputs.plots``), in the report's order.
     """
+    from seafast.output.tables import write_summary_csv  # the numerical stack: imported after figure_helpers forked
+
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths: dict[str, Path] = {}
@@ -126,12 +132,13 @@ def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | No
     names = case_figure_names(ds) if result.case.outputs.plots else []
     costs = {name: cost for name, _, _, cost in CASE_FIGURES}
     order = sorted(names, key=lambda name: -costs[name])
-    drawn = share_work(
-        order,
-        lambda name: draw_case_figure(ds, name, out),
-        first=(lambda: write_netcdf(ds, out / "results.nc")) if netcdf else None,
-        helpers=helpers,
-    )
+    work = partial(draw_case_figure, ds, out_dir=out)  # pickles: a pool started ahead receives it
+    write = (lambda: write_netcdf(ds, out / "results.nc")) if netcdf else None
+    if isinstance(helpers, HelperPool):
+        drawn = helpers.share(order, work, first=write)
+    else:
+        with HelperPool(helper_count(len(order)) if helpers is None else helpers) as pool:
+            drawn = pool.share(order, work, first=write)
     by_name = dict(zip(order, drawn, strict=True))
     paths.update((name, by_name[name]) for name in names)
     return paths
