@@ -24,6 +24,7 @@ after the other: the same results.
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import multiprocessing
 import os
@@ -113,8 +114,11 @@ def _helper(
         text = "".join(traceback.format_exception(exc))
         try:
             conn.send(("error", exc, text))
+        except OSError:  # the parent is gone (killed): nobody to tell
+            pass
         except Exception:  # noqa: BLE001 - an exception that does not pickle goes back as its text
-            conn.send(("error", None, text))
+            with contextlib.suppress(OSError):
+                conn.send(("error", None, text))
     finally:
         conn.close()
         jobs.close()
