@@ -84,7 +84,7 @@ with no_dask_array_lookup():  # as seafast run
         t["csv"] = now()
         import matplotlib.pyplot
         t["matplotlib"] = now()
-        from seafast.output.plots import write_case_figures
+        from seafast.output.case_figures import write_case_figures
         figure_count = len(write_case_figures(ds, out))
         t["figures"] = now()
 t["vessel"], t["solves"] = stamps[0], stamps[1]  # 'vessel excitation ...' then 'linear and nonlinear solves'

@@ -14,7 +14,7 @@ from typing import Any
 
 from seafast.output.sharing import HelperPool, helper_count
 
-__all__ = ["CASE_FIGURES", "case_figure_names", "draw_case_figure", "warm_figures", "figure_helpers"]
+__all__ = ["CASE_FIGURES", "case_figure_names", "draw_case_figure", "write_case_figures", "warm_figures", "figure_helpers"]
 
 CASE_FIGURES: tuple[tuple[str, str, str | None, float], ...] = (
     ("deflection", "plot_deflection", None, 1.0),
@@ -44,6 +44,15 @@ def draw_case_figure(ds: Any, name: str, out_dir: str | Path) -> Path:
     function = {n: f for n, f, _, _ in CASE_FIGURES}[name]
     path: Path = getattr(plots, function)(ds, Path(out_dir) / f"{name}.png")
     return path
+
+
+def write_case_figures(ds: Any, out_dir: str | Path) -> list[Path]:
+    """Write every figure ``ds`` (a run's Dataset) supports into ``out_dir``, one after the other; return the paths.
+
+    ``seafast run`` draws the same ones, shared among processes
+    (:func:`seafast.output.files.write_run_outputs`).
+    """
+    return [draw_case_figure(ds, name, out_dir) for name in case_figure_names(ds)]
 
 
 def warm_figures() -> None:

@@ -18,7 +18,6 @@ import numpy as np
 import xarray as xr
 
 from seafast.fourier import harmonics_up_to
-from seafast.output.case_figures import case_figure_names, draw_case_figure
 from seafast.output.style import MODEL_LINES, legend_outside, plain_tick_labels, save_png, scaled_unit
 
 __all__ = [
@@ -30,7 +29,6 @@ __all__ = [
     "plot_hull_girder",
     "plot_raos",
     "plot_stick_slip",
-    "write_case_figures",
 ]
 
 _MODELS = ("nonlinear", "linear")  # drawing order: the thin dashed linear line on top
@@ -352,12 +350,3 @@ def plot_stick_slip(ds: xr.Dataset, path: Path) -> Path:
     for ax in (ax_u, ax_f):
         ax.grid(alpha=0.3)
     return _save(fig, path)
-
-
-def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
-    """Write every figure the dataset supports into ``out_dir``, one after the other; return the paths.
-
-    The figures are those of :data:`seafast.output.case_figures.CASE_FIGURES`; ``seafast run``
-    draws the same ones, shared among processes (:func:`seafast.output.files.write_run_outputs`).
-    """
-    return [draw_case_figure(ds, name, out_dir) for name in case_figure_names(ds)]
