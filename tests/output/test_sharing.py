@@ -121,6 +121,7 @@ def test_a_pool_started_ahead_warms_up_then_takes_the_work_pickled():
         out = pool.share(list(range(12)), _square_and_warm_pid, first=_wait_for_helper_result)
     assert [value for value, _ in out] == [x * x for x in range(12)]
     assert {warmed for _, warmed in out} <= {PARENT, "warmed"}
+    assert pool.share([5, 6], _square_and_warm_pid) == [(25, PARENT), (36, PARENT)]  # a second piece of work: here
 
 
 @fork_only

@@ -134,7 +134,12 @@ class HelperPool:
     warm : callable, optional
         What an early helper runs while it waits for its work (imports, caches); module-level.
 
-    A context manager: leaving it stops helpers that got no work.
+    A pool serves one piece of work: after :meth:`share` (or :meth:`close`) a further share
+    runs in this process. A context manager: leaving it stops helpers that got no work.
+
+    A helper forked ahead receives the work once it is warm: :meth:`share` waits for that
+    before it runs ``first`` (``seafast run`` starts the pool before it loads the solvers, and
+    the helper is warm long before the Dataset exists).
     """
 
     def __init__(self, count: int, warm: Callable[[], object] | None = None) -> None:
@@ -200,6 +205,7 @@ class HelperPool:
         except BaseException:
             self.close()
             raise
+        self.count = 0  # a pool serves one piece of work: another share runs here
         self._collect(results)
         return [results[i] for i in range(len(items))]
 
@@ -232,6 +238,7 @@ class HelperPool:
         """Stop the helpers still running (no work for them, or an error here); a no-op after :meth:`share`."""
         if self._counter is not None:
             _stop_taking(self._counter)
+        self.count = 0
         helpers, self._helpers = self._helpers, []
         for process, conn, jobs in helpers:
             process.terminate()
