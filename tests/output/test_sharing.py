@@ -88,6 +88,7 @@ def test_an_error_here_stops_the_helpers_and_is_raised():
 def test_one_helper_per_further_idle_core_none_for_one_item_or_a_running_thread(monkeypatch):
     assert helper_count(1) == 0
     forks = "fork" in multiprocessing.get_all_start_methods()
+    monkeypatch.setattr(sharing.threading, "active_count", lambda: 1)  # whatever threads earlier tests left
     monkeypatch.setattr(sharing.os, "sched_getaffinity", lambda _pid: {0, 1, 2, 3}, raising=False)
     monkeypatch.setattr(sharing.os, "cpu_count", lambda: 4)
     monkeypatch.setattr(sharing, "busy_cores", lambda: 0)
