@@ -12,7 +12,7 @@ import io
 from pathlib import Path
 from typing import Any
 
-from seafast.output.sharing import HelperPool, helper_count
+from seafast.parallel.sharing import HelperPool, helper_count
 
 __all__ = ["CASE_FIGURES", "case_figure_names", "draw_case_figure", "write_case_figures", "warm_figures", "figure_helpers"]
 

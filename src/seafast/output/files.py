@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import yaml
 
 from seafast.output.case_figures import CASE_FIGURES, case_figure_names, draw_case_figure
-from seafast.output.sharing import HelperPool, helper_count
+from seafast.parallel.sharing import HelperPool, helper_count
 
 if TYPE_CHECKING:
     from seafast.analyses.run import CaseResult
@@ -93,7 +93,7 @@ def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | He
 
     summary.csv and case.yaml first; then results.nc is written here while forked helper
     processes draw the figures, and this process draws those still left once the file is
-    written (:class:`seafast.output.sharing.HelperPool`; the costliest figures first).
+    written (:class:`seafast.parallel.sharing.HelperPool`; the costliest figures first).
 
     Parameters
     ----------
@@ -104,7 +104,7 @@ def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | He
     helpers : int or HelperPool, optional
         Helper processes drawing figures: a pool started ahead
         (:func:`seafast.output.case_figures.figure_helpers`), or how many to fork now; default
-        one per further core (:func:`seafast.output.sharing.helper_count`); 0 draws everything
+        one per further core (:func:`seafast.parallel.sharing.helper_count`); 0 draws everything
         in this process.
 
     Returns

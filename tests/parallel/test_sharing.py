@@ -8,8 +8,8 @@ import signal
 
 import pytest
 
-from seafast.output import sharing
-from seafast.output.sharing import HelperPool, RemoteTraceback, helper_count, share_work
+from seafast.parallel import sharing
+from seafast.parallel.sharing import HelperPool, RemoteTraceback, helper_count, share_work
 
 fork_only = pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(), reason="needs fork")
 
