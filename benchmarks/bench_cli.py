@@ -11,8 +11,15 @@ subprocess per call, wall time; CPU time of the child from ``getrusage``).
   when its summary table reached stdout. ``seafast seastate --no-monte-carlo`` the same way.
 * The run's breakdown, in a fresh interpreter through the library calls the command makes:
   imports, the model and its vessel (hull girder, BEM cache read), the linear and nonlinear
-  solves, the Dataset of results.nc, results.nc, summary.csv, the figures (matplotlib's import
-  included, and shown apart).
+  solves, the Dataset of results.nc, results.nc, summary.csv, the figures one after the other
+  (matplotlib's import included, and shown apart); then, in other fresh interpreters, the files
+  as the command writes them on an idle two-core machine (results.nc here while one forked
+  helper draws figures, whatever the load: ``files_shared_vs_serial`` against the sum of the
+  steps), with the CPU time of each process: ``run_idle_two_cores_s``, the CPU time before the
+  files plus the longer of the two processes' shares, is the run's wall time on two idle cores
+  (on a loaded machine the command forks no helper, and its wall time is the load's).
+* The machine's load (1-minute load average) at the start and the end: ``load_start``,
+  ``load_end``.
 
 The last line is ``key=value`` pairs (docs/interface.md).
 """
@@ -21,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import shutil
 import statistics
@@ -35,44 +43,67 @@ FULL_STACK = (
     "seafast.output.report.write, seafast.studies.runner, seafast.analyses.seastate.monte_carlo, seafast.analyses.operability.allowable"
 )
 
-# the run of seafast.cli.run, step by step, in a fresh interpreter: prints one JSON object of seconds
+# the run of seafast.cli.run, step by step, in a fresh interpreter: prints one JSON object of seconds.
+# argv[2] "serial": results.nc, then matplotlib's import and the figures one after the other in
+# this process (each step's own cost); "shared": the files as the command writes them on an idle
+# two-core machine (write_run_outputs with one helper forked whatever the load: results.nc here
+# while the helper draws figures, then this process draws too)
 BREAKDOWN = """
-import json, sys, time
+import json, resource, sys, time
 from pathlib import Path
-t = {"start": time.perf_counter()}
+def now():
+    return time.perf_counter(), time.process_time()
+t = {"start": now()}
 import seafast.cli.command
 from seafast.analyses.run import run_case
 from seafast.config import load_case
-from seafast.output.files import write_netcdf
+from seafast.output.files import no_dask_array_lookup, write_netcdf, write_run_outputs
 from seafast.output.tables import format_summary_table, write_summary_csv
-t["imports"] = time.perf_counter()
+t["imports"] = now()
 case = load_case(None, {})
 stamps = []
-result = run_case(case, progress=lambda message: stamps.append(time.perf_counter()))
-t["solved"] = time.perf_counter()
-rows = result.summary
-format_summary_table(rows)
-t["table"] = time.perf_counter()
 out = Path(sys.argv[1])
 out.mkdir(parents=True, exist_ok=True)
-ds = result.dataset
-t["dataset"] = time.perf_counter()
-write_netcdf(ds, out / "results.nc")
-t["netcdf"] = time.perf_counter()
-write_summary_csv(rows, out / "summary.csv", result.summary_columns)
-t["csv"] = time.perf_counter()
-import matplotlib.pyplot
-t["matplotlib"] = time.perf_counter()
-from seafast.output.plots import write_case_figures
-figures = write_case_figures(ds, out)
-t["figures"] = time.perf_counter()
-vessel, solves = stamps[0], stamps[1]  # 'vessel excitation ...' then 'linear and nonlinear solves'
-print(json.dumps({
-    "imports": t["imports"] - t["start"], "model": vessel - t["imports"], "vessel": solves - vessel,
-    "solve": t["solved"] - solves, "table": t["table"] - t["solved"], "dataset": t["dataset"] - t["table"],
-    "netcdf": t["netcdf"] - t["dataset"], "csv": t["csv"] - t["netcdf"], "matplotlib_import": t["matplotlib"] - t["csv"],
-    "figures": t["figures"] - t["csv"], "figure_count": len(figures),
-}))
+with no_dask_array_lookup():  # as seafast run
+    result = run_case(case, progress=lambda message: stamps.append(now()))
+    t["solved"] = now()
+    rows = result.summary
+    format_summary_table(rows)
+    t["table"] = now()
+    ds = result.dataset
+    t["dataset"] = now()
+    if sys.argv[2] == "shared":
+        paths = write_run_outputs(result, out, helpers=1)  # one helper, as on an idle two-core machine
+        t["files"] = now()
+        helper = resource.getrusage(resource.RUSAGE_CHILDREN)
+        figure_count = len(paths) - 3
+    else:
+        write_netcdf(ds, out / "results.nc")
+        t["netcdf"] = now()
+        write_summary_csv(rows, out / "summary.csv", result.summary_columns)
+        t["csv"] = now()
+        import matplotlib.pyplot
+        t["matplotlib"] = now()
+        from seafast.output.case_figures import write_case_figures
+        figure_count = len(write_case_figures(ds, out))
+        t["figures"] = now()
+t["vessel"], t["solves"] = stamps[0], stamps[1]  # 'vessel excitation ...' then 'linear and nonlinear solves'
+order = ["start", "imports", "vessel", "solves", "solved", "table", "dataset"]
+names = ["imports", "model", "vessel", "solve", "table", "dataset"]
+if sys.argv[2] == "shared":
+    order, names = order + ["files"], names + ["files"]
+else:
+    order, names = order + ["netcdf", "csv", "matplotlib", "figures"], names + ["netcdf", "csv", "matplotlib_import", "figures"]
+steps = {"figure_count": figure_count}
+for name, a, b in zip(names, order, order[1:]):
+    steps[name] = t[b][0] - t[a][0]
+    steps[name + "_cpu"] = t[b][1] - t[a][1]
+if sys.argv[2] == "shared":
+    steps["files_helper_cpu"] = helper.ru_utime + helper.ru_stime
+else:
+    steps["figures"] += steps["matplotlib_import"]
+    steps["figures_cpu"] += steps["matplotlib_import_cpu"]
+print(json.dumps(steps))
 """
 
 
@@ -124,12 +155,12 @@ def _time_runs(command: list[str], marker: str, repeats: int) -> tuple[float, fl
     return wall, table, cpu
 
 
-def _breakdown(repeats: int) -> dict[str, float]:
-    """Median seconds of each step of a run (:data:`BREAKDOWN`) over ``repeats`` fresh interpreters."""
+def _breakdown(repeats: int, flavour: str) -> dict[str, float]:
+    """Median seconds of each step of a run (:data:`BREAKDOWN`, ``flavour`` "serial" or "shared") over ``repeats`` fresh interpreters."""
     runs = []
     for _ in range(repeats):
         with tempfile.TemporaryDirectory() as out:
-            done = subprocess.run([sys.executable, "-c", BREAKDOWN, out], check=True, capture_output=True, text=True)
+            done = subprocess.run([sys.executable, "-c", BREAKDOWN, out, flavour], check=True, capture_output=True, text=True)
         runs.append(json.loads(done.stdout.strip().splitlines()[-1]))
     return {key: statistics.median(r[key] for r in runs) for key in runs[0]}
 
@@ -159,7 +190,8 @@ def _print_run(args: argparse.Namespace, seafast: list[str]) -> dict[str, float]
         subprocess.run([*seafast, "-q", "run", "-o", out], check=True)
     run_s, table_s, run_cpu_s = _time_runs([*seafast, "run"], "maxima over the cargo", args.run_repeats)
     sea_s, sea_table_s, _ = _time_runs([*seafast, "seastate", "--no-monte-carlo"], "most probable maxima", args.run_repeats)
-    b = _breakdown(args.run_repeats)
+    b = _breakdown(args.run_repeats, "serial")
+    shared = _breakdown(args.run_repeats, "shared")
     print(f"seafast run -o DIR (base case, warm cache)    median {run_s:6.2f} s wall, {run_cpu_s:6.2f} s CPU; table after {table_s:.2f} s")
     print(f"seafast seastate --no-monte-carlo -o DIR      median {sea_s:6.2f} s wall; table after {sea_table_s:.2f} s")
     print("the run's steps (fresh interpreter, library calls of seafast run, median):")
@@ -172,10 +204,21 @@ def _print_run(args: argparse.Namespace, seafast: list[str]) -> dict[str, float]
         ("Dataset of results.nc", "dataset"),
         ("results.nc", "netcdf"),
         ("summary.csv", "csv"),
-        (f"{b['figure_count']:.0f} figures, matplotlib's import included", "figures"),
+        (f"{b['figure_count']:.0f} figures one after the other, matplotlib's import included", "figures"),
         ("  of which matplotlib's import", "matplotlib_import"),
     ):
-        print(f"  {label:48s} {b[key]:6.3f} s")
+        print(f"  {label:70s} {b[key]:6.3f} s")
+    files_serial = b["netcdf"] + b["csv"] + b["figures"]
+    print(f"  {'results.nc, summary.csv and the figures, one process (the sum above)':70s} {files_serial:6.3f} s")
+    print(f"  {'the same, figures shared with one helper (as on an idle 2-core machine)':70s} {shared['files']:6.3f} s")
+    steps = ("imports", "model", "vessel", "solve", "table", "dataset")
+    before_cpu = sum(shared[f"{k}_cpu"] for k in steps)
+    files_cpu = max(shared["files_cpu"], shared["files_helper_cpu"])
+    idle_s = before_cpu + files_cpu
+    print("CPU time of that shared run (what each process needs of a core; on an idle 2-core machine, its wall time):")
+    print(f"  {'imports to the Dataset':70s} {before_cpu:6.3f} s")
+    print(f"  {'the files: this process / the helper':70s} {shared['files_cpu']:6.3f} / {shared['files_helper_cpu']:.3f} s")
+    print(f"  {'the run on two idle cores (the two above, the longer of the pair)':70s} {idle_s:6.3f} s")
     return {
         "cli_run_s": run_s,
         "cli_run_cpu_s": run_cpu_s,
@@ -187,6 +230,12 @@ def _print_run(args: argparse.Namespace, seafast: list[str]) -> dict[str, float]
         "run_solve_s": b["solve"],
         "run_files_s": b["dataset"] + b["netcdf"] + b["csv"],
         "run_figures_s": b["figures"],
+        "run_files_shared_s": shared["files"],
+        "files_shared_vs_serial": shared["files"] / files_serial,
+        "run_cpu_before_files_s": before_cpu,
+        "run_files_cpu_s": shared["files_cpu"],
+        "run_files_helper_cpu_s": shared["files_helper_cpu"],
+        "run_idle_two_cores_s": idle_s,
     }
 
 
@@ -197,9 +246,12 @@ def main() -> None:
     parser.add_argument("--no-run", action="store_true", help="start-up only (no seafast run)")
     args = parser.parse_args()
     seafast = _seafast_command()
+    load_start = os.getloadavg()[0]
     keys = _print_startup(args, seafast)
     if not args.no_run:
         keys.update(_print_run(args, seafast))
+    keys.update(load_start=load_start, load_end=os.getloadavg()[0])
+    print(f"load average (1 min) {load_start:.1f} at the start, {keys['load_end']:.1f} at the end, on {os.cpu_count()} cores")
     print(" ".join(f"{key}={value:.3f}" for key, value in keys.items()))
 
 

@@ -314,9 +314,9 @@ def test_run_prints_its_table_before_it_writes_the_files(tmp_path, capsys, monke
 
     real, printed_before = files.write_run_outputs, []
 
-    def spy(result, out_dir):
+    def spy(result, out_dir, **kwargs):
         printed_before.append(capsys.readouterr())
-        return real(result, out_dir)
+        return real(result, out_dir, **kwargs)
 
     monkeypatch.setattr(files, "write_run_outputs", spy)
     assert main(["run", "-o", str(tmp_path / "run"), "--set", "vessel.motions=none", "--no-plots"]) == 0
@@ -341,3 +341,20 @@ def test_seastate_prints_its_table_before_it_writes_the_files(tmp_path, capsys, 
     out = capsys.readouterr().out
     assert "most probable maxima" in printed_before[0] and "design_wave" in printed_before[0]
     assert "wrote" not in printed_before[0] and out.startswith("wrote ")
+
+
+def test_run_with_a_figure_helper_forked_ahead_writes_the_same_figures(tmp_path, monkeypatch):
+    """``seafast run`` with its helper forked before the solve (as on an idle core): the figures of a run drawn here alone."""
+    import multiprocessing
+
+    from seafast.output import case_figures
+
+    monkeypatch.setattr(case_figures, "helper_count", lambda items: 0)
+    assert main(["run", "-o", str(tmp_path / "alone"), "--set", "vessel.motions=none", "-q"]) == 0
+    monkeypatch.setattr(case_figures, "helper_count", lambda items: 1)
+    assert main(["run", "-o", str(tmp_path / "helped"), "--set", "vessel.motions=none", "-q"]) == 0
+    assert multiprocessing.active_children() == []  # the helper ended
+    pngs = sorted(p.name for p in (tmp_path / "alone").glob("*.png"))
+    assert len(pngs) == 6 and pngs == sorted(p.name for p in (tmp_path / "helped").glob("*.png"))
+    for name in pngs:
+        assert (tmp_path / "helped" / name).read_bytes() == (tmp_path / "alone" / name).read_bytes(), name

@@ -346,3 +346,25 @@ def test_production_mesh_base_hull(hull, mass_props, tmp_path):
     # lid removes the irregular frequency (~1.3 rad/s): damping stays smooth and positive
     b33 = m.radiation_damping[:, 0, 0]
     assert np.all(b33 > 0)
+
+
+def test_the_bem_cache_reads_back_as_capytaine_merges_it_without_importing_capytaine(hull, mass_props, cache_dir, coarse):
+    """The complex values of a cache file merged as ``capytaine.io.xarray.merge_complex_values`` merges them."""
+    import subprocess
+    import sys
+
+    from capytaine.io.xarray import merge_complex_values
+
+    path = next(cache_dir.glob("motions_*.nc"))
+    with xr.open_dataset(path) as opened:
+        raw = opened.load()
+    ours = capytaine_io.merge_complex_values(raw)
+    assert "complex" in raw.coords and "complex" not in ours.coords
+    assert ours.identical(merge_complex_values(raw))
+    assert any(v.dtype.kind == "c" for v in ours.data_vars.values())
+    probe = (
+        "import sys; from seafast.excitation.hydrodynamics.capytaine_io import read_capytaine_netcdf; "
+        f"read_capytaine_netcdf({str(path)!r}); print('capytaine' in sys.modules)"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True, timeout=300)
+    assert done.stdout.strip() == "False"

@@ -45,3 +45,35 @@ def test_write_netcdf_compresses_the_numbers_and_keeps_the_attributes(tmp_path):
     with xr.open_dataset(path) as back:
         assert back.identical(ds)
         assert back["M_b_Nm"].encoding["zlib"] and back["M_b_Nm"].encoding["complevel"] == 4
+
+
+def test_a_run_writes_the_same_files_whether_helpers_draw_the_figures_or_not(tmp_path):
+    """Figures shared with a forked helper while results.nc is written: the same files, byte for byte, in the same order."""
+    from seafast.analyses.run import run_case
+    from seafast.config import load_case
+    from seafast.output.files import write_run_outputs
+
+    result = run_case(load_case(overrides={"vessel.motions": "none"}))
+    alone = write_run_outputs(result, tmp_path / "alone", helpers=0)
+    shared = write_run_outputs(result, tmp_path / "shared", helpers=1)
+    assert (
+        list(alone)
+        == list(shared)
+        == [
+            "summary",
+            "case",
+            "results",
+            "deflection",
+            "forces_moments",
+            "saddle_time_histories",
+            "saddle_surfaces",
+            "aft_most_loaded_saddle",
+            "hull_girder",
+        ]
+    )
+    for key, path in alone.items():
+        assert shared[key].name == path.name
+        if path.suffix == ".png":
+            assert shared[key].read_bytes() == path.read_bytes(), key
+    with xr.open_dataset(alone["results"]) as a, xr.open_dataset(shared["results"]) as b:
+        assert a.identical(b)

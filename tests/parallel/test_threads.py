@@ -86,6 +86,7 @@ def test_the_machinery_is_written_once():
         return sorted(f for f, names in imports.items() if any(n == m or n.startswith(m + ".") for n in names for m in modules))
 
     assert users("threadpoolctl") == ["parallel/threads.py"]  # BLAS pinning
-    assert users("concurrent.futures", "multiprocessing", "distributed", "dask") == ["parallel/executor.py"]  # worker pools
+    # worker pools: the executor's, and the helpers a command's output work is shared with
+    assert users("concurrent.futures", "multiprocessing", "distributed", "dask") == ["parallel/executor.py", "parallel/sharing.py"]
     fsync = sorted(f for f in imports if "os.fsync(" in (SRC / f).read_text(encoding="utf-8"))
     assert fsync == ["parallel/store.py"]  # the resumable store

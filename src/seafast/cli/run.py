@@ -45,10 +45,9 @@ def add_run_subcommand(subparsers: Any) -> argparse.ArgumentParser:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    from seafast.analyses.run import run_case
     from seafast.config import CaseError, load_case, parse_overrides
-    from seafast.output.files import write_run_outputs
-    from seafast.results.dataset import LOAD_CASES, MODELS
+    from seafast.output.case_figures import figure_helpers
+    from seafast.output.files import no_dask_array_lookup
 
     try:
         overrides = parse_overrides(args.overrides)
@@ -60,16 +59,22 @@ def _cmd_run(args: argparse.Namespace) -> int:
     source = f"from {args.case}" if args.case else "(built-in base case)"
     logger.info("seafast %s: running '%s' %s", seafast.__version__, case.name, source)
     t0 = time.perf_counter()
-    try:
-        result = run_case(case, progress=logger.info)
-    except (CaseError, ValueError) as exc:
-        return error(str(exc))
-    rows = result.summary
-    if not args.quiet:
-        # the table as soon as the rows are known: results.nc and the figures take longer than the solves
-        _print_tables(result, rows)
-    logger.info("writing the results to %s", args.output)
-    paths = write_run_outputs(result, args.output)
+    # a run makes no Dask array: xarray need not import dask.array to tell; the figures' helpers
+    # are forked first, before the numerical stack loads here, and load matplotlib meanwhile
+    with no_dask_array_lookup(), figure_helpers(case.outputs.plots) as helpers:
+        from seafast.analyses.run import run_case
+        from seafast.output.files import write_run_outputs
+
+        try:
+            result = run_case(case, progress=logger.info)
+        except (CaseError, ValueError) as exc:
+            return error(str(exc))
+        rows = result.summary
+        if not args.quiet:
+            # the table as soon as the rows are known: results.nc and the figures take longer than the solves
+            _print_tables(result, rows)
+        logger.info("writing the results to %s", args.output)
+        paths = write_run_outputs(result, args.output, helpers=helpers)
     if not args.quiet:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     if result.axial is not None:
@@ -92,6 +97,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"> tolerance {coupling.tolerance_m:.2e} m after {coupling.iterations} step(s)"
             )
         else:
+            from seafast.results.dataset import LOAD_CASES, MODELS
+
             outcome = result.arrays.solver_outcome[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])]
             why = f"{outcome.replace('_', ' ')}, residual {r['residual_norm']:.3e}"
         print(

@@ -5,15 +5,19 @@ from __future__ import annotations
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
+from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import yaml
 
-from seafast.analyses.run import CaseResult
-from seafast.output.tables import write_summary_csv
+from seafast.output.case_figures import CASE_FIGURES, case_figure_names, draw_case_figure
+from seafast.parallel.sharing import HelperPool, helper_count
 
-__all__ = ["write_run_outputs", "write_netcdf"]
+if TYPE_CHECKING:
+    from seafast.analyses.run import CaseResult
+
+__all__ = ["write_run_outputs", "write_netcdf", "no_dask_array_lookup"]
 
 
 @contextmanager
@@ -41,6 +45,33 @@ def _no_dask_client_lookup() -> Iterator[None]:
             dask_base._DISTRIBUTED_AVAILABLE = None  # type: ignore[union-attr]  # Dask's memo of the hidden package, forgotten
 
 
+@contextmanager
+def no_dask_array_lookup() -> Iterator[None]:
+    """Inside the block, ``import dask.array`` fails unless Dask's array module is loaded already.
+
+    xarray asks of the arrays it decodes and wraps whether they are Dask arrays, and the first
+    time imports ``dask.array`` (about 0.3 s) to know the type. No Dask array can exist before
+    ``dask.array`` was imported, so the answer is the same without it: not a Dask array. On
+    exit ``dask.array`` is importable again and xarray's memo of the failed lookup is forgotten,
+    so Dask arrays made later are recognised. For a block that makes no Dask array (``seafast
+    run``: the BEM cache read, results.nc, the figures); one that needs ``dask.array`` fails
+    loudly with :class:`ImportError`.
+    """
+    if "dask.array" in sys.modules:
+        yield
+        return
+    sys.modules["dask.array"] = None  # type: ignore[assignment]  # Python's documented "cannot be imported"
+    try:
+        yield
+    finally:
+        if sys.modules.get("dask.array", ...) is None:
+            del sys.modules["dask.array"]
+        pycompat = sys.modules.get("xarray.namedarray.pycompat")
+        memo = getattr(pycompat, "_cached_duck_array_modules", None)  # xarray's memo of the duck-array libraries
+        if isinstance(memo, dict) and "dask" in memo and not getattr(memo["dask"], "available", True):
+            del memo["dask"]
+
+
 def write_netcdf(ds: Any, path: Path) -> Path:
     """Write a Dataset to NetCDF4, its numeric variables zlib-compressed (level 4); return ``path``.
 
@@ -57,8 +88,33 @@ def write_netcdf(ds: Any, path: Path) -> Path:
     return path
 
 
-def write_run_outputs(result: CaseResult, out_dir: str | Path) -> dict[str, Path]:
-    """Write everything ``seafast run`` produces for ``result`` (a :class:`seafast.analyses.run.CaseResult`)."""
+def write_run_outputs(result: CaseResult, out_dir: str | Path, helpers: int | HelperPool | None = None) -> dict[str, Path]:
+    """Write everything ``seafast run`` produces for ``result`` (a :class:`seafast.analyses.run.CaseResult`).
+
+    summary.csv and case.yaml first; then results.nc is written here while forked helper
+    processes draw the figures, and this process draws those still left once the file is
+    written (:class:`seafast.parallel.sharing.HelperPool`; the costliest figures first).
+
+    Parameters
+    ----------
+    result : CaseResult
+        The run.
+    out_dir : str or Path
+        The directory (made if missing).
+    helpers : int or HelperPool, optional
+        Helper processes drawing figures: a pool started ahead
+        (:func:`seafast.output.case_figures.figure_helpers`), or how many to fork now; default
+        one per further core (:func:`seafast.parallel.sharing.helper_count`); 0 draws everything
+        in this process.
+
+    Returns
+    -------
+    dict of str to Path
+        The files by kind: ``summary``, ``case``, ``results`` (when ``outputs.netcdf``), then
+        each figure by its name (when ``outputs.plots``), in the report's order.
+    """
+    from seafast.output.tables import write_summary_csv  # the numerical stack: imported after figure_helpers forked
+
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths: dict[str, Path] = {}
@@ -69,11 +125,20 @@ def write_run_outputs(result: CaseResult, out_dir: str | Path) -> dict[str, Path
         encoding="utf-8",
     )
     paths["case"] = case_yaml
-    if result.case.outputs.netcdf:
-        paths["results"] = write_netcdf(result.dataset, out / "results.nc")
-    if result.case.outputs.plots:
-        from seafast.output.plots import write_case_figures
-
-        for p in write_case_figures(result.dataset, out):
-            paths[p.stem] = p
+    ds = result.dataset  # built here, before any helper forks: they inherit it
+    netcdf = result.case.outputs.netcdf
+    if netcdf:
+        paths["results"] = out / "results.nc"
+    names = case_figure_names(ds) if result.case.outputs.plots else []
+    costs = {name: cost for name, _, _, cost in CASE_FIGURES}
+    order = sorted(names, key=lambda name: -costs[name])
+    work = partial(draw_case_figure, ds, out_dir=out)  # pickles: a pool started ahead receives it
+    write = (lambda: write_netcdf(ds, out / "results.nc")) if netcdf else None
+    if isinstance(helpers, HelperPool):
+        drawn = helpers.share(order, work, first=write)
+    else:
+        with HelperPool(helper_count(len(order)) if helpers is None else helpers) as pool:
+            drawn = pool.share(order, work, first=write)
+    by_name = dict(zip(order, drawn, strict=True))
+    paths.update((name, by_name[name]) for name in names)
     return paths

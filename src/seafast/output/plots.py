@@ -30,7 +30,6 @@ __all__ = [
     "plot_hull_girder",
     "plot_raos",
     "plot_stick_slip",
-    "write_case_figures",
 ]
 
 _MODELS = ("nonlinear", "linear")  # drawing order: the thin dashed linear line on top
@@ -356,22 +355,3 @@ def plot_stick_slip(ds: xr.Dataset, path: Path) -> Path:
     for ax in (ax_u, ax_f):
         ax.grid(alpha=0.3)
     return _save(fig, path)
-
-
-def write_case_figures(ds: xr.Dataset, out_dir: Path) -> list[Path]:
-    """Write every figure the dataset supports into ``out_dir``; return the paths."""
-    out_dir = Path(out_dir)
-    paths = [
-        plot_deflection(ds, out_dir / "deflection.png"),
-        plot_forces_and_moments(ds, out_dir / "forces_moments.png"),
-        plot_saddle_time_histories(ds, out_dir / "saddle_time_histories.png"),
-        plot_saddle_surfaces(ds, out_dir / "saddle_surfaces.png"),
-        plot_aft_picture(ds, out_dir / "aft_most_loaded_saddle.png"),
-    ]
-    if "hull_x_m" in ds.coords:
-        paths.append(plot_hull_girder(ds, out_dir / "hull_girder.png"))
-    if "rao_omega_rad_s" in ds.coords:
-        paths.append(plot_raos(ds, out_dir / "raos.png"))
-    if "friction_force_N" in ds:
-        paths.append(plot_stick_slip(ds, out_dir / "stick_slip.png"))
-    return paths

@@ -17,6 +17,7 @@ by the plotly figures too.
 from __future__ import annotations
 
 import math
+import zlib
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
@@ -32,12 +33,19 @@ __all__ = [
     "cell_boundary",
     "save_png",
     "PNG_COMPRESS_LEVEL",
+    "PNG_COMPRESS_STRATEGY",
 ]
 
 PNG_COMPRESS_LEVEL = 1
 """zlib level of the PNG files [-]: lossless at every level (the same pixels); 1 encodes a run's
 figure (2400 x 1500 pixels) in about 0.7 of the time of Pillow's default 6, for a file a fifth to
 a third larger (about 300 kB)."""
+
+PNG_COMPRESS_STRATEGY = zlib.Z_RLE
+"""zlib strategy of the PNG files: run-length matches only, lossless like every strategy (the
+same pixels). A figure is mostly runs of one colour: at level 1 a run's figure encodes in about
+0.6 of the time of the default strategy, the seven files of a run as large in total (each
+within 20 %)."""
 
 # matplotlib line keywords per model: the thick solid nonlinear line under the thin dashed linear one
 MODEL_LINES: dict[str, dict[str, Any]] = {
@@ -174,8 +182,8 @@ def save_png(fig: Any, path: str | Path, dpi: float, rect: tuple[float, float, f
     fig : matplotlib.figure.Figure
         The figure, drawn.
     path : str or Path
-        The file; a ``.png`` name is written with :data:`PNG_COMPRESS_LEVEL`, any other suffix
-        in its own format.
+        The file; a ``.png`` name is written with :data:`PNG_COMPRESS_LEVEL` and
+        :data:`PNG_COMPRESS_STRATEGY`, any other suffix in its own format.
     dpi : float
         Resolution [dots per inch].
     rect : tuple of float, optional
@@ -192,7 +200,11 @@ def save_png(fig: Any, path: str | Path, dpi: float, rect: tuple[float, float, f
     fig.tight_layout(rect=rect)
     fig.set_layout_engine(None)
     target = Path(path)
-    options: dict[str, Any] = {"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL}} if target.suffix.lower() == ".png" else {}
+    options: dict[str, Any] = (
+        {"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL, "compress_type": PNG_COMPRESS_STRATEGY}}
+        if target.suffix.lower() == ".png"
+        else {}
+    )
     fig.savefig(target, dpi=dpi, **options)
     plt.close(fig)
     return target

@@ -16,6 +16,8 @@ studies (:mod:`seafast.studies`) and the Monte Carlo reference
   and in every worker, every core for the BEM.
 * :mod:`seafast.parallel.progress` - the progress of a run on stderr (a bar on a terminal, else
   plain lines).
+* :mod:`seafast.parallel.sharing` - :class:`~seafast.parallel.sharing.HelperPool`: one piece of
+  a command's output work (``seafast run``'s figures) shared with forked helper processes.
 * :mod:`seafast.parallel.errors` - :class:`~seafast.parallel.errors.ParallelError` and
   :class:`~seafast.parallel.errors.ForeignStoreError`.
 
