@@ -72,6 +72,31 @@ def _cache_key(payload: dict) -> str:
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:32]
 
 
+def _run_payload(
+    hull: HullForm, omega: NDArray[np.float64], panel_size_m: float, rho: float, g: float, depth: float, capytaine_version: str
+) -> dict[str, object]:
+    """What every BEM run's cache key hashes: the hull's sections, the frequencies, the panel size, the water, the
+    capytaine and mesher versions (each run adds its DOFs, rotation centre and headings; the keys are sorted)."""
+    return {
+        "stations": [repr(float(v)) for v in hull.station_x_m],
+        "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
+        "draft": repr(float(hull.draft_m)),
+        "cs": repr(float(hull.section_area_coefficient)),
+        "omega": [repr(float(v)) for v in omega],
+        "panel": repr(panel_size_m),
+        "rho": repr(rho),
+        "g": repr(g),
+        "depth": repr(depth),
+        "capytaine": capytaine_version,
+        "mesh": MESH_ALGORITHM_VERSION,
+    }
+
+
+def _capytaine_version() -> str:
+    """capytaine's version (``capytaine.__version__``) from the package's metadata, without importing it (0.4 s)."""
+    return importlib.metadata.version("capytaine")
+
+
 def _run_bem(
     hull: HullForm,
     omega: NDArray[np.float64],
@@ -163,23 +188,8 @@ class _SixDofRun:
 
     def cache_key(self, capytaine_version: str) -> str:
         """The disk cache's key of the run (file ``motions6_<key>.nc``)."""
-        hull = self.hull
-        payload = {
-            "stations": [repr(float(v)) for v in hull.station_x_m],
-            "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
-            "draft": repr(float(hull.draft_m)),
-            "cs": repr(float(hull.section_area_coefficient)),
-            "omega": [repr(float(v)) for v in self.omega],
-            "headings_deg": [repr(float(b)) for b in self.headings_deg],
-            "panel": repr(self.panel_size_m),
-            "rho": repr(self.rho),
-            "g": repr(self.g),
-            "depth": repr(self.depth),
-            "capytaine": capytaine_version,
-            "mesh": MESH_ALGORITHM_VERSION,
-            "dofs": list(SIX_DOFS),
-            "rotation_center": "lcb-waterline",
-        }
+        payload = _run_payload(self.hull, self.omega, self.panel_size_m, self.rho, self.g, self.depth, capytaine_version)
+        payload.update(headings_deg=[repr(float(b)) for b in self.headings_deg], dofs=list(SIX_DOFS), rotation_center="lcb-waterline")
         return _cache_key(payload)
 
     def dataset(self) -> xr.Dataset:
@@ -224,8 +234,6 @@ def six_dof_dataset(
         ``wave_direction``, ``radiating_dof``, ``influenced_dof``), attributes ``seafast_origin_x_m`` and
         ``seafast_cache_key``.
     """
-    import capytaine as cpt
-
     omega, _ = _checked_inputs(omega_rad_s, 1.0, 1.0, (0.0, 0.0, 0.0))
     headings = tuple(sorted({float(b) for b in headings_deg}))
     if not headings or headings[0] < 0.0 or headings[-1] > 180.0:
@@ -233,7 +241,7 @@ def six_dof_dataset(
     run = _SixDofRun(
         hull, omega, headings, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), float(water_depth_m)
     )
-    key = run.cache_key(cpt.__version__)
+    key = run.cache_key(_capytaine_version())
     cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
     return _cached_or_computed(run, key, cdir, use_cache, memory_cache, prefix="motions6")
 
@@ -267,22 +275,8 @@ class _BEMRun:
 
     def cache_key(self, capytaine_version: str) -> str:
         """The disk cache's key (see :func:`compute_motions`, Notes): unchanged, so every user's cache file stays a hit."""
-        hull = self.hull
-        payload = {
-            "stations": [repr(float(v)) for v in hull.station_x_m],
-            "breadth": [repr(float(v)) for v in hull.waterline_breadth_m],
-            "draft": repr(float(hull.draft_m)),
-            "cs": repr(float(hull.section_area_coefficient)),
-            "rotation_center": [repr(float(c)) for c in self.rotation_center],
-            "omega": [repr(float(v)) for v in self.omega],
-            "panel": repr(self.panel_size_m),
-            "rho": repr(self.rho),
-            "g": repr(self.g),
-            "depth": repr(self.depth),
-            "capytaine": capytaine_version,
-            "mesh": MESH_ALGORITHM_VERSION,
-            "dofs": list(BEM_DOFS),
-        }
+        payload = _run_payload(self.hull, self.omega, self.panel_size_m, self.rho, self.g, self.depth, capytaine_version)
+        payload.update(rotation_center=[repr(float(c)) for c in self.rotation_center], dofs=list(BEM_DOFS))
         return _cache_key(payload)
 
     def dataset(self) -> xr.Dataset:
@@ -393,7 +387,7 @@ def compute_motions(
     run = _BEMRun(
         hull, omega, rotation_center, float(panel_size_m), float(water_density_kg_per_m3), float(gravity_m_per_s2), float(water_depth_m)
     )
-    capytaine_version = importlib.metadata.version("capytaine")  # capytaine.__version__, without importing capytaine (0.4 s)
+    capytaine_version = _capytaine_version()
     key = run.cache_key(capytaine_version)
     cdir = Path(cache_dir) if cache_dir is not None else default_cache_dir()
     ds = _cached_or_computed(run, key, cdir, use_cache, memory_cache)
