@@ -21,6 +21,17 @@ __all__ = ["write_run_outputs", "write_netcdf", "no_dask_array_lookup"]
 
 
 @contextmanager
+def _unimportable(module: str) -> Iterator[None]:
+    """Inside the block ``import module`` fails (Python's documented ``sys.modules[name] = None``); not loaded before."""
+    sys.modules[module] = None  # type: ignore[assignment]
+    try:
+        yield
+    finally:
+        if sys.modules.get(module, ...) is None:
+            del sys.modules[module]
+
+
+@contextmanager
 def _no_dask_client_lookup() -> Iterator[None]:
     """Inside the block, ``import distributed`` fails unless Dask's ``distributed`` is loaded already.
 
@@ -32,14 +43,11 @@ def _no_dask_client_lookup() -> Iterator[None]:
     if "distributed" in sys.modules:
         yield
         return
-    dask_base = sys.modules.get("dask.base")
-    known = getattr(dask_base, "_DISTRIBUTED_AVAILABLE", None)
-    sys.modules["distributed"] = None  # type: ignore[assignment]  # Python's documented "cannot be imported"
+    known = getattr(sys.modules.get("dask.base"), "_DISTRIBUTED_AVAILABLE", None)
     try:
-        yield
+        with _unimportable("distributed"):
+            yield
     finally:
-        if sys.modules.get("distributed", ...) is None:
-            del sys.modules["distributed"]
         dask_base = sys.modules.get("dask.base")
         if known is None and getattr(dask_base, "_DISTRIBUTED_AVAILABLE", None) is False:
             dask_base._DISTRIBUTED_AVAILABLE = None  # type: ignore[union-attr]  # Dask's memo of the hidden package, forgotten
@@ -60,12 +68,10 @@ def no_dask_array_lookup() -> Iterator[None]:
     if "dask.array" in sys.modules:
         yield
         return
-    sys.modules["dask.array"] = None  # type: ignore[assignment]  # Python's documented "cannot be imported"
     try:
-        yield
+        with _unimportable("dask.array"):
+            yield
     finally:
-        if sys.modules.get("dask.array", ...) is None:
-            del sys.modules["dask.array"]
         pycompat = sys.modules.get("xarray.namedarray.pycompat")
         memo = getattr(pycompat, "_cached_duck_array_modules", None)  # xarray's memo of the duck-array libraries
         if isinstance(memo, dict) and "dask" in memo and not getattr(memo["dask"], "available", True):
