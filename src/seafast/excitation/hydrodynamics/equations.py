@@ -173,13 +173,21 @@ def solve_rigid_body(
     ndarray (n_w, n_dof)
         Complex amplitudes per metre of wave amplitude, in the DOF order of the inputs.
     """
+    z = rigid_body_impedance(omega_rad_s, added_mass, radiation_damping, mass_matrix_, hydrostatic_stiffness)
+    return np.asarray(np.linalg.solve(z, np.asarray(excitation_force, dtype=complex)[..., None])[..., 0], dtype=np.complex128)
+
+
+def rigid_body_impedance(
+    omega_rad_s: ArrayLike, added_mass: ArrayLike, radiation_damping: ArrayLike, mass_matrix_: ArrayLike, hydrostatic_stiffness: ArrayLike
+) -> NDArray[np.complex128]:
+    """``-omega^2 (M + A) + i omega B + C`` per frequency, (n_w, n_dof, n_dof), in the SI units of each DOF."""
     w = np.asarray(omega_rad_s, dtype=float)
-    z = (
+    return np.asarray(
         -(w[:, None, None] ** 2) * (np.asarray(mass_matrix_, dtype=float)[None] + np.asarray(added_mass, dtype=float))
         + 1j * w[:, None, None] * np.asarray(radiation_damping, dtype=float)
-        + np.asarray(hydrostatic_stiffness, dtype=float)[None]
+        + np.asarray(hydrostatic_stiffness, dtype=float)[None],
+        dtype=complex,
     )
-    return np.linalg.solve(z, np.asarray(excitation_force, dtype=complex)[..., None])[..., 0]
 
 
 def base_vessel_mass_properties(hull: HullForm, *, water_density_kg_per_m3: float = 1025.0) -> dict:

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from seafast.excitation.hydrodynamics.equations import solve_rigid_body
+from seafast.excitation.hydrodynamics.equations import rigid_body_impedance, solve_rigid_body
 from seafast.excitation.hydrodynamics.roll_damping import HarmonicRollResponse, QuadraticRollDamping, RollModel, harmonic_linearisation
 
 __all__ = ["SixDofMotions", "SIX_DOF_NAMES", "SIX_DOF_UNITS"]
@@ -214,11 +214,10 @@ class SixDofMotions:
         f = np.atleast_2d(self.excitation_at(w, heading_deg))
         spl_a, spl_b, _ = self._splines
         wc = np.clip(w, self.omega_rad_s[0], self.omega_rad_s[-1])
-        b = self._damping(spl_b(wc))
-        impedance = -(w[:, None, None] ** 2) * (self.mass_matrix[None] + spl_a(wc)) + 1j * w[:, None, None] * b + self.hydrostatic_stiffness
+        impedance = rigid_body_impedance(w, spl_a(wc), self._damping(spl_b(wc)), self.mass_matrix, self.hydrostatic_stiffness)
         response = harmonic_linearisation(RollModel.from_coupled(w, impedance, f), quadratic, float(amplitude_m))
-        b[:, 3, 3] += response.equivalent_damping_Nms_per_rad
-        x = solve_rigid_body(w, spl_a(wc), b, f, self.mass_matrix, self.hydrostatic_stiffness)
+        impedance[:, 3, 3] += 1j * w * response.equivalent_damping_Nms_per_rad
+        x = np.linalg.solve(impedance, f[..., None])[..., 0]
         return np.asarray(x[0], dtype=np.complex128), response
 
     # ---------------------------------------------------------------- export
