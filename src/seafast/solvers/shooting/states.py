@@ -164,7 +164,6 @@ class ContactStates:
             raise ValueError(f"saddles: {system.saddle_count}; allowed: at most {MAX_SADDLES} for the shooting solver")
         self._states: dict[bytes, ContactState] = {}
         self._order: list[ContactState] = []
-        self._arrays: StateArrays | None = None
         self._table = np.full(2**system.saddle_count, -1, dtype=np.int64)
         self._stacked: StateArrays | None = None
         self._stacked_count = 0
@@ -191,7 +190,6 @@ class ContactStates:
             self._states[key] = state
             self._table[lifted_code(state.lifted)] = len(self._order)
             self._order.append(state)
-            self._arrays = None
         return state
 
     def lifted_of(self, code: int) -> NDArray[np.bool_]:
@@ -205,30 +203,22 @@ class ContactStates:
         The stacks have room for twice the states built when they were last grown, so a march that meets a new
         state adds one row to each instead of stacking them all again (a 7-saddle orbit visits some 20 states).
         """
-        count = len(self._order)
-        arrays = self._arrays
-        if arrays is not None:
-            return arrays
-        previous = self._stacked
-        if previous is None or previous.eigenvalues.shape[0] < count:
-            capacity = max(2 * count, 4)
+        count, stacked = len(self._order), self._stacked
+        if stacked is not None and self._stacked_count == count:
+            return stacked
+        if stacked is None or stacked.eigenvalues.shape[0] < count:
             first = self._order[0]
-            fields = _STACKED_FIELDS
-            grown = {name: np.zeros((capacity,) + getattr(first, name).shape, dtype=getattr(first, name).dtype) for name in fields}
-            filled = 0 if previous is None else self._stacked_count
-            if previous is not None:
-                for name in fields:
-                    grown[name][:filled] = getattr(previous, name)[:filled]
-            previous = StateArrays(table=self._table, **grown)
-        else:
-            filled = self._stacked_count
-        for index in range(filled, count):
-            st = self._order[index]
+            shape = (max(2 * count, 4),)
+            grown = {name: np.zeros(shape + getattr(first, name).shape, dtype=getattr(first, name).dtype) for name in _STACKED_FIELDS}
+            if stacked is not None:
+                for name in _STACKED_FIELDS:
+                    grown[name][: self._stacked_count] = getattr(stacked, name)[: self._stacked_count]
+            stacked = StateArrays(table=self._table, **grown)
+        for index in range(self._stacked_count, count):
             for name in _STACKED_FIELDS:
-                getattr(previous, name)[index] = getattr(st, name)
-        self._stacked, self._stacked_count = previous, count
-        self._arrays = previous
-        return previous
+                getattr(stacked, name)[index] = getattr(self._order[index], name)
+        self._stacked, self._stacked_count = stacked, count
+        return stacked
 
     def forcing(self, t_s: NDArray) -> NDArray[np.float64]:
         """``d(t)`` at the given times (n_t, n_s) [m]."""
