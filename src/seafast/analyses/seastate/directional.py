@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.integrate import cumulative_trapezoid
 from scipy.special import gammaln
 
 __all__ = [
@@ -125,7 +126,7 @@ def random_directions_deg(
     s = _checked_exponent(spreading_exponent)
     theta = np.linspace(-math.pi, math.pi, _CDF_POINTS)
     density = spreading_density_per_rad(theta, s)
-    cdf = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(theta))])
+    cdf = cumulative_trapezoid(density, theta, initial=0)
     cdf /= cdf[-1]
     drawn = np.interp(rng.random(int(count)), cdf, theta)
     return np.asarray((mean + np.degrees(drawn)) % 360.0, dtype=float)
@@ -159,6 +160,7 @@ def _energy_half_width_rad(spreading_exponent: float, tail: float) -> float:
     """The half-width about the mean direction outside which the spreading holds less than ``tail`` of the energy."""
     theta = np.linspace(0.0, math.pi, _CDF_POINTS)
     density = spreading_density_per_rad(theta, spreading_exponent)
-    outside = 2.0 * (np.trapezoid(density, theta) - np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(theta))]))
+    inside = cumulative_trapezoid(density, theta, initial=0)
+    outside = 2.0 * (inside[-1] - inside)
     index = int(np.argmax(outside <= tail)) if np.any(outside <= tail) else theta.size - 1
     return float(theta[max(index, 1)])
