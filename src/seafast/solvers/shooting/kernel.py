@@ -64,16 +64,18 @@ def march_events(  # pragma: no cover - compiled
     carry_i: NDArray,
     x: NDArray,
     monodromy: NDArray,
-    out_x: NDArray,
+    out_e: NDArray,
     out_code: NDArray,
 ) -> int:
     """March from the carried position to the period's end; see the module docstring.
 
     Carried (updated in place): ``carry_t[0]`` the time, ``carry_i = [next sample, state code, events]``, ``x``
-    the state, ``monodromy``; recorded: ``out_x`` (N, 2m) and ``out_code`` (N,). Returns :data:`DONE`,
+    the state, ``monodromy``; recorded: ``out_e`` (N, 2m), the homogeneous part's modal coordinates at each sample
+    (the state is ``Re(V e) + Re(phase ps)``, formed by the caller with one matrix product per contact state), and
+    ``out_code`` (N,). Returns :data:`DONE`,
     :data:`TOO_MANY_EVENTS`, or the code (bit i: saddle i lifted) of a state to build before calling again.
     """
-    N = out_x.shape[0]
+    N = times.shape[0] - 1
     size = x.size
     n_s = mc_all.shape[1]
     T = times[N]
@@ -126,12 +128,7 @@ def march_events(  # pragma: no cover - compiled
                 break
             if record and n < N:
                 for j in range(size):
-                    v = 0.0
-                    for col in range(size):
-                        v += (V[j, col] * e[col]).real
-                    for k in range(ps.shape[0]):
-                        v += (phase[n, k] * ps[k, j]).real
-                    out_x[n, j] = v
+                    out_e[n, j] = e[j]
             if n < N:
                 out_code[n] = code
             n += 1

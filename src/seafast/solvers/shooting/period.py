@@ -113,20 +113,51 @@ def flow_period(
     carry_i = np.array([0, lifted_code(initial_contact(states, x0, 0.0)), 0], dtype=np.int64)
     x = np.array(x0, dtype=float)
     monodromy = np.eye(size)
-    out_x = np.zeros((N, size))
+    out_e = np.zeros((N, size) if record else (1, size), dtype=np.complex128)
     out_code = np.zeros(N, dtype=np.int64)
     while True:
         arrays = states.arrays
         status = march_events(
             arrays.table, arrays.eigenvalues, arrays.eigenvectors, arrays.inverse_eigenvectors, arrays.modal_compression,
             arrays.particular_compression, arrays.particular, arrays.lifted, states.omega_rad_s, grid.times, grid.phase,
-            EVENT_TIME_TOLERANCE, int(max_events), bool(record), carry_t, carry_i, x, monodromy, out_x, out_code,
+            EVENT_TIME_TOLERANCE, int(max_events), bool(record), carry_t, carry_i, x, monodromy, out_e, out_code,
         )  # fmt: skip
         if status == DONE:
-            return PeriodFlow(x, monodromy, out_x if record else None, out_code if record else None, int(carry_i[2]))
+            if not record:
+                return PeriodFlow(x, monodromy, None, None, int(carry_i[2]))
+            return PeriodFlow(x, monodromy, _recorded_states(states, grid, out_e, out_code), out_code, int(carry_i[2]))
         if status == TOO_MANY_EVENTS:
             raise TooManyEventsError(f"more than {max_events} contact events in one period")
         states.get(states.lifted_of(int(status)))  # a new contact state: build it, then resume
+
+
+def _recorded_states(states: ContactStates, grid: PeriodGrid, modal: NDArray[np.complex128], codes: NDArray[np.int64]) -> NDArray:
+    """The states ``x(t_n) = Re(V e_n) + Re(phase_n ps)`` (N, 2m) from the march's modal coordinates ``e_n`` (N, 2m).
+
+    A real matrix product per run of samples in one contact state, on the interleaved real and imaginary parts
+    (``Re(V e) = [Re e, Im e] [Re V; -Im V]^T``): forming each sample in the compiled loop cost (2m)^2 scalar
+    products a sample, twice the march itself.
+    """
+    arrays, n = states.arrays, codes.size
+    out = np.empty(modal.shape, dtype=float)
+    modal_parts, phase_parts = modal.view(np.float64), grid.phase[:n].view(np.float64)
+    maps: dict[int, tuple[NDArray, NDArray]] = {}
+    starts = np.flatnonzero(np.diff(codes, prepend=codes[0] - 1))
+    for a, b in zip(starts, [*starts[1:], n], strict=True):
+        code = int(codes[a])
+        if code not in maps:
+            s = arrays.table[code]
+            maps[code] = (_real_part_map(arrays.eigenvectors[s].T), _real_part_map(arrays.particular[s]))
+        modal_map, particular_map = maps[code]
+        out[a:b] = modal_parts[a:b] @ modal_map + phase_parts[a:b] @ particular_map
+    return out
+
+
+def _real_part_map(matrix: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """``W`` (2p, q) with ``Re(z @ matrix) = z.view(float) @ W`` for complex rows ``z`` (p,) and ``matrix`` (p, q)."""
+    W = np.empty((2 * matrix.shape[0], matrix.shape[1]))
+    W[0::2], W[1::2] = matrix.real, -matrix.imag
+    return W
 
 
 def peak_compressions(

@@ -185,8 +185,8 @@ def _periodic_state(
     """
     size = states.state_size
 
-    def flow_from(x: NDArray) -> PeriodFlow:
-        return flow_period(states, x, grid, max_events=opts.max_events)
+    def flow_from(x: NDArray, record: bool = False) -> PeriodFlow:
+        return flow_period(states, x, grid, record=record, max_events=opts.max_events)
 
     x0 = np.array(x_start, dtype=float)
     periods = steps = 0
@@ -204,7 +204,7 @@ def _periodic_state(
         except np.linalg.LinAlgError:
             step = x0 - flow.end_state  # a multiplier at 1: march one period instead
         trial = x0 - step
-        trial_flow = flow_from(trial)
+        trial_flow = flow_from(trial, record=True)  # recorded: the step that converges is the period reported
         periods += 1
         steps += 1
         trial_residual = _residual(states, trial_flow, trial, scale_m)
@@ -219,8 +219,9 @@ def _periodic_state(
             residual = _residual(states, flow, x0, scale_m)
             if residual < best[1]:
                 best = (flow, residual, x0)
-    recorded = flow_period(states, best[2], grid, record=True, max_events=opts.max_events)
-    return recorded, best[1], periods + 1, steps, best[2]
+    if best[0].state_samples is not None:
+        return best[0], best[1], periods, steps, best[2]
+    return flow_from(best[2], record=True), best[1], periods + 1, steps, best[2]
 
 
 def _residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
