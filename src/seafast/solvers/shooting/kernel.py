@@ -60,6 +60,7 @@ def march_events(  # pragma: no cover - compiled
     tol: float,
     max_events: int,
     record: bool,
+    track_monodromy: bool,
     carry_t: NDArray,
     carry_i: NDArray,
     x: NDArray,
@@ -70,10 +71,10 @@ def march_events(  # pragma: no cover - compiled
     """March from the carried position to the period's end; see the module docstring.
 
     Carried (updated in place): ``carry_t[0]`` the time, ``carry_i = [next sample, state code, events]``, ``x``
-    the state, ``monodromy``; recorded: ``out_e`` (N, 2m), the homogeneous part's modal coordinates at each sample
-    (the state is ``Re(V e) + Re(phase ps)``, formed by the caller with one matrix product per contact state), and
-    ``out_code`` (N,). Returns :data:`DONE`,
-    :data:`TOO_MANY_EVENTS`, or the code (bit i: saddle i lifted) of a state to build before calling again.
+    the state, ``monodromy`` (when ``track_monodromy``). Recorded: ``out_e`` (N, 2m), the homogeneous part's
+    modal coordinates at each sample (the state is ``Re(V e) + Re(phase ps)``, formed by the caller with one
+    matrix product per contact state), and ``out_code`` (N,). Returns :data:`DONE`, :data:`TOO_MANY_EVENTS`, or
+    the code (bit i: saddle i lifted) of a state to build before calling again.
     """
     N = times.shape[0] - 1
     size = x.size
@@ -176,8 +177,9 @@ def march_events(  # pragma: no cover - compiled
         E = np.empty(size, dtype=np.complex128)
         for j in range(size):
             E[j] = _exp(lam[j] * (tau_end - t))
-        P = np.ascontiguousarray(np.real((V * E) @ Vinv))
-        monodromy[:, :] = P @ monodromy
+        if track_monodromy:
+            P = np.ascontiguousarray(np.real((V * E) @ Vinv))
+            monodromy[:, :] = P @ monodromy
         xe = np.real(V @ (E * zz))
         for k in range(ps.shape[0]):
             ph = np.exp(1j * omega * k * tau_end)

@@ -21,7 +21,16 @@ from numpy.typing import NDArray
 from seafast.solvers.shooting.kernel import DONE, TOO_MANY_EVENTS, march_events
 from seafast.solvers.shooting.states import ContactState, ContactStates, lifted_code, modal_exponential
 
-__all__ = ["EVENT_TIME_TOLERANCE", "PeriodFlow", "PeriodGrid", "TooManyEventsError", "flow_period", "initial_contact", "peak_compressions"]
+__all__ = [
+    "EVENT_TIME_TOLERANCE",
+    "PeriodFlow",
+    "PeriodGrid",
+    "TooManyEventsError",
+    "flow_period",
+    "initial_contact",
+    "peak_compressions",
+    "state_runs",
+]
 
 EVENT_TIME_TOLERANCE = 1e-12
 """Event times are found to this fraction of the period."""
@@ -44,7 +53,7 @@ class PeriodFlow:
     end_state
         ``x(T) = [eta; eta']`` (2m,).
     monodromy
-        ``d x(T) / d x(0)`` (2m, 2m): the product of each segment's ``e^{A_L tau}``.
+        ``d x(T) / d x(0)`` (2m, 2m): the product of each segment's ``e^{A_L tau}``; None when not formed.
     state_samples
         ``x(t_n)`` at the samples (N, 2m) when recorded, else None.
     state_codes
@@ -54,7 +63,7 @@ class PeriodFlow:
     """
 
     end_state: NDArray[np.float64]
-    monodromy: NDArray[np.float64]
+    monodromy: NDArray[np.float64] | None
     state_samples: NDArray[np.float64] | None
     state_codes: NDArray[np.int64] | None
     events: int
@@ -97,11 +106,19 @@ def initial_contact(states: ContactStates, x: NDArray[np.float64], t_s: float) -
 
 
 def flow_period(
-    states: ContactStates, x0: NDArray[np.float64], grid: PeriodGrid, *, record: bool = False, max_events: int = 100_000
+    states: ContactStates,
+    x0: NDArray[np.float64],
+    grid: PeriodGrid,
+    *,
+    record: bool = False,
+    monodromy: bool = True,
+    max_events: int = 100_000,
 ) -> PeriodFlow:
     """March one period ``[0, T]`` from ``x(0) = x0`` with exact events (see the module docstring).
 
     ``record``: keep the state and the contact state at every sample (the period a solve reports).
+    ``monodromy``: form the monodromy matrix (two (2m)^3 products an event); False for a period that only leads to
+    the next one (the flow's ``monodromy`` is then None).
 
     Raises
     ------
@@ -112,7 +129,7 @@ def flow_period(
     carry_t = np.zeros(1)
     carry_i = np.array([0, lifted_code(initial_contact(states, x0, 0.0)), 0], dtype=np.int64)
     x = np.array(x0, dtype=float)
-    monodromy = np.eye(size)
+    jacobian = np.eye(size)
     out_e = np.zeros((N, size) if record else (1, size), dtype=np.complex128)
     out_code = np.zeros(N, dtype=np.int64)
     while True:
@@ -120,12 +137,13 @@ def flow_period(
         status = march_events(
             arrays.table, arrays.eigenvalues, arrays.eigenvectors, arrays.inverse_eigenvectors, arrays.modal_compression,
             arrays.particular_compression, arrays.particular, arrays.lifted, states.omega_rad_s, grid.times, grid.phase,
-            EVENT_TIME_TOLERANCE, int(max_events), bool(record), carry_t, carry_i, x, monodromy, out_e, out_code,
+            EVENT_TIME_TOLERANCE, int(max_events), bool(record), bool(monodromy), carry_t, carry_i, x, jacobian, out_e, out_code,
         )  # fmt: skip
         if status == DONE:
+            kept = jacobian if monodromy else None
             if not record:
-                return PeriodFlow(x, monodromy, None, None, int(carry_i[2]))
-            return PeriodFlow(x, monodromy, _recorded_states(states, grid, out_e, out_code), out_code, int(carry_i[2]))
+                return PeriodFlow(x, kept, None, None, int(carry_i[2]))
+            return PeriodFlow(x, kept, _recorded_states(states, grid, out_e, out_code), out_code, int(carry_i[2]))
         if status == TOO_MANY_EVENTS:
             raise TooManyEventsError(f"more than {max_events} contact events in one period")
         states.get(states.lifted_of(int(status)))  # a new contact state: build it, then resume
@@ -142,15 +160,20 @@ def _recorded_states(states: ContactStates, grid: PeriodGrid, modal: NDArray[np.
     out = np.empty(modal.shape, dtype=float)
     modal_parts, phase_parts = modal.view(np.float64), grid.phase[:n].view(np.float64)
     maps: dict[int, tuple[NDArray, NDArray]] = {}
-    starts = np.flatnonzero(np.diff(codes, prepend=codes[0] - 1))
-    for a, b in zip(starts, [*starts[1:], n], strict=True):
-        code = int(codes[a])
+    for code, a, b in state_runs(codes):
         if code not in maps:
             s = arrays.table[code]
             maps[code] = (_real_part_map(arrays.eigenvectors[s].T), _real_part_map(arrays.particular[s]))
         modal_map, particular_map = maps[code]
         out[a:b] = modal_parts[a:b] @ modal_map + phase_parts[a:b] @ particular_map
     return out
+
+
+def state_runs(codes: NDArray[np.int64]) -> list[tuple[int, int, int]]:
+    """The runs of samples in one contact state: ``(code, first, end)``, samples ``first .. end - 1`` (slices, not masks)."""
+    starts = np.flatnonzero(np.diff(codes, prepend=codes[0] - 1)) if codes.size else np.zeros(0, dtype=np.int64)
+    ends = [*starts[1:].tolist(), int(codes.size)]
+    return [(int(codes[a]), int(a), int(b)) for a, b in zip(starts.tolist(), ends, strict=True)]
 
 
 def _real_part_map(matrix: NDArray[np.complex128]) -> NDArray[np.float64]:

@@ -33,7 +33,7 @@ from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.shooting.options import ShootingOptions
-from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions
+from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions, state_runs
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
 from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, contact_samples, correction_system, settled_cutoff
 
@@ -123,6 +123,7 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     except (SingularStateError, TooManyEventsError) as error:
         note = f"shooting: {error}"
         return _response(model, ops, opts, None, None, N, SolverOutcome.NOT_CONVERGED, math.inf, 0, 0, note, record)
+    assert flow.monodromy is not None  # every period a solve reports forms it
     multipliers = np.abs(np.linalg.eigvals(flow.monodromy))
     largest = float(np.max(multipliers, initial=0.0))
     converged = residual <= opts.tolerance and largest <= 1.0 + _STABILITY_MARGIN
@@ -166,13 +167,13 @@ def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, comp
 def _contact_samples(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> tuple[NDArray, NDArray]:
     """The saddle compressions and correction forces at the recorded samples, each (N, n_s) [m], [N]."""
     assert flow.state_samples is not None and flow.state_codes is not None
-    d = states.forcing(grid.times[:-1])
+    d = np.real(grid.phase[:-1] @ states.harmonics)  # the forcing d(t_n) (N, n_s) [m]
     delta, correction = np.empty_like(d), np.empty_like(d)
-    for code in np.unique(flow.state_codes):
-        at = flow.state_codes == code
-        cs = states.get(states.lifted_of(int(code)))
-        delta[at] = flow.state_samples[at] @ cs.compression_state.T + d[at] @ cs.compression_forcing.T
-        correction[at] = flow.state_samples[at] @ cs.force_state.T + d[at] @ cs.force_forcing.T
+    x = flow.state_samples
+    for code, a, b in state_runs(flow.state_codes):
+        cs = states.get(states.lifted_of(code))
+        delta[a:b] = x[a:b] @ cs.compression_state.T + d[a:b] @ cs.compression_forcing.T
+        correction[a:b] = x[a:b] @ cs.force_state.T + d[a:b] @ cs.force_forcing.T
     return delta, correction
 
 
@@ -185,20 +186,22 @@ def _periodic_state(
     """
     size = states.state_size
 
-    def flow_from(x: NDArray, record: bool = False) -> PeriodFlow:
-        return flow_period(states, x, grid, record=record, max_events=opts.max_events)
+    def flow_from(x: NDArray, record: bool = False, monodromy: bool = True) -> PeriodFlow:
+        return flow_period(states, x, grid, record=record, monodromy=monodromy, max_events=opts.max_events)
 
     x0 = np.array(x_start, dtype=float)
     periods = steps = 0
-    flow = flow_from(x0)
+    marches = opts.march_periods if fresh else 0
+    flow = flow_from(x0, monodromy=marches == 0)  # only the period Newton starts from needs its monodromy matrix
     periods += 1
-    for _ in range(opts.march_periods if fresh else 0):
+    for i in range(marches):
         x0 = flow.end_state
-        flow = flow_from(x0)
+        flow = flow_from(x0, monodromy=i == marches - 1)
         periods += 1
     residual = _residual(states, flow, x0, scale_m)
     best = (flow, residual, x0)
     while residual > opts.tolerance and steps < opts.max_iterations:
+        assert flow.monodromy is not None
         try:
             step = np.linalg.solve(flow.monodromy - np.eye(size), flow.end_state - x0)
         except np.linalg.LinAlgError:
@@ -272,12 +275,14 @@ def _response(
     else:
         delta = harmonics_to_time(real_to_complex_harmonics(ops.linear_compression_m), N)  # the linear solution
     basis, coefficients = np.hstack(columns), np.vstack(rows)
-    # the cargo's displacements on harmonics 0 .. N/2 - 1 (the samples then exactly those harmonics, without the
-    # Nyquist term): the few channels' harmonics, then through the coefficients
+    # the cargo's displacements on harmonics 0 .. N/2 - 1 (the samples then exactly those harmonics): the few
+    # channels' harmonics and their samples without the Nyquist term, then through the coefficients
     spectrum = time_to_harmonics(basis, H)
-    basis = harmonics_to_time(spectrum, N)
+    alternating = np.where(np.arange(N) % 2 == 0, 1.0, -1.0)
+    basis -= np.outer(alternating, alternating @ basis / N)  # the Nyquist term of each channel (as the inverse FFT would drop it)
     q = basis @ coefficients
-    X = spectrum @ coefficients.astype(complex)  # one complex product: the strided real and imaginary views cost more
+    # X = spectrum @ coefficients as one real product on the interleaved real and imaginary parts of the channels
+    X = (coefficients.T @ np.ascontiguousarray(spectrum.T).view(np.float64)).view(np.complex128).T
     force = k_u * np.maximum(delta, 0.0)
     record = dict(
         record, harmonics=H, harmonics_selection="shooting", tolerance=float(opts.tolerance), cutoff_factor=float(opts.cutoff_factor)
