@@ -23,7 +23,7 @@ Units: displacements and engagements [m, rad]; forces [N]; stiffnesses [N/m].
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
 import numpy as np
@@ -70,6 +70,10 @@ class CradleProblem:
         or an axial restraint on a ``u`` DOF).
     load_N
         Loads beside the weight [N, N m], shape (5 n,) or None (e.g. today's pretension).
+    pretension_at_rest
+        True (default): each lashing holds its pretension with the cargo at rest on its pads at zero heel
+        and trim, the lashings pulling with their pretensions (they are tightened after the cargo is
+        landed); its stretch is measured from there. False: at the undisplaced cargo (pads just touching).
     """
 
     cargo: Cargo3D
@@ -78,6 +82,7 @@ class CradleProblem:
     lashings: tuple[Lashing, ...] = ()
     spring_diagonal_N_per_m: NDArray[np.float64] | None = None
     load_N: NDArray[np.float64] | None = None
+    pretension_at_rest: bool = True
     engagements: tuple[Engagement, ...] = field(init=False, repr=False, compare=False)
     engagement_matrix: NDArray[np.float64] = field(init=False, repr=False, compare=False)
 
@@ -214,7 +219,9 @@ class _System:
         return np.asarray(scipy.linalg.cho_solve(scipy.linalg.cho_factor(self.hessian(engaged)), rhs), dtype=float)
 
 
-def _system(problem: CradleProblem, heel_deg: float, trim_deg: float, gravity_m_per_s2: float) -> _System:
+def _system(
+    problem: CradleProblem, heel_deg: float, trim_deg: float, gravity_m_per_s2: float, initial_m: NDArray[np.float64] | None = None
+) -> _System:
     K0 = problem.base_stiffness
     A, k = problem.engagement_matrix, problem.element_stiffness_N_per_m
     R = problem.cargo.rigid_body_modes()
@@ -226,7 +233,7 @@ def _system(problem: CradleProblem, heel_deg: float, trim_deg: float, gravity_m_
         K0,
         problem.load(heel_deg, trim_deg, gravity_m_per_s2),
         A,
-        problem.initial_engagement_m,
+        problem.initial_engagement_m if initial_m is None else initial_m,
         k,
         spring_restraint,
         np.sqrt(k)[:, None] * (A @ R),
@@ -340,12 +347,38 @@ def solve_transverse_statics(
         round-off, signs checked; ``MECHANISM``: the restraints cannot hold the weight;
         ``NOT_CONVERGED``: the last iterate, with its residual).
     """
-    system = _system(problem, heel_deg, trim_deg, gravity_m_per_s2)
-    limit = 4 * system.k.size + 20 if max_iterations is None else int(max_iterations)
+    limit = 4 * len(problem.engagements) + 20 if max_iterations is None else int(max_iterations)
     if limit < 1:
         raise ValueError(f"max_iterations = {max_iterations!r}: allowed an integer >= 1")
+    initial_m = None
+    if problem.lashings and problem.pretension_at_rest:
+        rest = _rest(problem, gravity_m_per_s2, limit)
+        if rest.outcome is not StaticsOutcome.CONVERGED:
+            pretension = np.array([item.pretension_N for item in problem.lashings])
+            return replace(
+                rest,
+                lashing_tension_N=pretension,
+                engagement_m=np.concatenate([rest.engagement_m, pretension / [item.stiffness_N_per_m for item in problem.lashings]]),
+                message=f"the cargo at rest with its lashings' pretensions: {rest.message}",
+            )
+        lashing = slice(2 * len(problem.pad_pairs) + len(problem.stoppers), None)
+        initial_m = problem.initial_engagement_m
+        initial_m[lashing] -= problem.engagement_matrix[lashing] @ rest.displacement
+    system = _system(problem, heel_deg, trim_deg, gravity_m_per_s2, initial_m)
     outcome, q, engaged, iterations = _iterate(system, limit)
     return _result(problem, system, outcome, q, engaged, iterations, heel_deg, trim_deg)
+
+
+def _rest(problem: CradleProblem, gravity_m_per_s2: float, limit: int) -> TransverseStatics:
+    """The cargo on its pads (and stoppers) at zero heel and trim, each lashing a constant pull of its pretension."""
+    lashing = slice(2 * len(problem.pad_pairs) + len(problem.stoppers), None)
+    pretension = np.array([item.pretension_N for item in problem.lashings])
+    pull = -problem.engagement_matrix[lashing].T @ pretension
+    load = pull if problem.load_N is None else np.asarray(problem.load_N, dtype=float) + pull
+    resting = replace(problem, lashings=(), load_N=load)
+    system = _system(resting, 0.0, 0.0, gravity_m_per_s2)
+    outcome, q, engaged, iterations = _iterate(system, limit)
+    return _result(resting, system, outcome, q, engaged, iterations, 0.0, 0.0)
 
 
 def _result(
