@@ -160,6 +160,10 @@ class SideStopper:
 class Lashing:
     """A tension-only lashing (wire or chain) from a point on the cargo to a deck anchor.
 
+    Its tension is ``T = max(T0 + k e, 0)`` with ``e`` the elongation of the chord from the cargo's
+    small displacement: a slack lashing carries exactly zero. The chord's rotation (the pretension's
+    geometric stiffness ``T0 / L``) is neglected beside ``EA / L``.
+
     Parameters
     ----------
     cargo_point_m
@@ -170,11 +174,9 @@ class Lashing:
     stiffness_N_per_m
         Axial stiffness EA / L of the whole lashing [N/m], ``> 0``.
     pretension_N
-        Tension with the cargo undisplaced [N], ``>= 0``.
-
-    The tension is ``T = max(T0 + k e, 0)`` with ``e`` the elongation of the chord from the
-    cargo's small displacement: a slack lashing carries exactly zero. The chord's rotation (the
-    pretension's geometric stiffness ``T0 / L``) is neglected beside ``EA / L``.
+        T0 [N], ``>= 0``: the tension with the cargo at its reference position (by default the cargo
+        at rest on its pads, :class:`seafast.solvers.transverse_statics.CradleProblem`), where the
+        engagement's stretch is ``T0 / k``.
     """
 
     cargo_point_m: tuple[float, float, float]
