@@ -7,7 +7,8 @@ so the ratios hold while the machine is shared). It prints:
 1. the base case's H = 16 solve (the unit of every ratio);
 2. per study, every point's default nonlinear solve (``solve_nonlinear`` with the point's own case: the harmonic
    balance's converged limit by exact-event shooting) and its H = 16 solve, the slowest point and its ratio to the
-   base case's H = 16 solve (``worst_point_vs_h16``, target <= 10);
+   base case's H = 16 solve (``worst_point_scan_vs_h16``); the five slowest timed again in CPU time, each in rounds
+   interleaved with the base case's H = 16 solve so that both see the same load (``worst_point_vs_h16``, target <= 10);
 3. a sample of points (the most lifted-off, the stiffest saddles, and evenly spread: at least 10) against the
    full-DOF time-domain integration at 32768 steps per period read on 8192 samples (the impacts on stiff saddles are
    spikes: at 8192 steps the reference itself is 0.5 % off): the error of the largest saddle force and of each
@@ -83,6 +84,30 @@ def _time_points(points, base_h16_ms: float):
         _, t16 = timed(lambda model=model, ex=ex, h16=h16: solve_nonlinear(model, ex, h16, static=False), 3)
         rows.append((label, case, Solved(bool(r.converged), float(r.max_gap_m), str(r.message)), t, t16))
     return rows
+
+
+def _retime_slowest(rows, base, count: int = 5, rounds: int = 11):
+    """The ``count`` slowest points of the scan timed again, interleaved with the base case's H = 16 solve, CPU time.
+
+    A scan's slowest median over 920 points is biased up by whatever else the machine ran at that moment; each
+    candidate is timed again in rounds alternating with the unit of the ratio, so both see the same load. Returns
+    (label, ms, base ms, ratio) per candidate, slowest ratio first.
+    """
+    from seafast.solvers.from_case import solve_nonlinear
+
+    model, ex = _setup(base)
+    base16 = _h16(base)
+    out = []
+    for label, case, *_ in sorted(rows, key=lambda row: -row[3])[:count]:
+        m, e = _setup(case)
+        solve_nonlinear(m, e, case, static=False)
+        t_point, t_base = [], []
+        for _ in range(rounds):
+            t_point.append(timed(lambda m=m, e=e, case=case: solve_nonlinear(m, e, case, static=False), 1, time.process_time)[1])
+            t_base.append(timed(lambda: solve_nonlinear(model, ex, base16, static=False), 3, time.process_time)[1])
+        point_ms, base_ms = float(np.median(t_point)), float(np.median(t_base))
+        out.append((label, point_ms, base_ms, point_ms / base_ms))
+    return sorted(out, key=lambda row: -row[3])
 
 
 def _check_sample(rows):
@@ -161,8 +186,13 @@ def main(argv: list[str] | None = None) -> int:
                 f"({worst[3] / base_h16_ms:.1f}x the base case's H = 16; {worst[2].message[:120]}); not converged: {unconverged}"
             )
         worst = max(rows, key=lambda row: row[3])
-        worst_ratio = worst[3] / base_h16_ms
-        print(f"worst point: {worst[0]}, {worst[3]:.1f} ms = {worst_ratio:.1f}x the base case's H = 16 solve (target <= 10)")
+        scan_ratio = worst[3] / base_h16_ms
+        print(f"slowest point of the scan: {worst[0]}, {worst[3]:.1f} ms = {scan_ratio:.1f}x the base case's H = 16 solve")
+        retimed = _retime_slowest(rows, base)
+        for label, point_ms, unit_ms, ratio in retimed:
+            print(f"  timed again, interleaved with the unit (CPU): {label:14s} {point_ms:6.1f} ms / {unit_ms:5.2f} ms = {ratio:.1f}x")
+        worst_label, worst_ms, _, worst_ratio = retimed[0]
+        print(f"worst point: {worst_label}, {worst_ratio:.1f}x the base case's H = 16 solve (target <= 10)")
         sample = _check_sample(rows)
     print(f"\nsample against the full-DOF transient analysis ({REFERENCE_STEPS} steps per period):")
     print(f"{'point':14s} {'gap [mm]':>9s} {'F error':>9s} {'own peak':>9s}  reference")
@@ -179,7 +209,8 @@ def main(argv: list[str] | None = None) -> int:
             f"ratio {converged_ratio:.2f} (target <= 1.5)"
         )
     print(
-        f"worst_point_vs_h16={worst_ratio:.3g} worst_point_ms={worst[3]:.3g} base_h16_ms={base_h16_ms:.3g} "
+        f"worst_point_vs_h16={worst_ratio:.3g} worst_point_ms={worst_ms:.3g} worst_point_scan_vs_h16={scan_ratio:.3g} "
+        f"base_h16_ms={base_h16_ms:.3g} "
         f"sample_points={len(sample)} sample_worst_own_peak_error={worst_error:.2e} converged_studies_vs_h16={converged_ratio:.3g}"
     )
     return 0
