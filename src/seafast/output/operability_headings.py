@@ -100,6 +100,7 @@ def heading_operability_dataset(result: HeadingOperabilityResult) -> xr.Dataset:
     )
     ds = ds.assign(_governing_variables(result))
     attrs = dict(ds.attrs)
+    attrs["title"] = f"seafast operability: {result.case.name}"
     attrs["case_json"] = result.case.model_dump_json()
     attrs["conventions"] = "MPMs over duration_s, still water included; wave heading per heading_deg (180 = head seas); Hs = 4 sqrt(m0)"
     for model in AllowableModel:
@@ -145,6 +146,16 @@ def format_heading_table(result: HeadingOperabilityResult, model: AllowableModel
     return "\n".join([title, fmt(head), fmt(["-" * w for w in widths])] + [fmt(r) for r in lines])
 
 
+def _polar_curves(heading_deg: np.ndarray, hs_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Headings [rad] in increasing order and the rows of ``hs_m`` with them; the first repeated at the end (+2 pi)
+    when the headings go round the circle evenly (the gap across 0 deg no wider than the others)."""
+    order = np.argsort(heading_deg % 360.0)
+    h, rows = heading_deg[order] % 360.0, hs_m[order, ...]
+    if h.size > 2 and 360.0 - h[-1] + h[0] <= np.max(np.diff(h)) + 1e-9:
+        h, rows = np.append(h, h[0] + 360.0), np.concatenate([rows, rows[:1]], axis=0)
+    return np.deg2rad(h), rows
+
+
 def plot_heading_operability(ds: xr.Dataset, path: str | Path) -> Path:
     """Polar chart (PNG, 200 dpi): nonlinear allowable Hs [m] against heading, one curve per Tp; 180 deg at the top."""
     import matplotlib
@@ -154,11 +165,9 @@ def plot_heading_operability(ds: xr.Dataset, path: str | Path) -> Path:
 
     from seafast.output.style import legend_outside, save_png
 
-    order = np.argsort(ds["heading_deg"].values % 360.0)
-    theta = np.deg2rad(ds["heading_deg"].values[order])
-    hs = ds["hs_allowable_nonlinear_m"].values[order, :]
+    theta, hs = _polar_curves(ds["heading_deg"].values, ds["hs_allowable_nonlinear_m"].values)
     tps = ds["peak_period_s"].values
-    fig = plt.figure(figsize=(9.0, 7.0))
+    fig = plt.figure(figsize=(10.0, 7.5))
     ax: Any = fig.add_subplot(projection="polar")  # a PolarAxes
     ax.set_theta_zero_location("S")  # 0 (following seas, waves from astern) at the bottom, 180 (head seas) at the top
     ax.set_theta_direction(1)  # counter-clockwise: 90 (waves from starboard) on the right
@@ -179,11 +188,12 @@ def plot_heading_operability(ds: xr.Dataset, path: str | Path) -> Path:
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=matplotlib.colors.Normalize(float(tps.min()), float(tps.min()) + span))
     fig.colorbar(sm, ax=ax, pad=0.12, shrink=0.7, label="peak period Tp [s]")
     ax.set_title(
-        f"{ds.attrs.get('title', '').removeprefix('seafast operability: ')}: allowable Hs [m] (nonlinear, radial) against wave "
-        "heading [deg]; 180 = head seas at the top (bow), 90 = beam seas from starboard on the right",
+        f"{ds.attrs.get('title', '').removeprefix('seafast operability: ')}: allowable Hs [m] (nonlinear, radial) against "
+        "wave heading [deg]\n180 = head seas at the top (bow), 90 = beam seas from starboard on the right",
         fontsize=9,
+        pad=24,
     )
-    legend_outside(ax, loc="upper left", bbox_to_anchor=(1.15, 1.12))
+    legend_outside(ax, loc="upper right", bbox_to_anchor=(0.0, 1.0))
     return save_png(fig, path, 200)
 
 
