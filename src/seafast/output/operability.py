@@ -224,10 +224,10 @@ def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
     """The operability chart (PNG, 200 dpi): allowable Hs against Tp, uplift onset, steepness limit, scatter cells.
 
     Over headings (a ``heading_deg`` dimension) the polar chart of
-    :func:`~seafast.output.operability_headings.plot_heading_operability`.
+    :func:`~seafast.output.operability_polar.plot_heading_operability`.
     """
     if "heading_deg" in ds.dims:
-        from seafast.output.operability_headings import plot_heading_operability
+        from seafast.output.operability_polar import plot_heading_operability
 
         return plot_heading_operability(ds, path)
     import matplotlib

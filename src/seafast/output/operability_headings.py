@@ -6,9 +6,8 @@ empty cell = not found; a heading whose analysis failed has governing ``failed``
 ``operability.nc`` holds every variable of the single-heading file over the dimensions
 ``(heading_deg, peak_period_s)``, each heading's error (``heading_error``) and per peak period the
 smallest allowable Hs over the headings and its heading (``governing_heading_*_deg``) and limit;
-the overall governing heading in the global attributes. The chart is polar: allowable Hs [m]
-radially against the heading, 180 deg (head seas, waves from ahead) at the top, the bow; 90 deg
-(beam seas, waves from starboard) on the right; one curve per peak period.
+the overall governing heading in the global attributes. The chart is polar
+(:mod:`~seafast.output.operability_polar`).
 """
 
 from __future__ import annotations
@@ -25,6 +24,7 @@ import yaml
 
 from seafast.analyses.operability.headings import AllowableModel, GoverningHeading, HeadingOperabilityResult
 from seafast.output.operability import OPERABILITY_COLUMNS, operability_dataset
+from seafast.output.operability_polar import plot_heading_operability
 from seafast.results.labelled import labelled_variable
 
 __all__ = [
@@ -34,7 +34,6 @@ __all__ = [
     "heading_operability_dataset",
     "format_heading_table",
     "governing_heading_text",
-    "plot_heading_operability",
     "write_heading_operability_outputs",
 ]
 
@@ -144,57 +143,6 @@ def format_heading_table(result: HeadingOperabilityResult, model: AllowableModel
 
     title = f"allowable Hs [m], {model}, per peak period and heading (180 deg = head seas, 90 = beam seas)"
     return "\n".join([title, fmt(head), fmt(["-" * w for w in widths])] + [fmt(r) for r in lines])
-
-
-def _polar_curves(heading_deg: np.ndarray, hs_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Headings [rad] in increasing order and the rows of ``hs_m`` with them; the first repeated at the end (+2 pi)
-    when the headings go round the circle evenly (the gap across 0 deg no wider than the others)."""
-    order = np.argsort(heading_deg % 360.0)
-    h, rows = heading_deg[order] % 360.0, hs_m[order, ...]
-    if h.size > 2 and 360.0 - h[-1] + h[0] <= np.max(np.diff(h)) + 1e-9:
-        h, rows = np.append(h, h[0] + 360.0), np.concatenate([rows, rows[:1]], axis=0)
-    return np.deg2rad(h), rows
-
-
-def plot_heading_operability(ds: xr.Dataset, path: str | Path) -> Path:
-    """Polar chart (PNG, 200 dpi): nonlinear allowable Hs [m] against heading, one curve per Tp; 180 deg at the top."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from seafast.output.style import legend_outside, save_png
-
-    theta, hs = _polar_curves(ds["heading_deg"].values, ds["hs_allowable_nonlinear_m"].values)
-    tps = ds["peak_period_s"].values
-    fig = plt.figure(figsize=(10.0, 7.5))
-    ax: Any = fig.add_subplot(projection="polar")  # a PolarAxes
-    ax.set_theta_zero_location("S")  # 0 (following seas, waves from astern) at the bottom, 180 (head seas) at the top
-    ax.set_theta_direction(1)  # counter-clockwise: 90 (waves from starboard) on the right
-    cmap = plt.get_cmap("viridis")
-    span = max(float(tps.max() - tps.min()), 1e-9)
-    for j, tp in enumerate(tps):
-        ax.plot(theta, hs[:, j], color=cmap((tp - tps.min()) / span), lw=1.0, marker=".", ms=3)
-    envelope = np.min(np.where(np.isnan(hs), np.inf, hs), axis=1)
-    envelope[np.isinf(envelope)] = np.nan
-    ax.plot(theta, envelope, color="black", lw=2.5, label="smallest over Tp")
-    if "governing_heading_nonlinear_deg" in ds.attrs:
-        heading, tp = float(ds.attrs["governing_heading_nonlinear_deg"]), float(ds.attrs["governing_peak_period_nonlinear_s"])
-        star = ([np.deg2rad(heading)], [float(ds.attrs["governing_hs_allowable_nonlinear_m"])])
-        ax.plot(*star, "r*", ms=14, label=f"governing: {heading:g} deg, Tp {tp:g} s")
-    names = {0: " following", 90: " beam (stbd)", 180: " head", 270: " beam (port)"}
-    ax.set_thetagrids(range(0, 360, 30), [f"{a}{names.get(a, '')}" for a in range(0, 360, 30)])
-    ax.set_rlim(0.0, 1.1 * max(float(np.nanmax(hs)) if np.isfinite(hs).any() else 0.1, 0.1))
-    sm = plt.cm.ScalarMappable(cmap=cmap, norm=matplotlib.colors.Normalize(float(tps.min()), float(tps.min()) + span))
-    fig.colorbar(sm, ax=ax, pad=0.12, shrink=0.7, label="peak period Tp [s]")
-    ax.set_title(
-        f"{ds.attrs.get('title', '').removeprefix('seafast operability: ')}: allowable Hs [m] (nonlinear, radial) against "
-        "wave heading [deg]\n180 = head seas at the top (bow), 90 = beam seas from starboard on the right",
-        fontsize=9,
-        pad=24,
-    )
-    legend_outside(ax, loc="upper right", bbox_to_anchor=(0.0, 1.0))
-    return save_png(fig, path, 200)
 
 
 def write_heading_operability_outputs(result: HeadingOperabilityResult, out_dir: str | Path, *, plots: bool = True) -> dict[str, Path]:

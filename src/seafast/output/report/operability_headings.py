@@ -75,13 +75,19 @@ def heading_operability_findings(ds: xr.Dataset) -> list[Finding]:
 def heading_operability_figure(ds: xr.Dataset) -> ReportFigure:
     """Polar chart: nonlinear allowable Hs against heading, one curve per Tp, the smallest over Tp, the governing heading."""
     import plotly.graph_objects as go
+    from plotly.colors import sample_colorscale
 
-    order = np.argsort(ds["heading_deg"].values % 360.0)
-    heading = ds["heading_deg"].values[order]
-    hs = ds["hs_allowable_nonlinear_m"].values[order, :]
+    from seafast.output.operability_polar import polar_curves
+
+    theta, hs = polar_curves(ds["heading_deg"].values, ds["hs_allowable_nonlinear_m"].values)
+    heading = np.rad2deg(theta)
+    tps = ds["peak_period_s"].values.astype(float)
+    colours = sample_colorscale("Viridis", list((tps - tps.min()) / max(float(np.ptp(tps)), 1e-9)))
     fig = go.Figure()
-    for j, tp in enumerate(ds["peak_period_s"].values):
-        fig.add_trace(go.Scatterpolar(r=hs[:, j], theta=heading, mode="lines+markers", name=f"Tp {float(tp):g} s", line={"width": 1}))
+    for j, tp in enumerate(tps):
+        fig.add_trace(
+            go.Scatterpolar(r=hs[:, j], theta=heading, mode="lines+markers", name=f"Tp {tp:g} s", line={"width": 1, "color": colours[j]})
+        )
     envelope = np.min(np.where(np.isnan(hs), np.inf, hs), axis=1)
     envelope[np.isinf(envelope)] = np.nan
     fig.add_trace(go.Scatterpolar(r=envelope, theta=heading, mode="lines", name="smallest over Tp", line={"color": "black", "width": 3}))
