@@ -21,7 +21,7 @@ from seafast.analyses.operability.headings import (
     check_headings,
 )
 from seafast.cli import main
-from seafast.cli.operability import parse_headings
+from seafast.cli.operability import parse_headings, parse_peak_periods
 from seafast.config import CaseError
 from seafast.config.schema import SeaStateConfig, max_significant_height_m
 
@@ -176,6 +176,7 @@ def test_headings_parser():
     assert parse_headings("90:180:15") == [90.0, 105.0, 120.0, 135.0, 150.0, 165.0, 180.0]
     assert parse_headings("150") == [150.0] and parse_headings("0:330:30")[-1] == 330.0
     assert parse_headings("300:360:30") == [300.0, 330.0, 360.0]
+    assert parse_peak_periods("10") == [10.0] and parse_peak_periods("5:6:0.5") == [5.0, 5.5, 6.0]  # as --tp
 
 
 @pytest.mark.parametrize(
