@@ -234,7 +234,7 @@ def _run_headings(args: argparse.Namespace, case: Case, headings: list[float], t
 
     if not args.quiet:
         print(
-            f"seafast operability: '{case.name}', {len(headings)} headings {headings[0]:g}-{headings[-1]:g} deg x {len(tps)} peak "
+            f"seafast operability: '{case.name}', {len(headings)} heading(s) {headings[0]:g}-{headings[-1]:g} deg x {len(tps)} peak "
             f"periods {tps[0]:g}-{tps[-1]:g} s" + (" (the default; --tp START:STOP:STEP to choose)" if default else ""),
             file=sys.stderr,
         )

@@ -47,7 +47,7 @@ def plot_heading_operability(ds: xr.Dataset, path: str | Path) -> Path:
         ax.plot(theta, hs[:, j], color=cmap((tp - tps.min()) / span), lw=1.0, marker=".", ms=3)
     envelope = np.min(np.where(np.isnan(hs), np.inf, hs), axis=1)
     envelope[np.isinf(envelope)] = np.nan
-    ax.plot(theta, envelope, color="black", lw=2.5, label="smallest over Tp")
+    ax.plot(theta, envelope, color="black", lw=2.5, marker="o", ms=4, label="smallest over Tp")
     if "governing_heading_nonlinear_deg" in ds.attrs:
         heading, tp = float(ds.attrs["governing_heading_nonlinear_deg"]), float(ds.attrs["governing_peak_period_nonlinear_s"])
         star = ([np.deg2rad(heading)], [float(ds.attrs["governing_hs_allowable_nonlinear_m"])])
