@@ -1,6 +1,11 @@
 """The ``seafast operability`` subcommand: allowable Hs per peak period, linear and nonlinear.
 
-``seafast operability [CASE] [--tp START:STOP:STEP] [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]``
+``seafast operability [CASE] [--tp START:STOP:STEP] [--headings START:STOP:STEP] [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]``
+
+With ``--headings`` (one heading or a range, degrees in [0, 360]; 180 = head seas, 90 = beam seas)
+the analysis runs once per heading (:func:`seafast.analyses.operability.headings.allowable_per_heading`),
+``operability.csv`` gains a leading ``heading_deg`` column, the chart is polar and the governing
+heading is named; without it the outputs are those of the case's own sea state alone.
 
 Without ``--tp`` the peak periods are :data:`DEFAULT_PEAK_PERIODS` (5 to 20 s every 0.5 s; the
 start raised to the shortest peak period the case's spectrum allows, see
@@ -17,6 +22,7 @@ import argparse
 import math
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -28,13 +34,16 @@ if TYPE_CHECKING:
 __all__ = [
     "add_operability_subcommand",
     "parse_peak_periods",
+    "parse_headings",
     "default_peak_periods",
     "OPERABILITY_EXAMPLES",
     "MAX_PEAK_PERIODS",
+    "MAX_HEADINGS",
     "DEFAULT_PEAK_PERIODS",
 ]
 
 MAX_PEAK_PERIODS = 1000
+MAX_HEADINGS = 361
 # START:STOP:STEP [s] without --tp: the wind seas and swell this kind of vessel meets, the
 # response peak (Tp 9.5-10 s on the base case) well inside (docs/operability.md section 4)
 DEFAULT_PEAK_PERIODS = "5:20:0.5"
@@ -44,35 +53,67 @@ OPERABILITY_EXAMPLES = """examples:
   seafast operability --tp 5:16:0.5                          # 23 peak periods
   seafast operability case.yaml --tp 6:14:1 -o out/op --set limits.max_saddle_force_N=11.5e6
   seafast operability --tp 4:18:1 --scatter hindcast.csv    # also the share of a scatter diagram within the limits
+  seafast operability --headings 90:180:15 --tp 6:14:1       # per heading (180 = head seas, 90 = beam seas): polar chart
 
 Outputs in DIR: operability.csv (peak_period_s,hs_allowable_linear_m,hs_allowable_nonlinear_m,hs_uplift_onset_m,
 governing_linear,governing_nonlinear; empty cell = not found), operability.nc, operability.png (Hs against Tp),
-case.yaml, and with --scatter scatter.csv. The spectrum shape, gamma and duration are the case's sea_state keys
+case.yaml, and with --scatter scatter.csv. With --headings: operability.csv gains a leading heading_deg column
+(one row per heading and Tp), operability.nc a heading_deg dimension, the chart is polar (180 deg = head seas at
+the top) and the governing heading (smallest allowable Hs) is printed. The spectrum shape, gamma and duration are the case's sea_state keys
 (its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa.
 'seafast report DIR' adds the operability section.
 """
 
 
+def _range(text: str, option: str, allowed: str, valid: Callable[[float, float, float], bool], most: int, what: str) -> list[float]:
+    """``START:STOP:STEP`` (STOP included) or one value to a list; ValueError naming ``option`` and ``allowed``."""
+    parts = str(text).split(":")
+    try:
+        if len(parts) == 1:
+            start = stop = float(parts[0])
+            step = 1.0
+        else:
+            start, stop, step = (float(p) for p in parts)
+    except ValueError:
+        raise ValueError(f"{option} {text!r}: allowed: {allowed}") from None
+    if not all(math.isfinite(v) for v in (start, stop, step)) or not valid(start, stop, step):
+        raise ValueError(f"{option} {text!r}: allowed: {allowed}")
+    n = math.floor((stop - start) / step + 1e-9) + 1
+    if n > most:
+        raise ValueError(f"{option} {text!r} gives {n} {what}; allowed: at most {most}")
+    return [round(start + i * step, 10) for i in range(n)]
+
+
 def parse_peak_periods(text: str) -> list[float]:
-    """``START:STOP:STEP`` [s] to the peak periods START, START + STEP, ... up to STOP inclusive.
+    """``START:STOP:STEP`` [s] to the peak periods START, START + STEP, ... up to STOP inclusive; or one peak period.
 
     Raises
     ------
     ValueError
         With a message naming ``--tp``, the value and what is allowed.
     """
-    allowed = "START:STOP:STEP in seconds with 0 < START <= STOP and STEP > 0, e.g. 5:16:0.5"
-    parts = str(text).split(":")
-    try:
-        start, stop, step = (float(p) for p in parts)
-    except ValueError:
-        raise ValueError(f"--tp {text!r}: allowed: {allowed}") from None
-    if not all(math.isfinite(v) for v in (start, stop, step)) or start <= 0 or stop < start or step <= 0:
-        raise ValueError(f"--tp {text!r}: allowed: {allowed}")
-    n = math.floor((stop - start) / step + 1e-9) + 1
-    if n > MAX_PEAK_PERIODS:
-        raise ValueError(f"--tp {text!r} gives {n} peak periods; allowed: at most {MAX_PEAK_PERIODS}")
-    return [round(start + i * step, 10) for i in range(n)]
+    allowed = "START:STOP:STEP in seconds with 0 < START <= STOP and STEP > 0, e.g. 5:16:0.5, or one peak period > 0"
+    return _range(text, "--tp", allowed, lambda a, b, s: 0 < a <= b and s > 0, MAX_PEAK_PERIODS, "peak periods")
+
+
+def parse_headings(text: str) -> list[float]:
+    """``START:STOP:STEP`` [deg] to the headings START, START + STEP, ... up to STOP inclusive; or one heading.
+
+    180 = head seas, 90 = beam seas; 0 and 360 are the same heading (not both).
+
+    Raises
+    ------
+    ValueError
+        With a message naming ``--headings``, the value and what is allowed.
+    """
+    allowed = (
+        "START:STOP:STEP in degrees with 0 <= START <= STOP <= 360 and STEP > 0, e.g. 90:180:15, or one heading "
+        "in [0, 360] (180 = head seas, 90 = beam seas)"
+    )
+    headings = _range(text, "--headings", allowed, lambda a, b, s: 0 <= a <= b <= 360 and s > 0, MAX_HEADINGS, "headings")
+    if len(headings) > 1 and headings[0] == 0.0 and headings[-1] == 360.0:
+        raise ValueError(f"--headings {text!r}: 0 and 360 deg are the same heading; allowed: one of them, e.g. 0:330:30")
+    return headings
 
 
 def default_peak_periods(case: Case) -> list[float]:
@@ -102,8 +143,14 @@ def _cmd_operability(args: argparse.Namespace) -> int:
 
     try:
         tps = parse_peak_periods(args.tp) if args.tp is not None else None
+        headings = parse_headings(args.headings) if args.headings is not None else None
     except ValueError as exc:
         return error(str(exc))
+    if headings is not None and args.scatter:
+        return error(
+            f"--scatter {args.scatter} with --headings {args.headings}: a scatter diagram is assessed in one heading; allowed: "
+            "--scatter without --headings (the case's sea state heading)"
+        )
     if args.scatter and Path(args.scatter).resolve() == (Path(args.output) / "scatter.csv").resolve():
         return error(
             f"--scatter {args.scatter}: it is the output scatter.csv of -o {args.output}; allowed: a file outside it, "
@@ -119,6 +166,8 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     default = tps is None
     if tps is None:
         tps = default_peak_periods(case)
+    if headings is not None:
+        return _run_headings(args, case, headings, tps, default, t0)
     scatter_tps = [float(t) for t in scatter.peak_periods_s] if scatter is not None else []
     say(
         f"seafast operability: '{case.name}', {len(tps)} peak periods {tps[0]:g}-{tps[-1]:g} s"
@@ -177,6 +226,54 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _run_headings(args: argparse.Namespace, case: Case, headings: list[float], tps: list[float], default: bool, t0: float) -> int:
+    """``seafast operability --headings``: the analysis per heading, its files and printed table, the exit code."""
+    from seafast.analyses.operability.headings import AllowableModel, allowable_per_heading
+    from seafast.config import CaseError
+    from seafast.output.operability_headings import format_heading_table, governing_heading_text, write_heading_operability_outputs
+
+    if not args.quiet:
+        print(
+            f"seafast operability: '{case.name}', {len(headings)} heading(s) {headings[0]:g}-{headings[-1]:g} deg x {len(tps)} peak "
+            f"periods {tps[0]:g}-{tps[-1]:g} s" + (" (the default; --tp START:STOP:STEP to choose)" if default else ""),
+            file=sys.stderr,
+        )
+
+    def progress(done: int, total: int) -> None:
+        if not args.quiet and sys.stderr.isatty():
+            print(f"\r  heading {done}/{total}", end="" if done < total else "\n", file=sys.stderr)
+
+    try:
+        result = allowable_per_heading(case, headings, tps, progress=progress)
+    except CaseError as exc:
+        message = str(exc)
+        if "sea_state.peak_period_s" in message:
+            message = f"--tp: a peak period is outside what the transfer functions resolve: {message}"
+        return error(f"--headings {args.headings}: {message}")
+    paths = write_heading_operability_outputs(result, args.output, plots=not args.no_plots)
+    if not args.quiet:
+        lim = case.limits
+        print(
+            f"{case.name}: allowable Hs per heading and peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
+            f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)"
+        )
+        print(format_heading_table(result))
+        for model in (AllowableModel.NONLINEAR, AllowableModel.LINEAR):
+            print(governing_heading_text(result.governing_heading(model), model))
+        print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
+    for h in result.headings:
+        if h.failed:
+            print(f"seafast: warning: heading {h.heading_deg:g} deg failed ({h.error}): its Hs are empty", file=sys.stderr)
+        elif not h.result.converged:
+            failed = ", ".join(f"{p.peak_period_s:g}" for p in h.result.points if not p.converged)
+            print(
+                f"seafast: warning: heading {h.heading_deg:g} deg: the nonlinear search did not converge at Tp = {failed} s "
+                "(governing_nonlinear = not_converged, empty Hs)",
+                file=sys.stderr,
+            )
+    return EXIT_OK if result.converged else EXIT_NOT_CONVERGED
+
+
 def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
     """Register ``seafast operability`` on an argparse subparsers object (handler returns the exit code)."""
     p = subparsers.add_parser(
@@ -195,6 +292,13 @@ def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         metavar="START:STOP:STEP",
         help=f"peak periods [s], STOP included, e.g. 5:16:0.5 (default: {DEFAULT_PEAK_PERIODS}, the start raised to the shortest "
         "peak period the case's spectrum resolves: 5.5 s for pierson_moskowitz)",
+    )
+    p.add_argument(
+        "--headings",
+        default=None,
+        metavar="START:STOP:STEP",
+        help="wave headings [deg], STOP included, or one heading, in [0, 360]: 180 = head seas, 90 = beam seas from starboard, "
+        "e.g. 90:180:15 (default: the case's sea state alone, no heading column)",
     )
     p.add_argument("-o", "--output", default="seafast-operability", help="output directory (default: %(default)s)")
     p.add_argument(

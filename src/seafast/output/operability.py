@@ -221,7 +221,15 @@ def format_operability_table(result: OperabilityResult) -> str:
 
 
 def plot_operability(ds: xr.Dataset, path: str | Path) -> Path:
-    """The operability chart (PNG, 200 dpi): allowable Hs against Tp, uplift onset, steepness limit, scatter cells."""
+    """The operability chart (PNG, 200 dpi): allowable Hs against Tp, uplift onset, steepness limit, scatter cells.
+
+    Over headings (a ``heading_deg`` dimension) the polar chart of
+    :func:`~seafast.output.operability_polar.plot_heading_operability`.
+    """
+    if "heading_deg" in ds.dims:
+        from seafast.output.operability_polar import plot_heading_operability
+
+        return plot_heading_operability(ds, path)
     import matplotlib
 
     matplotlib.use("Agg")

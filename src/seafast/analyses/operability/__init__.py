@@ -2,6 +2,7 @@
 
 * :mod:`~seafast.analyses.operability.allowable` - the allowable Hs per Tp (closed forms; bracketing with design waves).
 * :mod:`~seafast.analyses.operability.scatter` - a wave scatter diagram's share of sea states within the limits.
+* :mod:`~seafast.analyses.operability.headings` - the allowable Hs per heading and the governing heading.
 
 Its files (operability.csv / .nc, the chart): :mod:`seafast.output.operability`.
 Theory, rules and verification: ``docs/operability.md``.
@@ -21,6 +22,13 @@ if TYPE_CHECKING:
         OperabilitySettings,
         allowable_sea_states,
     )
+    from seafast.analyses.operability.headings import (
+        GoverningHeading,
+        HeadingOperability,
+        HeadingOperabilityResult,
+        allowable_per_heading,
+        case_at_heading,
+    )
 
 # imported on first use (seafast.lazy), so the command line's parser does not load numpy/xarray
 EXPORTS = {
@@ -31,6 +39,13 @@ EXPORTS = {
         "OperabilitySettings",
         "allowable_sea_states",
     ),
+    "seafast.analyses.operability.headings": (
+        "GoverningHeading",
+        "HeadingOperability",
+        "HeadingOperabilityResult",
+        "allowable_per_heading",
+        "case_at_heading",
+    ),
 }
 __all__ = [
     "GOVERNING",
@@ -38,5 +53,10 @@ __all__ = [
     "OperabilityResult",
     "OperabilitySettings",
     "allowable_sea_states",
+    "GoverningHeading",
+    "HeadingOperability",
+    "HeadingOperabilityResult",
+    "allowable_per_heading",
+    "case_at_heading",
 ]
 lazy_exports(__name__, EXPORTS)

@@ -154,8 +154,13 @@ def operability_report_sections(
 ) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
     """The operability section (id, heading, inner HTML), its figure and findings.
 
-    ``first_figure``: whether plotly.js still has to be embedded; returned updated.
+    ``first_figure``: whether plotly.js still has to be embedded; returned updated. An operability.nc over
+    headings (a ``heading_deg`` dimension) gets its own section (:mod:`~seafast.output.report.operability_headings`).
     """
+    if "heading_deg" in ds.dims:
+        from seafast.output.report.operability_headings import heading_operability_report_sections
+
+        return heading_operability_report_sections(ds, first_figure)
     needed = (
         "hs_allowable_linear_m",
         "hs_allowable_nonlinear_m",
