@@ -62,7 +62,7 @@ def _case_rows(result: CriteriaResult, item: CriteriaCaseResult) -> list[dict[st
         "M_b_Nm": item.bending_moment_Nm,
         "sigma_b_Pa": item.bending_stress_Pa,
     }
-    converged = st.outcome is StaticsOutcome.CONVERGED
+    converged = item.outcome == StaticsOutcome.CONVERGED.value
     rows = []
     for check, utilisation, limit in (
         ("saddle_force", item.utilisation_force, result.max_saddle_force_N),
@@ -72,7 +72,7 @@ def _case_rows(result: CriteriaResult, item: CriteriaCaseResult) -> list[dict[st
         extra = {
             "check": check,
             "limit": limit,
-            "outcome": st.outcome.value,
+            "outcome": item.outcome,
             "F_axial_N": item.axial_hold_force_N,
             "source": result.criteria.source,
         }
@@ -127,7 +127,7 @@ def format_criteria_table(result: CriteriaResult) -> str:
             f"{item.saddle_force_N / 1e6:7.3f} {st.pad_force_N.max(initial=0.0) / 1e6:7.3f} "
             f"{st.stopper_force_N.max(initial=0.0) / 1e6:7.3f} {st.lashing_tension_N.max(initial=0.0) / 1e3:8.1f} "
             f"{item.bending_stress_Pa / 1e6:9.2f} {item.utilisation:6.3f} {item.verdict.value}"
-            + ("" if st.outcome is StaticsOutcome.CONVERGED else f" ({st.outcome.value})")
+            + ("" if item.outcome == StaticsOutcome.CONVERGED.value else f" ({item.outcome})")
         )
     g = result.governing
     lines.append(f"governing: {g.load_case.name} (utilisation {g.utilisation:.3f}); overall {result.verdict.value}")

@@ -42,6 +42,11 @@ __all__ = [
 MOMENT_POINTS_PER_ELEMENT = 4
 """Samples of the bending moment inside each element (its ends included)."""
 
+SMALL_DISPLACEMENT_FRACTION = 0.01
+"""The statics are linear in the cargo's displacement (docs/transverse.md): a case whose cargo axis moves across or
+up by more than this fraction of the tube's radius beyond the side stoppers' gap (e.g. rolled out over its low-side
+pads and held only by its lashings' stretch) is outside the model and fails."""
+
 
 class Verdict(StrEnum):
     """A check's verdict."""
@@ -86,6 +91,10 @@ class CriteriaCaseResult:
         The largest resultant bending moment [N m] and stress [Pa] along the cargo.
     utilisation_force, utilisation_stress
         ``F_N / max_saddle_force_N`` and ``sigma_b / max_bending_stress_Pa`` [-] (inf when not converged).
+    displacement_max_m
+        The cargo axis's largest lateral or vertical displacement [m].
+    displacement_limit_m
+        The small-displacement limit (:data:`SMALL_DISPLACEMENT_FRACTION`) [m].
     """
 
     load_case: CriteriaLoadCase
@@ -97,6 +106,15 @@ class CriteriaCaseResult:
     bending_stress_Pa: float
     utilisation_force: float
     utilisation_stress: float
+    displacement_max_m: float
+    displacement_limit_m: float
+
+    @property
+    def outcome(self) -> str:
+        """The statics' outcome, or ``large_displacement`` when converged beyond the small-displacement limit."""
+        if self.statics.outcome is StaticsOutcome.CONVERGED and self.displacement_max_m > self.displacement_limit_m:
+            return "large_displacement"
+        return self.statics.outcome.value
 
     @property
     def saddle_force_N(self) -> float:
@@ -109,8 +127,8 @@ class CriteriaCaseResult:
 
     @property
     def verdict(self) -> Verdict:
-        """Pass when solved exactly and both utilisations are at most 1."""
-        ok = self.statics.outcome is StaticsOutcome.CONVERGED and self.utilisation <= 1.0
+        """Pass when solved exactly within small displacements and both utilisations are at most 1."""
+        ok = self.outcome == StaticsOutcome.CONVERGED.value and self.utilisation <= 1.0
         return Verdict.PASS if ok else Verdict.FAIL
 
 
@@ -224,6 +242,9 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
     force = statics.pair_vertical_force_N
     middle = 0.5 * (points[0] + points[-1])
     lim = case.limits
+    n = cradle.cargo.node_count
+    gap = case.seafastening.side_stopper.gap_m or 0.0
+    limit = SMALL_DISPLACEMENT_FRACTION * float(np.min(cradle.tube_radius_m)) + gap
     return CriteriaCaseResult(
         load_case=load_case,
         statics=statics,
@@ -234,6 +255,8 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
         bending_stress_Pa=stress,
         utilisation_force=float(np.max(force)) / lim.max_saddle_force_N if converged else np.inf,
         utilisation_stress=stress / lim.max_bending_stress_Pa if converged else np.inf,
+        displacement_max_m=float(np.max(np.abs(statics.displacement[0 : 4 * n : 2]))),
+        displacement_limit_m=limit,
     )
 
 
