@@ -82,7 +82,8 @@ class CriteriaCaseResult:
     statics
         The exact statics (forces, displacements, outcome).
     apparent_gravity_cog_m_s2
-        The apparent gravity at the cargo's centre of gravity (its axis at mid-length), ship frame [m/s^2].
+        The apparent gravity at the cargo's centre of gravity (on its axis at its centre of mass), ship frame [m/s^2]:
+        the field is linear along the axis, so this is the resultant load over the mass.
     saddle_vertical_force_N
         Each saddle's pad pair's push on the cargo along the ship's z [N] (F of the vertical model).
     axial_hold_force_N
@@ -240,7 +241,9 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
     axial = float(-np.sum(hold[4 * cradle.cargo.node_count :]))
     converged = statics.outcome is StaticsOutcome.CONVERGED
     force = statics.pair_vertical_force_N
-    middle = 0.5 * (points[0] + points[-1])
+    beam = cradle.cargo.vertical
+    weight = beam.element_mass_per_length_kg_per_m * np.diff(beam.node_x_m)
+    cog = cargo_axis_points_m(case, np.array([float(weight @ beam.element_mid_x_m / weight.sum())]), origin)[0]
     lim = case.limits
     n = cradle.cargo.node_count
     gap = case.seafastening.side_stopper.gap_m or 0.0
@@ -248,7 +251,7 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
     return CriteriaCaseResult(
         load_case=load_case,
         statics=statics,
-        apparent_gravity_cog_m_s2=apparent_gravity_m_s2(load_case, middle, g),
+        apparent_gravity_cog_m_s2=apparent_gravity_m_s2(load_case, cog, g),
         saddle_vertical_force_N=force,
         axial_hold_force_N=axial,
         bending_moment_Nm=moment,
