@@ -43,9 +43,9 @@ MOMENT_POINTS_PER_ELEMENT = 4
 """Samples of the bending moment inside each element (its ends included)."""
 
 SMALL_DISPLACEMENT_FRACTION = 0.01
-"""The statics are linear in the cargo's displacement (docs/transverse.md): a case whose cargo axis moves across or
-up by more than this fraction of the tube's radius beyond the side stoppers' gap (e.g. rolled out over its low-side
-pads and held only by its lashings' stretch) is outside the model and fails."""
+"""The statics are linear in the cargo's displacement (docs/transverse.md): a case whose cargo axis rises at a saddle
+above its pads' touching position by more than this fraction of the tube's radius (rolled out over its low-side pads and held
+only by its lashings' stretch) has left its cradles, outside the model, and fails."""
 
 
 class Verdict(StrEnum):
@@ -92,10 +92,11 @@ class CriteriaCaseResult:
         The largest resultant bending moment [N m] and stress [Pa] along the cargo.
     utilisation_force, utilisation_stress
         ``F_N / max_saddle_force_N`` and ``sigma_b / max_bending_stress_Pa`` [-] (inf when not converged).
-    displacement_max_m
-        The cargo axis's largest lateral or vertical displacement [m].
-    displacement_limit_m
-        The small-displacement limit (:data:`SMALL_DISPLACEMENT_FRACTION`) [m].
+    rise_max_m
+        The cargo axis's largest rise at a saddle above its pads' touching position [m] (negative: pressed into its
+        pads).
+    rise_limit_m
+        The small-displacement limit of the rise (:data:`SMALL_DISPLACEMENT_FRACTION` of the smallest radius) [m].
     """
 
     load_case: CriteriaLoadCase
@@ -107,13 +108,13 @@ class CriteriaCaseResult:
     bending_stress_Pa: float
     utilisation_force: float
     utilisation_stress: float
-    displacement_max_m: float
-    displacement_limit_m: float
+    rise_max_m: float
+    rise_limit_m: float
 
     @property
     def outcome(self) -> str:
-        """The statics' outcome, or ``large_displacement`` when converged beyond the small-displacement limit."""
-        if self.statics.outcome is StaticsOutcome.CONVERGED and self.displacement_max_m > self.displacement_limit_m:
+        """The statics' outcome, or ``large_displacement`` when converged with the cargo risen out of its cradles."""
+        if self.statics.outcome is StaticsOutcome.CONVERGED and self.rise_max_m > self.rise_limit_m:
             return "large_displacement"
         return self.statics.outcome.value
 
@@ -245,9 +246,7 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
     weight = beam.element_mass_per_length_kg_per_m * np.diff(beam.node_x_m)
     cog = cargo_axis_points_m(case, np.array([float(weight @ beam.element_mid_x_m / weight.sum())]), origin)[0]
     lim = case.limits
-    n = cradle.cargo.node_count
-    gap = case.seafastening.side_stopper.gap_m or 0.0
-    limit = SMALL_DISPLACEMENT_FRACTION * float(np.min(cradle.tube_radius_m)) + gap
+    saddles = np.array([cradle.cargo.node_at(float(x)) for x in cradle.saddle_x_m], dtype=np.intp)
     return CriteriaCaseResult(
         load_case=load_case,
         statics=statics,
@@ -258,8 +257,8 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
         bending_stress_Pa=stress,
         utilisation_force=float(np.max(force)) / lim.max_saddle_force_N if converged else np.inf,
         utilisation_stress=stress / lim.max_bending_stress_Pa if converged else np.inf,
-        displacement_max_m=float(np.max(np.abs(statics.displacement[0 : 4 * n : 2]))),
-        displacement_limit_m=limit,
+        rise_max_m=float(np.max(statics.displacement[2 * saddles])),
+        rise_limit_m=SMALL_DISPLACEMENT_FRACTION * float(np.min(cradle.tube_radius_m)),
     )
 
 
