@@ -42,6 +42,7 @@ def test_criteria_writes_the_spec_columns_one_row_per_case_and_check(tmp_path, c
         ("seafastening.saddle_contact_angle_deg=0", "seafastening.saddle_contact_angle_deg"),
         ("seafastening.side_stopper.gap_m=0.02", "stiffness_N_per_m"),
         ("seafastening.side_stopper.stiffness_N_per_m=-1", "seafastening.side_stopper.stiffness_N_per_m"),
+        ("seafastening.saddle_stiffness_N_per_m=1000", "seafastening.saddle_stiffness_N_per_m"),  # below the wires' k_l sin^2
     ],
 )
 def test_bad_input_exits_2_naming_the_key(tmp_path, capsys, override, expect):

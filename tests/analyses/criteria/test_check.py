@@ -119,3 +119,43 @@ def test_a_lifting_pad_onto_the_stoppers_and_a_mechanism_without_them():
         assert np.allclose(stopper[:, low], np.abs(h) - v * math.tan(alpha), rtol=0, atol=1e-8 * scale)
         assert np.all(stopper[:, 1 - low] == 0.0)
         assert item.utilisation < 1.0 and item.verdict.value == "pass"
+
+
+def test_three_saddles_with_stoppers_balance_the_fields_resultant_force_and_moment():
+    """Statically indeterminate: the restraints' forces and moments against the load field's, integrated apart."""
+    case = load_case(overrides={"seafastening.side_stopper.gap_m": 0.001, "seafastening.side_stopper.stiffness_N_per_m": 5e8})
+    result = criteria_check(case)
+    cradle = build_cradle_case(case)
+    beam = cradle.cargo.vertical
+    x = beam.node_x_m
+    # the field on a fine grid, integrated by the midpoint rule (exact for a field linear along a uniform tube)
+    xs = np.linspace(0.0, case.cargo.length_m, 74001)
+    mid = 0.5 * (xs[1:] + xs[:-1])
+    dm = float(beam.element_mass_per_length_kg_per_m[0]) * np.diff(xs)
+    stops = np.repeat(cradle.saddle_x_m, 2)
+    assert sum(c.statics.stopper_force_N.max() > 0.0 for c in result.cases) == 4  # every roll meets a stopper
+    for item in result.cases:
+        st = item.statics
+        assert item.outcome == "converged", item.load_case.name
+        field = apparent_gravity_m_s2(item.load_case, cargo_axis_points_m(case, mid, motion_origin(case)), case.model.gravity_m_per_s2)
+        load = dm @ field
+        load_moment = np.array([-(dm * mid) @ field[:, 2], (dm * mid) @ field[:, 1]])  # about the aft end: -sum x f_z, sum x f_y
+        stopper_y = st.stopper_force_N * np.tile([-1.0, 1.0], len(cradle.saddle_x_m))  # a port stopper pushes to starboard
+        pull = np.array([t * w.direction for t, w in zip(st.lashing_tension_N, cradle.lashings, strict=True)])
+        xw = np.array([w.cargo_point_m[0] for w in cradle.lashings])
+        reaction = np.array(
+            [
+                item.axial_hold_force_N + pull[:, 0].sum(),
+                st.pair_lateral_force_N.sum() + stopper_y.sum() + pull[:, 1].sum(),
+                st.pair_vertical_force_N.sum() + pull[:, 2].sum(),
+            ]
+        )
+        reaction_moment = np.array(
+            [
+                -(cradle.saddle_x_m @ st.pair_vertical_force_N + xw @ pull[:, 2]),
+                cradle.saddle_x_m @ st.pair_lateral_force_N + stops @ stopper_y + xw @ pull[:, 1],
+            ]
+        )
+        scale = float(np.linalg.norm(load))
+        assert np.allclose(reaction, -load, rtol=0, atol=1e-8 * scale), item.load_case.name
+        assert np.allclose(reaction_moment, -load_moment, rtol=0, atol=1e-8 * scale * x[-1]), item.load_case.name
