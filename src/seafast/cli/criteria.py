@@ -47,9 +47,10 @@ def _cmd_criteria(args: argparse.Namespace) -> int:
         print(f"{case.name}: F <= {case.limits.max_saddle_force_N / 1e6:g} MN, sigma_b <= {case.limits.max_bending_stress_Pa / 1e6:g} MPa")
         print(format_criteria_table(result))
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
-    failed = [c.load_case.name for c in result.cases if c.statics.outcome is StaticsOutcome.NOT_CONVERGED]
+    failed = [c for c in result.cases if c.outcome == StaticsOutcome.NOT_CONVERGED.value]
     if failed:
-        print(f"seafast: warning: the statics did not converge in {', '.join(failed)} (outcome not_converged)", file=sys.stderr)
+        cases = ", ".join(f"{c.load_case.name} (residual {c.statics.residual_N:.3g} N)" for c in failed)
+        print(f"seafast: warning: the statics did not converge in {cases}: outcome not_converged", file=sys.stderr)
         return EXIT_NOT_CONVERGED
     return EXIT_OK
 

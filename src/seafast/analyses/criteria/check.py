@@ -42,6 +42,11 @@ __all__ = [
 MOMENT_POINTS_PER_ELEMENT = 4
 """Samples of the bending moment inside each element (its ends included)."""
 
+RESIDUAL_FRACTION = 1e-6
+"""A converged statics whose equilibrium residual exceeds this fraction of the cargo's weight is reported as
+``not_converged`` (the solver's sign tolerance is relative to the largest engagement, which a very soft lashing's
+stretch ``T0 / k`` can make coarse)."""
+
 SMALL_DISPLACEMENT_FRACTION = 0.01
 """The statics are linear in the cargo's displacement (docs/transverse.md): a case whose cargo axis rises at a saddle
 above its pads' touching position by more than this fraction of the tube's radius (rolled out over its low-side pads and held
@@ -95,6 +100,8 @@ class CriteriaCaseResult:
     rise_max_m
         The cargo axis's largest rise at a saddle above its pads' touching position [m] (negative: pressed into its
         pads).
+    residual_limit_N
+        The largest equilibrium residual accepted as converged (:data:`RESIDUAL_FRACTION` of the weight) [N].
     rise_limit_m
         The small-displacement limit of the rise (:data:`SMALL_DISPLACEMENT_FRACTION` of the smallest radius) [m].
     """
@@ -110,12 +117,17 @@ class CriteriaCaseResult:
     utilisation_stress: float
     rise_max_m: float
     rise_limit_m: float
+    residual_limit_N: float
 
     @property
     def outcome(self) -> str:
-        """The statics' outcome, or ``large_displacement`` when converged with the cargo risen out of its cradles."""
-        if self.statics.outcome is StaticsOutcome.CONVERGED and self.rise_max_m > self.rise_limit_m:
-            return "large_displacement"
+        """The statics' outcome; ``large_displacement`` when converged with the cargo risen out of its cradles, else
+        ``not_converged`` when converged with a residual above its limit."""
+        if self.statics.outcome is StaticsOutcome.CONVERGED:
+            if self.rise_max_m > self.rise_limit_m:
+                return "large_displacement"
+            if self.statics.residual_N > self.residual_limit_N:
+                return StaticsOutcome.NOT_CONVERGED.value
         return self.statics.outcome.value
 
     @property
@@ -259,6 +271,7 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
         utilisation_stress=stress / lim.max_bending_stress_Pa if converged else np.inf,
         rise_max_m=float(np.max(statics.displacement[2 * saddles])),
         rise_limit_m=SMALL_DISPLACEMENT_FRACTION * float(np.min(cradle.tube_radius_m)),
+        residual_limit_N=RESIDUAL_FRACTION * float(weight.sum()) * g,
     )
 
 
