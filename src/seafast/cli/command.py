@@ -33,6 +33,7 @@ import seafast  # noqa: E402
 from seafast.cli.case_file import add_init_subcommand, add_schema_subcommand  # noqa: E402
 from seafast.cli.common import EXIT_OK  # noqa: E402
 from seafast.cli.console import command_logging  # noqa: E402
+from seafast.cli.criteria import add_criteria_subcommand  # noqa: E402
 from seafast.cli.operability import add_operability_subcommand  # noqa: E402
 from seafast.cli.report import add_report_subcommand  # noqa: E402
 from seafast.cli.run import add_run_subcommand  # noqa: E402
@@ -66,6 +67,7 @@ def build_parser() -> argparse.ArgumentParser:
         add_study_subcommand,
         add_seastate_subcommand,
         add_operability_subcommand,
+        add_criteria_subcommand,
         add_report_subcommand,
     ):
         add(sub)

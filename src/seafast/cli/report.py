@@ -52,7 +52,12 @@ def add_report_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         epilog=REPORT_EXAMPLES,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    p.add_argument("directory", metavar="DIR", help="output directory of 'seafast run' (results.nc) or 'seafast study' (study.nc)")
+    p.add_argument(
+        "directory",
+        metavar="DIR",
+        help="output directory of 'seafast run' (results.nc), 'seafast study' (study.nc), 'seafast seastate', "
+        "'seafast operability' or 'seafast criteria' (criteria.csv)",
+    )
     p.add_argument("-o", "--output", metavar="FILE", default=None, help=f"HTML file to write (default: DIR/{REPORT_FILENAME})")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG/PDF print figures")
     p.set_defaults(handler=_cmd_report)

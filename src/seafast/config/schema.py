@@ -34,6 +34,7 @@ __all__ = [
     "SeaFasteningConfig",
     "LashingConfig",
     "StopperConfig",
+    "SideStopperConfig",
     "VesselConfig",
     "WaveConfig",
     "SolverConfig",
@@ -48,6 +49,10 @@ __all__ = [
 ]
 
 BASE_SADDLE_STIFFNESS_N_PER_M = 1.1e9
+
+DEFAULT_SADDLE_CONTACT_ANGLE_DEG = 45.0
+"""Half-angle of a saddle's two pads from bottom dead centre [deg]: a 90 deg contact arc, the middle of the
+60-120 deg arcs of monopile transport saddles (docs/criteria.md); a stand-in for the saddle's drawing."""
 
 
 class CargoSectionConfig(StrictSection):
@@ -146,6 +151,23 @@ class StopperConfig(StrictSection):
         return self
 
 
+class SideStopperConfig(StrictSection):
+    """Optional side stoppers beside every saddle, port and starboard: compression-only lateral springs with a gap
+    (``seafast criteria``, docs/transverse.md)."""
+
+    gap_m: NonNegative | None = Field(
+        None, description="Lateral clearance between the cargo and each side stopper [m]; null = no side stoppers"
+    )
+    stiffness_N_per_m: Positive | None = Field(None, description="Lateral stiffness of each side stopper [N/m] (needed with gap_m)")
+
+    @model_validator(mode="after")
+    def _check(self) -> SideStopperConfig:
+        if (self.gap_m is None) != (self.stiffness_N_per_m is None):
+            given, missing = ("gap_m", "stiffness_N_per_m") if self.stiffness_N_per_m is None else ("stiffness_N_per_m", "gap_m")
+            raise ValueError(f"{given} is set but {missing} is not; give both (side stoppers) or neither (none)")
+        return self
+
+
 class SeaFasteningConfig(StrictSection):
     """Saddles and lashings."""
 
@@ -173,9 +195,17 @@ class SeaFasteningConfig(StrictSection):
         "null = 1e12 N/m, a rigid contact (the results are then independent of it, docs/axial.md; axial analysis only)",
     )
     saddle_height_m: NonNegative = Field(
-        1.0, description="Height of the cargo's underside (the saddles' contact line) above the deck [m] (axial analysis only)"
+        1.0,
+        description="Height of the cargo's underside (the saddles' contact line) above the deck [m] (the lever arms of the axial analysis, the motions and seafast criteria)",
     )
     stopper: StopperConfig = StopperConfig()
+    saddle_contact_angle_deg: Annotated[float, Field(gt=0, lt=90, allow_inf_nan=False), NotBool] = Field(
+        DEFAULT_SADDLE_CONTACT_ANGLE_DEG,
+        description="Half-angle of each saddle's two pads from bottom dead centre [deg], 0 < alpha < 90 (a contact arc of "
+        "2 alpha); default 45, the middle of typical monopile saddles' 60-120 deg arcs: set it from the saddle drawing "
+        "(seafast criteria, docs/criteria.md)",
+    )
+    side_stopper: SideStopperConfig = SideStopperConfig()
 
     @field_validator("friction_coefficient", mode="before")
     @classmethod
@@ -236,7 +266,8 @@ class VesselConfig(StrictSection):
         "always uses the coupled surge and pitch",
     )
     deck_height_m: Positive = Field(
-        12.0, description="Height of the cargo deck above the keel [m] (moulded depth; the axial analysis's lever arm of pitch)"
+        12.0,
+        description="Height of the cargo deck above the keel [m] (moulded depth; the lever arms of pitch in the axial analysis and of roll and pitch in seafast criteria)",
     )
     vertical_centre_of_gravity_m: Positive | None = Field(
         None, description="Loaded ship's KG above the keel [m]; null = from the weight distribution (head seas: the 8 m of before)"

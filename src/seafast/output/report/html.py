@@ -271,8 +271,11 @@ def build_report_html(
     files_note: str = "",
     seastate: xr.Dataset | None = None,
     operability: xr.Dataset | None = None,
+    criteria: list[dict[str, str]] | None = None,
 ) -> tuple[str, list[ReportFigure], list[Finding]]:
     """The report page of a run and/or a study dataset (pure: no files written).
+
+    ``criteria``: the rows of a ``seafast criteria`` criteria.csv (the design-criteria section).
 
     Returns
     -------
@@ -320,6 +323,13 @@ def build_report_html(
         figures += ofigs
         findings += ofnd
         names.append(f"operability {operability.attrs.get('title', '').removeprefix('seafast operability: ')}")
+    if criteria is not None:
+        from seafast.output.report.criteria import criteria_report_sections
+
+        s, cfnd = criteria_report_sections(criteria)
+        sections += s
+        findings += cfnd
+        names.append("design criteria")
     sources = [d for d in (run, study, seastate, operability) if d is not None]
     version = sources[0].attrs.get("seafast_version", "") if sources else ""
     stamp = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")

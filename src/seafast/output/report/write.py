@@ -8,6 +8,7 @@ from pathlib import Path
 import xarray as xr
 
 from seafast.output.report.common import FIGURES_DIRNAME, PDF_FILENAME, PNG_DPI, REPORT_FILENAME, ReportError, ReportOutputs
+from seafast.output.report.criteria import read_criteria_csv
 from seafast.output.report.html import build_report_html
 from seafast.output.report.print_figures import write_print_figures
 
@@ -29,7 +30,7 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
     ----------
     directory : str or Path
         Holds ``results.nc`` (run), ``study.nc`` (study), ``seastate.nc`` (sea state) and/or
-        ``operability.nc`` (operability).
+        ``operability.nc`` (operability) and/or ``criteria.csv`` (design criteria).
     output : str or Path, optional
         The HTML file (default ``DIR/report.html``). The print figures go next to it:
         ``report_figures/*.png`` and ``report_figures.pdf``.
@@ -47,15 +48,18 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
     if not d.is_dir():
         raise ReportError(f"'{d}' is not a directory; give the output directory of 'seafast run' or 'seafast study'")
     run_nc, study_nc, seastate_nc, operability_nc = d / "results.nc", d / "study.nc", d / "seastate.nc", d / "operability.nc"
-    if not any(p.is_file() for p in (run_nc, study_nc, seastate_nc, operability_nc)):
+    criteria_csv = d / "criteria.csv"
+    if not any(p.is_file() for p in (run_nc, study_nc, seastate_nc, operability_nc, criteria_csv)):
         raise ReportError(
             f"'{d}' holds neither results.nc (from 'seafast run -o DIR'), study.nc (from 'seafast study NAME -o DIR'), "
-            "seastate.nc (from 'seafast seastate -o DIR') nor operability.nc (from 'seafast operability --tp ... -o DIR')"
+            "seastate.nc (from 'seafast seastate -o DIR'), operability.nc (from 'seafast operability --tp ... -o DIR') "
+            "nor criteria.csv (from 'seafast criteria -o DIR')"
         )
     run = _open(run_nc) if run_nc.is_file() else None
     study = _open(study_nc) if study_nc.is_file() else None
     seastate = _open(seastate_nc) if seastate_nc.is_file() else None
     operability = _open(operability_nc) if operability_nc.is_file() else None
+    criteria = read_criteria_csv(criteria_csv) if criteria_csv.is_file() else None
     out = Path(output) if output is not None else d / REPORT_FILENAME
     out.parent.mkdir(parents=True, exist_ok=True)
     fig_dir, pdf_path = out.parent / FIGURES_DIRNAME, out.parent / PDF_FILENAME
@@ -84,7 +88,7 @@ def write_report(directory: str | Path, output: str | Path | None = None, *, fig
         else ""
     )
     page, figs, findings = build_report_html(
-        run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate, operability=operability
+        run, study, ranking_csv=d / "ranking.csv", files_note=files_note, seastate=seastate, operability=operability, criteria=criteria
     )
     out.write_text(page, encoding="utf-8")
     return ReportOutputs(out, tuple(pngs), pdf_path if figures else None, tuple(f.id for f in figs), tuple(findings))

@@ -1,0 +1,10 @@
+"""Design criteria: the standard's default motion criteria as quasi-static load cases on the cargo in its cradles.
+
+* :mod:`~seafast.analyses.criteria.standard` - the default motion criteria table and its selection by vessel size.
+* :mod:`~seafast.analyses.criteria.load_cases` - the load cases (roll or pitch with heave, each sign) and the
+  apparent gravity at any cargo point.
+* :mod:`~seafast.analyses.criteria.check` - each case solved exactly on the cradles, stoppers and lashings, and
+  checked against the case's limits.
+
+Its files (criteria.csv): :mod:`seafast.output.criteria`. Theory, sources and verification: ``docs/criteria.md``.
+"""
