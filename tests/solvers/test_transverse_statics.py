@@ -264,6 +264,32 @@ def test_a_slack_lashing_carries_exactly_zero_and_a_taut_one_its_pretension_plus
     assert bool(result.lashing_slack.any()) == (heel_deg != 0.0)
 
 
+def test_a_very_soft_lashing_does_not_loosen_the_pads_signs():
+    """Lashings whose pretension over stiffness is 1e5 m, heeled just past the pad angle: the high-side pads must
+    lift and the stoppers take the rest. The sign check is on forces: one relative to that 1e5 m engagement passed
+    the first set, every pad engaged and the high-side ones pulling, 1.1 kN out of balance."""
+    xs = (10.0, 52.0)
+    cargo = cargo_on(xs)
+    alpha, heel = 35.0, 35.01
+    lashings = tuple(
+        Lashing((x, side.sign * RADIUS_M, 0.0), (x, side.sign * (RADIUS_M + 2.5), -RADIUS_M - 1.0), 1e-8, 1e-3)
+        for x in xs
+        for side in (Side.PORT, Side.STARBOARD)
+    )
+    stoppers = tuple(SideStopper(x, side, 0.01, 2e8) for x in xs for side in (Side.PORT, Side.STARBOARD))
+    problem = CradleProblem(
+        cargo, tuple(PadPair(x, alpha, RADIUS_M, K_V) for x in xs), stoppers, lashings, spring_diagonal_N_per_m=axial_spring(cargo, 10.0)
+    )
+    result = solve_transverse_statics(problem, heel)
+    assert result.outcome is StaticsOutcome.CONVERGED
+    W_s = saddle_weights_N(cargo, *xs)
+    assert result.residual_N <= 1e-9 * float(np.sum(W_s))
+    phi, a = np.deg2rad(heel), np.deg2rad(alpha)
+    np.testing.assert_array_equal(result.pad_force_N[:, 0], 0.0)  # the high (port) side lifted
+    stopper = result.stopper_force_N.reshape(2, 2)
+    np.testing.assert_allclose(stopper[:, 1], W_s * (np.sin(phi) - np.cos(phi) * np.tan(a)), rtol=1e-5)  # 1e-3 N lashings aside
+
+
 # ---------------------------------------------------------------- (e) zero heel: today's exact statics
 
 

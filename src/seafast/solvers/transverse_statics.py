@@ -40,7 +40,8 @@ from seafast.model.cradle import Engagement, Lashing, PadPair, Side, SideStopper
 __all__ = ["StaticsOutcome", "CradleProblem", "TransverseStatics", "solve_transverse_statics"]
 
 CONSISTENCY_TOLERANCE = 1e-9
-"""Sign tolerance of the final set, relative to the largest engagement (or 1 um): round-off of the linear solve."""
+"""Sign tolerance of the final set: an element force of the wrong sign within this share of the largest load or
+element force (or 1 N), the round-off of the linear solve."""
 
 MECHANISM_TOLERANCE = 1e-10
 """A set restrains the cargo when its restraint of the five rigid-body motions has every singular value
@@ -280,6 +281,19 @@ def _violation(system: _System, q: NDArray[np.float64], engaged: NDArray[np.bool
     return s, float(np.max(np.where(engaged, -s, s), initial=0.0))
 
 
+def _consistent(system: _System, q: NDArray[np.float64], engaged: NDArray[np.bool_]) -> bool:
+    """Whether the set's signs hold at ``q``, as forces: an engaged element's tension or an open element's would-be
+    force ``k |s|`` within :data:`CONSISTENCY_TOLERANCE` of the largest load or element force.
+
+    As forces, not as engagements: a soft lashing's engagement (its pretension over its stiffness) can be metres,
+    and a tolerance relative to it would pass a pad sign wrong by a millimetre.
+    """
+    s = system.s0 + system.A @ q
+    wrong_N = system.k * np.maximum(np.where(engaged, -s, s), 0.0)
+    force_scale_N = max(float(np.max(np.abs(system.f), initial=0.0)), float(np.max(system.k * np.maximum(s, 0.0), initial=0.0)), 1.0)
+    return float(np.max(wrong_N, initial=0.0)) <= CONSISTENCY_TOLERANCE * force_scale_N
+
+
 def _unrestrained_step(
     system: _System, q: NDArray[np.float64], engaged: NDArray[np.bool_], free: NDArray[np.float64]
 ) -> NDArray[np.float64]:
@@ -304,8 +318,7 @@ def _iterate(system: _System, max_iterations: int) -> tuple[StaticsOutcome, NDAr
         free = system.free_motions(engaged)
         if free.shape[1] == 0:
             trial = system.solve(engaged)
-            s, violation = _violation(system, trial, engaged)
-            if violation <= CONSISTENCY_TOLERANCE * max(float(np.max(np.abs(s), initial=0.0)), 1e-6):
+            if _consistent(system, trial, engaged):
                 return StaticsOutcome.CONVERGED, trial, engaged, iteration
             d = trial - q
         else:
