@@ -68,6 +68,8 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
         f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)"
     )
+    if analysis.directional is not None:
+        say(analysis.directional.describe())
     rows = [analysis.extremes.row()]
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)

@@ -293,7 +293,9 @@ def _seastate_coords(analysis: SpectralAnalysis, design: Any) -> dict[str, xr.Va
 def _seastate_attrs(analysis: SpectralAnalysis) -> dict[str, Any]:
     """The global attributes of seastate.nc: the sea state, the limits, the case and the conventions."""
     sp, case = analysis.spectrum, analysis.case
+    directional = {} if analysis.directional is None else analysis.directional.attributes()
     return {
+        **directional,
         "title": f"seafast sea state: {case.name}",
         "seafast_version": seafast.__version__,
         "spectrum": sp.description,

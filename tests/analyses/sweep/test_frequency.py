@@ -250,7 +250,7 @@ def wave_sweep():
 def test_the_wave_sweep_s_linear_raos_are_the_transfer_functions(wave_sweep):
     r = wave_sweep
     t = r.table
-    tf = transfer_functions(r.case, r.model, np.sort(t.omega_rad_s))
+    tf = transfer_functions(r.case, r.model, np.sort(t.omega_rad_s), heading_deg=r.case.wave.heading_deg)
     order = np.argsort(t.omega_rad_s)
     force = np.abs(tf.saddle_force_N).max(axis=1)
     moment = np.abs(tf.bending_moment_Nm).max(axis=1)
