@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -20,6 +21,7 @@ from seafast.analyses.seastate.spectrum import sea_state_spectrum
 from seafast.analyses.seastate.synthesis import realisation_phases, synthesise
 from seafast.analyses.seastate.transfer import six_dof_motions, transfer_functions
 from seafast.cli import main
+from seafast.cli.seastate import breaking_design_waves_warning
 from seafast.excitation.hydrodynamics.roll_damping import STOCHASTIC_FACTOR
 from seafast.excitation.rao_extension import extended_six_dof_rao, six_dof_long_wave_limits
 from seafast.model.from_case import build_model
@@ -168,7 +170,8 @@ def test_the_spread_spectral_m0_equals_a_direct_quadrature_over_directions(base)
         tf = transfer_functions(sea_case, model, w, heading_deg=0.0 if heading >= 360.0 else heading, six_dof=True)
         m0.append(np.trapezoid(np.abs(tf.saddle_force_N) ** 2 * S[:, None], w, axis=0))
     direct = np.trapezoid(spreading_density_per_rad(theta, 6.0)[:, None] * np.array(m0), theta, axis=0)
-    assert np.allclose(analysis.extremes.saddle_force.m0, direct, rtol=2e-3)
+    # measured 0.17-0.20 %: the 15 directions' quadrature error (31 directions: 5e-5; the 71-point trapezoid: 1e-5)
+    assert np.allclose(analysis.extremes.saddle_force.m0, direct, rtol=4e-3)
     # and it is not the long-crested sea's
     long = spectral_analysis(_sea({"sea_state.heading_deg": 120.0}), model).extremes.saddle_force.m0
     assert np.max(np.abs(long / direct - 1.0)) > 0.05
@@ -259,7 +262,7 @@ def test_seastate_runs_at_any_heading_and_records_the_roll_linearisation(tmp_pat
             "--no-plots",
             "-q",
             "--set",
-            "sea_state.heading_deg=90",
+            "sea_state.heading_deg=120",
             "--set",
             "sea_state.spreading_exponent=8",
             "--set",
@@ -268,9 +271,22 @@ def test_seastate_runs_at_any_heading_and_records_the_roll_linearisation(tmp_pat
     )
     assert code == 0
     ds = xr.open_dataset(out / "seastate.nc")
-    assert ds.attrs["sea_state_heading_deg"] == 90.0 and ds.attrs["sea_state_spreading_exponent"] == 8.0
+    assert ds.attrs["sea_state_heading_deg"] == 120.0 and ds.attrs["sea_state_spreading_exponent"] == 8.0
     assert ds.attrs["motion_model"] == "six-DOF" and ds.attrs["roll_damping_linearisation"] == "stochastic"
     assert ds.attrs["roll_linearisation_converged"] == 1 and ds.attrs["roll_equivalent_damping_Nms_per_rad"] > 0
     rows = {(r["model"], r["method"]): r for r in csv.DictReader((out / "seastate.csv").open())}
     for key in (("linear", "spectral"), ("nonlinear", "design_wave")):
         assert float(rows[key]["F_N"]) > 0.0
+
+
+def test_a_design_wave_past_breaking_is_warned_of():
+    """A spread beam sea's design waves at the mean heading can be unphysically steep: the command says so."""
+    g = 9.81
+    wave = lambda a, w: SimpleNamespace(amplitude_m=a, omega_rad_s=w)  # noqa: E731
+    steep = SimpleNamespace(waves=(wave(2.0, 0.6), wave(53.5, 1.0), wave(30.0, 0.9)))
+    text = breaking_design_waves_warning(steep, 90.0, g)
+    assert text is not None and "2 design wave(s)" in text and "amplitude 53.5 m at 1 rad/s" in text
+    assert f"{2 * 53.5 / (2 * math.pi * g / 1.0):.2f} > 1/7" in text
+    # a wave just below the limit is not warned of
+    limit = 0.5 / 7.0 * 2 * math.pi * g / 0.6**2
+    assert breaking_design_waves_warning(SimpleNamespace(waves=(wave(0.999 * limit, 0.6),)), 180.0, g) is None

@@ -16,6 +16,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -26,6 +28,7 @@ from seafast.analyses.seastate.spectrum import WaveSpectrum
 from seafast.analyses.seastate.transfer import HEAD_SEAS_DEG, TransferFunctions, six_dof_motions, transfer_functions
 from seafast.config.schema import Case
 from seafast.excitation.hydrodynamics.roll_damping import QuadraticRollDamping, RollModel, StochasticRollResponse, stochastic_linearisation
+from seafast.excitation.vessel import VesselCache, shared_vessel_cache
 from seafast.model.structure import StructuralModel
 
 __all__ = ["SeaStateTransfer", "sea_state_quadrature", "uses_six_dof", "sea_state_roll_damping", "sea_state_transfer"]
@@ -116,6 +119,16 @@ class SeaStateTransfer:
         return weighted_squared_transfer(np.stack([getattr(tf, name) for tf in self.per_direction]), self.quadrature)
 
 
+@contextmanager
+def _one_vessel() -> Iterator[None]:
+    """The directions share one vessel (hull, loading, BEM data): a shared :class:`VesselCache` unless one is shared."""
+    if shared_vessel_cache() is not None:
+        yield
+        return
+    with VesselCache().shared():
+        yield
+
+
 def sea_state_roll_damping(case: Case, spectrum: WaveSpectrum) -> StochasticRollResponse | None:
     """The stochastic linearisation of the quadratic roll damping over the sea state (module docstring), or None.
 
@@ -124,7 +137,8 @@ def sea_state_roll_damping(case: Case, spectrum: WaveSpectrum) -> StochasticRoll
     b2 = case.vessel.roll_damping_quadratic_Nms2_per_rad2
     if not b2 or not uses_six_dof(case):
         return None
-    motions6 = six_dof_motions(case)
+    with _one_vessel():
+        motions6 = six_dof_motions(case)
     if motions6 is None:
         return None
     grid = motions6.omega_rad_s
@@ -155,11 +169,14 @@ def sea_state_transfer(
     if not uses_six_dof(case):
         tf = transfer_functions(case, model, omega_rad_s, heading_deg=HEAD_SEAS_DEG)
         return SeaStateTransfer(quadrature, (tf,), tf, None)
-    per = tuple(
-        transfer_functions(case, model, omega_rad_s, heading_deg=float(h), six_dof=True, roll_damping_Nms_per_rad=b_eq)
-        for h in quadrature.heading_deg
-    )
-    if quadrature.long_crested:
-        return SeaStateTransfer(quadrature, per, per[0], roll)
-    mean = transfer_functions(case, model, omega_rad_s, heading_deg=case.sea_state.heading_deg, six_dof=True, roll_damping_Nms_per_rad=b_eq)
+    with _one_vessel():
+        per = tuple(
+            transfer_functions(case, model, omega_rad_s, heading_deg=float(h), six_dof=True, roll_damping_Nms_per_rad=b_eq)
+            for h in quadrature.heading_deg
+        )
+        if quadrature.long_crested:
+            return SeaStateTransfer(quadrature, per, per[0], roll)
+        mean = transfer_functions(
+            case, model, omega_rad_s, heading_deg=case.sea_state.heading_deg, six_dof=True, roll_damping_Nms_per_rad=b_eq
+        )
     return SeaStateTransfer(quadrature, per, mean, roll)
