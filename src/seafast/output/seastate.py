@@ -198,6 +198,8 @@ def _transfer_variables(analysis: SpectralAnalysis) -> dict[str, xr.Variable]:
     }
     _complex(v, "heave_transfer_m_per_m", w, tf.heave_m, f"heave at the pitch reference {per}", "m/m")
     _complex(v, "pitch_transfer_rad_per_m", w, tf.pitch_rad, f"pitch dz/dx, bow up, {per}", "rad/m")
+    if tf.roll_rad is not None:  # the six-DOF motions (off head seas, or a short-crested sea): the mean heading's roll
+        _complex(v, "roll_transfer_rad_per_m", w, tf.roll_rad, f"roll about the CoG, starboard down +, at the mean heading, {per}", "rad/m")
     _complex(
         v,
         "deck_deflection_transfer_m_per_m",

@@ -274,6 +274,7 @@ def test_seastate_runs_at_any_heading_and_records_the_roll_linearisation(tmp_pat
     assert ds.attrs["sea_state_heading_deg"] == 120.0 and ds.attrs["sea_state_spreading_exponent"] == 8.0
     assert ds.attrs["motion_model"] == "six-DOF" and ds.attrs["roll_damping_linearisation"] == "stochastic"
     assert ds.attrs["roll_linearisation_converged"] == 1 and ds.attrs["roll_equivalent_damping_Nms_per_rad"] > 0
+    assert ds["roll_transfer_rad_per_m_real"].attrs["units"] == "rad/m" and np.max(np.abs(ds["roll_transfer_rad_per_m_imag"])) > 0
     rows = {(r["model"], r["method"]): r for r in csv.DictReader((out / "seastate.csv").open())}
     for key in (("linear", "spectral"), ("nonlinear", "design_wave")):
         assert float(rows[key]["F_N"]) > 0.0
