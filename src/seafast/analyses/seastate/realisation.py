@@ -265,6 +265,32 @@ def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: 
     return top if top > 0 else float(omega[-1])
 
 
+def _channels(
+    held: TransferFunctions | Sequence[TransferFunctions],
+    direction_weights: NDArray[np.float64] | None,
+    omega_i: NDArray[np.float64],
+    density: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    settings: MonteCarloSettings,
+) -> tuple[TransferFunctions, NDArray[np.float64], list[NDArray[np.complex128]], float]:
+    """The first direction's transfer functions, the moment basis (spanning every direction's moments), each direction's
+    channels (saddle compressions, moment coordinates) on ``omega_i``, and the highest frequency they need [rad/s]."""
+    tfs = (held,) if isinstance(held, TransferFunctions) else tuple(held)
+    spread = direction_weights is not None
+    n_weights = 1 if direction_weights is None else int(np.size(direction_weights))
+    if spread and len(tfs) != n_weights:
+        raise ValueError(f"realisation_plan: {len(tfs)} directions' transfer functions for {n_weights} weights")
+    moments_all = tfs[0].bending_moment_Nm if not spread else np.vstack([t.bending_moment_Nm for t in tfs])
+    coords_all, basis = low_rank(moments_all, settings.moment_rank_tolerance)
+    coords_per = np.split(coords_all, len(tfs)) if spread else [coords_all]
+    channels_per = [np.hstack([t.saddle_compression_m, c]) for t, c in zip(tfs, coords_per, strict=True)]
+    # coarse step from the highest frequency the responses need (1 - 1e-5 of their variance below it), every direction
+    amplitude_i = np.sqrt(np.maximum(density(omega_i), 0.0))
+    omega_s = max(
+        _sampling_frequency_rad_s(omega_i, amplitude_i, t.saddle_compression_m, c, 1e-5) for t, c in zip(tfs, coords_per, strict=True)
+    )
+    return tfs[0], basis, channels_per, omega_s
+
+
 def _density(case: Case, spectrum: WaveSpectrum) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """S(omega) of the case's spectrum anywhere (parametric formulas; tables interpolated as the spectrum does)."""
     ss = case.sea_state
@@ -312,22 +338,8 @@ def realisation_plan(
     # transfer functions on a uniform interpolation grid, then cubic splines to the synthesis grid
     n_i = max(int(np.ceil((hi - lo) / settings.transfer_step_rad_s)) + 1, 8)
     omega_i = np.linspace(lo, hi, n_i)
-    held = transfer_at(omega_i)
-    tfs = (held,) if isinstance(held, TransferFunctions) else tuple(held)
-    tf = tfs[0]
     spread = direction_weights is not None
-    n_weights = 1 if direction_weights is None else int(np.size(direction_weights))
-    if spread and len(tfs) != n_weights:
-        raise ValueError(f"realisation_plan: {len(tfs)} directions' transfer functions for {n_weights} weights")
-    moments_all = tf.bending_moment_Nm if not spread else np.vstack([t.bending_moment_Nm for t in tfs])
-    coords_all, basis = low_rank(moments_all, settings.moment_rank_tolerance)
-    coords_per = np.split(coords_all, len(tfs)) if spread else [coords_all]
-    channels_per = [np.hstack([t.saddle_compression_m, c]) for t, c in zip(tfs, coords_per, strict=True)]
-    # coarse step from the highest frequency the responses need (1 - 1e-5 of their variance below it), every direction
-    amplitude_i = np.sqrt(np.maximum(density(omega_i), 0.0))
-    omega_s = max(
-        _sampling_frequency_rad_s(omega_i, amplitude_i, t.saddle_compression_m, c, 1e-5) for t, c in zip(tfs, coords_per, strict=True)
-    )
+    tf, basis, channels_per, omega_s = _channels(transfer_at(omega_i), direction_weights, omega_i, density, settings)
     dt_f_max = time_step_s(model, settings.steps_per_period)
     dt_c_max = settings.coarse_step_factor / omega_s
     ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
