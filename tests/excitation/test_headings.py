@@ -382,14 +382,14 @@ def test_point_displacement_matrix_signs():
     assert t[2, 3] == 5.0 and t[2, 4] == 10.0 and t[0, 4] == -3.0 and t[1, 3] == -3.0 and t[1, 5] == 10.0 and t[0, 5] == -5.0
 
 
-def test_sea_states_and_sweeps_refuse_other_headings():
+def test_transfer_functions_refuse_a_heading_outside_the_circle():
     from seafast.analyses.seastate.transfer import transfer_functions
-    from seafast.config.loader import CaseError
     from seafast.model.from_case import build_model
 
-    case = load_case(overrides={"wave.heading_deg": 90.0})
-    with pytest.raises(CaseError, match=r"wave\.heading_deg = 90"):
-        transfer_functions(case, build_model(case), np.array([0.5, 0.6]))
+    case = load_case()
+    for bad in (360.0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match=r"heading_deg = .*allowed: \[0, 360\)"):
+            transfer_functions(case, build_model(case), np.array([0.5, 0.6]), heading_deg=bad)
 
 
 # ------------------------------------------------------------------------------ the vessel excitation and results.nc

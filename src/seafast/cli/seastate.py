@@ -9,6 +9,7 @@ value and what is allowed); 3 a nonlinear part did not converge (results written
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
 from pathlib import Path
@@ -44,6 +45,27 @@ def _monte_carlo_engine() -> tuple[Any, str]:
     return engine, "" if engine is not None else "the Monte Carlo engine has no run_monte_carlo"
 
 
+def breaking_design_waves_warning(design: Any, heading_deg: float, gravity_m_per_s2: float) -> str | None:
+    """The warning when a design wave is steeper than a regular wave can be (2 a / lambda > 1/7), else None.
+
+    It happens in a spread sea whose response comes from directions other than the mean heading (a spread beam sea:
+    the beam wave hardly bends the hull), where the mean heading's regular wave needs a huge amplitude.
+    """
+    from seafast.config.schema import BREAKING_STEEPNESS
+
+    steep = [(2.0 * w.amplitude_m * w.omega_rad_s**2 / (2.0 * math.pi * gravity_m_per_s2), w) for w in design.waves]
+    breaking = [(s, w) for s, w in steep if s > BREAKING_STEEPNESS]
+    if not breaking:
+        return None
+    s, w = max(breaking, key=lambda item: item[0])
+    return (
+        f"seafast: warning: {len(breaking)} design wave(s) at the mean heading {heading_deg:g} deg are steeper than the "
+        f"breaking limit (largest: amplitude {w.amplitude_m:.3g} m at {w.omega_rad_s:.3g} rad/s, height / length = "
+        f"{s:.2f} > 1/7): the sea's response comes from other directions than the mean heading's regular wave; "
+        "the design_wave row is not a physical estimate there (use the spectral and Monte Carlo rows)"
+    )
+
+
 def _cmd_seastate(args: argparse.Namespace) -> int:
     from seafast.analyses.seastate.design_wave import sea_state_design_waves
     from seafast.analyses.seastate.spectral import spectral_analysis
@@ -68,6 +90,8 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         f"{analysis.spectrum.description}: {analysis.spectrum.omega_rad_s.size} frequencies "
         f"{analysis.spectrum.omega_rad_s[0]:.3f}-{analysis.spectrum.omega_rad_s[-1]:.3f} rad/s ({time.perf_counter() - t0:.2f} s)"
     )
+    if analysis.directional is not None:
+        say(analysis.directional.describe())
     rows = [analysis.extremes.row()]
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)
@@ -75,6 +99,9 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         "converged (exact-event shooting)" if design.settings.harmonics is None else f"by harmonic balance, H = {design.settings.harmonics}"
     )
     say(f"nonlinear design waves: {len(design.waves)} waves, {how} ({(time.perf_counter() - t1) * 1e3:.0f} ms)")
+    warning = breaking_design_waves_warning(design, case.sea_state.heading_deg, case.model.gravity_m_per_s2)
+    if warning is not None:
+        print(warning, file=sys.stderr)
     monte_carlo = None
     engine, why = (None, "--no-monte-carlo") if args.no_monte_carlo else _monte_carlo_engine()
     if engine is None:

@@ -346,7 +346,7 @@ def max_significant_height_m(peak_period_s: float, gravity_m_per_s2: float = 9.8
 
 
 class SeaStateConfig(StrictSection):
-    """Irregular head sea for ``seafast seastate`` (not used by ``seafast run``)."""
+    """Irregular sea for ``seafast seastate`` at a mean heading, long- or short-crested (not used by ``seafast run``)."""
 
     significant_height_m: Positive | None = Field(
         None,
@@ -369,6 +369,18 @@ class SeaStateConfig(StrictSection):
         20, description="Random-phase realisations of the nonlinear Monte Carlo reference"
     )
     seed: Annotated[int, Field(ge=0), NotBool] = Field(0, description="Seed of the random phases (reproducible realisations)")
+    heading_deg: float = Field(
+        180.0,
+        ge=0.0,
+        lt=360.0,
+        description="Mean wave heading beta of the sea state [deg], as wave.heading_deg: the direction the waves travel, from "
+        "the ship's x axis (forward) towards y (port); 180 = head seas, 90 = beam seas (waves from starboard), 0 = following seas",
+    )
+    spreading_exponent: Annotated[float, Field(gt=0.0, le=1000.0, allow_inf_nan=False), NotBool] | None = Field(
+        None,
+        description="Exponent s of the cos-2s directional spreading [-] (short-crested sea; wind seas about 5-15, swell 25 and "
+        "more; up to 1000, beyond which the sea is long-crested within a fraction of a degree); null = long-crested",
+    )
     random_amplitudes: bool = Field(
         True,
         description="Monte Carlo components with Rayleigh-distributed amplitudes (a Gaussian sea, true) or the "

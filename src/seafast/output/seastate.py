@@ -198,6 +198,8 @@ def _transfer_variables(analysis: SpectralAnalysis) -> dict[str, xr.Variable]:
     }
     _complex(v, "heave_transfer_m_per_m", w, tf.heave_m, f"heave at the pitch reference {per}", "m/m")
     _complex(v, "pitch_transfer_rad_per_m", w, tf.pitch_rad, f"pitch dz/dx, bow up, {per}", "rad/m")
+    if tf.roll_rad is not None:  # the six-DOF motions (off head seas, or a short-crested sea): the mean heading's roll
+        _complex(v, "roll_transfer_rad_per_m", w, tf.roll_rad, f"roll about the CoG, starboard down +, at the mean heading, {per}", "rad/m")
     _complex(
         v,
         "deck_deflection_transfer_m_per_m",
@@ -293,7 +295,9 @@ def _seastate_coords(analysis: SpectralAnalysis, design: Any) -> dict[str, xr.Va
 def _seastate_attrs(analysis: SpectralAnalysis) -> dict[str, Any]:
     """The global attributes of seastate.nc: the sea state, the limits, the case and the conventions."""
     sp, case = analysis.spectrum, analysis.case
+    directional = {} if analysis.directional is None else analysis.directional.attributes()
     return {
+        **directional,
         "title": f"seafast sea state: {case.name}",
         "seafast_version": seafast.__version__,
         "spectrum": sp.description,

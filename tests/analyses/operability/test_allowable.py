@@ -16,6 +16,7 @@ from seafast.analyses.seastate.design_wave import sea_state_design_waves
 from seafast.analyses.seastate.spectral import spectral_analysis, spectral_extremes
 from seafast.analyses.seastate.spectrum import jonswap_density, sea_state_spectrum
 from seafast.analyses.seastate.transfer import transfer_functions
+from seafast.config import CaseError
 from seafast.config.schema import max_significant_height_m
 
 RAISED = {"limits.max_saddle_force_N": 11.5e6, "limits.max_bending_stress_Pa": 28.0e6}
@@ -49,7 +50,7 @@ def test_interpolated_transfer_functions_equal_direct_ones(raised):
     case, family, _ = raised
     for tp in (7.0, 10.0, 12.0):
         an = analysis_at(family, tp, 1.0)
-        direct = transfer_functions(case, family.model, an.spectrum.omega_rad_s)
+        direct = transfer_functions(case, family.model, an.spectrum.omega_rad_s, heading_deg=180.0)
         for name, tol in (
             ("saddle_force_N", 2e-4),
             ("bending_moment_Nm", 1e-4),
@@ -169,3 +170,20 @@ def test_a_tighter_search_tolerance_moves_the_nonlinear_allowable_by_less_than_i
     tight = allowable_sea_states(case, [10.0], OperabilitySettings(hs_tolerance_m=1e-5), family=family).points[0]
     p = next(p for p in result.points if p.peak_period_s == 10.0)
     assert abs(tight.hs_allowable_nonlinear_m - p.hs_allowable_nonlinear_m) <= 1e-3
+
+
+def test_a_family_at_a_heading_equals_that_heading_s_sea_states():
+    """Operability at one sea_state.heading_deg: the family's interpolated sea state against seafast seastate's."""
+    case = seafast.load_case(None, {"sea_state.heading_deg": 120.0})
+    family = sea_state_family(case, [8.0, 11.0])
+    an = analysis_at(family, 11.0, 2.0)
+    direct = spectral_analysis(
+        seafast.load_case(None, {"sea_state.heading_deg": 120.0, "sea_state.peak_period_s": 11.0, "sea_state.significant_height_m": 2.0})
+    )
+    assert an.transfer.heading_deg == 120.0
+    for q in ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m"):
+        assert an.extremes.totals[q] == pytest.approx(direct.extremes.totals[q], rel=1e-5), q
+    head = analysis_at(sea_state_family(seafast.load_case(None), [11.0]), 11.0, 2.0)
+    assert abs(an.extremes.totals["F_N"] / head.extremes.totals["F_N"] - 1.0) > 0.05  # another sea state
+    with pytest.raises(CaseError, match=r"sea_state\.spreading_exponent = 4"):
+        sea_state_family(seafast.load_case(None, {"sea_state.spreading_exponent": 4.0}), [10.0])

@@ -28,7 +28,7 @@ def base():
     case = seafast.load_case(None)
     model = build_model(case)
     omega = sea_state_spectrum(case).omega_rad_s
-    return case, model, omega, transfer_functions(case, model, omega)
+    return case, model, omega, transfer_functions(case, model, omega, heading_deg=180.0)
 
 
 @pytest.mark.parametrize("index,amplitude", [(40, 1.0), (128, 2.0), (200, 0.5)])
@@ -145,7 +145,7 @@ def test_seafast_run_accepts_a_wave_longer_than_the_bem_grid(tmp_path):
 
 def test_transfer_functions_vanish_in_very_long_and_very_short_waves(base):
     case, model, _, tf = base
-    ends = transfer_functions(case, model, np.array([0.05, 0.6, 4.0]))
+    ends = transfer_functions(case, model, np.array([0.05, 0.6, 4.0]), heading_deg=180.0)
     peak = np.max(np.abs(tf.saddle_force_N))
     assert np.max(np.abs(ends.saddle_force_N[0])) < 1e-3 * peak  # a 25 km wave neither bends nor accelerates
     assert np.max(np.abs(ends.saddle_force_N[2])) < 2e-2 * peak  # a 4 m wave hardly bends a 171 m hull
@@ -161,4 +161,4 @@ def test_vessel_setups_without_a_per_frequency_hull_are_refused(tmp_path):
     ):
         case = seafast.load_case(None, overrides)
         with pytest.raises(CaseError, match=key):
-            transfer_functions(case, build_model(case), np.array([0.5, 0.6]))
+            transfer_functions(case, build_model(case), np.array([0.5, 0.6]), heading_deg=180.0)

@@ -250,7 +250,7 @@ def wave_sweep():
 def test_the_wave_sweep_s_linear_raos_are_the_transfer_functions(wave_sweep):
     r = wave_sweep
     t = r.table
-    tf = transfer_functions(r.case, r.model, np.sort(t.omega_rad_s))
+    tf = transfer_functions(r.case, r.model, np.sort(t.omega_rad_s), heading_deg=r.case.wave.heading_deg)
     order = np.argsort(t.omega_rad_s)
     force = np.abs(tf.saddle_force_N).max(axis=1)
     moment = np.abs(tf.bending_moment_Nm).max(axis=1)
@@ -406,3 +406,24 @@ def test_seafast_sweep_refuses_bad_input(tmp_path, capsys):
     table = ROOT / "examples" / "user_deck_table.yaml"
     assert main(["sweep", str(table), "--wave", "-o", str(tmp_path / "x")]) == 2
     assert "deck_deflection_table" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("heading", "quadratic"), [(120.0, None), (90.0, 5.0e9)])
+def test_the_wave_sweep_off_head_seas_is_seafast_run_s_excitation(heading, quadratic):
+    """At a frequency, the wave sweep's excitation off head seas is the one `seafast run` assembles for that wave:
+    the hull at the heading, the six motions folded into the unit's plane (a quadratic roll damping linearised
+    harmonically at the wave's amplitude, as run does)."""
+    overrides = {"wave.heading_deg": heading, "wave.amplitude_m": 1.5, "vessel.roll_damping_quadratic_Nms2_per_rad2": quadratic}
+    case = load_case(None, overrides)
+    model = build_model(case)
+    excitation_at, rao_at = wave_excitation(case, model, 0.45, 0.9)
+    for w in (0.5, 0.64, 0.85):  # a BEM frequency, between two (near the roll resonance), another
+        regular = load_case(None, {**overrides, "wave.length_m": 2 * np.pi * 9.81 / w**2})
+        assert regular.wave_frequency_rad_s() == pytest.approx(w, rel=1e-14)
+        run = vessel_excitation(regular).cargo_excitation(model, regular)
+        swept = excitation_at(w)
+        for a, b in ((swept.cargo_load_N[1], run.cargo_load_N[1]), (swept.deck_displacement[1], run.deck_displacement[1])):
+            assert np.max(np.abs(a - b)) <= 1e-6 * np.max(np.abs(b)), w  # the hull's spline between its grid points
+        rb = vessel_excitation(regular).rigid_body
+        heave, pitch = rao_at(w)
+        assert 1.5 * heave == pytest.approx(rb.heave_m, rel=1e-12) and 1.5 * pitch == pytest.approx(rb.pitch_rad, rel=1e-12)

@@ -103,6 +103,15 @@ def _check_parametric(case: Case) -> None:
         )
 
 
+def _check_long_crested(case: Case) -> None:
+    if case.sea_state.spreading_exponent is not None:
+        raise CaseError(
+            f"sea_state.spreading_exponent = {case.sea_state.spreading_exponent:g}: operability takes long-crested seas at "
+            "sea_state.heading_deg (the quadratic roll damping left out: linear roll damping, conservative); "
+            "use --set sea_state.spreading_exponent=null, or seafast seastate for one short-crested sea state"
+        )
+
+
 def sea_state_family(case: Case, peak_periods_s: Sequence[float], master_step_rad_s: float = MASTER_STEP_RAD_S) -> SeaStateFamily:
     """The shared part of the sea states at ``peak_periods_s`` (transfer functions on the master grid).
 
@@ -114,12 +123,13 @@ def sea_state_family(case: Case, peak_periods_s: Sequence[float], master_step_ra
         per-frequency hull response.
     """
     _check_parametric(case)
+    _check_long_crested(case)
     grids = [sea_state_spectrum(case_at(case, tp, 1.0)).omega_rad_s for tp in peak_periods_s]
     lo, hi = min(float(g[0]) for g in grids), max(float(g[-1]) for g in grids)
     n = max(math.ceil((hi - lo) / master_step_rad_s) + 1, 8)
     master = np.linspace(lo, hi, n)
     model = build_model(case)
-    tf = transfer_functions(case, model, master)
+    tf = transfer_functions(case, model, master, heading_deg=case.sea_state.heading_deg)
     layout = tuple((name, getattr(tf, name).shape[1:]) for name in _COMPLEX_FIELDS)
     stacked = np.concatenate([getattr(tf, name).reshape(n, -1) for name in _COMPLEX_FIELDS], axis=1)
     values = np.concatenate([stacked.real, stacked.imag, tf.hull_emergence_amplitude_m[:, None]], axis=1)
@@ -155,6 +165,7 @@ def _interpolated_transfer(family: SeaStateFamily, omega: NDArray[np.float64]) -
         bending_moment_x_m=family.moment_x_m,
         bending_section_modulus_m3=family.section_modulus_m3,
         hull_emergence_amplitude_m=v[:, -1],
+        heading_deg=family.case.sea_state.heading_deg,
         **parts,
     )
 

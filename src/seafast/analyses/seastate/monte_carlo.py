@@ -321,13 +321,21 @@ def build_plan(case: Case, settings: MonteCarloSettings = MonteCarloSettings()) 
     seafast.config.CaseError
         Invalid or unresolvable sea state, or a vessel set-up without per-frequency hull response.
     """
+    from seafast.analyses.seastate.directional_transfer import sea_state_quadrature, sea_state_roll_damping, sea_state_transfer
     from seafast.analyses.seastate.spectrum import sea_state_spectrum
-    from seafast.analyses.seastate.transfer import still_water, transfer_functions
+    from seafast.analyses.seastate.transfer import still_water
     from seafast.model.from_case import build_model
 
     model = build_model(case)
     spectrum = sea_state_spectrum(case)
-    return realisation_plan(case, model, spectrum, lambda w: transfer_functions(case, model, w), still_water(case, model), settings)
+    roll = sea_state_roll_damping(case, spectrum)  # the spectral analysis's B_eq, from the same spectrum
+    if case.sea_state.spreading_exponent is None:
+        still = still_water(case, model)
+        return realisation_plan(case, model, spectrum, lambda w: sea_state_transfer(case, model, w, roll).mean, still, settings)
+    weights = sea_state_quadrature(case).weight
+    return realisation_plan(
+        case, model, spectrum, lambda w: sea_state_transfer(case, model, w, roll).per_direction, still_water(case, model), settings, weights
+    )
 
 
 def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan) -> str:
@@ -338,7 +346,11 @@ def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan
     path, e.g. a spectrum table, is a different run).
     """
     data = json.loads(case.model_dump_json())
-    data.get("sea_state", {}).pop("realisations", None)
+    sea = data.get("sea_state", {})
+    sea.pop("realisations", None)
+    if sea.get("heading_deg") == 180.0 and sea.get("spreading_exponent") is None:  # head seas, long-crested: as before the keys
+        sea.pop("heading_deg", None)
+        sea.pop("spreading_exponent", None)
     data.pop("name", None)
     blob = json.dumps({"case": data, "settings": settings.__dict__, "numerics": _NUMERICS_VERSION}, sort_keys=True, default=str)
     digest = hashlib.sha256(blob.encode("utf-8"))

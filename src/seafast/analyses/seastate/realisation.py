@@ -38,7 +38,7 @@ statistics share one plan and one time grid; they are pure functions of it.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -134,7 +134,11 @@ class RealisationPlan:
         The synthesis grid (frequencies, amplitudes, coarse sampling).
     transfer
         (n_f, n_s + n_r) transfer functions on the grid: the saddle compressions [m/m], then
-        the coordinates of the bending-moment field on ``moment_basis`` [N m/m].
+        the coordinates of the bending-moment field on ``moment_basis`` [N m/m]; a short-crested sea:
+        (n_d, n_f, n_s + n_r), one block per direction of the spreading's quadrature.
+    direction_weights
+        (n_d,) the quadrature's weights [-] of a short-crested sea, None for a long-crested one: each component of a
+        realisation travels in a direction drawn from them (:meth:`realisation_transfer`).
     compression_static_m, stiffness_N_per_m
         (n_s,) linear still-water compression [m] and compression-only stiffness k_u [N/m].
     moment_x_m, moment_static_Nm, section_modulus_m3
@@ -170,10 +174,25 @@ class RealisationPlan:
     tolerance_m: float
     settings: MonteCarloSettings = field(default_factory=MonteCarloSettings)
     random_amplitudes: bool = True
+    direction_weights: NDArray[np.float64] | None = None
 
     @property
     def saddle_count(self) -> int:
         return int(self.compression_static_m.size)
+
+    def realisation_transfer(self, index: int) -> NDArray[np.complex128]:
+        """(n_f, n_s + n_r) transfer functions of realisation ``index``'s components.
+
+        Long-crested: :attr:`transfer`. Short-crested: each component's direction drawn (categorical, the quadrature's
+        weights) from its own generator stream, ``SeedSequence(seed, spawn_key=(index, 1))``, apart from the phases' and
+        amplitudes' stream (``spawn_key=(index,)``), so these are the long-crested realisation's, unchanged.
+        """
+        if self.direction_weights is None:
+            return self.transfer
+        rng = np.random.default_rng(np.random.SeedSequence(int(self.seed), spawn_key=(int(index), DIRECTION_STREAM)))
+        n_f = self.transfer.shape[1]
+        drawn = rng.choice(self.direction_weights.size, size=n_f, p=self.direction_weights)
+        return np.ascontiguousarray(self.transfer[drawn, np.arange(n_f)])
 
     @property
     def fine_step_s(self) -> float:
@@ -228,6 +247,10 @@ def _linear_samples(  # pragma: no cover - compiled
     return out
 
 
+DIRECTION_STREAM = 1
+"""Second spawn-key entry of the generator that draws a short-crested realisation's component directions."""
+
+
 def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: NDArray, moments: NDArray, share: float) -> float:
     """Highest frequency that matters for sampling [rad/s].
 
@@ -240,6 +263,32 @@ def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: 
     for j in np.flatnonzero(cum[-1] > 0):
         top = max(top, float(omega[min(int(np.searchsorted(cum[:, j], (1.0 - share) * cum[-1, j])), omega.size - 1)]))
     return top if top > 0 else float(omega[-1])
+
+
+def _channels(
+    held: TransferFunctions | Sequence[TransferFunctions],
+    direction_weights: NDArray[np.float64] | None,
+    omega_i: NDArray[np.float64],
+    density: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    settings: MonteCarloSettings,
+) -> tuple[TransferFunctions, NDArray[np.float64], list[NDArray[np.complex128]], float]:
+    """The first direction's transfer functions, the moment basis (spanning every direction's moments), each direction's
+    channels (saddle compressions, moment coordinates) on ``omega_i``, and the highest frequency they need [rad/s]."""
+    tfs = (held,) if isinstance(held, TransferFunctions) else tuple(held)
+    spread = direction_weights is not None
+    n_weights = 1 if direction_weights is None else int(np.size(direction_weights))
+    if spread and len(tfs) != n_weights:
+        raise ValueError(f"realisation_plan: {len(tfs)} directions' transfer functions for {n_weights} weights")
+    moments_all = tfs[0].bending_moment_Nm if not spread else np.vstack([t.bending_moment_Nm for t in tfs])
+    coords_all, basis = low_rank(moments_all, settings.moment_rank_tolerance)
+    coords_per = np.split(coords_all, len(tfs)) if spread else [coords_all]
+    channels_per = [np.hstack([t.saddle_compression_m, c]) for t, c in zip(tfs, coords_per, strict=True)]
+    # coarse step from the highest frequency the responses need (1 - 1e-5 of their variance below it), every direction
+    amplitude_i = np.sqrt(np.maximum(density(omega_i), 0.0))
+    omega_s = max(
+        _sampling_frequency_rad_s(omega_i, amplitude_i, t.saddle_compression_m, c, 1e-5) for t, c in zip(tfs, coords_per, strict=True)
+    )
+    return tfs[0], basis, channels_per, omega_s
 
 
 def _density(case: Case, spectrum: WaveSpectrum) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
@@ -259,9 +308,10 @@ def realisation_plan(
     case: Case,
     model: StructuralModel,
     spectrum: WaveSpectrum,
-    transfer_at: Callable[[NDArray[np.float64]], TransferFunctions],
+    transfer_at: Callable[[NDArray[np.float64]], TransferFunctions | Sequence[TransferFunctions]],
     still: StillWater,
     settings: MonteCarloSettings = MonteCarloSettings(),
+    direction_weights: NDArray[np.float64] | None = None,
 ) -> RealisationPlan:
     """Build the plan of the case's Monte Carlo run.
 
@@ -273,11 +323,14 @@ def realisation_plan(
         The case's sea-state spectrum (:func:`~seafast.analyses.seastate.spectrum.sea_state_spectrum`): its
         grid's band is the synthesis band.
     transfer_at
-        ``omega -> TransferFunctions`` (e.g. ``lambda w: transfer_functions(case, model, w)``).
+        ``omega -> TransferFunctions`` (e.g. ``lambda w: transfer_functions(case, model, w, heading_deg=180.0)``), or a
+        short-crested sea's sequence of them, one per direction.
     still
         The linear still-water state (:func:`~seafast.analyses.seastate.transfer.still_water`).
     settings
         Numerical settings.
+    direction_weights
+        A short-crested sea's quadrature weights (one per direction ``transfer_at`` gives); None: long-crested.
     """
     ss = case.sea_state
     lo, hi = float(spectrum.omega_rad_s[0]), float(spectrum.omega_rad_s[-1])
@@ -285,16 +338,14 @@ def realisation_plan(
     # transfer functions on a uniform interpolation grid, then cubic splines to the synthesis grid
     n_i = max(int(np.ceil((hi - lo) / settings.transfer_step_rad_s)) + 1, 8)
     omega_i = np.linspace(lo, hi, n_i)
-    tf: TransferFunctions = transfer_at(omega_i)
-    coords, basis = low_rank(tf.bending_moment_Nm, settings.moment_rank_tolerance)
-    channels = np.hstack([tf.saddle_compression_m, coords])
-    # coarse step from the highest frequency the responses need (1 - 1e-5 of their variance below it)
-    omega_s = _sampling_frequency_rad_s(omega_i, np.sqrt(np.maximum(density(omega_i), 0.0)), tf.saddle_compression_m, coords, 1e-5)
+    spread = direction_weights is not None
+    tf, basis, channels_per, omega_s = _channels(transfer_at(omega_i), direction_weights, omega_i, density, settings)
     dt_f_max = time_step_s(model, settings.steps_per_period)
     dt_c_max = settings.coarse_step_factor / omega_s
     ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
     grid = synthesis_grid((lo, hi), density, ss.duration_s, dt_c_max)
-    transfer = interpolate_transfer(omega_i, channels, grid.omega_rad_s)
+    per = [interpolate_transfer(omega_i, ch, grid.omega_rad_s) for ch in channels_per]
+    transfer = np.stack(per) if spread else per[0]
     system = newmark_step(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))
     beam = model.cargo
 
@@ -330,6 +381,7 @@ def realisation_plan(
         tolerance_m=settings.decay_tolerance * scale,
         settings=settings,
         random_amplitudes=bool(ss.random_amplitudes),
+        direction_weights=None if direction_weights is None else np.asarray(direction_weights, dtype=float),
     )
 
 
@@ -432,11 +484,11 @@ class _Windows:
         self.window_steps += out.end - start
 
 
-def _nonlinear_windows(plan: RealisationPlan, X: NDArray, d_tot: NDArray, factors: NDArray, capture: bool) -> _Windows:
+def _nonlinear_windows(plan: RealisationPlan, X: NDArray, d_tot: NDArray, factors: NDArray, capture: bool, transfer: NDArray) -> _Windows:
     """March the correction in every window the linear compressions trigger (the module docstring, step 2)."""
     grid, n_s, ratio = plan.grid, plan.saddle_count, plan.ratio
     n_tc = grid.samples
-    abs_spec = np.abs(plan.transfer[:, :n_s]) * (grid.amplitude_m * factors)[:, None]  # this record's amplitudes
+    abs_spec = np.abs(transfer[:, :n_s]) * (grid.amplitude_m * factors)[:, None]  # this record's amplitudes
     margin = grid.time_step_s**2 / 8.0 * (grid.omega_rad_s**2 @ abs_spec)  # largest dip between samples
     trigger = np.any(d_tot < margin, axis=1)
     n_fine = n_tc * ratio
@@ -516,10 +568,11 @@ def evaluate_realisation(plan: RealisationPlan, index: int, capture: bool = Fals
     grid, n_s = plan.grid, plan.saddle_count
     phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
     factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
-    X = synthesise(grid, phases, plan.transfer, factors)  # (n_tc, n_s + n_r)
+    transfer = plan.realisation_transfer(index)
+    X = synthesise(grid, phases, transfer, factors)  # (n_tc, n_s + n_r)
     d_tot = plan.compression_static_m + X[:, :n_s]
     linear, per_sample, std_moment = _linear_maxima(plan, d_tot, X[:, n_s:])
-    tally = _nonlinear_windows(plan, X, d_tot, factors, capture)
+    tally = _nonlinear_windows(plan, X, d_tot, factors, capture, transfer)
     nl = tally.maxima
     free = ~tally.covered
     if free.any():  # outside the windows the nonlinear response is the linear one

@@ -3,8 +3,9 @@
 For a linear response r with transfer function H(omega) per metre of wave amplitude in a sea of
 one-sided spectrum S(omega) (a stationary Gaussian process):
 
-* response spectrum ``S_r = |H|^2 S``; moments ``m_n = int omega^n S_r d omega`` (trapezoid on
-  the sea-state grid); standard deviation ``sigma = sqrt(m0)``; mean zero-crossing period
+* response spectrum ``S_r = |H|^2 S`` (a short-crested sea: ``S sum_j w_j |H(omega, theta_j)|^2`` over the
+  spreading's quadrature directions, :mod:`seafast.analyses.seastate.directional_transfer`); moments
+  ``m_n = int omega^n S_r d omega`` (trapezoid on the sea-state grid); standard deviation ``sigma = sqrt(m0)``; mean zero-crossing period
   ``Tz = 2 pi sqrt(m0 / m2)``;
 * most probable maximum over a duration D (narrow-band, Rayleigh-distributed peaks, N = D / Tz
   cycles): ``MPM = sigma sqrt(2 ln(D / Tz))`` (0 when D < Tz or sigma = 0);
@@ -28,8 +29,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.directional_transfer import SeaStateTransfer, sea_state_roll_damping, sea_state_transfer
 from seafast.analyses.seastate.spectrum import WaveSpectrum, sea_state_spectrum
-from seafast.analyses.seastate.transfer import StillWater, TransferFunctions, still_water, transfer_functions
+from seafast.analyses.seastate.transfer import StillWater, TransferFunctions, still_water
 from seafast.config.schema import Case
 from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
@@ -40,6 +42,7 @@ __all__ = [
     "SpectralAnalysis",
     "SEASTATE_COLUMNS",
     "response_statistics",
+    "squared_response_statistics",
     "rayleigh_mpm",
     "downcrossing_rate_per_s",
     "spectral_extremes",
@@ -99,8 +102,14 @@ class ResponseStatistics:
 
 def response_statistics(transfer: NDArray[np.complex128], spectrum: WaveSpectrum, duration_s: float) -> ResponseStatistics:
     """Statistics of the responses whose transfer functions are the columns of ``transfer`` (n_w, n_loc)."""
+    return squared_response_statistics(np.abs(transfer) ** 2, spectrum, duration_s)
+
+
+def squared_response_statistics(squared: NDArray[np.float64], spectrum: WaveSpectrum, duration_s: float) -> ResponseStatistics:
+    """Statistics of the responses whose squared transfer functions ``|H|^2`` (a short-crested sea: ``sum_j w_j |H_j|^2``)
+    are the columns of ``squared`` (n_w, n_loc) [unit^2/m^2]."""
     w = spectrum.omega_rad_s
-    s_r = np.abs(transfer) ** 2 * spectrum.density_m2_s_per_rad[:, None]
+    s_r = squared * spectrum.density_m2_s_per_rad[:, None]
     m0, m2, m4 = (np.atleast_1d(np.trapezoid(w[:, None] ** n * s_r, w, axis=0)) for n in (0, 2, 4))
     with np.errstate(divide="ignore", invalid="ignore"):
         tz = np.where(m2 > 0, 2.0 * np.pi * np.sqrt(m0 / m2), np.inf)
@@ -140,14 +149,26 @@ class SpectralExtremes:
         return {"model": "linear", "method": "spectral", **{k: float(v) for k, v in self.totals.items()}, "converged": True}
 
 
-def spectral_extremes(tf: TransferFunctions, spectrum: WaveSpectrum, still: StillWater, duration_s: float) -> SpectralExtremes:
-    """Linear spectral extremes over ``duration_s`` (see the module docstring)."""
+def spectral_extremes(
+    tf: TransferFunctions, spectrum: WaveSpectrum, still: StillWater, duration_s: float, directional: SeaStateTransfer | None = None
+) -> SpectralExtremes:
+    """Linear spectral extremes over ``duration_s`` (see the module docstring).
+
+    ``directional``: a short-crested sea's transfer functions per direction; the response spectra are then
+    ``S sum_j w_j |H_j|^2`` (``tf`` is not used for them). None: ``|H|^2 S`` of ``tf``.
+    """
     if not np.array_equal(tf.omega_rad_s, spectrum.omega_rad_s):
         raise ValueError("spectral_extremes: the transfer functions must be on the spectrum's grid")
-    force = response_statistics(tf.saddle_force_N, spectrum, duration_s)
-    comp = response_statistics(tf.saddle_compression_m, spectrum, duration_s)
-    moment = response_statistics(tf.bending_moment_Nm, spectrum, duration_s)
-    stress = response_statistics(tf.bending_stress_Pa, spectrum, duration_s)
+    if directional is None:
+        force = response_statistics(tf.saddle_force_N, spectrum, duration_s)
+        comp = response_statistics(tf.saddle_compression_m, spectrum, duration_s)
+        moment = response_statistics(tf.bending_moment_Nm, spectrum, duration_s)
+        stress = response_statistics(tf.bending_stress_Pa, spectrum, duration_s)
+    else:
+        force, comp, moment, stress = (
+            squared_response_statistics(directional.squared(name), spectrum, duration_s)
+            for name in ("saddle_force_N", "saddle_compression_m", "bending_moment_Nm", "bending_stress_Pa")
+        )
     uplift = 3600.0 * downcrossing_rate_per_s(still.saddle_compression_m, comp.m0, comp.m2)
     totals = {
         "F_N": float(np.max(still.saddle_force_N + force.mpm)),
@@ -162,17 +183,22 @@ def spectral_extremes(tf: TransferFunctions, spectrum: WaveSpectrum, still: Stil
 
 @dataclass(frozen=True)
 class SpectralAnalysis:
-    """Everything the linear spectral method computes for one case's sea state."""
+    """Everything the linear spectral method computes for one case's sea state.
+
+    ``transfer`` holds the transfer functions at the mean heading; ``directional`` those of every direction (one for a
+    long-crested sea) and the roll damping's stochastic linearisation.
+    """
 
     case: Case
     model: StructuralModel
     spectrum: WaveSpectrum
     transfer: TransferFunctions
     extremes: SpectralExtremes
+    directional: SeaStateTransfer | None = None
 
 
 def spectral_analysis(case: Case, model: StructuralModel | None = None) -> SpectralAnalysis:
-    """Spectrum, transfer functions and linear spectral extremes of the case's sea state.
+    """Spectrum, transfer functions and linear spectral extremes of the case's sea state at its heading and spreading.
 
     Raises
     ------
@@ -181,6 +207,7 @@ def spectral_analysis(case: Case, model: StructuralModel | None = None) -> Spect
     """
     model = build_model(case) if model is None else model
     spectrum = sea_state_spectrum(case)
-    tf = transfer_functions(case, model, spectrum.omega_rad_s)
-    extremes = spectral_extremes(tf, spectrum, still_water(case, model), case.sea_state.duration_s)
-    return SpectralAnalysis(case, model, spectrum, tf, extremes)
+    sea = sea_state_transfer(case, model, spectrum.omega_rad_s, sea_state_roll_damping(case, spectrum))
+    spread = None if sea.quadrature.long_crested else sea
+    extremes = spectral_extremes(sea.mean, spectrum, still_water(case, model), case.sea_state.duration_s, spread)
+    return SpectralAnalysis(case, model, spectrum, sea.mean, extremes, sea)

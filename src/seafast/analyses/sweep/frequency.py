@@ -15,9 +15,10 @@ or unstable (Floquet multipliers), and say where the branch leaves the physicall
     points.
 ``wave``
     At each frequency the wave of the case's amplitude at that frequency: the hull's quasi-static
-    wave deflection (the linear hull transfer function of :func:`seafast.analyses.seastate.transfer.transfer_functions`,
-    on a fine grid with a cubic spline in omega), heave and pitch from the RAOs at that frequency
-    (:func:`seafast.excitation.rao_extension.extended_rao`), assembled as ``seafast run`` assembles
+    wave deflection at the case's heading (the linear hull transfer function of
+    :func:`seafast.analyses.seastate.transfer.transfer_functions`, on a fine grid with a cubic spline in omega), the
+    rigid-body motions at that frequency (head seas: heave and pitch, :func:`seafast.excitation.rao_extension.extended_rao`;
+    another heading: the six motions folded into the unit's vertical plane as ``seafast run`` does), assembled as ``seafast run`` assembles
     its wave (:func:`seafast.excitation.deck_motion.assemble_excitation`). Its table adds the
     nonlinear and linear RAOs of saddle force and bending moment per metre of wave amplitude.
 
@@ -42,8 +43,9 @@ from seafast.config.modes import HullCargoCoupling
 from seafast.config.schema import Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.harmonic import HarmonicExcitation
-from seafast.excitation.rao_extension import extended_rao
-from seafast.excitation.vessel import vessel_excitation
+from seafast.excitation.hydrodynamics.roll_damping import QuadraticRollDamping
+from seafast.excitation.rao_extension import extended_rao, extended_six_dof_rao
+from seafast.excitation.vessel import VesselExcitation, vessel_excitation
 from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
 from seafast.solvers.branch import BranchEnd, FrequencyResponseBranch
@@ -120,6 +122,41 @@ def _structural_limit_rad_s(model: StructuralModel, excitation: HarmonicExcitati
     return float(excitation.omega_rad_s * math.sqrt(gravity_m_per_s2 / a))
 
 
+def _wave_raos(case: Case, vessel: VesselExcitation) -> tuple[Callable[[float], tuple[complex, complex]], float]:
+    """``omega -> (heave [m/m], pitch [rad/m])`` of the cargo's deck in the case's wave at any frequency, and the pitch reference x [m].
+
+    Head seas: the heave-pitch model (:func:`~seafast.excitation.rao_extension.extended_rao`). Another heading: the six
+    motions folded into the analysed unit's vertical plane (heave + roll y, as ``seafast run``), inside the BEM grid with
+    the quadratic roll damping linearised harmonically at the case's amplitude (``SixDofMotions.rao_in_regular_wave``),
+    outside it the linear RAOs extended (:func:`~seafast.excitation.rao_extension.extended_six_dof_rao`).
+    """
+    g, draught = case.model.gravity_m_per_s2, case.vessel.draft_m
+    motions, motions6 = vessel.motions, vessel.motions6
+    if motions is not None:
+
+        def head(omega: float) -> tuple[complex, complex]:
+            heave, pitch = extended_rao(motions, float(omega), gravity_m_per_s2=g, draught_m=draught)
+            return complex(heave), complex(pitch)
+
+        return head, float(motions.reference_x_m)
+    if motions6 is None:
+        return (lambda omega: (0j, 0j)), 0.0
+    heading, amplitude, y = case.wave.heading_deg, float(case.wave.amplitude_m), case.cargo_transverse_position_m()
+    b2 = case.vessel.roll_damping_quadratic_Nms2_per_rad2
+    quadratic = QuadraticRollDamping(float(b2)) if b2 else None
+    lo, hi = float(motions6.omega_rad_s[0]), float(motions6.omega_rad_s[-1])
+
+    def oblique(omega: float) -> tuple[complex, complex]:
+        w = float(omega)
+        if lo <= w <= hi:
+            q = motions6.rao_in_regular_wave(w, heading, amplitude, quadratic)[0]
+        else:
+            q = extended_six_dof_rao(motions6, np.array([w]), heading, gravity_m_per_s2=g, draught_m=draught)[0]
+        return complex(q[2] + q[3] * y), complex(q[4])
+
+    return oblique, float(motions6.reference_x_m)
+
+
 def wave_excitation(
     case: Case, model: StructuralModel, omega_min_rad_s: float, omega_max_rad_s: float
 ) -> tuple[Callable[[float], HarmonicExcitation], Callable[[float], tuple[complex, complex]]]:
@@ -140,26 +177,20 @@ def wave_excitation(
     lo = max(omega_min_rad_s - _GRID_MARGIN * span, 0.5 * omega_min_rad_s)
     hi = omega_max_rad_s + _GRID_MARGIN * span
     grid = np.linspace(lo, hi, max(64, math.ceil((hi - lo) / _GRID_STEP_RAD_S) + 1))
-    tf = transfer_functions(case, model, grid)  # raises CaseError for a deck table / two-way coupling
+    tf = transfer_functions(case, model, grid, heading_deg=case.wave.heading_deg)  # CaseError: a deck table / two-way coupling
     deck = CubicSpline(grid, tf.deck_displacement, axis=0)
     vessel = vessel_excitation(case)
     static = vessel.cargo_excitation(model, case).static_part()
     amplitude = float(case.wave.amplitude_m)
-    g, draught = case.model.gravity_m_per_s2, case.vessel.draft_m
-    reference_x = float(vessel.motions.reference_x_m) if vessel.motions is not None else 0.0
-
-    def rao_at(omega: float) -> tuple[complex, complex]:
-        if vessel.motions is None:
-            return 0j, 0j
-        heave, pitch = extended_rao(vessel.motions, float(omega), gravity_m_per_s2=g, draught_m=draught)
-        return complex(heave), complex(pitch)
+    rao_at, reference_x = _wave_raos(case, vessel)
+    moving = vessel.motions is not None or vessel.motions6 is not None
 
     def excitation_at(omega: float) -> HarmonicExcitation:
         w = float(omega)
         if not lo <= w <= hi:
             raise ValueError(f"wave sweep: omega = {w!r} rad/s outside the transfer-function grid {lo:.4g}..{hi:.4g} rad/s")
         heave, pitch = rao_at(w)
-        rigid = RigidBodyAmplitudes(amplitude * heave, amplitude * pitch, reference_x) if vessel.motions is not None else None
+        rigid = RigidBodyAmplitudes(amplitude * heave, amplitude * pitch, reference_x) if moving else None
         wave = assemble_excitation(model, vessel.cargo_aft_end_x_m, w, None, None, rigid, static.source)
         deck_displacement = np.stack([static.deck_displacement[0], amplitude * deck(w)])
         return HarmonicExcitation(

@@ -180,11 +180,13 @@ class SixDofMotions:
         out = f[..., 0] + 1j * f[..., 1]
         return out[0] if np.ndim(omega) == 0 else out
 
-    def rao_at(self, omega: ArrayLike, heading_deg: float) -> NDArray[np.complex128]:
+    def rao_at(self, omega: ArrayLike, heading_deg: float, additional_roll_damping_Nms_per_rad: float = 0.0) -> NDArray[np.complex128]:
         """The six RAOs at ``omega`` [rad/s] (scalar: shape (6,); 1-D: (n, 6)) and ``heading_deg`` [deg].
 
         A, B and the excitation are interpolated by cubic splines (the excitation periodic over headings) and the 6x6
         equation solved at the frequency itself, so a sharp roll resonance between grid frequencies is resolved.
+        ``additional_roll_damping_Nms_per_rad`` (>= 0; e.g. a sea state's stochastic equivalent of the quadratic roll
+        damping) is added to the roll damping on top of :attr:`additional_roll_damping_Nms_per_rad`.
 
         Raises
         ------
@@ -195,8 +197,26 @@ class SixDofMotions:
         f = np.atleast_2d(self.excitation_at(w, heading_deg))
         spl_a, spl_b, _ = self._splines
         wc = np.clip(w, self.omega_rad_s[0], self.omega_rad_s[-1])
-        x = solve_rigid_body(w, spl_a(wc), self._damping(spl_b(wc)), f, self.mass_matrix, self.hydrostatic_stiffness)
+        b = self._damping(spl_b(wc))
+        if additional_roll_damping_Nms_per_rad != 0.0:
+            if not additional_roll_damping_Nms_per_rad > 0.0:
+                raise ValueError(f"additional_roll_damping_Nms_per_rad = {additional_roll_damping_Nms_per_rad!r}; allowed: >= 0")
+            b[..., 3, 3] += additional_roll_damping_Nms_per_rad
+        x = solve_rigid_body(w, spl_a(wc), b, f, self.mass_matrix, self.hydrostatic_stiffness)
         return x[0] if np.ndim(omega) == 0 else x
+
+    def roll_model(self, omega: ArrayLike, heading_deg: float) -> RollModel:
+        """The coupled six-DOF system reduced exactly to roll (:meth:`RollModel.from_coupled`) at ``omega`` [rad/s], 1-D.
+
+        Its impedance does not depend on the heading (only the excitation does); the linear damping is the potential
+        damping plus :attr:`additional_roll_damping_Nms_per_rad`.
+        """
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        f = np.atleast_2d(self.excitation_at(w, heading_deg))
+        spl_a, spl_b, _ = self._splines
+        wc = np.clip(w, self.omega_rad_s[0], self.omega_rad_s[-1])
+        impedance = rigid_body_impedance(w, spl_a(wc), self._damping(spl_b(wc)), self.mass_matrix, self.hydrostatic_stiffness)
+        return RollModel.from_coupled(w, impedance, f)
 
     def rao_in_regular_wave(
         self, omega_rad_s: float, heading_deg: float, amplitude_m: float, quadratic: QuadraticRollDamping | None
