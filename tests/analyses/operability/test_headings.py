@@ -224,7 +224,6 @@ def test_headings_180_equals_the_head_seas_command_in_every_number(tmp_path):
             xr.testing.assert_identical(p[name], h[name].sel(heading_deg=180.0, drop=True))
 
 
-@pytest.mark.xfail(strict=True, reason="needs sea states at any heading")
 def test_a_heading_off_head_seas_runs_through_the_command(tmp_path, capsys):
     out = tmp_path / "o"
     code = main(["operability", "--headings", "150:180:30", "--tp", "10", "-o", str(out), "--no-plots", "-q"])

@@ -21,7 +21,7 @@ from enum import StrEnum
 
 from seafast.analyses.operability.allowable import OperabilityPoint, OperabilityResult, OperabilitySettings, allowable_sea_states
 from seafast.config.loader import CaseError, case_from_mapping
-from seafast.config.schema import Case, SeaStateConfig, max_significant_height_m
+from seafast.config.schema import Case, max_significant_height_m
 from seafast.parallel.executor import error_text
 
 __all__ = [
@@ -169,9 +169,7 @@ def check_headings(headings_deg: Sequence[float]) -> list[float]:
 def case_at_heading(case: Case, heading_deg: float) -> Case:
     """The case with its sea state's waves at ``heading_deg`` [deg] (360 is 0), validated as a case file would be.
 
-    Sets ``sea_state.heading_deg``. Where the schema has no such key, the sea-state analysis takes its
-    heading from ``wave.heading_deg`` (and refuses all but 180 deg with a :class:`~seafast.config.CaseError`):
-    that key is set instead.
+    Sets ``sea_state.heading_deg``.
 
     Raises
     ------
@@ -179,8 +177,7 @@ def case_at_heading(case: Case, heading_deg: float) -> Case:
         The heading is not allowed by the schema.
     """
     heading = float(heading_deg) % 360.0
-    key = "sea_state.heading_deg" if "heading_deg" in SeaStateConfig.model_fields else "wave.heading_deg"
-    return case_from_mapping(case.model_dump(mode="json"), f"(heading {heading:g} deg)", {key: heading})
+    return case_from_mapping(case.model_dump(mode="json"), f"(heading {heading:g} deg)", {"sea_state.heading_deg": heading})
 
 
 def _failed_result(case: Case, peak_periods_s: Sequence[float], settings: OperabilitySettings) -> OperabilityResult:
