@@ -48,8 +48,8 @@ def _monte_carlo_engine() -> tuple[Any, str]:
 def breaking_design_waves_warning(design: Any, heading_deg: float, gravity_m_per_s2: float) -> str | None:
     """The warning when a design wave is steeper than a regular wave can be (2 a / lambda > 1/7), else None.
 
-    It happens in a spread sea whose response comes from directions other than the mean heading (a spread beam sea:
-    the beam wave hardly bends the hull), where the mean heading's regular wave needs a huge amplitude.
+    Each design wave comes from the direction where the response is largest, so this takes a sea whose response is
+    small in every direction at the design frequency against its own MPM; the design_wave row is then no estimate.
     """
     from seafast.config.schema import BREAKING_STEEPNESS
 
@@ -59,10 +59,10 @@ def breaking_design_waves_warning(design: Any, heading_deg: float, gravity_m_per
         return None
     s, w = max(breaking, key=lambda item: item[0])
     return (
-        f"seafast: warning: {len(breaking)} design wave(s) at the mean heading {heading_deg:g} deg are steeper than the "
+        f"seafast: warning: {len(breaking)} design wave(s) of the sea at {heading_deg:g} deg are steeper than the "
         f"breaking limit (largest: amplitude {w.amplitude_m:.3g} m at {w.omega_rad_s:.3g} rad/s, height / length = "
-        f"{s:.2f} > 1/7): the sea's response comes from other directions than the mean heading's regular wave; "
-        "the design_wave row is not a physical estimate there (use the spectral and Monte Carlo rows)"
+        f"{s:.2f} > 1/7): no regular wave gives the response's MPM there; "
+        "the design_wave row is not a physical estimate (use the spectral and Monte Carlo rows)"
     )
 
 

@@ -150,6 +150,12 @@ def _design_wave_variables(design: Any) -> dict[str, xr.Variable]:
         "design_wave_amplitude_m": _var(
             d, [w.amplitude_m for w in waves], "design wave amplitude (linear response = linear spectral MPM)", "m"
         ),
+        "design_wave_heading_deg": _var(
+            d,
+            [w.heading_deg for w in waves],
+            "design wave heading (180 = head seas; in a spread sea the direction whose transfer function is largest)",
+            "deg",
+        ),
         "design_wave_converged": _var(
             d, np.array([s.converged for s in sols], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"
         ),

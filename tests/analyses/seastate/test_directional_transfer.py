@@ -13,6 +13,7 @@ import xarray as xr
 
 import seafast
 from seafast.analyses.run import run_case
+from seafast.analyses.seastate.design_wave_rule import design_directions, quantity_transfer, select_design_waves
 from seafast.analyses.seastate.directional import spreading_density_per_rad
 from seafast.analyses.seastate.directional_transfer import sea_state_roll_damping, sea_state_transfer
 from seafast.analyses.seastate.monte_carlo import build_plan
@@ -157,6 +158,31 @@ def test_a_narrow_spreading_tends_to_the_long_crested_sea_at_the_mean_heading():
     assert errors[2] < 2e-3  # s = 1000: about 2.5 deg of spread
 
 
+def test_a_spread_sea_s_design_waves_come_from_the_most_responsive_direction():
+    """Each design wave of a spread beam sea: from the quadrature direction whose transfer function is largest at its
+    frequency, its linear response there equal to the spread MPM, and no steeper than a sea carries (at the mean
+    heading, 90 deg, the rule's wave was 53 m, height over length 0.72)."""
+    analysis = spectral_analysis(_sea({"sea_state.heading_deg": 90.0, "sea_state.spreading_exponent": 8.0}))
+    directions = design_directions(analysis)
+    assert len(directions) == analysis.directional.quadrature.heading_deg.size > 1
+    waves = select_design_waves(analysis)
+    assert len(waves) > 0
+    stats = {
+        "F_N": analysis.extremes.saddle_force,
+        "u_s_m": analysis.extremes.saddle_compression,
+        "u_d_m": analysis.extremes.saddle_compression,
+    }
+    stats |= {"M_b_Nm": analysis.extremes.bending_moment, "sigma_b_Pa": analysis.extremes.bending_stress}
+    for wave in waves:
+        moduli = [abs(complex(quantity_transfer(tf, wave.quantity, wave.location)[wave.frequency_index])) for tf in directions]
+        assert moduli[wave.direction] == max(moduli)
+        assert wave.heading_deg == directions[wave.direction].heading_deg
+        assert wave.amplitude_m * moduli[wave.direction] == pytest.approx(float(stats[wave.quantity].mpm[wave.location]), rel=1e-12)
+        assert 2.0 * wave.amplitude_m * wave.omega_rad_s**2 / (2.0 * math.pi * G) < 1.0 / 7.0
+    assert len({w.direction for w in waves}) > 1  # not one heading for all: the rule picks per frequency and location
+    assert breaking_design_waves_warning(SimpleNamespace(waves=waves), 90.0, G) is None
+
+
 def test_the_spread_spectral_m0_equals_a_direct_quadrature_over_directions(base):
     """m0 of the spread sea (15-direction rule) against the integral of D(theta) m0(theta) by a fine trapezoid."""
     _, model, spectrum, _ = base
@@ -281,7 +307,7 @@ def test_seastate_runs_at_any_heading_and_records_the_roll_linearisation(tmp_pat
 
 
 def test_a_design_wave_past_breaking_is_warned_of():
-    """A spread beam sea's design waves at the mean heading can be unphysically steep: the command says so."""
+    """A design wave steeper than a regular wave can be is no estimate: the command says so."""
     g = 9.81
     wave = lambda a, w: SimpleNamespace(amplitude_m=a, omega_rad_s=w)  # noqa: E731
     steep = SimpleNamespace(waves=(wave(2.0, 0.6), wave(53.5, 1.0), wave(30.0, 0.9)))

@@ -221,7 +221,7 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
         with np.errstate(divide="ignore"):
             onset = float(np.min(np.where(comp_mpm > 0, comp0 / np.where(comp_mpm > 0, comp_mpm, 1.0), np.inf)))
     onset = onset if onset <= cap else math.nan
-    operators: dict[tuple[int, int], WaveOperators] = {}
+    operators: dict[tuple[int, int, int], WaveOperators] = {}
     warm: dict[int, WaveSolution] = {}
     evaluations = 0
     converged = True

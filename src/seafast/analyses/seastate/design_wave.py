@@ -39,7 +39,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.analyses.seastate.design_wave_rule import DesignWave, DesignWaveSettings, read_locations, select_design_waves
+from seafast.analyses.seastate.design_wave_rule import (
+    DesignWave,
+    DesignWaveSettings,
+    design_directions,
+    read_locations,
+    select_design_waves,
+)
 from seafast.analyses.seastate.spectral import SpectralAnalysis
 from seafast.analyses.seastate.transfer import TransferFunctions
 from seafast.analyses.seastate.wave_response import (
@@ -75,7 +81,8 @@ def unit_wave_excitation(static: HarmonicExcitation, transfer: TransferFunctions
         np.vstack([static.deck_displacement[:1], transfer.deck_displacement[index][None]]),
         np.vstack([static.cargo_load_N[:1], transfer.cargo_load_N[index][None]]),
         np.vstack([static.cargo_line_load_N_per_m[:1], transfer.cargo_line_load_N_per_m[index][None]]),
-        f"regular head wave of unit amplitude at {transfer.omega_rad_s[index]:.4g} rad/s (transfer functions)",
+        f"regular wave of unit amplitude at {transfer.omega_rad_s[index]:.4g} rad/s, heading {transfer.heading_deg:g} deg "
+        "(transfer functions)",
     )
 
 
@@ -140,7 +147,7 @@ def design_wave_extremes(
     settings: DesignWaveSettings = DesignWaveSettings(),
     *,
     quantities: Sequence[str] = RESPONSE_QUANTITIES,
-    operators: dict[tuple[int, int], WaveOperators] | None = None,
+    operators: dict[tuple[int, int, int], WaveOperators] | None = None,
     moments: MomentMap | None = None,
     warm: dict[int, WaveSolution] | None = None,
 ) -> DesignWaveExtremes:
@@ -157,7 +164,7 @@ def design_wave_extremes(
     quantities
         The quantities to estimate (default all five); the others keep their still-water value.
     operators
-        A cache of wave operators by (grid index, H) (filled here; pass the same dict to reuse
+        A cache of wave operators by (grid index, direction, H) (filled here; pass the same dict to reuse
         them for another sea state on the same grid, e.g. another Hs).
     moments
         The model's moment map (computed when omitted).
@@ -174,16 +181,18 @@ def design_wave_extremes(
     if unknown:
         raise ValueError(f"design_wave_extremes: quantities {unknown}; allowed: {', '.join(RESPONSE_QUANTITIES)}")
     waves = select_design_waves(analysis, settings, quantities)
+    directions = design_directions(analysis)
     options = settings.hbm_options()
-    cache: dict[tuple[int, int], WaveOperators] = {} if operators is None else operators
+    cache: dict[tuple[int, int, int], WaveOperators] = {} if operators is None else operators
     mm = moment_map(analysis.model) if moments is None else moments
-    solved: dict[tuple[int, float], WaveSolution] = {}
+    solved: dict[tuple[int, int, float], WaveSolution] = {}
     solutions = []
     last: WaveSolution | None = None
     for wave in waves:
-        key = (wave.frequency_index, round(wave.amplitude_m, 12))
+        key = (wave.frequency_index, wave.direction, round(wave.amplitude_m, 12))
+        transfer = directions[wave.direction]
         if key not in solved and settings.harmonics is None:
-            unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
+            unit = unit_wave_excitation(static, transfer, wave.frequency_index)
             solved[key] = solve_wave_adaptive(analysis.model, unit, wave.amplitude_m, mm, options)
         elif key not in solved and settings.harmonics is not None:
             # start from this frequency's previous solution (an amplitude search), else from the last wave solved:
@@ -193,13 +202,14 @@ def design_wave_extremes(
             previous = previous if previous is not None else last
             for H in (int(settings.harmonics), *settings.fallback_harmonics):
                 opts = settings.hbm_options(H)
-                if (wave.frequency_index, H) not in cache:
-                    unit = unit_wave_excitation(static, analysis.transfer, wave.frequency_index)
-                    cache[(wave.frequency_index, H)] = wave_operators(analysis.model, unit, opts, mm)
+                op_key = (wave.frequency_index, wave.direction, H)
+                if op_key not in cache:
+                    unit = unit_wave_excitation(static, transfer, wave.frequency_index)
+                    cache[op_key] = wave_operators(analysis.model, unit, opts, mm)
                 start = (
                     previous.compression_harmonics_m if previous is not None and previous.converged and previous.harmonics == H else None
                 )
-                sol = solve_wave(cache[(wave.frequency_index, H)], wave.amplitude_m, opts, start)
+                sol = solve_wave(cache[op_key], wave.amplitude_m, opts, start)
                 if sol.converged:
                     break
             solved[key] = sol

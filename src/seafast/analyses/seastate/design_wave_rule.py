@@ -6,7 +6,10 @@ point), at each location the peak of its response spectrum and the ends of the b
 spectrum is at least :attr:`DesignWaveSettings.band_fraction` of the peak, and at each such
 frequency the regular wave whose linear response there equals the location's linear spectral
 MPM (:func:`select_design_waves`); a wave is read for its quantity only where it is at most an
-MPM wave (:func:`read_locations`). The harmonic balance of the waves and the estimates are in
+MPM wave (:func:`read_locations`). In a short-crested sea (the MPM from the spread response spectrum) the wave
+comes from the quadrature direction whose transfer function there is largest: the smallest wave that gives the
+MPM (at the mean heading of a spread beam sea, where the response is small, the rule's wave would be several times
+steeper than any sea carries). The harmonic balance of the waves and the estimates are in
 :mod:`seafast.analyses.seastate.design_wave`. Units SI.
 """
 
@@ -19,11 +22,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.analyses.seastate.spectral import ResponseStatistics, SpectralAnalysis
+from seafast.analyses.seastate.transfer import TransferFunctions
 from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
 from seafast.analyses.seastate.wave_response import RESPONSE_QUANTITIES
 from seafast.solvers.hbm import HBMOptions
 
-__all__ = ["DesignWaveSettings", "DesignWave", "select_design_waves", "read_locations"]
+__all__ = ["DesignWaveSettings", "DesignWave", "select_design_waves", "read_locations", "quantity_transfer", "design_directions"]
 
 
 @dataclass(frozen=True)
@@ -75,7 +79,7 @@ class DesignWaveSettings:
 
 @dataclass(frozen=True)
 class DesignWave:
-    """One design wave: a regular head wave designed for one quantity.
+    """One design wave: a regular wave designed for one quantity.
 
     Attributes
     ----------
@@ -94,6 +98,10 @@ class DesignWave:
         ``amplitude_m`` per metre of significant height [m/m] (the linear MPM is proportional to Hs).
     role
         ``peak``, ``band_low``, ``band_high`` or ``band``.
+    direction
+        Index of its direction in the sea state's quadrature (0 for a long-crested sea).
+    heading_deg
+        Its heading [deg] (180 = head seas).
     """
 
     quantity: str
@@ -103,6 +111,19 @@ class DesignWave:
     amplitude_m: float
     amplitude_per_hs: float
     role: str
+    direction: int = 0
+    heading_deg: float = 180.0
+
+
+def quantity_transfer(tf: TransferFunctions, quantity: str, location: int) -> NDArray[np.complex128]:
+    """A quantity's transfer function at one location (saddle or moment point), (n_w,) per metre of wave."""
+    if quantity == "F_N":
+        return tf.saddle_force_N[:, location]
+    if quantity in SADDLE_QUANTITIES:
+        return tf.saddle_compression_m[:, location]
+    if quantity == "M_b_Nm":
+        return tf.bending_moment_Nm[:, location]
+    return tf.bending_moment_Nm[:, location] / tf.bending_section_modulus_m3[location]
 
 
 def _governing_saddle(analysis: SpectralAnalysis, quantity: str) -> int:
@@ -116,28 +137,33 @@ def _governing_saddle(analysis: SpectralAnalysis, quantity: str) -> int:
     return int(np.argmin(sw.saddle_compression_m - e.saddle_compression.mpm))
 
 
-def _targets(analysis: SpectralAnalysis, quantities: Sequence[str]) -> list[tuple[str, ResponseStatistics, NDArray[np.complex128], int]]:
-    """Per quantity and location designed for: (quantity, response statistics, transfer function there, location).
+def _targets(analysis: SpectralAnalysis, quantities: Sequence[str]) -> list[tuple[str, ResponseStatistics, int]]:
+    """Per quantity and location designed for: (quantity, response statistics, location).
 
     Saddle quantities at every saddle, the linear governing saddle first (it starts the chain of
     warm starts); moment quantities at the moment point of the linear spectral extreme.
     """
-    e, tf = analysis.extremes, analysis.transfer
+    e = analysis.extremes
     sw = e.still_water
-    out: list[tuple[str, ResponseStatistics, NDArray[np.complex128], int]] = []
+    out: list[tuple[str, ResponseStatistics, int]] = []
     for q in quantities:
         if q in SADDLE_QUANTITIES:
             first = _governing_saddle(analysis, q)
-            stats, transfer = (e.saddle_force, tf.saddle_force_N) if q == "F_N" else (e.saddle_compression, tf.saddle_compression_m)
-            for loc in (first, *(s for s in range(analysis.model.saddle_count) if s != first)):
-                out.append((q, stats, transfer[:, loc], loc))
+            stats = e.saddle_force if q == "F_N" else e.saddle_compression
+            out += [(q, stats, loc) for loc in (first, *(s for s in range(analysis.model.saddle_count) if s != first))]
         elif q == "M_b_Nm":
-            loc = int(np.argmax(np.abs(sw.bending_moment_Nm) + e.bending_moment.mpm))
-            out.append((q, e.bending_moment, tf.bending_moment_Nm[:, loc], loc))
+            out.append((q, e.bending_moment, int(np.argmax(np.abs(sw.bending_moment_Nm) + e.bending_moment.mpm))))
         else:  # sigma_b_Pa
-            loc = int(np.argmax(np.abs(sw.bending_stress_Pa) + e.bending_stress.mpm))
-            out.append((q, e.bending_stress, tf.bending_moment_Nm[:, loc] / tf.bending_section_modulus_m3[loc], loc))
+            out.append((q, e.bending_stress, int(np.argmax(np.abs(sw.bending_stress_Pa) + e.bending_stress.mpm))))
     return out
+
+
+def design_directions(analysis: SpectralAnalysis) -> tuple[TransferFunctions, ...]:
+    """The transfer functions a design wave may come from: the quadrature's directions of a spread sea, else the mean."""
+    sea = analysis.directional
+    if sea is None or sea.quadrature.long_crested:
+        return (analysis.transfer,)
+    return sea.per_direction
 
 
 def _band(spectrum: NDArray[np.float64], fraction: float) -> tuple[int, int, int]:
@@ -162,8 +188,10 @@ def select_design_waves(
     """
     hs = float(analysis.spectrum.significant_height_m)
     w = analysis.spectrum.omega_rad_s
+    directions = design_directions(analysis)
     waves: list[DesignWave] = []
-    for quantity, stats, transfer, loc in _targets(analysis, quantities):
+    for quantity, stats, loc in _targets(analysis, quantities):
+        modulus = np.abs(np.stack([quantity_transfer(tf, quantity, loc) for tf in directions]))  # (n_dir, n_w)
         mpm = float(stats.mpm[loc])
         s_r = stats.spectrum[:, loc]
         if not (mpm > 0.0 and np.max(s_r) > 0.0):
@@ -180,8 +208,10 @@ def select_design_waves(
             if index in seen:
                 continue
             seen.add(index)
-            amplitude = mpm / float(np.abs(transfer[index]))
-            waves.append(DesignWave(quantity, loc, index, float(w[index]), amplitude, amplitude / hs if hs > 0 else float("nan"), role))
+            j = int(np.argmax(modulus[:, index]))  # the direction that needs the smallest wave
+            amplitude = mpm / float(modulus[j, index])
+            per_hs = amplitude / hs if hs > 0 else float("nan")
+            waves.append(DesignWave(quantity, loc, index, float(w[index]), amplitude, per_hs, role, j, float(directions[j].heading_deg)))
     return tuple(waves)
 
 
