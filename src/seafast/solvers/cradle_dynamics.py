@@ -269,7 +269,7 @@ def cradle_operators(
     rows = min(2, H + 1)
     xo[:rows], f[:rows] = excitation.deck_displacement[:rows], excitation.cargo_load_N[:rows]
     xo[0], f[0] = xo[0].real, (f[0] + dynamics.static_load_N()).real
-    wk = w * np.arange(H + 1)
+    wk = w * np.arange(H + 1, dtype=np.float64)
     K_co, D_co = parts.deck_coupling
     load = f - xo @ K_co.T - 1j * wk[:, None] * (xo @ D_co.T)
     load[0] -= A.T @ (k * s0)
