@@ -1,4 +1,4 @@
-"""The loads on the 3-D cargo at any heading (docs/transverse.md#8-dynamics): resultants against rigid-body closed forms."""
+"""The loads on the 3-D cargo at any heading (docs/transverse.md#7-dynamics): resultants against rigid-body closed forms."""
 
 from __future__ import annotations
 

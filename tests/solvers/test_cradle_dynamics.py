@@ -1,4 +1,4 @@
-"""The 3-D cargo's periodic response on pads, stoppers and slack lashings (docs/transverse.md#8-dynamics)."""
+"""The 3-D cargo's periodic response on pads, stoppers and slack lashings (docs/transverse.md#7-dynamics)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The periodic loads on the 3-D cargo in a regular wave at any heading (docs/transverse.md#8-dynamics).
+"""The periodic loads on the 3-D cargo in a regular wave at any heading (docs/transverse.md#7-dynamics).
 
 The cargo's displacements are relative to the vessel's rigid-body frame, as in the vertical plane
 (docs/theory.md#37-excitation-of-the-cargo-model): the rigid-body motions act on the cargo as the

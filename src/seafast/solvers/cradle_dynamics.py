@@ -1,6 +1,6 @@
 """The linear part of the 3-D cargo's dynamics on its cradles, and its condensation onto the engagements.
 
-Equation of motion (docs/transverse.md#8-dynamics), cargo DOFs ``q`` (:mod:`seafast.model.cargo3d`), deck DOFs
+Equation of motion (docs/transverse.md#7-dynamics), cargo DOFs ``q`` (:mod:`seafast.model.cargo3d`), deck DOFs
 ``x_o`` prescribed (the vertical plane's: z and theta under each saddle)::
 
     M q'' + D (q' - S x_o') + K0 q = f(t) - K_co,springs x_o(t) - A^T (k max(s, 0)),

@@ -4,7 +4,7 @@ The linear part, every element bilateral, is condensed onto the engagements harm
 (:func:`~seafast.solvers.cradle_dynamics.cradle_operators`); the vertical plane's condensed harmonic balance
 (:func:`~seafast.solvers.hbm.solve_condensed`: AFT of the exact law, semi-smooth Newton solved through the samples
 where an element is open, the quasi-static exact-contact predictor as its start, the continuations as its fallback)
-solves for the engagements' harmonics. Friction at the pads is left out (docs/transverse.md#8-dynamics).
+solves for the engagements' harmonics. Friction at the pads is left out (docs/transverse.md#7-dynamics).
 
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s].
 """
