@@ -136,6 +136,8 @@ def cradle_excitation_of(vessel: VesselExcitation, model: StructuralModel, cargo
     rigid, points, q = vessel.rigid_body, vessel.cargo_points, vessel.motion_amplitudes
     if rigid is None or points is None or q is None:
         raise ValueError("vessel: no rigid-body motions (vessel.motions = 'none' or a zero wave): allowed a vessel with motions")
+    if not np.isfinite(rigid.reference_z_m):
+        raise ValueError("vessel: the motions' reference point has no height (reference_z_m): allowed motions with one")
     axis = (vessel.cargo_aft_end_x_m - rigid.reference_x_m, points.y_m, points.z_m - rigid.reference_z_m)
     vertical = vessel.cargo_excitation(model)
     return cradle_excitation(cargo, vertical, q, model.saddle_x_m, axis, vessel.gravity_m_per_s2)

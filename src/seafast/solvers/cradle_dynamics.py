@@ -12,8 +12,9 @@ gradients and ``E`` how the deck's vertical motion moves them: a pad's compressi
 under its pair, a lashing's stretch by ``e_z`` times the deck's rise at its anchor (the deck point nearest
 the anchor along the cargo, rigid between: ``z + theta (x_anchor - x_deck)``); a side stopper does not move
 (the deck moves only vertically). ``S = -K_lin^-1 K_co`` is the quasi-static influence of the deck DOFs
-on the cargo with every element bilateral (``K_lin = K0 + A^T k A``, ``K_co = K_co,springs + A^T k E``): the
-damping acts on the motion relative to what the supports impose, as in the vertical plane.
+on the cargo with the pads and lashings bilateral and the stoppers open, as at rest (``K_lin = K0 + A^T k A``,
+``K_co = K_co,springs + A^T k E`` over those elements): the damping acts on the motion relative to what the
+supports impose, as in the vertical plane, whichever elements are engaged.
 
 Condensed as the vertical plane's harmonic balance (:mod:`seafast.solvers.hbm.condensed`): every element is
 kept bilateral in the linear part and the nonlinearity is the correction ``c = k max(s, 0) - k s`` (the
@@ -114,10 +115,18 @@ class CradleDynamics:
         return self.problem.load(0.0, 0.0, self.gravity_m_per_s2)
 
     @property
+    def damping_set(self) -> NDArray[np.bool_]:
+        """The elements bilateral in ``S``: every pad and lashing (the stoppers open, as they are at rest)."""
+        problem = self.problem
+        mask = np.ones(len(problem.engagements), dtype=bool)
+        mask[2 * len(problem.pad_pairs) : 2 * len(problem.pad_pairs) + len(problem.stoppers)] = False
+        return mask
+
+    @property
     def support_damping_coupling(self) -> NDArray[np.float64]:
-        """``D_co = -D S`` (5 n, n_o), ``S = -K_lin^-1 K_co`` with every element bilateral: the damping's coupling to
-        the deck velocities, the same whichever elements are engaged (the vertical plane's law)."""
-        return self.linear_parts().deck_coupling[1]
+        """``D_co = -D S`` (5 n, n_o), ``S = -K_lin^-1 K_co`` with the pads and lashings bilateral (:attr:`damping_set`):
+        the damping's coupling to the deck velocities, the same whichever elements are engaged (the vertical plane's law)."""
+        return self.linear_parts(self.damping_set).deck_coupling[1]
 
     def linear_parts(self, included: NDArray[np.bool_] | None = None) -> CradleLinearParts:
         """The linear operators with the elements ``included`` (default all) bilateral, kept per set of elements."""
@@ -207,10 +216,10 @@ class CradleLinearParts:
         d = self.dynamics
         A, k = self.engagement_matrix, self.element_stiffness_N_per_m
         K_co = d.spring_coupling + A.T @ (k[:, None] * d.deck_engagement[self.included])
-        if np.all(self.included):
+        if np.array_equal(self.included, d.damping_set):
             S = -self.solve_stack(np.zeros(1), K_co[None].astype(complex))[0].real
             return K_co, -d.matrices[2] @ S
-        return K_co, d.linear_parts().deck_coupling[1]
+        return K_co, d.support_damping_coupling
 
     @cached_property
     def blocks(self) -> tuple[tuple[NDArray[np.intp], QuadraticMatrices], ...]:
