@@ -247,11 +247,11 @@ class CradleLinearParts:
         out = np.zeros(rhs.shape, dtype=complex)
         for dofs, q in self.blocks:
             part = rhs[:, dofs]
-            columns = np.nonzero(np.any(part != 0.0, axis=(0, 1)))[0]  # the right-hand sides that load this block
-            if columns.size:
-                out[np.ix_(np.arange(rhs.shape[0]), dofs, columns)] = solve_dynamic_stack(
-                    q, omegas, np.ascontiguousarray(part[:, :, columns])
-                )
+            columns = np.flatnonzero(np.any(part != 0.0, axis=(0, 1)))  # the right-hand sides that load this block
+            if columns.size == rhs.shape[2]:
+                out[:, dofs] = solve_dynamic_stack(q, omegas, np.ascontiguousarray(part))
+            elif columns.size:
+                out[:, dofs[:, None], columns[None, :]] = solve_dynamic_stack(q, omegas, np.ascontiguousarray(part[:, :, columns]))
         return out
 
 
@@ -282,11 +282,9 @@ def cradle_operators(
     K_co, D_co = parts.deck_coupling
     load = f - xo @ K_co.T - 1j * wk[:, None] * (xo @ D_co.T)
     load[0] -= A.T @ (k * s0)
-    rhs = np.zeros((H + 1, n, m + 1), dtype=complex)
-    rhs[:, :, :m] = -A.T[None]
-    rhs[:, :, m] = load
-    sol = parts.solve_stack(wk, rhs)
-    Y, X_lin = sol[:, :, :m], sol[:, :, m]
+    Y = parts.solve_stack(wk, np.broadcast_to(-A.T[None], (H + 1, n, m)).astype(complex))
+    X_lin = np.zeros((H + 1, n), dtype=complex)
+    X_lin[:rows] = parts.solve_stack(wk[:rows], load[:rows, :, None])[:, :, 0]  # the loads live on k = 0, 1
     X_lin[0] = X_lin[0].real
     s_lin = X_lin @ A.T + xo @ E.T
     s_lin[0] += s0
