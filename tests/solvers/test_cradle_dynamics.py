@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -15,6 +17,7 @@ from seafast.model.structure import build_cargo_beam
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_dynamics_of
 from seafast.solvers.cradle_hbm import solve_cradle_hbm
 from seafast.solvers.hbm import HBMOptions, solve_hbm
+from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.references.cradle_time_domain import CradleTimeDomainOptions, solve_cradle_time_domain
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
 
@@ -111,7 +114,7 @@ def test_a_very_long_beam_sea_wave_tends_to_the_statics_of_the_heeled_ship(heel_
     dynamics = small_dynamics(alpha_deg=3.0, pretension_N=5e3)
     phi = np.deg2rad(heel_deg)
     excitation = small_excitation(dynamics.problem.cargo, np.array([0, 0, 0, phi, 0, 0], dtype=complex), omega=0.02)
-    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=16))
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=64))
     statics = solve_transverse_statics(dynamics.problem, heel_deg)
     assert response.converged and statics.outcome is StaticsOutcome.CONVERGED
     forces = np.concatenate([statics.pad_force_N.ravel(), statics.stopper_force_N, statics.lashing_tension_N])
@@ -122,6 +125,28 @@ def test_a_very_long_beam_sea_wave_tends_to_the_statics_of_the_heeled_ship(heel_
     mirrored = solve_transverse_statics(dynamics.problem, -heel_deg)
     half = response.element_force_N[response.time_s.size // 2]
     np.testing.assert_allclose(half[:4], mirrored.pad_force_N.ravel(), atol=2e-3 * np.max(forces))
+    # and the quasi-static exact-contact reference on the same grid (the cargo's inertia, (0.02 / 20)^2, neglected):
+    # the kinks of the forces where pads lift and lashings slacken are what 64 harmonics smooth
+    quasi_static = solve_cradle_quasi_static(dynamics, excitation, response.time_s.size)
+    np.testing.assert_allclose(response.element_force_N, quasi_static.element_force_N, atol=5e-4 * np.max(forces))
+    np.testing.assert_allclose(response.max_force_N, quasi_static.max_force_N, atol=2e-4 * np.max(forces))
+    np.testing.assert_allclose(quasi_static.element_force_N[0], forces, atol=2e-3 * np.max(forces))
+
+
+def test_the_quasi_static_reference_is_the_exact_statics_at_each_instant():
+    """With the deck still and the motions frozen at an instant, the quasi-static reference is the heeled statics."""
+    base = small_dynamics()  # the lashings' stretch from the undisplaced cargo: the rest does not depend on g
+    dynamics = CradleDynamics(replace(base.problem, pretension_at_rest=False), 2.0, 2e-3, np.array(SADDLES_M))
+    phi = 0.3
+    excitation = small_excitation(dynamics.problem.cargo, np.array([0, 0, 0, phi, 0, 0], dtype=complex), omega=1e-6)
+    response = solve_cradle_quasi_static(dynamics, excitation, 64)
+    assert response.residual < 1e-12
+    # linearised gravity (0, -g phi, -g) is the exact gravity of a heel atan(phi) with g scaled by sqrt(1 + phi^2)
+    heel = np.rad2deg(np.arctan(phi))
+    statics = solve_transverse_statics(dynamics.problem, heel, gravity_m_per_s2=9.81 * np.hypot(1.0, phi))
+    forces = np.concatenate([statics.pad_force_N.ravel(), statics.stopper_force_N, statics.lashing_tension_N])
+    assert np.any(forces == 0.0)
+    np.testing.assert_allclose(response.element_force_N[0], forces, rtol=1e-9, atol=1e-9 * np.max(forces))
 
 
 @pytest.fixture(scope="module")
