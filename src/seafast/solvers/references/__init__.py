@@ -19,6 +19,13 @@ same grid ``t_n = n T / N`` as HBM.
     reference, and ``Formulation.CONDENSED``), both started from one stated state and reporting the orbit reached
     (:mod:`~seafast.solvers.references.time_domain`, :mod:`~seafast.solvers.references.orbit`).
 
+``solve_cradle_time_domain`` (:mod:`~seafast.solvers.references.cradle_time_domain`)
+    The 3-D cargo on its cradles (pads, stoppers, lashings; docs/transverse.md#7-dynamics) integrated on every DOF
+    with the exact law to the periodic state, returning a
+    :class:`~seafast.solvers.cradle_hbm.CradleResponse` on the harmonic balance's grid;
+    ``solve_cradle_quasi_static`` (:mod:`~seafast.solvers.references.cradle_quasi_static`) its exact static
+    response instant by instant.
+
 The references live in :mod:`~seafast.solvers.references.quasi_static` and
 :mod:`~seafast.solvers.references.time_domain`, their settings (:class:`QuasiStaticOptions`,
 :class:`TimeDomainOptions`) in :mod:`~seafast.solvers.references.options`; the active-set contact

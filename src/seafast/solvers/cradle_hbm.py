@@ -1,0 +1,261 @@
+"""The periodic response of the 3-D cargo on pads, stoppers and slack lashings: harmonic balance with AFT.
+
+The linear part, every element bilateral, is condensed onto the engagements harmonic by harmonic
+(:func:`~seafast.solvers.cradle_dynamics.cradle_operators`); the vertical plane's condensed harmonic balance
+(:func:`~seafast.solvers.hbm.solve_condensed`: AFT of the exact law, semi-smooth Newton solved through the samples
+where an element is open, the quasi-static exact-contact predictor as its start, the continuations as its fallback)
+solves for the engagements' harmonics. Friction at the pads is left out (docs/transverse.md#7-dynamics).
+
+Units: engagements [m]; forces [N]; displacements [m, rad]; time [s].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.excitation.cradle_loads import CradleExcitation
+from seafast.fourier import harmonics_to_time, period_fraction, real_to_complex_harmonics
+from seafast.model.cradle import Side
+from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
+from seafast.solvers.hbm import CondensedOperators, HBMOptions, solve_condensed
+from seafast.solvers.hbm.fixed import QUICK_ITERATIONS, CondensedSolution
+from seafast.solvers.hbm.harmonics import pad_harmonics
+from seafast.solvers.outcome import HBMStart, SolverOutcome
+
+__all__ = ["CradleResponse", "cradle_response", "solve_cradle_hbm", "truncated_operators", "DEFAULT_CRADLE_HARMONICS"]
+
+DEFAULT_CRADLE_HARMONICS = 64
+"""H when the options leave it open (the 3-D solve takes a fixed H)."""
+
+
+@dataclass(frozen=True)
+class CradleResponse:
+    """One period of the steady state of the 3-D cargo on its cradles, sampled at ``t_n = n T / N``.
+
+    Attributes
+    ----------
+    outcome, residual, message
+        How the solve ended (:class:`~seafast.solvers.outcome.SolverOutcome`), its largest residual relative to
+        the largest linear engagement [-], and the account for people.
+    omega_rad_s, harmonics
+        Fundamental frequency [rad/s] and H (0 for a time-sampled reference).
+    time_s
+        Sample times (N,) [s].
+    engagement_m
+        Every element's engagement (pads port then starboard per pair, stoppers, lashings) (N, m) [m]: compression,
+        overclosure, stretch; open or slack where <= 0.
+    element_force_N
+        ``k max(s, 0)`` (N, m) [N]: exactly 0 where open or slack.
+    pad_count, stopper_count
+        Pads (two per pair) and stoppers, to split the elements.
+    cargo_displacement_m
+        Cargo DOFs over the period (N, 5 n) [m, rad] (:mod:`seafast.model.cargo3d`'s order), relative to the vessel's
+        rigid-body frame, static part included.
+    pad_normal
+        Unit (y, z) push of each pad on the cargo, (n_pairs, 2, 2).
+    """
+
+    outcome: SolverOutcome
+    residual: float
+    message: str
+    omega_rad_s: float
+    harmonics: int
+    time_s: NDArray[np.float64]
+    engagement_m: NDArray[np.float64]
+    element_force_N: NDArray[np.float64]
+    pad_count: int
+    stopper_count: int
+    cargo_displacement_m: NDArray[np.float64]
+    pad_normal: NDArray[np.float64]
+
+    @property
+    def converged(self) -> bool:
+        return self.outcome.converged
+
+    @property
+    def pad_force_N(self) -> NDArray[np.float64]:
+        """(N, n_pairs, 2): port, starboard pad of each pair [N]."""
+        return self.element_force_N[:, : self.pad_count].reshape(len(self.time_s), -1, 2)
+
+    @property
+    def stopper_force_N(self) -> NDArray[np.float64]:
+        return self.element_force_N[:, self.pad_count : self.pad_count + self.stopper_count]
+
+    @property
+    def lashing_tension_N(self) -> NDArray[np.float64]:
+        return self.element_force_N[:, self.pad_count + self.stopper_count :]
+
+    @property
+    def pair_force_N(self) -> NDArray[np.float64]:
+        """Each pair's resultant push on the cargo (N, n_pairs, 2): across (y, to port +) and up (z) [N]."""
+        return np.einsum("tps,psj->tpj", self.pad_force_N, self.pad_normal)
+
+    @property
+    def max_force_N(self) -> NDArray[np.float64]:
+        """Each element's largest force over the period (m,) [N]."""
+        return np.max(self.element_force_N, axis=0)
+
+    @property
+    def min_force_N(self) -> NDArray[np.float64]:
+        return np.min(self.element_force_N, axis=0)
+
+    @property
+    def open_fraction(self) -> NDArray[np.float64]:
+        """Fraction of the period each element is open (pad lifted, stopper clear) or slack (lashing) (m,) [-]."""
+        return np.mean(self.engagement_m <= 0.0, axis=0)
+
+
+def cradle_response(
+    dynamics: CradleDynamics,
+    engagement_m: NDArray[np.float64],
+    cargo_displacement_m: NDArray[np.float64],
+    omega_rad_s: float,
+    outcome: tuple[SolverOutcome, float, str, int],
+) -> CradleResponse:
+    """A :class:`CradleResponse` of sampled engagements (N, m) and displacements (N, 5 n); ``outcome``:
+    (outcome, relative residual, message, H)."""
+    problem = dynamics.problem
+    N = engagement_m.shape[0]
+    k = problem.element_stiffness_N_per_m
+    normals = np.array([[pair.pad_normal(side) for side in (Side.PORT, Side.STARBOARD)] for pair in problem.pad_pairs]).reshape(-1, 2, 2)
+    return CradleResponse(
+        outcome=outcome[0],
+        residual=float(outcome[1]),
+        message=outcome[2],
+        omega_rad_s=float(omega_rad_s),
+        harmonics=int(outcome[3]),
+        time_s=period_fraction(N) * 2.0 * np.pi / omega_rad_s,
+        engagement_m=engagement_m,
+        element_force_N=k * np.maximum(engagement_m, 0.0),
+        pad_count=2 * len(problem.pad_pairs),
+        stopper_count=len(problem.stoppers),
+        cargo_displacement_m=cargo_displacement_m,
+        pad_normal=normals,
+    )
+
+
+def truncated_operators(ops: CondensedOperators, harmonics: int) -> CondensedOperators:
+    """The same condensed operators at fewer harmonics (their first ``harmonics`` + 1): nothing is solved again."""
+    h = int(harmonics)
+    return replace(
+        ops,
+        harmonics=h,
+        receptance_harmonics=ops.receptance_harmonics[: h + 1],
+        linear_compression_m=ops.linear_compression_m[: 2 * h + 1],
+        linear_cargo_displacement=ops.linear_cargo_displacement[: h + 1],
+        cargo_influence=ops.cargo_influence[: h + 1],
+    )
+
+
+def _ladder(ops: CondensedOperators, options: HBMOptions) -> tuple[CondensedSolution, str]:
+    """Solve at H = 8, 16, ... up to the options' H, each rung started from the one before (padded).
+
+    A start from the previous rung is near the solution (a few Newton steps, no fallbacks); a rung that fails
+    from it is solved with the full fallback chain. Returns the last solution and the relative change of the
+    elements' peak forces from the rung before (the truncation's indicator) in words.
+    """
+    H = ops.harmonics
+    rungs = [h for h in (8, 16, 32, 64, 128, 256) if h < H] + [H]
+    previous: CondensedSolution | None = None
+    peaks: list[NDArray[np.float64]] = []
+    for h in rungs:
+        rung_options = options.with_harmonics(h, options.time_samples if h == H else None)
+        rung_ops = truncated_operators(ops, h)
+        solution = None
+        if previous is not None and previous.converged:
+            quick = replace(rung_options, continuation=False, max_iterations=min(int(options.max_iterations), QUICK_ITERATIONS))
+            start = pad_harmonics(previous.saddle_compression, h)
+            solution = solve_condensed(rung_ops, quick, start, HBMStart.PREVIOUS_HARMONICS)
+        if solution is None or not solution.converged:
+            solution = solve_condensed(rung_ops, rung_options)
+        N = rung_options.fixed_grid()[1]
+        peaks.append(
+            np.max(
+                ops.saddle_stiffness_N_per_m
+                * np.maximum(harmonics_to_time(real_to_complex_harmonics(solution.saddle_compression), N), 0.0),
+                axis=0,
+            )
+        )
+        previous = solution
+    assert previous is not None
+    if len(peaks) < 2:
+        return previous, "no truncation indicator (a single H)"
+    change = np.max(np.abs(peaks[-1] - peaks[-2])) / max(float(np.max(peaks[-1])), 1.0)
+    return previous, f"peak forces changed by {change:.2e} of the largest from H = {rungs[-2]}"
+
+
+def _deck_time_m(excitation: CradleExcitation, time_samples: int) -> NDArray[np.float64]:
+    """The deck DOFs over the period (N, n_o) [m, rad]."""
+    xo = np.array(excitation.deck_displacement, dtype=complex)
+    xo[0] = xo[0].real
+    return harmonics_to_time(xo, time_samples)
+
+
+def _solve_set(
+    dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions, included: NDArray[np.bool_]
+) -> tuple[CondensedSolution, str, NDArray[np.float64], NDArray[np.float64]]:
+    """One condensed solve with the ``included`` elements: (solution, truncation words, engagements (N, m), q (N, 5 n)).
+
+    The engagements of the elements left out follow from the cargo's motion and the deck's (open where <= 0).
+    """
+    H, N = options.fixed_grid()
+    ops = cradle_operators(dynamics, excitation, H, included)
+    solution = solve_condensed(ops, replace(options, continuation=False))
+    truncation = "solved directly at H"
+    if not solution.converged:
+        solution, truncation = _ladder(ops, options)
+    C = real_to_complex_harmonics(solution.correction_force)  # (H+1, m_I)
+    q = harmonics_to_time(ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C), N)
+    problem = dynamics.problem
+    s = dynamics.initial_engagement_m + q @ problem.engagement_matrix.T + _deck_time_m(excitation, N) @ dynamics.deck_engagement.T
+    s[:, included] = harmonics_to_time(real_to_complex_harmonics(solution.saddle_compression), N)
+    return solution, truncation, s, q
+
+
+def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions | None = None) -> CradleResponse:
+    """The periodic response by the condensed harmonic balance at a fixed H.
+
+    The side stoppers are left out of the linear part at first (taken open: they usually are); any that closes
+    in the solution is brought in and the problem solved again, until none left out closes. Each solve is direct
+    at H (from the better of the linear solution and the quasi-static exact-contact predictor); if that fails, H is
+    doubled from 8, each rung started from the one before, with the fallback chain of the vertical plane
+    (:func:`~seafast.solvers.hbm.solve_condensed`) where a rung's start is not enough.
+
+    Parameters
+    ----------
+    dynamics
+        The 3-D cargo on its cradles.
+    excitation
+        The static and first-harmonic loads and deck motion (:func:`~seafast.excitation.cradle_loads.cradle_excitation`).
+    options
+        The vertical plane's :class:`~seafast.solvers.hbm.HBMOptions` (condensed formulation, exact law or a smooth
+        one, Newton or hybr, tolerance, fallbacks); ``harmonics`` None means :data:`DEFAULT_CRADLE_HARMONICS`.
+
+    Returns
+    -------
+    CradleResponse
+        On the AFT grid (N samples); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance.
+        Its message says how the solve went (with the peak forces' change from the previous H when the ladder ran).
+    """
+    options = options if options is not None else HBMOptions()
+    H = DEFAULT_CRADLE_HARMONICS if options.harmonics is None else int(options.harmonics)
+    options = options.with_harmonics(H, options.time_samples)
+    problem = dynamics.problem
+    stopper = np.zeros(len(problem.engagements), dtype=bool)
+    stopper[2 * len(problem.pad_pairs) : 2 * len(problem.pad_pairs) + len(problem.stoppers)] = True
+    included = ~stopper if np.any(~stopper) else stopper
+    for _ in range(stopper.size + 1):
+        solution, truncation, s, q = _solve_set(dynamics, excitation, options, included)
+        closing = ~included & np.any(s > 0.0, axis=0)
+        if not solution.converged or not np.any(closing):
+            break
+        included = included | closing
+    left_out = int(np.count_nonzero(~included))
+    message = (
+        f"3-D cradle harmonic balance, H = {H}, N = {options.fixed_grid()[1]}: {solution.message}; {truncation}; "
+        f"{left_out} stopper(s) open all period, left out"
+    )
+    return cradle_response(dynamics, s, q, excitation.omega_rad_s, (solution.outcome, solution.residual_norm, message, H))
