@@ -248,6 +248,7 @@ def test_zero_coefficient_is_the_lashings_linear_answer(cases):
     got = res.dataset["axial_displacement_m"].sel(load_case="dynamic", model="nonlinear").values
     np.testing.assert_allclose(got, u, atol=1e-6 * abs(x))
     assert _row(res)["axial_force_N"] == pytest.approx(restraint.lashing_axial_stiffness_N_per_m * np.max(np.abs(u)), rel=1e-6)
+    assert "a linear oscillator, solved exactly" in str(res.axial.messages[1, 1])  # no reference integrating the decay
 
 
 def test_one_way_coupling_friction_moment_is_small(cases):

@@ -64,8 +64,9 @@ def solve_axial_row(
     """One row's axial response on the sample grid of N: the axial HBM, checked by (or replaced with) the reference.
 
     The still-water row is static; ``method = "time_domain"`` solves by the rigid-Coulomb reference. Otherwise the
-    axial HBM answers when it converges locked; a sliding answer is checked against the reference and gives way to
-    it beyond :data:`AXIAL_CROSS_CHECK`; an HBM that does not converge gives way to it too (the message says so).
+    axial HBM answers when it converges locked, or with no friction and no stopper (a linear oscillator); a sliding
+    answer is checked against the reference and gives way to it beyond :data:`AXIAL_CROSS_CHECK`; an HBM that does not
+    converge gives way to it too (the message says so).
     """
     if static:
         return static_response(restraint, float(load.force_N[0].real), float(restraint.capacity_N(normal[0])), load.omega_rad_s, N)
@@ -74,6 +75,10 @@ def solve_axial_row(
     hbm = solve_axial_hbm(restraint, load, normal, options, initial_harmonics=start)
     if hbm.converged and hbm.slip_m == 0.0:
         return hbm.on_grid(N)
+    if hbm.converged and not restraint.has_stoppers and not np.any(restraint.capacity_N(normal)):
+        # no friction and no stopper: a linear oscillator on the lashings, which the harmonic balance solves exactly
+        # (the reference would integrate the decay of its light damping, hundreds of periods)
+        return replace(hbm, message=f"{hbm.message}; no friction and no stopper: a linear oscillator, solved exactly").on_grid(N)
     # long stick phases defeat the truncated Fourier series (docs/axial.md), and so do the brief slips of a cargo
     # walking near the shakedown coefficient: a sliding answer is checked against the reference, which then answers
     td = solve_axial_time_domain(restraint, load, normal, time_samples=options.time_samples)
