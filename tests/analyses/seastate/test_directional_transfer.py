@@ -25,6 +25,7 @@ from seafast.cli import main
 from seafast.cli.seastate import breaking_design_waves_warning
 from seafast.excitation.hydrodynamics.roll_damping import STOCHASTIC_FACTOR
 from seafast.excitation.rao_extension import extended_six_dof_rao, six_dof_long_wave_limits
+from seafast.excitation.vessel import VesselCache
 from seafast.model.from_case import build_model
 
 G = 9.81
@@ -191,10 +192,11 @@ def test_the_spread_spectral_m0_equals_a_direct_quadrature_over_directions(base)
     w, S = spectrum.omega_rad_s, spectrum.density_m2_s_per_rad
     theta = np.linspace(-math.pi, math.pi, 73)[1:-1]  # D(+-pi) = 0
     m0 = []
-    for t in theta:
-        heading = (120.0 + math.degrees(t)) % 360.0
-        tf = transfer_functions(sea_case, model, w, heading_deg=0.0 if heading >= 360.0 else heading, six_dof=True)
-        m0.append(np.trapezoid(np.abs(tf.saddle_force_N) ** 2 * S[:, None], w, axis=0))
+    with VesselCache().shared():  # one vessel (hull, loading, BEM data) for the 71 directions, as the analysis shares it
+        for t in theta:
+            heading = (120.0 + math.degrees(t)) % 360.0
+            tf = transfer_functions(sea_case, model, w, heading_deg=0.0 if heading >= 360.0 else heading, six_dof=True)
+            m0.append(np.trapezoid(np.abs(tf.saddle_force_N) ** 2 * S[:, None], w, axis=0))
     direct = np.trapezoid(spreading_density_per_rad(theta, 6.0)[:, None] * np.array(m0), theta, axis=0)
     # measured 0.17-0.20 %: the 15 directions' quadrature error (31 directions: 5e-5; the 71-point trapezoid: 1e-5)
     assert np.allclose(analysis.extremes.saddle_force.m0, direct, rtol=4e-3)
