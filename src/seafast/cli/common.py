@@ -20,6 +20,7 @@ __all__ = [
     "EXIT_INTERRUPTED",
     "error",
     "add_case_options",
+    "add_set_option",
 ]
 
 EXIT_OK = 0
@@ -46,16 +47,24 @@ class PresetAction(argparse.Action):
         namespace.overrides = overrides
 
 
-def add_case_options(p: argparse.ArgumentParser) -> None:
-    """``--set KEY=VALUE`` (repeatable) and ``--preset NAME``, as every command that takes a case has them."""
+def add_set_option(p: argparse.ArgumentParser, example: str, what: str = "a case key") -> None:
+    """``--set KEY=VALUE`` (repeatable; ``args.overrides``), as every command that takes a case has it.
+
+    ``example``: a dotted ``KEY=VALUE`` the command's users would set; ``what``: what a key names.
+    """
     p.add_argument(
         "--set",
         dest="overrides",
         action="append",
         default=[],
         metavar="KEY=VALUE",
-        help="override a case key (dotted, e.g. cargo.length_m=90); repeatable; VALUE is read as YAML",
+        help=f"override {what} (dotted, e.g. {example}); repeatable; VALUE is read as YAML",
     )
+
+
+def add_case_options(p: argparse.ArgumentParser) -> None:
+    """``--set KEY=VALUE`` (:func:`add_set_option`) and ``--preset NAME``, for the commands that solve the cargo's dynamics."""
+    add_set_option(p, "cargo.length_m=90")
     p.add_argument(
         "--preset",
         action=PresetAction,

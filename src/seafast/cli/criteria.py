@@ -14,7 +14,7 @@ import sys
 import time
 from typing import Any
 
-from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, error
+from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, add_set_option, error
 
 __all__ = ["add_criteria_subcommand", "CRITERIA_EXAMPLES"]
 
@@ -68,14 +68,7 @@ def add_criteria_subcommand(subparsers: Any) -> argparse.ArgumentParser:
     )
     p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
     p.add_argument("-o", "--output", default="seafast-criteria", help="output directory (default: %(default)s)")
-    p.add_argument(
-        "--set",
-        dest="overrides",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a case key (dotted, e.g. seafastening.saddle_contact_angle_deg=35); repeatable",
-    )
+    add_set_option(p, "seafastening.saddle_contact_angle_deg=35")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     p.set_defaults(handler=_cmd_criteria)
     return p

@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, error
+from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, add_set_option, error
 
 if TYPE_CHECKING:
     from seafast.config import Case
@@ -301,14 +301,7 @@ def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         "e.g. 90:180:15 (default: the case's sea state alone, no heading column)",
     )
     p.add_argument("-o", "--output", default="seafast-operability", help="output directory (default: %(default)s)")
-    p.add_argument(
-        "--set",
-        dest="overrides",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a case key (dotted, e.g. limits.max_saddle_force_N=11.5e6); repeatable",
-    )
+    add_set_option(p, "limits.max_saddle_force_N=11.5e6")
     p.add_argument(
         "--scatter", default=None, metavar="FILE", help="wave scatter diagram, CSV significant_height_m,peak_period_s,occurrence"
     )

@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, error
+from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, add_set_option, error
 
 __all__ = ["add_seastate_subcommand", "SEASTATE_EXAMPLES"]
 
@@ -156,14 +156,7 @@ def add_seastate_subcommand(subparsers: Any) -> argparse.ArgumentParser:
     )
     p.add_argument("case", nargs="?", help="case file (YAML); omit for the built-in base case")
     p.add_argument("-o", "--output", default="seafast-seastate", help="output directory (default: %(default)s)")
-    p.add_argument(
-        "--set",
-        dest="overrides",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a case key (dotted, e.g. sea_state.significant_height_m=4); repeatable",
-    )
+    add_set_option(p, "sea_state.significant_height_m=4")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")

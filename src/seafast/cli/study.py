@@ -18,7 +18,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from seafast.cli.common import EXIT_INTERRUPTED, EXIT_OK, error
+from seafast.cli.common import EXIT_INTERRUPTED, EXIT_OK, add_set_option, error
 
 __all__ = ["add_study_subcommand", "build_study_parser", "cmd_study", "main"]
 
@@ -49,14 +49,7 @@ study file (YAML):
 def _configure(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
     parser.add_argument("study", metavar="NAME|FILE", help="built-in study name or study file (YAML)")
     parser.add_argument("-o", "--output", default=None, help="output directory (default: study-NAME)")
-    parser.add_argument(
-        "--set",
-        dest="overrides",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a key of the study's base case (dotted, e.g. wave.amplitude_m=2); repeatable",
-    )
+    add_set_option(parser, "wave.amplitude_m=2", "a key of the study's base case")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=None, metavar="N", help="local worker processes (default: all cores; 1 = serial)")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS", help="Dask distributed scheduler address, e.g. tcp://host:8786")
