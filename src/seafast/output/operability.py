@@ -30,6 +30,7 @@ from seafast.results.labelled import labelled_variable as _var
 __all__ = [
     "OPERABILITY_COLUMNS",
     "SCATTER_RESULT_COLUMNS",
+    "operability_cell",
     "operability_csv_text",
     "operability_dataset",
     "write_operability_outputs",
@@ -51,7 +52,8 @@ SCATTER_RESULT_COLUMNS = ("significant_height_m", "peak_period_s", "occurrence",
 """Columns of scatter.csv (one row per cell of the user's scatter diagram; occurrence normalised)."""
 
 
-def _cell(value: Any) -> str:
+def operability_cell(value: Any) -> str:
+    """One cell of operability.csv and scatter.csv: empty for None or a non-finite number, true/false, floats in full."""
     if value is None:
         return ""
     if isinstance(value, (bool, np.bool_)):
@@ -68,7 +70,7 @@ def operability_csv_text(result: OperabilityResult) -> str:
     w.writerow(OPERABILITY_COLUMNS)
     for p in result.points:
         row = p.row()
-        w.writerow([_cell(row[c]) for c in OPERABILITY_COLUMNS])
+        w.writerow([operability_cell(row[c]) for c in OPERABILITY_COLUMNS])
     return buf.getvalue()
 
 
@@ -313,11 +315,11 @@ def write_operability_outputs(
         for i in range(dg.occurrence.size):
             w.writerow(
                 [
-                    _cell(float(dg.significant_height_m[i])),
-                    _cell(float(dg.peak_period_s[i])),
-                    _cell(float(dg.occurrence[i])),
-                    _cell(bool(scatter.within_linear[i])),
-                    _cell(bool(scatter.within_nonlinear[i])),
+                    operability_cell(float(dg.significant_height_m[i])),
+                    operability_cell(float(dg.peak_period_s[i])),
+                    operability_cell(float(dg.occurrence[i])),
+                    operability_cell(bool(scatter.within_linear[i])),
+                    operability_cell(bool(scatter.within_nonlinear[i])),
                 ]
             )
         (out / "scatter.csv").write_text(buf.getvalue(), encoding="utf-8")

@@ -16,14 +16,13 @@ import csv
 import io
 import math
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import xarray as xr
 import yaml
 
 from seafast.analyses.operability.headings import AllowableModel, GoverningHeading, HeadingOperabilityResult
-from seafast.output.operability import OPERABILITY_COLUMNS, operability_dataset
+from seafast.output.operability import OPERABILITY_COLUMNS, operability_cell, operability_dataset
 from seafast.output.operability_polar import plot_heading_operability
 from seafast.results.labelled import labelled_variable
 
@@ -46,12 +45,6 @@ HEADING_LONG_NAME = (
 )
 
 
-def _cell(value: Any) -> str:
-    if isinstance(value, (float, np.floating)):
-        return "" if not math.isfinite(float(value)) else repr(float(value))
-    return str(value)
-
-
 def heading_operability_csv_text(result: HeadingOperabilityResult) -> str:
     """operability.csv text with the leading ``heading_deg`` column (SI units and degrees; empty cell = not found)."""
     buf = io.StringIO()
@@ -60,7 +53,7 @@ def heading_operability_csv_text(result: HeadingOperabilityResult) -> str:
     for h in result.headings:
         for p in h.result.points:
             row = {"heading_deg": float(h.heading_deg), **p.row()}
-            w.writerow([_cell(row[c]) for c in HEADING_OPERABILITY_COLUMNS])
+            w.writerow([operability_cell(row[c]) for c in HEADING_OPERABILITY_COLUMNS])
     return buf.getvalue()
 
 
