@@ -288,7 +288,7 @@ def _consistent(system: _System, q: NDArray[np.float64], engaged: NDArray[np.boo
     As forces, not as engagements: a soft lashing's engagement (its pretension over its stiffness) can be metres,
     and a tolerance relative to it would pass a pad sign wrong by a millimetre.
     """
-    s = system.s0 + system.A @ q
+    s, _ = _violation(system, q, engaged)
     wrong_N = system.k * np.maximum(np.where(engaged, -s, s), 0.0)
     force_scale_N = max(float(np.max(np.abs(system.f), initial=0.0)), float(np.max(system.k * np.maximum(s, 0.0), initial=0.0)), 1.0)
     return float(np.max(wrong_N, initial=0.0)) <= CONSISTENCY_TOLERANCE * force_scale_N

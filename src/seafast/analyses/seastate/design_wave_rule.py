@@ -123,7 +123,7 @@ def quantity_transfer(tf: TransferFunctions, quantity: str, location: int) -> ND
         return tf.saddle_compression_m[:, location]
     if quantity == "M_b_Nm":
         return tf.bending_moment_Nm[:, location]
-    return tf.bending_moment_Nm[:, location] / tf.bending_section_modulus_m3[location]
+    return tf.bending_stress_Pa[:, location]
 
 
 def _governing_saddle(analysis: SpectralAnalysis, quantity: str) -> int:
