@@ -98,7 +98,9 @@ def _stick(phi: float, half_weight: float, ratio: float = 1.0) -> tuple[np.ndarr
     kn = K_V / (2 * np.cos(a) ** 2)
     kt = ratio * kn
     s, c = np.sin(a), np.cos(a)
-    d = np.array([-half_weight * np.sin(phi) / (2 * (kn * s**2 + kt * c**2)), half_weight * (1 - np.cos(phi)) / (2 * (kn * c**2 + kt * s**2))])
+    d = np.array(
+        [-half_weight * np.sin(phi) / (2 * (kn * s**2 + kt * c**2)), half_weight * (1 - np.cos(phi)) / (2 * (kn * c**2 + kt * s**2))]
+    )
     pair = PadPair(0.0, ALPHA_DEG, 2.0, K_V)
     normal = np.array([half_weight / (2 * c) - kn * pair.pad_normal(side) @ d for side in (Side.PORT, Side.STARBOARD)])
     friction = np.array([kt * pad_tangent(pair, side) @ d for side in (Side.PORT, Side.STARBOARD)])

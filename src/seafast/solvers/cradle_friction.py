@@ -29,7 +29,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.cradle_loads import CradleExcitation
-from seafast.fourier import complex_to_real_harmonics, harmonics_to_time, real_dft_matrices, real_to_complex_harmonics, time_to_real_harmonics
+from seafast.fourier import (
+    complex_to_real_harmonics,
+    harmonics_to_time,
+    real_dft_matrices,
+    real_to_complex_harmonics,
+    time_to_real_harmonics,
+)
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
 from seafast.solvers.cradle_hbm import cradle_response, solve_cradle_hbm
@@ -88,7 +94,9 @@ class _State:
 class _System:
     """``R(z) = z - z_lin + G C(z)`` on the real harmonics of the m engagements and the 2P tangential motions."""
 
-    def __init__(self, z_lin: NDArray[np.float64], G: NDArray[np.complex128], k: NDArray[np.float64], tangents: PadTangents, mu: float, N: int):
+    def __init__(
+        self, z_lin: NDArray[np.float64], G: NDArray[np.complex128], k: NDArray[np.float64], tangents: PadTangents, mu: float, N: int
+    ):
         self.z_lin, self.G, self.k, self.t, self.mu = z_lin, G, k, tangents, float(mu)
         self.H, self.m, self.P = G.shape[0] - 1, k.size, tangents.pad_count
         self.kt = np.repeat(tangents.stiffness_N_per_m, 2)
@@ -199,18 +207,23 @@ def solve_cradle_friction_hbm(
     H, N = int(options.harmonics), int(options.time_samples)
     tangents = pad_tangents(dynamics.problem, friction, dynamics.deck_x_m, dynamics.gravity_m_per_s2)
     frictionless = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=H, time_samples=N))
-    if friction.friction_coefficient == 0.0:
-        zero = march_cone(np.zeros((N, tangents.pad_count, 2)), np.zeros((N, tangents.pad_count)), tangents.stiffness_N_per_m, tangents.rest_m)
-        return frictional_response(frictionless, tangents, zero)
+    delta0 = (
+        frictionless.cargo_displacement_m @ tangents.rows.T
+        + _deck_time(excitation, N, H) @ tangents.deck.reshape(2 * tangents.pad_count, -1).T
+    )
+    if friction.friction_coefficient == 0.0:  # the pads slide freely: zero force, the slider follows the motion
+        free = march_cone(delta0.reshape(N, -1, 2), np.zeros((N, tangents.pad_count)), tangents.stiffness_N_per_m, tangents.rest_m)
+        return frictional_response(frictionless, tangents, free)
     z_lin, G, X_lin, Y = _linear_problem(dynamics, excitation, tangents, H)
-    delta0 = frictionless.cargo_displacement_m @ tangents.rows.T + _deck_time(excitation, N, H) @ tangents.deck.reshape(2 * tangents.pad_count, -1).T
     u = time_to_real_harmonics(np.concatenate([frictionless.engagement_m, delta0], axis=1), H).ravel()
     k = dynamics.problem.element_stiffness_N_per_m
     mu = float(friction.friction_coefficient)
 
     def solve(mu_i: float, start: NDArray[np.float64]) -> NewtonResult[_State]:
         system = _System(z_lin, G, k, tangents, mu_i, N)
-        return newton(system, start, tolerance=float(options.tolerance), max_iterations=int(options.max_iterations), globalisation=_GLOBALISATION)
+        return newton(
+            system, start, tolerance=float(options.tolerance), max_iterations=int(options.max_iterations), globalisation=_GLOBALISATION
+        )
 
     result, route = solve(mu, z_lin.ravel()), "from the pads stuck at rest"
     if not result.converged:
@@ -234,7 +247,9 @@ def solve_cradle_friction_hbm(
         f"{result.iterations} Newton iterations, residual {result.relative_residual:.2e}; sliders periodic after "
         f"{state.period.periods} period(s)"
     )
-    cradle = cradle_response(dynamics, state.samples[:, : k.size], q, excitation.omega_rad_s, (outcome, result.relative_residual, message, H))
+    cradle = cradle_response(
+        dynamics, state.samples[:, : k.size], q, excitation.omega_rad_s, (outcome, result.relative_residual, message, H)
+    )
     return frictional_response(cradle, tangents, state.period)
 
 

@@ -70,11 +70,20 @@ class FrictionalStatics:
 
 class _Equilibrium:
     def __init__(self, problem: CradleProblem, tangents: PadTangents, load: NDArray[np.float64], s0: NDArray[np.float64]):
-        self.K0, self.A, self.k, self.t, self.f, self.s0 = problem.base_stiffness, problem.engagement_matrix, problem.element_stiffness_N_per_m, tangents, load, s0
+        self.K0, self.A, self.k, self.t, self.f, self.s0 = (
+            problem.base_stiffness,
+            problem.engagement_matrix,
+            problem.element_stiffness_N_per_m,
+            tangents,
+            load,
+            s0,
+        )
         self.kt = tangents.stiffness_N_per_m[:, None]
         self.P = tangents.pad_count
 
-    def state(self, q: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    def state(
+        self, q: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
         """(engagements, trial tangential forces (P, 2), limits (P,), forces (P, 2), slipped (P,))."""
         s = self.s0 + self.A @ q
         trial = self.kt * (self.t.matrix @ q - self.t.rest_m)
@@ -104,7 +113,13 @@ class _Equilibrium:
 
 
 def solve_frictional_statics(
-    problem: CradleProblem, friction: PadFriction, heel_deg: float, trim_deg: float = 0.0, *, gravity_m_per_s2: float = 9.81, max_iterations: int = 60
+    problem: CradleProblem,
+    friction: PadFriction,
+    heel_deg: float,
+    trim_deg: float = 0.0,
+    *,
+    gravity_m_per_s2: float = 9.81,
+    max_iterations: int = 60,
 ) -> FrictionalStatics:
     """The statics at ``heel_deg`` (starboard down +) and ``trim_deg`` (bow up +) on frictional pads (module docstring)."""
     tangents = pad_tangents(problem, friction, None, gravity_m_per_s2)
@@ -130,7 +145,9 @@ def solve_frictional_statics(
     residual = float(np.max(np.abs(r)))
     outcome = StaticsOutcome.CONVERGED if residual <= 1e-9 * _scale(eq, q) else StaticsOutcome.NOT_CONVERGED
     slider = tangents.matrix @ q - force / eq.kt
-    return FrictionalStatics(outcome, q, s, problem.element_stiffness_N_per_m * np.maximum(s, 0.0), force, slider - tangents.rest_m, slipped, residual, it)
+    return FrictionalStatics(
+        outcome, q, s, problem.element_stiffness_N_per_m * np.maximum(s, 0.0), force, slider - tangents.rest_m, slipped, residual, it
+    )
 
 
 def _scale(eq: _Equilibrium, q: NDArray[np.float64]) -> float:

@@ -122,7 +122,11 @@ class _Equations:
         engaged = s > 0.0
         J = np.zeros((2 * n + 2 * P, 2 * n + 2 * P))
         J[:n, n : 2 * n] = np.eye(n)
-        J[n : 2 * n, :n] = -self.Minv_K0 - self.Minv_At[:, engaged] @ (self.k[engaged, None] * self.A[engaged]) - self.Minv_Att @ (self.kt[:, None] * self.At)
+        J[n : 2 * n, :n] = (
+            -self.Minv_K0
+            - self.Minv_At[:, engaged] @ (self.k[engaged, None] * self.A[engaged])
+            - self.Minv_Att @ (self.kt[:, None] * self.At)
+        )
         J[n : 2 * n, n : 2 * n] = -self.Minv_D
         J[n : 2 * n, 2 * n :] = self.Minv_Att * self.kt
         d_rate_d_f = np.zeros((2 * P, 2 * P))  # d w' / d f
@@ -133,7 +137,7 @@ class _Equations:
             block = slice(2 * p, 2 * p + 2)
             d_rate_d_f[block, block] = (np.eye(2) - C[p] / norm[p] * (np.eye(2) - np.outer(e, e))) / (self.tau * self.kt[2 * p])
             d_rate_d_C[block, p] = -e / (self.tau * self.kt[2 * p])
-        d_C_d_q = (engaged[: P] * self.mu_kn)[:, None] * self.A[:P]
+        d_C_d_q = (engaged[:P] * self.mu_kn)[:, None] * self.A[:P]
         J[2 * n :, :n] = d_rate_d_f @ (self.kt[:, None] * self.At) + d_rate_d_C @ d_C_d_q
         J[2 * n :, 2 * n :] = -d_rate_d_f * self.kt
         return J
