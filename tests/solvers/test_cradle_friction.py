@@ -1,4 +1,7 @@
-"""The 3-D cargo on frictional pads in a regular wave: harmonic balance against the time domain (docs/transverse.md#9-friction-at-the-pads)."""
+"""The 3-D cargo on frictional pads in a regular wave: harmonic balance against the time domain.
+
+docs/transverse.md#9-friction-at-the-pads.
+"""
 
 from __future__ import annotations
 
@@ -27,10 +30,15 @@ MOTIONS = np.array([0.6, 1.0, 0.8, 0.15, 0.03, 0.0], dtype=complex)
 
 
 def _dynamics() -> CradleDynamics:
-    """A 20 m tube, 4 m across, on two 30 deg cradles (2e8 N/m), an axial spring of 1 MN/m, 5 % damping."""
-    cargo = build_cargo3d(build_cargo_beam(CargoGeometry((TubeSegment(0.0, 20.0, 4.0, 4.0, 0.04),)), np.array(SADDLES_M), 2.0))
+    """A 20 m tube, 4 m across, on a 5 m mesh (the time domain's cost), on two 30 deg cradles (2e8 N/m), Rayleigh damping.
+
+    An axial spring of 50 MN/m (a lashing's fore-and-aft stiffness) pins the cargo's mean axial position: with a weak
+    one the axial friction alone holds it, periodic states form a near-continuum in the mean axial slip, and the
+    time domain creeps along it for many periods.
+    """
+    cargo = build_cargo3d(build_cargo_beam(CargoGeometry((TubeSegment(0.0, 20.0, 4.0, 4.0, 0.04),)), np.array(SADDLES_M), 5.0))
     springs = np.zeros(cargo.dof_count)
-    springs[cargo.node_dofs(cargo.node_at(SADDLES_M[0]))[0]] = 1e6
+    springs[cargo.node_dofs(cargo.node_at(SADDLES_M[0]))[0]] = 5e7
     problem = CradleProblem(cargo, tuple(PadPair(x, 30.0, 2.0, 2e8) for x in SADDLES_M), spring_diagonal_N_per_m=springs)
     return CradleDynamics(problem, 2.0, 2e-3, np.array(SADDLES_M))
 
@@ -55,7 +63,7 @@ def stick_slip_pair():
     excitation = _excitation(dynamics.problem.cargo)
     friction = PadFriction(0.1)
     hbm = solve_cradle_friction_hbm(dynamics, friction, excitation, FrictionHBMOptions(harmonics=32, time_samples=256))
-    options = FrictionTimeDomainOptions(time_samples=256, relaxation_fraction=1e-6, relative_tolerance=1e-6, max_periods=6)
+    options = FrictionTimeDomainOptions(time_samples=256, relaxation_fraction=1e-6, relative_tolerance=1e-6, max_periods=4)
     reference = solve_cradle_friction_time_domain(dynamics, friction, excitation, options)  # peaks settled, sliders' mean still creeping
     return hbm, reference
 
@@ -70,9 +78,11 @@ def test_harmonic_balance_with_friction_matches_the_time_domain_where_pads_stick
     np.testing.assert_allclose(hbm.cradle.max_force_N, reference.cradle.max_force_N, rtol=5e-3)
     np.testing.assert_allclose(hbm.cradle.min_force_N, reference.cradle.min_force_N, rtol=5e-3)
     np.testing.assert_allclose(hbm.max_friction_N, reference.max_friction_N, rtol=5e-3)
-    # the slip over the period (peak to peak per direction): within 1 % of the largest at H = 32 (measured 0.53 %;
-    # at H = 64, N = 512 against the time domain at rtol 1e-8: 0.05 %, too slow for this suite)
-    np.testing.assert_allclose(hbm.slip_range_m, reference.slip_range_m, atol=1e-2 * np.max(reference.slip_range_m))
+    # the slip over the period (peak to peak per direction) within 0.5 % of the largest (measured 0.4 %: the slips'
+    # onsets between the samples and the truncation at H = 32); the largest slip from rest within 1 % (measured 0.6 %:
+    # it adds the sliders' mean, still settling in the time domain by 0.03 % a period)
+    np.testing.assert_allclose(hbm.slip_range_m, reference.slip_range_m, atol=5e-3 * np.max(reference.slip_range_m))
+    np.testing.assert_allclose(hbm.max_slip_m, reference.max_slip_m, atol=1e-2 * np.max(reference.max_slip_m))
     assert np.max(reference.slip_range_m) > 2e-4
 
 
