@@ -150,7 +150,7 @@ def test_at_zero_heel_the_frictional_statics_is_the_frictionless_rest(rigid_tube
 
 
 def test_bad_friction_parameters_are_refused_naming_the_field():
-    with pytest.raises(ValueError, match="friction_coefficient = -0.1"):
+    with pytest.raises(ValueError, match=r"friction_coefficient = -0\.1"):
         PadFriction(-0.1)
     with pytest.raises(ValueError, match="tangential_stiffness_ratio = 0"):
         PadFriction(0.2, 0.0)

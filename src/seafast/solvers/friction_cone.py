@@ -120,15 +120,14 @@ def march_cone(
     k = np.asarray(stiffness_N_per_m, dtype=float)
     w0 = np.array(initial_slider_m, dtype=float)
     w = w0
-    change = np.inf
-    for period in range(1, int(max_periods) + 1):
+    periods = 0
+    while True:
         force, slider, slipped = _march_once(delta, capacity, k, w)
+        periods += 1
         change = float(np.max(np.abs(slider[-1] - w), initial=0.0))
-        start = w
-        w = slider[-1]
-        if change <= tolerance_m:
-            break
-    return ConePeriod(force, slider, slipped, w0, start, period, change)
+        start, w = w, slider[-1]
+        if change <= tolerance_m or periods >= int(max_periods):
+            return ConePeriod(force, slider, slipped, w0, start, periods, change)
 
 
 def cone_sensitivity(

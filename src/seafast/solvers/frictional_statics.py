@@ -34,8 +34,8 @@ class FrictionalStatics:
     Attributes
     ----------
     outcome
-        ``CONVERGED`` (the residual below ``1e-9`` of the largest load, beam or element force) or ``NOT_CONVERGED`` (e.g. the friction cannot hold
-        a load nothing else restrains: the cargo slides away), with the last iterate.
+        ``CONVERGED`` (the residual below ``1e-9`` of the largest load, beam or element force) or ``NOT_CONVERGED``
+        (e.g. the friction cannot hold a load nothing else restrains: the cargo slides away), with the last iterate.
     displacement
         Cargo DOFs (5 n,) [m, rad].
     engagement_m, element_force_N
@@ -125,28 +125,26 @@ def solve_frictional_statics(
     tangents = pad_tangents(problem, friction, None, gravity_m_per_s2)
     load = problem.load(heel_deg, trim_deg, gravity_m_per_s2)
     eq = _Equilibrium(problem, tangents, load, rest_initial_engagement_m(problem, gravity_m_per_s2))
-    q = _rest(problem, gravity_m_per_s2)
+    q = tangents.rest_displacement
     r = eq.residual(q)
-    it = 0
-    for it in range(1, max_iterations + 1):
-        scale = _scale(eq, q)
-        if float(np.max(np.abs(r))) <= 1e-9 * scale:
-            it -= 1
-            break
-        step = np.linalg.solve(eq.jacobian(q), -r)
-        t, norm = 1.0, float(np.linalg.norm(r))
-        while t > 1e-6:
-            r_new = eq.residual(q + t * step)
-            if float(np.linalg.norm(r_new)) < (1.0 - 1e-4 * t) * norm:
-                break
-            t *= 0.5
-        q, r = q + t * step, r_new
+    iterations = 0
+    while float(np.max(np.abs(r))) > 1e-9 * _scale(eq, q) and iterations < max_iterations:
+        q, r = _newton_step(eq, q, r)
+        iterations += 1
     s, _, _, force, slipped = eq.state(q)
     residual = float(np.max(np.abs(r)))
     outcome = StaticsOutcome.CONVERGED if residual <= 1e-9 * _scale(eq, q) else StaticsOutcome.NOT_CONVERGED
     slider = tangents.matrix @ q - force / eq.kt
     return FrictionalStatics(
-        outcome, q, s, problem.element_stiffness_N_per_m * np.maximum(s, 0.0), force, slider - tangents.rest_m, slipped, residual, it
+        outcome,
+        q,
+        s,
+        problem.element_stiffness_N_per_m * np.maximum(s, 0.0),
+        force,
+        slider - tangents.rest_m,
+        slipped,
+        residual,
+        iterations,
     )
 
 
@@ -156,7 +154,12 @@ def _scale(eq: _Equilibrium, q: NDArray[np.float64]) -> float:
     return max(float(np.max(np.abs(eq.f))), float(np.max(np.abs(eq.K0 @ q))), float(np.max(eq.k * np.maximum(s, 0.0), initial=0.0)), 1.0)
 
 
-def _rest(problem: CradleProblem, gravity_m_per_s2: float) -> NDArray[np.float64]:
-    from seafast.solvers.transverse_statics import solve_transverse_statics
-
-    return solve_transverse_statics(problem, 0.0, 0.0, gravity_m_per_s2=gravity_m_per_s2).displacement
+def _newton_step(eq: _Equilibrium, q: NDArray[np.float64], r: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """One Newton step, halved until the residual's norm falls (Armijo, c = 1e-4); the last trial if none does."""
+    step = np.linalg.solve(eq.jacobian(q), -r)
+    t, norm = 1.0, float(np.linalg.norm(r))
+    while True:
+        r_new = eq.residual(q + t * step)
+        if float(np.linalg.norm(r_new)) < (1.0 - 1e-4 * t) * norm or t < 1e-6:
+            return q + t * step, r_new
+        t *= 0.5

@@ -43,6 +43,8 @@ class PadTangents:
         mu [-].
     rest_m
         ``delta_rest`` (P, 2) [m]: the sliders' initial positions.
+    rest_displacement
+        ``q_rest`` (5 n,) [m, rad]: the cargo at rest, where the sliders are relaxed.
     """
 
     matrix: NDArray[np.float64]
@@ -51,6 +53,7 @@ class PadTangents:
     normal_stiffness_N_per_m: NDArray[np.float64]
     friction_coefficient: float
     rest_m: NDArray[np.float64]
+    rest_displacement: NDArray[np.float64]
 
     @property
     def pad_count(self) -> int:
@@ -84,7 +87,7 @@ def pad_tangents(
     rest = solve_transverse_statics(problem, 0.0, 0.0, gravity_m_per_s2=gravity_m_per_s2)
     if rest.outcome is not StaticsOutcome.CONVERGED:
         raise ValueError(f"problem: no frictionless rest at zero heel to relax the pads' sliders at ({rest.message})")
-    return PadTangents(A, E, kt, kn, float(friction.friction_coefficient), A @ rest.displacement)
+    return PadTangents(A, E, kt, kn, float(friction.friction_coefficient), A @ rest.displacement, rest.displacement)
 
 
 @dataclass(frozen=True)

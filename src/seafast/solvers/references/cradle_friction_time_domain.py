@@ -156,8 +156,7 @@ def solve_cradle_friction_time_domain(
     tangents = pad_tangents(dynamics.problem, friction, dynamics.deck_x_m, dynamics.gravity_m_per_s2)
     T = 2.0 * np.pi / float(excitation.omega_rad_s)
     eq = _Equations(dynamics, excitation, tangents, float(options.relaxation_fraction) * T)
-    rest = np.linalg.lstsq(tangents.rows, tangents.rest_m.ravel(), rcond=None)[0] if False else None
-    q0 = _rest_displacement(dynamics)
+    q0 = tangents.rest_displacement
     y = np.concatenate([q0, np.zeros(eq.n), tangents.rest_m.ravel()])
     scale_q = max(float(np.max(np.abs(q0))), 1e-6)
     scale = np.concatenate([np.full(eq.n, scale_q), np.full(eq.n, eq.w * 1e-3), np.full(2 * eq.P, scale_q)])
@@ -175,7 +174,6 @@ def solve_cradle_friction_time_domain(
         y = run.y[:, -1]
         if change < options.periodicity_tolerance and period > 0:
             break
-    del rest
     states = [eq.split(t, yt) for t, yt in zip(run.t, run.y.T, strict=True)]
     s = np.array([state[0] for state in states])
     forces = np.array([state[1] for state in states])
@@ -188,9 +186,3 @@ def solve_cradle_friction_time_domain(
     cradle = cradle_response(dynamics, s, run.y[: eq.n].T, eq.w, (outcome, change, message, 0))
     record = ConePeriod(forces, slider, np.zeros((N, eq.P), dtype=bool), tangents.rest_m, slider[0], period + 1, change)
     return frictional_response(cradle, tangents, record)
-
-
-def _rest_displacement(dynamics: CradleDynamics) -> NDArray[np.float64]:
-    from seafast.solvers.transverse_statics import solve_transverse_statics
-
-    return solve_transverse_statics(dynamics.problem, 0.0, 0.0, gravity_m_per_s2=dynamics.gravity_m_per_s2).displacement
