@@ -23,6 +23,7 @@ Units: engagements and motions [m]; forces [N].
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -38,7 +39,7 @@ from seafast.fourier import (
 )
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
-from seafast.solvers.cradle_hbm import cradle_response, solve_cradle_hbm
+from seafast.solvers.cradle_hbm import CradleResponse, cradle_response, solve_cradle_hbm
 from seafast.solvers.friction_cone import ConePeriod, cone_sensitivity, march_cone
 from seafast.solvers.hbm import HBMOptions
 from seafast.solvers.newton import DenseJacobian, Globalisation, Merit, NewtonResult, newton
@@ -206,51 +207,76 @@ def solve_cradle_friction_hbm(
     options = options if options is not None else FrictionHBMOptions()
     H, N = int(options.harmonics), int(options.time_samples)
     tangents = pad_tangents(dynamics.problem, friction, dynamics.deck_x_m, dynamics.gravity_m_per_s2)
-    frictionless = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=H, time_samples=N))
-    delta0 = (
-        frictionless.cargo_displacement_m @ tangents.rows.T
-        + _deck_time(excitation, N, H) @ tangents.deck.reshape(2 * tangents.pad_count, -1).T
-    )
-    if friction.friction_coefficient == 0.0:  # the pads slide freely: zero force, the slider follows the motion
-        free = march_cone(delta0.reshape(N, -1, 2), np.zeros((N, tangents.pad_count)), tangents.stiffness_N_per_m, tangents.rest_m)
+    mu = float(friction.friction_coefficient)
+    if mu == 0.0:  # the pads slide freely: zero force, the slider follows the motion
+        frictionless = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=H, time_samples=N))
+        delta = _tangential_motion(frictionless, excitation, tangents, H).reshape(N, -1, 2)
+        free = march_cone(delta, np.zeros((N, tangents.pad_count)), tangents.stiffness_N_per_m, tangents.rest_m)
         return frictional_response(frictionless, tangents, free)
     z_lin, G, X_lin, Y = _linear_problem(dynamics, excitation, tangents, H)
-    u = time_to_real_harmonics(np.concatenate([frictionless.engagement_m, delta0], axis=1), H).ravel()
     k = dynamics.problem.element_stiffness_N_per_m
-    mu = float(friction.friction_coefficient)
-
-    def solve(mu_i: float, start: NDArray[np.float64]) -> NewtonResult[_State]:
-        system = _System(z_lin, G, k, tangents, mu_i, N)
-        return newton(
-            system, start, tolerance=float(options.tolerance), max_iterations=int(options.max_iterations), globalisation=_GLOBALISATION
-        )
-
-    result, route = solve(mu, z_lin.ravel()), "from the pads stuck at rest"
-    if not result.converged:
-        result, route = solve(mu, u), "from the frictionless solution"
-    if not result.converged:
-        route, start = "mu raised in four steps from the pads stuck at rest", z_lin.ravel()
-        for factor in (0.25, 0.5, 0.75, 1.0):
-            result = solve(factor * mu, start)
-            if not result.converged:
-                route += f" (stopped at mu = {factor * mu:g})"
-                break
-            start = result.u
+    result, route = _newton_route(
+        _System(z_lin, G, k, tangents, mu, N), options, lambda: _frictionless_start(dynamics, excitation, tangents, H, N)
+    )
     system = _System(z_lin, G, k, tangents, mu, N)
-    Z = result.u.reshape(z_lin.shape)
-    state = system.forces(Z)[1]
+    state = system.forces(result.u.reshape(z_lin.shape))[1]
     C = real_to_complex_harmonics(system.forward @ system.full_forces(state))
     q = harmonics_to_time(X_lin + np.einsum("kcs,ks->kc", Y, C), N)
     outcome = SolverOutcome.CONVERGED if result.converged else SolverOutcome.NOT_CONVERGED
     message = (
         f"3-D cradle harmonic balance with pad friction (mu = {mu:g}), H = {H}, N = {N}: {result.stop.value} {route}, "
-        f"{result.iterations} Newton iterations, residual {result.relative_residual:.2e}; sliders periodic after "
-        f"{state.period.periods} period(s)"
+        f"{result.iterations} Newton iterations, residual {result.relative_residual:.2e}; sliders marched over "
+        f"{state.period.periods} period(s), their start moving {state.period.start_change_m:.1e} m over the last"
     )
     cradle = cradle_response(
         dynamics, state.samples[:, : k.size], q, excitation.omega_rad_s, (outcome, result.relative_residual, message, H)
     )
     return frictional_response(cradle, tangents, state.period)
+
+
+def _newton_route(
+    system: _System, options: FrictionHBMOptions, frictionless: Callable[[], NDArray[np.float64]]
+) -> tuple[NewtonResult[_State], str]:
+    """Newton from the pads stuck at rest (the linear part's own solution); then from the frictionless solution; then
+    with mu raised in four steps from the stuck start. Returns the last result and the route in words."""
+
+    def solve(mu: float, start: NDArray[np.float64]) -> NewtonResult[_State]:
+        trial = _System(system.z_lin, system.G, system.k, system.t, mu, system.inverse.shape[0])
+        return newton(
+            trial, start, tolerance=float(options.tolerance), max_iterations=int(options.max_iterations), globalisation=_GLOBALISATION
+        )
+
+    stuck = system.z_lin.ravel()
+    result = solve(system.mu, stuck)
+    if result.converged:
+        return result, "from the pads stuck at rest"
+    result = solve(system.mu, frictionless())
+    if result.converged:
+        return result, "from the frictionless solution"
+    route, start = "mu raised in four steps from the pads stuck at rest", stuck
+    for factor in (0.25, 0.5, 0.75, 1.0):
+        result = solve(factor * system.mu, start)
+        if not result.converged:
+            return result, route + f" (stopped at mu = {factor * system.mu:g})"
+        start = result.u
+    return result, route
+
+
+def _tangential_motion(response: CradleResponse, excitation: CradleExcitation, tangents: PadTangents, H: int) -> NDArray[np.float64]:
+    """The pads' tangential motion ``A_t q + E_t x_o`` over a response's period (N, 2 P) [m]."""
+    N = response.time_s.size
+    return (
+        response.cargo_displacement_m @ tangents.rows.T + _deck_time(excitation, N, H) @ tangents.deck.reshape(2 * tangents.pad_count, -1).T
+    )
+
+
+def _frictionless_start(
+    dynamics: CradleDynamics, excitation: CradleExcitation, tangents: PadTangents, H: int, N: int
+) -> NDArray[np.float64]:
+    """The frictionless solution's engagements and tangential motions as real harmonics, flattened (a start)."""
+    frictionless = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=H, time_samples=N))
+    samples = np.concatenate([frictionless.engagement_m, _tangential_motion(frictionless, excitation, tangents, H)], axis=1)
+    return time_to_real_harmonics(samples, H).ravel()
 
 
 def _deck_time(excitation: CradleExcitation, N: int, H: int) -> NDArray[np.float64]:
