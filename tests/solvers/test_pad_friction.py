@@ -142,6 +142,35 @@ def test_a_heeled_cargo_sticks_below_the_closed_form_limit_and_slides_beyond_it(
         np.testing.assert_allclose(far.pad_force_N, np.tile(_full_slip(np.deg2rad(15.0), half), 2), rtol=1e-6)
 
 
+def test_a_trimmed_cargo_stays_put_on_the_vee_of_its_pads_until_tan_trim_reaches_mu_over_cos_alpha():
+    """Along the cargo only friction holds it (and a 10 kN/m spring): the pads' normal forces sum to W cos(trim) / cos(a)
+    (the vee wedges the tube), so the friction can hold W sin(trim) while tan(trim) < mu / cos(a)."""
+    geometry = CargoGeometry((TubeSegment(0.0, 20.0, 4.0, 4.0, 0.04),), youngs_modulus_Pa=210e12)
+    cargo = build_cargo3d(build_cargo_beam(geometry, np.array(SADDLES_M), 2.0))
+    springs = np.zeros(cargo.dof_count)
+    u_spring = cargo.node_dofs(cargo.node_at(SADDLES_M[0]))[0]
+    springs[u_spring] = 1e4
+    problem = CradleProblem(cargo, tuple(PadPair(x, ALPHA_DEG, 2.0, K_V) for x in SADDLES_M), spring_diagonal_N_per_m=springs)
+    weight = -float(np.sum(cargo.gravity_load_N()[: 2 * cargo.node_count : 2]))
+    limit = np.arctan(MU / np.cos(np.deg2rad(ALPHA_DEG)))
+    below = solve_frictional_statics(problem, PadFriction(MU), 0.0, np.rad2deg(0.98 * limit))
+    assert below.outcome is StaticsOutcome.CONVERGED
+    # held: the friction carries the axial weight (the spring less than 1e-4 of it); the pitching moment of the
+    # friction below the axis unloads the forward cradle, whose pads slip, the aft ones stick
+    assert not np.all(below.slipped)
+    axial_weight = weight * np.sin(0.98 * limit)
+    assert abs(1e4 * below.displacement[u_spring]) < 1e-4 * axial_weight
+    np.testing.assert_allclose(-np.sum(below.friction_force_N[:, 1]), axial_weight, rtol=1e-4)
+    for factor in (1.02, 1.2):
+        beyond = solve_frictional_statics(problem, PadFriction(MU), 0.0, np.rad2deg(factor * limit))
+        assert beyond.outcome is StaticsOutcome.CONVERGED and np.all(beyond.slipped)
+        trim = factor * limit
+        # sliding aft: the spring takes what the friction cannot, W sin(trim) - mu W cos(trim) / cos(a)
+        excess = weight * (np.sin(trim) - MU * np.cos(trim) / np.cos(np.deg2rad(ALPHA_DEG)))
+        np.testing.assert_allclose(-1e4 * beyond.displacement[u_spring], excess, rtol=1e-3)
+        assert np.all(beyond.slip_m[:, 1] < -0.1)
+
+
 def test_at_zero_heel_the_frictional_statics_is_the_frictionless_rest(rigid_tube):
     problem, _ = rigid_tube
     statics = solve_frictional_statics(problem, PadFriction(MU), 0.0)

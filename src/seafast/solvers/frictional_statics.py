@@ -34,7 +34,7 @@ class FrictionalStatics:
     Attributes
     ----------
     outcome
-        ``CONVERGED`` (the residual below ``1e-9`` of the largest load, beam or element force) or ``NOT_CONVERGED``
+        ``CONVERGED`` (the residual below ``1e-9`` of the largest load or element force, or the beam's round-off) or ``NOT_CONVERGED``
         (e.g. the friction cannot hold a load nothing else restrains: the cargo slides away), with the last iterate.
     displacement
         Cargo DOFs (5 n,) [m, rad].
@@ -149,9 +149,11 @@ def solve_frictional_statics(
 
 
 def _scale(eq: _Equilibrium, q: NDArray[np.float64]) -> float:
-    """The residual's scale [N]: the largest load, beam or element force (the round-off of the forces it sums)."""
+    """The residual's scale [N]: the largest load or element force, or the round-off of the beam's forces ``K0 q`` (a
+    1e-12 share of the largest ``sum_j |K0_ij q_j|``: a stiff beam displaced far cancels large terms)."""
     s = eq.s0 + eq.A @ q
-    return max(float(np.max(np.abs(eq.f))), float(np.max(np.abs(eq.K0 @ q))), float(np.max(eq.k * np.maximum(s, 0.0), initial=0.0)), 1.0)
+    beam = 1e-3 * float(np.max(np.abs(eq.K0) @ np.abs(q)))
+    return max(float(np.max(np.abs(eq.f))), float(np.max(eq.k * np.maximum(s, 0.0), initial=0.0)), beam, 1.0)
 
 
 def _newton_step(eq: _Equilibrium, q: NDArray[np.float64], r: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
