@@ -1,6 +1,6 @@
 """The 3-D cargo on frictional pads in a regular wave: harmonic balance against the time domain.
 
-docs/transverse.md#9-friction-at-the-pads.
+docs/transverse.md#8-friction-at-the-pads.
 """
 
 from __future__ import annotations

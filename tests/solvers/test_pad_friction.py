@@ -1,4 +1,4 @@
-"""Coulomb friction at the cradle pads: the cone law and the statics against closed forms (docs/transverse.md#9-friction-at-the-pads)."""
+"""Coulomb friction at the cradle pads: the cone law and the statics against closed forms (docs/transverse.md#8-friction-at-the-pads)."""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 
 Each pad of a :class:`~seafast.model.cradle.PadPair` touches the tube at ``r = -R m`` from the axis, ``m`` its
 push in (y, z) (docs/transverse.md#3-the-restraints). Its contact point moves, relative to the pad, along two
-tangential directions (docs/transverse.md#9-friction-at-the-pads):
+tangential directions (docs/transverse.md#8-friction-at-the-pads):
 
 * circumferential ``t = (m_z, -m_y)`` in (y, z), normal to the push and pointing to port on both pads
   (port pad ``(cos a, sin a)``, starboard pad ``(cos a, -sin a)``): ``delta_c = t . (v, w)``;
