@@ -25,6 +25,7 @@ same periods, column by column of a basis (the harmonics' samples), in forward m
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -80,12 +81,29 @@ class ConePeriod:
 def _march_once(
     delta: NDArray[np.float64], capacity: NDArray[np.float64], k: NDArray[np.float64], w: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    N = delta.shape[0]
-    force, slider, slipped = np.empty_like(delta), np.empty_like(delta), np.zeros(capacity.shape, dtype=bool)
+    """One period of the return map from the sliders ``w`` (p, 2): (forces, sliders (N, p, 2), slipped (N, p)).
+
+    Sample by sample and pad by pad in plain floats: a few pads' 2-vectors are far cheaper so than as arrays.
+    """
+    N, p = delta.shape[:2]
+    d, c, kl = delta.tolist(), capacity.tolist(), k.tolist()
+    wl = w.tolist()
+    force, slider = np.empty((N, p, 2)), np.empty((N, p, 2))
+    slipped = np.zeros((N, p), dtype=bool)
     for n in range(N):
-        f, slipped[n] = cone_return_map(k[:, None] * (delta[n] - w), capacity[n])
-        w = delta[n] - f / k[:, None]
-        force[n], slider[n] = f, w
+        dn, cn = d[n], c[n]
+        for i in range(p):
+            ki = kl[i]
+            (dx, dy), (wx, wy) = dn[i], wl[i]
+            fx, fy = ki * (dx - wx), ki * (dy - wy)
+            norm = math.hypot(fx, fy)
+            if norm > cn[i]:
+                scale = cn[i] / norm
+                fx, fy = fx * scale, fy * scale
+                slipped[n, i] = True
+                wl[i] = [dx - fx / ki, dy - fy / ki]
+            force[n, i] = (fx, fy)
+            slider[n, i] = wl[i]
     return force, slider, slipped
 
 
@@ -116,7 +134,7 @@ def march_cone(
         Periodic when the start's slider moved by at most this [m] over a period.
     """
     delta = np.asarray(delta_m, dtype=float)
-    capacity = np.asarray(capacity_N, dtype=float)
+    capacity = np.maximum(np.asarray(capacity_N, dtype=float), 0.0)
     k = np.asarray(stiffness_N_per_m, dtype=float)
     w0 = np.array(initial_slider_m, dtype=float)
     w = w0
@@ -163,29 +181,34 @@ def cone_sensitivity(
         (N, p, 2, J) [-].
     """
     delta = np.asarray(delta_m, dtype=float)
-    capacity = np.asarray(capacity_N, dtype=float)
+    capacity = np.maximum(np.asarray(capacity_N, dtype=float), 0.0)
     N, p = delta.shape[:2]
     B, Bc = np.asarray(delta_basis, dtype=float), np.asarray(capacity_basis, dtype=float)
     J = B.shape[1]
     k = np.asarray(stiffness_N_per_m, dtype=float)
+    kk = k[:, None]
     eye = np.eye(2)
-    kI = k[:, None, None, None] * eye[None, :, :, None]
-    Dd, Dc = np.zeros((p, 2, 2, J)), np.zeros((p, 2, J))
-    out_d, out_c = np.empty((N, p, 2, 2, J)), np.empty((N, p, 2, J))
+    kI = (k[:, None, None] * eye[None]).reshape(p, 4, 1)  # (p, a b, 1)
+    Dd, Dc = np.zeros((p, 4, J)), np.zeros((p, 2, J))  # d f[a] / d delta[b] flattened over (a, b); d f / d C
+    out_d, out_c = np.empty((N, p, 4, J)), np.empty((N, p, 2, J))
     w = np.array(period.initial_slider_m, dtype=float)
     previous = np.zeros(J)  # the first period starts from a fixed slider
     for _ in range(period.periods):
+        slider = _march_once(delta, capacity, k, w)[1]
+        before = np.concatenate([w[None], slider[:-1]])
+        w = slider[-1]
+        trial = kk[None] * (delta - before)  # (N, p, 2)
+        norm = np.hypot(trial[..., 0], trial[..., 1])
+        slipped = norm > capacity
+        safe = np.where(slipped, norm, 1.0)
+        e = np.where(slipped[..., None], trial / safe[..., None], 0.0)
+        P = np.where(slipped[..., None, None], (capacity / safe)[..., None, None] * (eye - e[..., :, None] * e[..., None, :]), eye)
+        any_slip = slipped.any(axis=1)
         for n in range(N):
-            trial = k[:, None] * (delta[n] - w)
-            f, slipped = cone_return_map(trial, capacity[n])
-            w = delta[n] - f / k[:, None]
-            Dd = Dd + kI * (B[n] - previous)[None, None, None, :]
-            if np.any(slipped):
-                norm = np.where(slipped, np.hypot(trial[:, 0], trial[:, 1]), 1.0)
-                e = np.where(slipped[:, None], trial / norm[:, None], 0.0)
-                P = np.where(slipped[:, None, None], (capacity[n] / norm)[:, None, None] * (eye - e[:, :, None] * e[:, None, :]), eye)
-                Dd = np.einsum("pab,pbcj->pacj", P, Dd)
-                Dc = np.einsum("pab,pbj->paj", P, Dc) + e[:, :, None] * Bc[n][:, None, :]
+            Dd = Dd + kI * (B[n] - previous)
+            if any_slip[n]:
+                Dd = np.matmul(P[n], Dd.reshape(p, 2, 2 * J)).reshape(p, 4, J)
+                Dc = np.matmul(P[n], Dc) + e[n][:, :, None] * Bc[n][:, None, :]
             out_d[n], out_c[n] = Dd, Dc
             previous = B[n]
-    return out_d, out_c
+    return out_d.reshape(N, p, 2, 2, J), out_c
