@@ -1,22 +1,24 @@
 """Harmonic balance of the 3-D cargo on frictional pads: AFT over the normal law and the pads' friction cone.
 
 The unknowns are the real harmonics (0 .. H) of every element's engagement (pads, stoppers, lashings, in the
-problem's order) and of every pad's two tangential coordinates (:mod:`seafast.solvers.pad_tangential`), ``z``
-[m]. The linear part is the frictionless one, every element bilateral and the pads free tangentially
-(:func:`~seafast.solvers.cradle_dynamics.cradle_operators` and the same ``CradleLinearParts.solve_stack``), so per
-harmonic ``z_k = z_lin,k - G_k C_k`` with the receptance ``G_k = [A; A_t] K_d(k w)^-1 [A; A_t]^T`` [m/N] and the
-nonlinear forces ``C``: the correction ``k max(s, 0) - k s`` of each element and the pads' friction forces ``f``
-(:mod:`seafast.solvers.friction_cone`, limit ``mu k_n max(s_pad, 0)``), on the cargo ``-A^T c - A_t^T f``.
+problem's order) and of every pad's two tangential coordinates (:mod:`seafast.solvers.pad_tangential`), ``z`` [m].
+The linear part is the frictionless one, every element bilateral and the pads free tangentially
+(:func:`~seafast.solvers.cradle_dynamics.cradle_operators` and ``CradleLinearParts.solve_stack``, used as they
+are): per harmonic ``z_k = z_free,k - G_k C_k`` with ``G_k = [A; A_t] K_d(k w)^-1 [A; A_t]^T`` [m/N]. The pads'
+tangential springs are then moved into the linear part on the condensed coordinates,
+``G' = (I + G K_t)^-1 G`` and ``z_lin = (I + G K_t)^-1 (z_free + G K_t z_rest)``: the linear solution is the pads
+stuck at rest, and the nonlinear forces ``C`` are the elements' corrections ``k max(s, 0) - k s`` and the friction's
+departure from stick ``f - k_t (delta - delta_rest)``, with ``f`` the cone's force
+(:mod:`seafast.solvers.friction_cone`, limit ``mu k_n max(s_pad, 0)``).
 
 AFT: the engagements and tangential motions sampled at N points, the normal law applied sample by sample and the
 friction marched over the period from the sliders' rest positions until periodic, the forces back to harmonics.
-The residual ``R = z - z_lin + G C(z)`` is solved by the one Newton (:func:`seafast.solvers.newton.newton`) with
-its analytic Jacobian ``I + G dC/dz``: the normal law's slope on the samples, the friction's derivatives carried
-through the marched periods in forward mode (:func:`~seafast.solvers.friction_cone.cone_sensitivity`). The start
-is the frictionless solution (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`); if Newton fails from it, the
-friction coefficient is raised in steps from a quarter of its value, each solve started from the one before.
-Dense in the unknowns ((2H+1)(m + 2P)): meant for H of tens. With ``mu = 0`` the frictionless solve is returned
-as it is.
+The residual ``R = z - z_lin + G' C(z)`` is solved by the one Newton (:func:`seafast.solvers.newton.newton`) with
+its analytic Jacobian ``I + G' dC/dz``: the normal law's slope on the samples, the friction's derivatives carried
+through the marched periods in forward mode (:func:`~seafast.solvers.friction_cone.cone_sensitivity`). Starts: the
+pads stuck at rest (the linear solution), then the frictionless solution
+(:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`), then ``mu`` raised in four steps from the stuck start. Dense
+in the unknowns ((2H+1)(m + 2P)): meant for H of tens. With ``mu = 0`` the frictionless solve is returned as it is.
 
 Units: engagements and motions [m]; forces [N].
 """

@@ -184,5 +184,7 @@ def solve_cradle_friction_time_domain(
         f"{options.relaxation_fraction:g}): {period + 1} periods, period-start change {change:.2e}"
     )
     cradle = cradle_response(dynamics, s, run.y[: eq.n].T, eq.w, (outcome, change, message, 0))
-    record = ConePeriod(forces, slider, np.zeros((N, eq.P), dtype=bool), tangents.rest_m, slider[0], period + 1, change)
+    limits = np.array([state[2] for state in states])
+    slipping = np.hypot(forces[..., 0], forces[..., 1]) > limits  # the viscoplastic slider moves only above the cone
+    record = ConePeriod(forces, slider, slipping, tangents.rest_m, slider[0], period + 1, change)
     return frictional_response(cradle, tangents, record)
