@@ -21,7 +21,7 @@ def test_the_tangents_are_normal_to_the_pushes_and_point_to_port(alpha_deg):
 
 def test_the_tangential_motion_is_the_contact_points_displacement_along_its_directions():
     """A section moved by (u, v, w, psi, theta): its contact point moves by d = (u - theta r_z - psi r_y, v, w) (small
-    rotations, docs/transverse.md#2); the pad's coordinates are t . (d_y, d_z) and d_x."""
+    rotations, docs/transverse.md#2-the-cargo-beam-in-three-dimensions); the pad's coordinates are t . (d_y, d_z) and d_x."""
     pair = PadPair(4.0, 35.0, 2.5, 1e8)
     rng = np.random.default_rng(7)
     grads = pad_tangential_gradients(pair)
