@@ -8,14 +8,14 @@ from scipy.optimize import brentq
 
 from seafast.fourier import real_dft_matrices
 from seafast.model.cargo3d import build_cargo3d
-from seafast.model.cradle import PadPair, Side
+from seafast.model.cradle import Lashing, PadPair, Side, SideStopper
 from seafast.model.pad_friction import PadFriction, pad_tangent
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_cargo_beam
 from seafast.solvers.axial.jenkins import march_jenkins
 from seafast.solvers.friction_cone import cone_return_map, cone_sensitivity, march_cone
 from seafast.solvers.frictional_statics import solve_frictional_statics
-from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome
+from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
 
 SADDLES_M = (5.0, 15.0)
 ALPHA_DEG, K_V, MU = 30.0, 2e8, 0.1
@@ -176,6 +176,32 @@ def test_at_zero_heel_the_frictional_statics_is_the_frictionless_rest(rigid_tube
     statics = solve_frictional_statics(problem, PadFriction(MU), 0.0)
     assert statics.outcome is StaticsOutcome.CONVERGED and statics.iterations == 0
     assert np.max(np.abs(statics.friction_force_N)) == 0.0
+
+
+@pytest.mark.parametrize("heel_deg", [10.0, 25.0])
+def test_without_friction_the_statics_is_the_exact_frictionless_one(heel_deg):
+    """Two 15 deg cradles with stoppers (30 mm gaps), pretensioned lashings and an axial spring: mu = 0 gives the exact
+    statics."""
+    cargo = build_cargo3d(build_cargo_beam(CargoGeometry((TubeSegment(0.0, 20.0, 4.0, 4.0, 0.04),)), np.array(SADDLES_M), 2.0))
+    stoppers = tuple(SideStopper(x, side, 0.03, 1e8) for x in SADDLES_M for side in Side)
+    lashings = tuple(
+        Lashing((x, sy * 2.0, 0.0), (x + dx, sy * 5.0, -4.0), 5e6, 20e3)
+        for x, dx in zip(SADDLES_M, (2.0, -2.0), strict=True)
+        for sy in (1.0, -1.0)
+    )
+    pairs = tuple(PadPair(x, 15.0, 2.0, 2e8) for x in SADDLES_M)
+    springs = np.zeros(cargo.dof_count)
+    springs[cargo.node_dofs(cargo.node_at(SADDLES_M[0]))[0]] = 1e8
+    problem = CradleProblem(cargo, pairs, stoppers, lashings, spring_diagonal_N_per_m=springs)
+    frictionless = solve_transverse_statics(problem, heel_deg)
+    statics = solve_frictional_statics(problem, PadFriction(0.0), heel_deg)
+    assert statics.outcome is StaticsOutcome.CONVERGED and frictionless.outcome is StaticsOutcome.CONVERGED
+    exact = np.concatenate([frictionless.pad_force_N.ravel(), frictionless.stopper_force_N, frictionless.lashing_tension_N])
+    np.testing.assert_allclose(statics.element_force_N, exact, atol=1e-9 * np.max(exact))
+    assert np.max(np.abs(statics.friction_force_N)) == 0.0
+    held = solve_frictional_statics(problem, PadFriction(0.3), heel_deg)  # with friction too: converged, on the cone
+    assert held.outcome is StaticsOutcome.CONVERGED
+    assert np.all(np.hypot(*held.friction_force_N.T) <= 0.3 * held.pad_force_N * (1 + 1e-12))
 
 
 def test_bad_friction_parameters_are_refused_naming_the_field():
