@@ -62,7 +62,10 @@ Outputs in DIR: operability.csv (peak_period_s,hs_allowable_linear_m,hs_allowabl
 governing_linear,governing_nonlinear; empty cell = not found), operability.nc, operability.png (Hs against Tp),
 case.yaml, and with --scatter scatter.csv. With --headings: operability.csv gains a leading heading_deg column
 (one row per heading and Tp), operability.nc a heading_deg dimension, the chart is polar (180 deg = head seas at
-the top) and the governing heading (smallest allowable Hs) is printed. The spectrum shape, gamma and duration are the case's sea_state keys
+the top) and the governing heading (smallest allowable Hs) is printed. With criteria.operation weather-restricted,
+operability.csv gains alpha_linear,hs_forecast_limit_linear_m,alpha_nonlinear,hs_forecast_limit_nonlinear_m (the
+weather-routing limit OP_WF = alpha x allowable Hs); unrestricted, route.csv checks each route leg's design sea state.
+The spectrum shape, gamma and duration are the case's sea_state keys
 (its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa.
 'seafast report DIR' adds the operability section.
 """
