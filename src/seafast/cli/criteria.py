@@ -25,27 +25,38 @@ CRITERIA_EXAMPLES = """examples:
 
 Outputs in DIR: criteria.csv (one row per load case and check: load_case,heading_deg,roll_deg,pitch_deg,
 heave_acceleration_m_s2,period_s,a_x_m_s2,a_y_m_s2,a_z_m_s2,F_N,F_pad_N,F_stopper_N,lashing_tension_max_N,M_b_Nm,
-sigma_b_Pa,utilisation,verdict,check,limit,outcome,F_axial_N,source) and case.yaml. The limits are
+sigma_b_Pa,utilisation,verdict,check,limit,outcome,F_axial_N,source) and case.yaml; with criteria.operation, operation.csv
+(weather-restricted: alpha and the forecast limit OP_WF at the alpha table's design wave heights) or route.csv
+(unrestricted: each route leg's 10-year monthly extreme Hs and its Tp range). The limits are
 limits.max_saddle_force_N and limits.max_bending_stress_Pa; docs/criteria.md has the standard's values and clause.
 """
 
 
 def _cmd_criteria(args: argparse.Namespace) -> int:
     from seafast.analyses.criteria.check import criteria_check
+    from seafast.analyses.criteria.operation_class import plan_operation
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.output.criteria import format_criteria_table, write_criteria_outputs
+    from seafast.output.operation_class import write_operation_class
     from seafast.solvers.transverse_statics import StaticsOutcome
 
     t0 = time.perf_counter()
     try:
         case = load_case(args.case, parse_overrides(args.overrides))
+        plan = None if case.criteria.operation is None else plan_operation(case.criteria.operation)
         result = criteria_check(case)
     except (CaseError, ValueError) as exc:
         return error(str(exc))
     paths = write_criteria_outputs(result, case, args.output)
+    operation_text = ""
+    if plan is not None:
+        path, operation_text = write_operation_class(plan, args.output)
+        paths["operation"] = path
     if not args.quiet:
         print(f"{case.name}: F <= {case.limits.max_saddle_force_N / 1e6:g} MN, sigma_b <= {case.limits.max_bending_stress_Pa / 1e6:g} MPa")
         print(format_criteria_table(result))
+        if operation_text:
+            print(operation_text)
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     failed = [c for c in result.cases if c.outcome == StaticsOutcome.NOT_CONVERGED.value]
     if failed:

@@ -29,6 +29,9 @@ from typing import TYPE_CHECKING, Any
 from seafast.cli.common import EXIT_NOT_CONVERGED, EXIT_OK, add_set_option, error
 
 if TYPE_CHECKING:
+    from seafast.analyses.criteria.operation_class import OperationPlan
+    from seafast.analyses.operability.allowable import OperabilityResult
+    from seafast.analyses.operability.headings import HeadingOperabilityResult
     from seafast.config import Case
 
 __all__ = [
@@ -59,7 +62,10 @@ Outputs in DIR: operability.csv (peak_period_s,hs_allowable_linear_m,hs_allowabl
 governing_linear,governing_nonlinear; empty cell = not found), operability.nc, operability.png (Hs against Tp),
 case.yaml, and with --scatter scatter.csv. With --headings: operability.csv gains a leading heading_deg column
 (one row per heading and Tp), operability.nc a heading_deg dimension, the chart is polar (180 deg = head seas at
-the top) and the governing heading (smallest allowable Hs) is printed. The spectrum shape, gamma and duration are the case's sea_state keys
+the top) and the governing heading (smallest allowable Hs) is printed. With criteria.operation weather-restricted,
+operability.csv gains alpha_linear,hs_forecast_limit_linear_m,alpha_nonlinear,hs_forecast_limit_nonlinear_m (the
+weather-routing limit OP_WF = alpha x allowable Hs); unrestricted, route.csv checks each route leg's design sea state.
+The spectrum shape, gamma and duration are the case's sea_state keys
 (its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa.
 'seafast report DIR' adds the operability section.
 """
@@ -159,7 +165,8 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     try:
         case = load_case(args.case, parse_overrides(args.overrides))
         scatter = read_scatter_diagram(args.scatter) if args.scatter else None
-    except CaseError as exc:
+        plan = _operation_plan(case)
+    except (CaseError, ValueError) as exc:
         return error(str(exc))
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, file=sys.stderr))
     t0 = time.perf_counter()
@@ -167,7 +174,7 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     if tps is None:
         tps = default_peak_periods(case)
     if headings is not None:
-        return _run_headings(args, case, headings, tps, default, t0)
+        return _run_headings(args, case, headings, tps, default, t0, plan)
     scatter_tps = [float(t) for t in scatter.peak_periods_s] if scatter is not None else []
     say(
         f"seafast operability: '{case.name}', {len(tps)} peak periods {tps[0]:g}-{tps[-1]:g} s"
@@ -200,6 +207,8 @@ def _cmd_operability(args: argparse.Namespace) -> int:
             [p.hs_allowable_nonlinear_m for p in at.points],
         )
     paths = write_operability_outputs(result, args.output, scatter=assessment, plots=not args.no_plots)
+    operation_paths, operation_text = _operation_outputs(plan, result, paths["operability_csv"], Path(args.output))
+    paths |= operation_paths
     if not args.quiet:
         lim = case.limits
         print(
@@ -207,6 +216,8 @@ def _cmd_operability(args: argparse.Namespace) -> int:
             f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)"
         )
         print(format_operability_table(result))
+        if operation_text:
+            print(operation_text)
         if assessment is not None:
             print(
                 f"scatter diagram {assessment.diagram.source}: within the limits {assessment.share_within_linear:.1%} of the "
@@ -226,7 +237,51 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _run_headings(args: argparse.Namespace, case: Case, headings: list[float], tps: list[float], default: bool, t0: float) -> int:
+def _operation_plan(case: Case) -> OperationPlan | None:
+    """The case's operation class before the analysis (scatter diagrams of the route read and fitted), or None."""
+    from seafast.analyses.criteria.operation_class import plan_operation
+
+    op = case.criteria.operation
+    return None if op is None else plan_operation(op)
+
+
+def _operation_outputs(
+    plan: OperationPlan | None, result: OperabilityResult | HeadingOperabilityResult, operability_csv: Path, out_dir: Path
+) -> tuple[dict[str, Path], str]:
+    """The operation class's columns of operability.csv or its route.csv, and its terminal text."""
+    from seafast.analyses.criteria.operation_class import route_checks, weather_routing_limits
+    from seafast.output.operation_class import (
+        allowable_table_of,
+        append_routing_columns,
+        format_route_table,
+        format_routing_table,
+        operation_summary,
+        route_csv_text,
+    )
+
+    if plan is None:
+        return {}, ""
+    table = allowable_table_of(result)
+    if plan.restriction is not None:
+        limits = weather_routing_limits(plan.restriction, table)
+        append_routing_columns(operability_csv, limits)
+        return {}, operation_summary(plan) + "\n" + format_routing_table(limits)
+    checks = route_checks(plan.route, table)
+    path = out_dir / "route.csv"
+    path.write_text(route_csv_text(plan.route, checks), encoding="utf-8")
+    for c in checks:
+        if not c.peak_periods_s:
+            print(
+                f"seafast: warning: route leg '{c.sea_state.sector}, {c.sea_state.season}': no analysed peak period in its range "
+                f"{c.sea_state.tp_min_s:.2f}-{c.sea_state.tp_max_s:.2f} s (verdict not_assessed); allowed: a --tp range covering it",
+                file=sys.stderr,
+            )
+    return {"route_csv": path}, operation_summary(plan) + "\n" + format_route_table(checks)
+
+
+def _run_headings(
+    args: argparse.Namespace, case: Case, headings: list[float], tps: list[float], default: bool, t0: float, plan: OperationPlan | None
+) -> int:
     """``seafast operability --headings``: the analysis per heading, its files and printed table, the exit code."""
     from seafast.analyses.operability.headings import AllowableModel, allowable_per_heading
     from seafast.config import CaseError
@@ -251,6 +306,8 @@ def _run_headings(args: argparse.Namespace, case: Case, headings: list[float], t
             message = f"--tp: a peak period is outside what the transfer functions resolve: {message}"
         return error(f"--headings {args.headings}: {message}")
     paths = write_heading_operability_outputs(result, args.output, plots=not args.no_plots)
+    operation_paths, operation_text = _operation_outputs(plan, result, paths["operability_csv"], Path(args.output))
+    paths |= operation_paths
     if not args.quiet:
         lim = case.limits
         print(
@@ -258,6 +315,8 @@ def _run_headings(args: argparse.Namespace, case: Case, headings: list[float], t
             f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)"
         )
         print(format_heading_table(result))
+        if operation_text:
+            print(operation_text)
         for model in (AllowableModel.NONLINEAR, AllowableModel.LINEAR):
             print(governing_heading_text(result.governing_heading(model), model))
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")

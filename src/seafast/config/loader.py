@@ -94,12 +94,24 @@ def apply_overrides(data: Mapping[str, Any], overrides: Mapping[str, Any]) -> di
     return result
 
 
+def _resolve_route_paths(data: dict[str, Any], base_dir: Path) -> None:
+    """criteria.operation.route[*].scatter_diagram relative to the case file's directory."""
+    criteria = data.get("criteria")
+    operation = criteria.get("operation") if isinstance(criteria, dict) else None
+    route = operation.get("route") if isinstance(operation, dict) else None
+    for leg in route if isinstance(route, list) else []:
+        v = leg.get("scatter_diagram") if isinstance(leg, dict) else None
+        if isinstance(v, str) and v and "\0" not in v and not Path(v).is_absolute():
+            leg["scatter_diagram"] = str((base_dir / v).resolve())
+
+
 def _resolve_paths(data: dict[str, Any], base_dir: Path) -> None:
     sea = data.get("sea_state")
     if isinstance(sea, dict):
         v = sea.get("spectrum")
         if isinstance(v, str) and v and v not in ("jonswap", "pierson_moskowitz") and "\0" not in v and not Path(v).is_absolute():
             sea["spectrum"] = str((base_dir / v).resolve())
+    _resolve_route_paths(data, base_dir)
     vessel = data.get("vessel")
     if not isinstance(vessel, dict):
         return

@@ -11,7 +11,17 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["SolverMethod", "Formulation", "ContactLawKind", "NonlinearSolver", "TimeDomainStart", "HullCargoCoupling", "MotionCoupling"]
+__all__ = [
+    "SolverMethod",
+    "Formulation",
+    "ContactLawKind",
+    "NonlinearSolver",
+    "TimeDomainStart",
+    "HullCargoCoupling",
+    "MotionCoupling",
+    "OperationClass",
+    "ForecastLevel",
+]
 
 
 class SolverMethod(StrEnum):
@@ -107,3 +117,32 @@ class MotionCoupling(StrEnum):
 
     HEAVE_PITCH = "heave_pitch"
     SURGE_HEAVE_PITCH = "surge_heave_pitch"
+
+
+class OperationClass(StrEnum):
+    """How the transport's design sea state is set (``criteria.operation.operation_class``; docs/criteria.md).
+
+    ``WEATHER_RESTRICTED``: a planned operation period within the standard's limit (72 h), started on a
+    weather forecast: the operational limit OP_LIM is reduced by the alpha factor to the forecast limit
+    OP_WF = alpha OP_LIM; ``UNRESTRICTED``: the design sea state is the route's 10-year monthly extreme,
+    per route sector and season.
+    """
+
+    WEATHER_RESTRICTED = "weather_restricted"
+    UNRESTRICTED = "unrestricted"
+
+
+class ForecastLevel(StrEnum):
+    """The weather forecast and monitoring a weather-restricted operation relies on (``criteria.operation.forecast_level``).
+
+    Each selects one of the standard's alpha-factor tables for waves (DNV-OS-H101, 2011, Sec.4 B700):
+    ``BASE`` Table 4-1 (one forecast), ``LEVEL_B`` Table 4-2, ``LEVEL_A`` Table 4-3 (a meteorologist
+    at site), ``MONITORING`` Table 4-4 (the forecast calibrated by wave monitoring; planned periods up to
+    24 h), ``MONITORING_LEVEL_A`` Table 4-5 (monitoring and a meteorologist at site; up to 24 h).
+    """
+
+    BASE = "base"
+    LEVEL_B = "level_b"
+    LEVEL_A = "level_a"
+    MONITORING = "monitoring"
+    MONITORING_LEVEL_A = "monitoring_level_a"

@@ -25,6 +25,7 @@ from pydantic import Field, field_validator, model_validator
 from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles, transverse_position_error
 from seafast.config.fields import Finite, NonNegative, NotBool, Positive, StrictSection
 from seafast.config.modes import HullCargoCoupling, MotionCoupling
+from seafast.config.operation import OperationConfig
 from seafast.config.solver_settings import SOURCE_SOLVER_SETTINGS, ModelConfig, OutputConfig, SolverConfig
 
 __all__ = [
@@ -42,6 +43,7 @@ __all__ = [
     "OutputConfig",
     "SeaStateConfig",
     "LimitsConfig",
+    "CriteriaConfig",
     "BASE_SADDLE_STIFFNESS_N_PER_M",
     "BREAKING_STEEPNESS",
     "SOURCE_SOLVER_SETTINGS",
@@ -416,6 +418,14 @@ class LimitsConfig(StrictSection):
     max_bending_stress_Pa: Positive = Field(20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]")
 
 
+class CriteriaConfig(StrictSection):
+    """Design criteria of the transport (``seafast criteria``, ``seafast operability``)."""
+
+    operation: OperationConfig | None = Field(
+        None, description="The operation class (weather-restricted with its alpha factor, or unrestricted on its route); null: none"
+    )
+
+
 class Case(StrictSection):
     """One seafast case: cargo, sea-fastening, vessel, wave, solver (and a sea state, limits)."""
 
@@ -429,6 +439,7 @@ class Case(StrictSection):
     outputs: OutputConfig = OutputConfig()
     sea_state: SeaStateConfig = SeaStateConfig()
     limits: LimitsConfig = LimitsConfig()
+    criteria: CriteriaConfig = CriteriaConfig()
 
     @model_validator(mode="after")
     def _check(self) -> Case:

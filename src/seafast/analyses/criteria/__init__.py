@@ -5,6 +5,10 @@
   apparent gravity at any cargo point.
 * :mod:`~seafast.analyses.criteria.check` - each case solved exactly on the cradles, stoppers and lashings, and
   checked against the case's limits.
+* :mod:`~seafast.analyses.criteria.alpha_factor` - the alpha factor of a weather-restricted operation (the standard's tables).
+* :mod:`~seafast.analyses.criteria.route_extremes` - an unrestricted operation's 10-year monthly extreme Hs per route leg.
+* :mod:`~seafast.analyses.criteria.operation_class` - the operation class on the allowable sea states: weather-routing
+  limits, or the route's design sea states checked.
 
 Its files (criteria.csv): :mod:`seafast.output.criteria`. Theory, sources and verification: ``docs/criteria.md``.
 """
