@@ -175,6 +175,8 @@ def likely_cause(case: Case, issues: Sequence[ValidityIssue]) -> str | None:
     """
     if not issues:
         return None
+    if all(i.limit in (ValidityLimit.PAD_TENSION, ValidityLimit.STOPPER_PASSED) for i in issues):
+        return "a linear row's cradle pad pulls or its cargo passes a side stopper: the nonlinear rows hold the answer"
     stiffnesses = np.asarray(case.saddle_stiffnesses_N_per_m(), dtype=float)
     soft = float(np.min(stiffnesses))
     if any(i.limit is ValidityLimit.DISPLACEMENT for i in issues) and soft < 1e6:
