@@ -66,10 +66,10 @@ def test_head_seas_summary_is_todays():
     assert "pad_force_N" not in result.dataset
 
 
-def _independent_maxima(result, load_case: str, model: str) -> dict[str, float]:
+def _independent_maxima(result, lc: str, model: str) -> dict[str, float]:
     """The five columns from the row's element histories, split by the cradle case's own element counts."""
     cradle = build_cradle_case(result.case, result.model)
-    response = result.cradle.rows[(load_case, model)].response
+    response = result.cradle.rows[(lc, model)].response
     n_pad, n_stop = 2 * len(cradle.pad_pairs), len(cradle.stoppers)
     forces = response.element_force_N
     v = [cradle.cargo.node_dofs(cradle.cargo.node_at(float(x)))[1] for x in cradle.saddle_x_m]
@@ -108,8 +108,8 @@ def test_base_case_in_beam_seas_keeps_every_pad_and_wire_engaged(beam_sea):
     dynamic = rows[("dynamic", "nonlinear")].response
     assert np.all(dynamic.open_fraction == 0.0)
     assert np.rad2deg(abs(beam_sea.vessel.motion_amplitudes[3])) > 10.0  # a real roll, not a quiet sea
-    for load_case in ("static", "dynamic"):
-        linear, nonlinear = rows[(load_case, "linear")].response, rows[(load_case, "nonlinear")].response
+    for lc in ("static", "dynamic"):
+        linear, nonlinear = rows[(lc, "linear")].response, rows[(lc, "nonlinear")].response
         scale = np.max(np.abs(nonlinear.element_force_N))
         np.testing.assert_allclose(linear.element_force_N, nonlinear.element_force_N, atol=1e-8 * scale)
     still = rows[("static", "nonlinear")].response
@@ -185,3 +185,32 @@ def test_long_beam_sea_roll_tends_to_the_statics_of_the_heeled_ship(beam_sea):
         assert error <= 2.0 * r**2 * wave_part + 1e-9 * np.max(forces[0])
         errors.append(error)
     assert errors[1] > 8.0 * errors[0]  # the difference is the dynamics: 16 times larger at four times omega
+
+
+def test_a_cradle_row_that_did_not_converge_is_flagged_with_its_residual(beam_sea):
+    """The row's converged is false, its residual and outcome reach the summary and the terminal table."""
+    from seafast.output.tables import format_summary_table
+    from seafast.results.cradle import CradleRows
+    from seafast.solvers.outcome import SolverOutcome
+
+    rows = dict(beam_sea.cradle.rows)
+    key = ("dynamic", "nonlinear")
+    failed = replace(rows[key].response, outcome=SolverOutcome.NOT_CONVERGED, residual=0.25)
+    rows[key] = replace(rows[key], response=failed)
+    result = replace(beam_sea, cradle=CradleRows(rows, beam_sea.cradle.layout))
+    summary = {(r["load_case"], r["model"]): r for r in result.summary}
+    assert not summary[key]["converged"] and summary[key]["cradle_residual"] == 0.25
+    assert summary[key]["cradle_outcome"] == "not_converged"
+    assert all(r["converged"] for k, r in summary.items() if k != key)
+    assert "NO (cradle residual 2.50e-01)" in format_summary_table(result.summary)
+    assert "false" in summary_csv_text(result.summary, result.summary_columns).splitlines()[4]
+
+
+def test_the_cross_sections_are_drawn_off_head_seas_only(beam_sea_stoppers, tmp_path):
+    from seafast.output.case_figures import case_figure_names, draw_case_figure
+
+    ds = beam_sea_stoppers.dataset
+    assert "cradle_sections" in case_figure_names(ds)
+    assert "cradle_sections" not in case_figure_names(ds.drop_vars("pad_force_max_N"))
+    path = draw_case_figure(ds, "cradle_sections", tmp_path)
+    assert path.stat().st_size > 10_000
