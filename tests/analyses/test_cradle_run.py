@@ -204,6 +204,10 @@ def test_a_cradle_row_that_did_not_converge_is_flagged_with_its_residual(beam_se
     assert all(r["converged"] for k, r in summary.items() if k != key)
     assert "NO (cradle residual 2.50e-01)" in format_summary_table(result.summary)
     assert "false" in summary_csv_text(result.summary, result.summary_columns).splitlines()[4]
+    ds = result.dataset
+    assert not bool(ds["converged"].sel(load_case="dynamic", model="nonlinear"))
+    assert str(ds["cradle_solver_outcome"].sel(load_case="dynamic", model="nonlinear").values) == "not_converged"
+    assert bool(ds["converged"].sel(load_case="static", model="nonlinear"))
 
 
 def test_the_cross_sections_are_drawn_off_head_seas_only(beam_sea_stoppers, tmp_path):

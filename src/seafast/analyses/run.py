@@ -388,7 +388,7 @@ def run_case(
 
 
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
-    """The summary rows of one case, what a study records per point: ``run_case(case).summary``.
+    """The summary rows of one case, what a study records per point: ``run_case(case, cradles=False).summary``.
 
     The rows are read from the solution's harmonics; no time series or Dataset is formed (unless a
     reference method or the axial analysis needs them). The cargo on its cradles is not solved: a study

@@ -136,10 +136,14 @@ class CradleRows:
         return [{**r, "converged": bool(r["converged"] and r["cradle_converged"])} for r in out]
 
     def merged_into(self, ds: xr.Dataset) -> xr.Dataset:
-        """``ds`` (a run's Dataset) with the cradle variables (:meth:`to_dataset`) and the pads' angle attribute."""
+        """``ds`` (a run's Dataset) with the cradle variables (:meth:`to_dataset`) and the pads' angle attribute; its
+        ``converged`` false where the row's cradle solve did not converge (as the summary's)."""
         cradle = self.to_dataset()
         out = xr.merge([ds, cradle], combine_attrs="override")
         out.attrs.update(cradle.attrs)
+        if "converged" in out:
+            ok = np.array([[self.rows[(lc, m)].converged for m in MODELS] for lc in LOAD_CASES])
+            out["converged"] = out["converged"].copy(data=out["converged"].values & ok)
         return out
 
     def to_dataset(self) -> xr.Dataset:
