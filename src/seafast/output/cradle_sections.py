@@ -72,7 +72,7 @@ def _lashings(ax: plt.Axes, ds: xr.Dataset, sel: xr.Dataset, j: int, radius: flo
         d = ds["lashing_direction"].values[w]
         ax.plot([0.0, 1.3 * radius * d[1]], [0.0, 1.3 * radius * d[2]], "--", color="tab:blue", lw=1.2)
     ax.text(
-        0.05 * radius,
+        -0.08 * radius,  # beside the wires (the y axis runs to port on the left)
         -0.55 * radius,
         f"{wires.size} lashing wire(s)\nmax {tension.max():.1f} kN\nmin {tension.min():.1f} kN",
         fontsize=7,
@@ -86,7 +86,7 @@ def plot_cradle_sections(ds: xr.Dataset, path: Path) -> Path:
     n = int(ds.sizes["saddle"])
     columns = min(n, 4)
     rows = math.ceil(n / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.9 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 4.6 * rows), squeeze=False)
     alpha = math.radians(float(ds.attrs["saddle_contact_angle_deg"]))
     for j, ax in enumerate(axes.ravel()):
         if j >= n:
@@ -108,4 +108,4 @@ def plot_cradle_sections(ds: xr.Dataset, path: Path) -> Path:
         ax.set_ylabel("z, up [m]")
         ax.grid(alpha=0.25)
     fig.suptitle("The cargo in its cradles, looking forward: dynamic nonlinear row (still water + wave)", fontsize=10)
-    return save_png(fig, path, DPI, rect=(0.0, 0.0, 1.0, 0.95))
+    return save_png(fig, path, DPI, rect=(0.0, 0.03, 1.0, 0.94))
