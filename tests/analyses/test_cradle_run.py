@@ -97,6 +97,9 @@ def test_summary_columns_are_the_cradle_rows_maxima(fixture, request):
         for name, value in expected.items():
             assert float(line[columns.index(name)]) == pytest.approx(value, rel=1e-12, abs=1e-15)
         assert row["converged"] and row["cradle_converged"]
+        ds_row = result.dataset.sel(load_case=row["load_case"], model=row["model"])
+        assert all(float(ds_row[name]) == row[name] for name in CRADLE_SUMMARY_COLUMNS)
+        assert float(ds_row["lashing_wire_tension_min_N"].min()) == row["lashing_tension_min_N"]
     assert "pad [MN]" in format_cradle_table(result.summary)
 
 

@@ -42,6 +42,14 @@ CRADLE_SUMMARY_COLUMNS = ("F_pad_N", "F_stopper_N", "lashing_tension_max_N", "la
 
 SIDES = ("port", "starboard")
 
+_SUMMARY_VARIABLES = (
+    ("F_pad_N", "largest cradle pad force", "N"),
+    ("F_stopper_N", "largest side-stopper force", "N"),
+    ("lashing_tension_max_N", "largest lashing-wire tension", "N"),
+    ("lashing_tension_min_N", "least lashing-wire tension", "N"),
+    ("transverse_slip_m", "largest lateral displacement of the cargo's axis at a saddle relative to the deck", "m"),
+)
+
 
 @dataclass(frozen=True)
 class CradleLayout:
@@ -197,6 +205,24 @@ class CradleRows:
                 "lateral displacement of the cargo's axis at the saddle relative to the deck, to port positive",
                 "m",
             ),
+            "stopper_force_max_N": labelled_variable(
+                row_dims + ("stopper",), stack(lambda r: r.stopper_force_N.max(axis=0)), "largest side-stopper force", "N"
+            ),
+            "lashing_wire_tension_max_N": labelled_variable(
+                row_dims + ("lashing",), stack(lambda r: r.lashing_tension_N.max(axis=0)), "largest lashing-wire tension", "N"
+            ),
+            "lashing_wire_tension_min_N": labelled_variable(
+                row_dims + ("lashing",), stack(lambda r: r.lashing_tension_N.min(axis=0)), "least lashing-wire tension", "N"
+            ),
+            **{
+                name: labelled_variable(
+                    row_dims,
+                    [[self.fields(lc, m)[name] for m in MODELS] for lc in LOAD_CASES],
+                    f"{description} (as in summary.csv)",
+                    unit,
+                )
+                for name, description, unit in _SUMMARY_VARIABLES
+            },
             "cradle_solver_outcome": labelled_variable(
                 row_dims, stack(lambda r: r.outcome.value).astype(str), "outcome of the cradle solve (SolverOutcome value)", "1"
             ),
