@@ -132,6 +132,9 @@ def test_linear_pad_in_tension_is_flagged_and_nonlinear_rows_engage_the_stoppers
     linear, nonlinear = summary[("dynamic", "linear")], summary[("dynamic", "nonlinear")]
     assert linear["pad_force_min_N"] < 0.0 and not linear["within_validity"]
     assert ValidityLimit.PAD_TENSION in linear["warnings"]
+    (issue,) = [i for i in beam_sea_stoppers.validity if i.limit is ValidityLimit.PAD_TENSION]
+    assert (issue.load_case, issue.model) == ("dynamic", "linear") and issue.value == pytest.approx(-linear["pad_force_min_N"])
+    assert "linear cradle model's validity" in issue.message
     assert nonlinear["pad_force_min_N"] >= 0.0 and nonlinear["within_validity"]
     assert nonlinear["F_stopper_N"] > 0.05 * nonlinear["F_pad_N"]
     assert linear["F_stopper_N"] == 0.0 and linear["stopper_overclosure_m"] > 0.0  # the linear row leaves them open

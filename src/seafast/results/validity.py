@@ -109,9 +109,14 @@ class ValidityIssue:
     @property
     def message(self) -> str:
         """One line for people: the row, the quantity, the value and the line."""
+        validity = (
+            "linear cradle model's validity"
+            if self.limit in (ValidityLimit.PAD_TENSION, ValidityLimit.STOPPER_PASSED)
+            else "model's small-displacement validity"
+        )
         return (
-            f"{self.load_case} {self.model}: {self.quantity} {self.value:.4g} {self.unit} is beyond the model's "
-            f"small-displacement validity (at most {self.allowed:.3g} {self.unit}); the row's numbers are not a valid answer"
+            f"{self.load_case} {self.model}: {self.quantity} {self.value:.4g} {self.unit} is beyond the {validity} "
+            f"(at most {self.allowed:.3g} {self.unit}); the row's numbers are not a valid answer"
         )
 
 
