@@ -21,6 +21,7 @@ import xarray as xr
 
 import seafast
 from seafast.analyses.axial import run_axial_analysis
+from seafast.analyses.cradle_run import solve_cradle_rows, solves_cradles
 from seafast.config.modes import HullCargoCoupling, SolverMethod
 from seafast.config.schema import Case
 from seafast.coupling.case import case_compliance, couple_hull_and_cargo
@@ -37,6 +38,7 @@ from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
 from seafast.results.axial import AxialCaseArrays
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
+from seafast.results.cradle import CRADLE_SUMMARY_COLUMNS, CradleRows
 from seafast.results.dataset import (
     LOAD_CASES,
     MODELS,
@@ -171,6 +173,7 @@ def _row_solution(rows: CaseRows, load_case: str, model: str, time_samples: int)
 class CaseResult:
     """Everything computed for one case: its model, excitation, vessel, four rows and, with friction, the axial analysis.
 
+    Off head seas ``cradle`` holds the cargo on its cradles (:mod:`seafast.analyses.cradle_run`; None in head seas).
     Two-way runs also hold each row's coupling (``rows.couplings``; ``coupling``: its outcome) and the
     hull's compliance; ``coupled_hull`` (computed when first asked for, e.g. by :attr:`dataset`;
     studies never do) is the hull girder under the coupled cargo.
@@ -182,6 +185,7 @@ class CaseResult:
     vessel: VesselExcitation | None
     rows: CaseRows
     axial: AxialCaseArrays | None = None
+    cradle: CradleRows | None = None
 
     @property
     def coupling(self) -> dict[Row, CouplingStatus]:
@@ -252,6 +256,7 @@ class CaseResult:
             rows = summary_rows(self.model, [(lc, m, s) for lc, m, s in solved if s is not None], N)
         else:  # a reference's solution is a time series: read the arrays
             rows = summary_rows_from_arrays(self.arrays, self.model.cargo.node_x_m, self.model.warnings)
+        rows = rows if self.cradle is None else self.cradle.extend_summary(rows)
         return with_validity(rows, cargo_diameter_m(self.model))
 
     @property
@@ -275,8 +280,9 @@ class CaseResult:
 
     @property
     def summary_columns(self) -> tuple[str, ...]:
-        """The columns of ``summary.csv``: the source's, then the axial ones when the axial analysis ran."""
-        return SUMMARY_COLUMNS + (self.axial.summary_column_names if self.axial is not None else ())
+        """The columns of ``summary.csv``: the source's, the cradle ones off head seas, the axial ones when the axial analysis ran."""
+        cradle = CRADLE_SUMMARY_COLUMNS if self.cradle is not None else ()
+        return SUMMARY_COLUMNS + cradle + (self.axial.summary_column_names if self.axial is not None else ())
 
     @functools.cached_property
     def attrs(self) -> dict[str, Any]:
@@ -307,6 +313,7 @@ class CaseResult:
             ds.attrs.update(vds.attrs)
         if self.coupling:
             ds = xr.merge([ds, coupling_dataset(self.coupling, self.coupled_hull)], combine_attrs="override")
+        ds = ds if self.cradle is None else self.cradle.merged_into(ds)
         return ds if self.axial is None else self.axial.merged_into(ds)
 
 
@@ -347,8 +354,11 @@ def run_case(
     excitation: HarmonicExcitation | None = None,
     vessel: VesselExcitation | None = None,
     progress: Callable[[str], None] | None = None,
+    cradles: bool | None = None,
 ) -> CaseResult:
     """Run one case: linear and nonlinear, static and dynamic (and the axial analysis when friction is set).
+
+    Off head seas the cargo on its cradles too (:mod:`seafast.analyses.cradle_run`), unless ``vessel`` is unknown.
 
     Parameters
     ----------
@@ -358,6 +368,8 @@ def run_case(
         Precomputed excitation (and the vessel data it came from); computed from the case when omitted.
     progress
         Called with a short message as each stage starts (e.g. to print it).
+    cradles
+        Solve the cargo on its cradles; default: off head seas (:func:`~seafast.analyses.cradle_run.solves_cradles`).
     """
     say = progress or (lambda message: None)
     model = build_model(case)
@@ -366,6 +378,9 @@ def run_case(
         vessel = vessel_excitation(case)
         excitation = vessel.cargo_excitation(model, case)
     result = CaseResult(case, model, excitation, vessel, solve_rows(case, model, excitation, vessel, say))
+    if (solves_cradles(case) if cradles is None else cradles) and vessel is not None:
+        say("the cargo on its cradles, stoppers and lashings (off head seas)")
+        result = replace(result, cradle=solve_cradle_rows(case, model, excitation, vessel))
     if case.seafastening.friction_coefficient is None:
         return result
     say("axial sliding (friction, lashings, stoppers)")  # one way (docs/axial.md)
@@ -373,9 +388,10 @@ def run_case(
 
 
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
-    """The summary rows of one case, what a study records per point: ``run_case(case).summary``.
+    """The summary rows of one case, what a study records per point: ``run_case(case, cradles=False).summary``.
 
     The rows are read from the solution's harmonics; no time series or Dataset is formed (unless a
-    reference method or the axial analysis needs them).
+    reference method or the axial analysis needs them). The cargo on its cradles is not solved: a study
+    records the vertical plane at every heading (docs/transverse.md#10-what-is-not-yet-in).
     """
-    return run_case(case).summary
+    return run_case(case, cradles=False).summary

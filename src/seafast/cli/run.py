@@ -96,6 +96,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"two-way coupling {coupling.outcome.value.replace('_', ' ')}: coupling residual {coupling.residual_m:.2e} m "
                 f"> tolerance {coupling.tolerance_m:.2e} m after {coupling.iterations} step(s)"
             )
+        elif r.get("cradle_converged") is False:
+            why = f"the cargo on its cradles: {r['cradle_outcome'].replace('_', ' ')}, residual {r['cradle_residual']:.3e}"
         else:
             from seafast.results.dataset import LOAD_CASES, MODELS
 
@@ -113,9 +115,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
 
 def _print_tables(result: CaseResult, rows: list[dict[str, Any]]) -> None:
     """Print the summary table (and the axial one), the excitation and the coupling outcomes on stdout, flushed."""
-    from seafast.output.tables import format_axial_table, format_summary_table
+    from seafast.output.tables import format_axial_table, format_cradle_table, format_summary_table
 
     print(format_summary_table(rows, title=f"{result.case.name}: maxima over the cargo, the saddles and one wave period"))
+    if result.cradle is not None:
+        print(format_cradle_table(rows))
     if result.axial is not None:
         print(format_axial_table(rows))
     print(f"excitation: {result.excitation.source}")

@@ -88,8 +88,8 @@ def six_dof_amplitudes(
     )
     description = (
         f"six-DOF motions at heading {case.wave.heading_deg:g} deg ({motions6.source}); the cargo's deck: heave, pitch and roll "
-        f"at y = {y:g} m (vertical plane), surge and yaw for the axial analysis; the cargo's transverse response "
-        "(pads, stoppers and lashings across the ship) is not modelled"
+        f"at y = {y:g} m (vertical plane), surge and yaw for the axial analysis; the cargo across the ship (pads, "
+        "stoppers and lashings) in seafast run's cradle rows only (docs/transverse.md)"
     )
     if linearised is not None:
         b_eq = float(linearised.equivalent_damping_Nms_per_rad[0])

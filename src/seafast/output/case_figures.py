@@ -25,9 +25,10 @@ CASE_FIGURES: tuple[tuple[str, str, str | None, float], ...] = (
     ("hull_girder", "plot_hull_girder", "hull_x_m", 0.65),
     ("raos", "plot_raos", "rao_omega_rad_s", 1.1),
     ("stick_slip", "plot_stick_slip", "friction_force_N", 0.8),
+    ("cradle_sections", "seafast.output.cradle_sections:plot_cradle_sections", "pad_force_max_N", 0.5),
 )
 """Each figure of a case: its file name (without ``.png``), its function in
-:mod:`seafast.output.plots`, the variable of the Dataset it needs (None: every run has what it
+:mod:`seafast.output.plots` (or ``module:function`` elsewhere), the variable of the Dataset it needs (None: every run has what it
 needs) and its drawing time relative to ``deflection`` [-] (measured; it orders the shared work,
 costliest first). The order is the report's."""
 
@@ -39,10 +40,13 @@ def case_figure_names(ds: Any) -> list[str]:
 
 def draw_case_figure(ds: Any, name: str, out_dir: str | Path) -> Path:
     """Draw the figure ``name`` (a name of :data:`CASE_FIGURES`) of ``ds`` into ``out_dir/name.png``; return its path."""
+    import importlib
+
     from seafast.output import plots
 
-    function = {n: f for n, f, _, _ in CASE_FIGURES}[name]
-    path: Path = getattr(plots, function)(ds, Path(out_dir) / f"{name}.png")
+    module_name, _, function = {n: f for n, f, _, _ in CASE_FIGURES}[name].rpartition(":")
+    module = importlib.import_module(module_name) if module_name else plots
+    path: Path = getattr(module, function)(ds, Path(out_dir) / f"{name}.png")
     return path
 
 

@@ -10,7 +10,7 @@ from typing import Any
 
 from seafast.results.dataset import SUMMARY_COLUMNS
 
-__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table", "format_axial_table"]
+__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table", "format_axial_table", "format_cradle_table"]
 
 
 def _cell(value: Any) -> str:
@@ -42,6 +42,8 @@ def _not_converged(row: dict[str, Any]) -> str:
     """Why a row is flagged: the two-way coupling's residual when it failed, else the cargo solver's."""
     if row.get("coupling_converged") is False:
         return f"NO (coupling residual {row['coupling_residual_m']:.2e} m)"
+    if row.get("cradle_converged") is False:
+        return f"NO (cradle residual {row['cradle_residual']:.2e})"
     return f"NO (residual {row.get('residual_norm', float('nan')):.2e})"
 
 
@@ -64,6 +66,33 @@ def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
     return "\n".join(
         [
             "axial sliding (per period; slides where utilisation = 1)",
+            _format_row(head, widths),
+            _format_row(["-" * w for w in widths], widths),
+        ]
+        + [_format_row(line, widths) for line in lines]
+    )
+
+
+def format_cradle_table(rows: Sequence[dict[str, Any]]) -> str:
+    """The cradle columns of the summary rows (off head seas) in engineering units (MN, kN, mm)."""
+    head = ("load case", "model", "pad [MN]", "least pad [MN]", "stopper [MN]", "lashing max [kN]", "lashing min [kN]", "slip [mm]")
+    lines = [
+        (
+            r["load_case"],
+            r["model"],
+            f"{r['F_pad_N'] / 1e6:.3f}",
+            f"{r['pad_force_min_N'] / 1e6:.3f}",
+            f"{r['F_stopper_N'] / 1e6:.3f}",
+            f"{r['lashing_tension_max_N'] / 1e3:.1f}",
+            f"{r['lashing_tension_min_N'] / 1e3:.1f}",
+            f"{r['transverse_slip_m'] * 1e3:.2f}",
+        )
+        for r in rows
+    ]
+    widths = _column_widths(head, lines)
+    return "\n".join(
+        [
+            "the cargo on its cradles (pads, side stoppers, lashing wires; a linear pad below 0 would pull)",
             _format_row(head, widths),
             _format_row(["-" * w for w in widths], widths),
         ]

@@ -14,6 +14,13 @@ its saddles. Each row of a run is checked against three lines, drawn here once:
 * **lift-off gap**: at most 0.1 m (:data:`DEFAULT_MAX_GAP_M`, the line the
   frequency sweeps draw): a monopile lifted further has left the sea-fastening's design state.
 
+Off head seas, where a run also solves the cargo on its cradles (:mod:`seafast.results.cradle`), two more lines
+for its linear rows (pads and lashing wires bilateral, side stoppers open):
+
+* **pad tension**: the least pad force at least 0: a linear pad with a negative force pulls the cargo, which a
+  pad cannot (the nonlinear row lifts it off);
+* **stopper passed**: the cargo does not pass a side stopper the linear row leaves open.
+
 The numbers of a row beyond a line are written (nothing computed is lost) and flagged: ``within_validity``
 in ``results.nc``, a warning with a suggestion of what was probably meant, exit code 4 on the command line.
 """
@@ -66,6 +73,10 @@ class ValidityLimit(StrEnum):
     """The cargo's slope exceeds :data:`MAX_ROTATION_RAD`."""
     LIFT_OFF_GAP = "lift_off_gap_beyond_meaningful_range"
     """A saddle's lift-off gap exceeds :data:`DEFAULT_MAX_GAP_M`."""
+    PAD_TENSION = "pad_in_tension"
+    """A linear row's cradle pad carries tension (a negative force): the bilateral pad pulls the cargo."""
+    STOPPER_PASSED = "side_stopper_passed"
+    """A linear row's cargo moves past a side stopper's gap (the linear model leaves the stoppers open)."""
 
     @property
     def description(self) -> str:
@@ -76,6 +87,10 @@ class ValidityLimit(StrEnum):
             ValidityLimit.ROTATION: "the cargo's slope exceeds 0.1 rad: beyond the small-angle kinematics, not a valid answer",
             ValidityLimit.LIFT_OFF_GAP: "a saddle lifts off by more than 0.1 m: the cargo has left the sea-fastening's design "
             "state, not a valid answer",
+            ValidityLimit.PAD_TENSION: "a linear cradle pad carries tension, which a pad cannot: the linear row is not a valid "
+            "answer (the nonlinear row lifts the pad off)",
+            ValidityLimit.STOPPER_PASSED: "the linear row's cargo moves past a side stopper it leaves open: not a valid answer "
+            "(the nonlinear row engages the stopper)",
         }[self]
 
 
@@ -94,9 +109,14 @@ class ValidityIssue:
     @property
     def message(self) -> str:
         """One line for people: the row, the quantity, the value and the line."""
+        validity = (
+            "linear cradle model's validity"
+            if self.limit in (ValidityLimit.PAD_TENSION, ValidityLimit.STOPPER_PASSED)
+            else "model's small-displacement validity"
+        )
         return (
-            f"{self.load_case} {self.model}: {self.quantity} {self.value:.4g} {self.unit} is beyond the model's "
-            f"small-displacement validity (at most {self.allowed:.3g} {self.unit}); the row's numbers are not a valid answer"
+            f"{self.load_case} {self.model}: {self.quantity} {self.value:.4g} {self.unit} is beyond the {validity} "
+            f"(at most {self.allowed:.3g} {self.unit}); the row's numbers are not a valid answer"
         )
 
 
@@ -106,20 +126,26 @@ def validity_issues(rows: Sequence[Mapping[str, Any]], diameter_m: float) -> tup
     Parameters
     ----------
     rows
-        Summary rows (``load_case``, ``model``, ``u_c_m``, ``u_s_m``, ``u_d_m``, ``cargo_slope_rad``), as
-        :attr:`seafast.analyses.run.CaseResult.summary` and :func:`seafast.results.summary.summary_rows` give them.
+        Summary rows (``load_case``, ``model``, ``u_c_m``, ``u_s_m``, ``u_d_m``, ``cargo_slope_rad``; off head seas
+        also ``pad_force_min_N`` and ``stopper_overclosure_m``), as :attr:`seafast.analyses.run.CaseResult.summary`
+        and :func:`seafast.results.summary.summary_rows` give them.
     diameter_m
         The cargo's largest outer diameter [m].
     """
     displacement_allowed = DISPLACEMENT_SHARE_OF_DIAMETER * float(diameter_m)
     issues: list[ValidityIssue] = []
     for row in rows:
-        checks = (
+        checks: list[tuple[ValidityLimit, str, Any, float, str]] = [
             (ValidityLimit.DISPLACEMENT, "saddle compression", row["u_s_m"], displacement_allowed, "m"),
             (ValidityLimit.DISPLACEMENT, "cargo deflection", row["u_c_m"], displacement_allowed, "m"),
             (ValidityLimit.ROTATION, "cargo slope", row["cargo_slope_rad"], MAX_ROTATION_RAD, "rad"),
             (ValidityLimit.LIFT_OFF_GAP, "lift-off gap", row["u_d_m"], DEFAULT_MAX_GAP_M, "m"),
-        )
+        ]
+        if "pad_force_min_N" in row:  # the cargo on its cradles (off head seas): a pad cannot pull, a stopper is not passed
+            checks += [
+                (ValidityLimit.PAD_TENSION, "pad tension", -float(row["pad_force_min_N"]), 0.0, "N"),
+                (ValidityLimit.STOPPER_PASSED, "side stopper overclosure", row["stopper_overclosure_m"], 0.0, "m"),
+            ]
         for limit, quantity, value, allowed, unit in checks:
             if not math.isfinite(float(value)) or float(value) > allowed:
                 issues.append(ValidityIssue(str(row["load_case"]), str(row["model"]), limit, quantity, float(value), allowed, unit))
@@ -154,6 +180,8 @@ def likely_cause(case: Case, issues: Sequence[ValidityIssue]) -> str | None:
     """
     if not issues:
         return None
+    if all(i.limit in (ValidityLimit.PAD_TENSION, ValidityLimit.STOPPER_PASSED) for i in issues):
+        return "a linear row's cradle pad pulls or its cargo passes a side stopper: the nonlinear rows hold the answer"
     stiffnesses = np.asarray(case.saddle_stiffnesses_N_per_m(), dtype=float)
     soft = float(np.min(stiffnesses))
     if any(i.limit is ValidityLimit.DISPLACEMENT for i in issues) and soft < 1e6:

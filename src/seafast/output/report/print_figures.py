@@ -137,6 +137,10 @@ def write_print_figures(run: xr.Dataset | None, study: xr.Dataset | None, fig_di
         ]
         if "friction_force_N" in run:
             jobs.append(("stick_slip.png", plots.plot_stick_slip))
+        if "pad_force_max_N" in run:  # off head seas: the cargo in its cradles
+            from seafast.output.cradle_sections import plot_cradle_sections
+
+            jobs.append(("cradle_sections.png", plot_cradle_sections))
     paths: list[Path] = []
     pdf = PdfPages(pdf_path) if pdf_path is not None else None
     try:

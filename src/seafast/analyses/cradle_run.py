@@ -1,0 +1,158 @@
+"""The cargo on its cradles in a run off head seas: the four rows of the 3-D model (docs/transverse.md#9-in-seafast-run).
+
+The case's cradles, side stoppers and lashing wires (:func:`seafast.model.cradle_case.build_cradle_case`), with
+the vertical model's Rayleigh damping and deck points, loaded by the same vessel excitation as the vertical rows
+(its six motions at the case's wave and the deck's deflection, built once by the run), solved in four rows:
+
+* ``dynamic nonlinear``: the harmonic balance of the exact law (:func:`seafast.solvers.cradle_hbm.solve_cradle_hbm`,
+  the case's solver settings, H = 64 unless ``solver.harmonics`` is set);
+* ``static nonlinear``: the quasi-static exact-contact reference in still water
+  (:func:`seafast.solvers.references.cradle_quasi_static.solve_cradle_quasi_static`): the exact statics, loads constant;
+* ``static linear``, ``dynamic linear``: the same model with the pads and lashing wires bilateral and the side
+  stoppers open, solved directly (every harmonic of the excitation, k = 0, 1).
+
+All four on the dynamic row's time grid. Nothing here prints or writes files.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from seafast.config.schema import Case
+from seafast.excitation.cradle_loads import CradleExcitation, cradle_excitation
+from seafast.excitation.harmonic import HarmonicExcitation
+from seafast.excitation.vessel import VesselExcitation
+from seafast.fourier import harmonics_to_time
+from seafast.model.cradle_case import CradleCase, build_cradle_case
+from seafast.model.structure import StructuralModel
+from seafast.results.cradle import CradleLayout, CradleRow, CradleRows
+from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
+from seafast.solvers.cradle_hbm import CradleResponse, cradle_response, solve_cradle_hbm
+from seafast.solvers.from_case import hbm_options
+from seafast.solvers.outcome import SolverOutcome
+from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
+from seafast.solvers.transverse_statics import CradleProblem
+
+__all__ = ["HEAD_SEAS_DEG", "solves_cradles", "cradle_dynamics_of_case", "case_cradle_excitation", "cradle_rows", "solve_cradle_rows"]
+
+HEAD_SEAS_DEG = 180.0
+"""The heading at which a run solves the vertical plane alone (its answers today's, bit for bit)."""
+
+
+def solves_cradles(case: Case) -> bool:
+    """Whether a run of ``case`` solves the cargo on its cradles: every heading but head seas."""
+    return float(case.wave.heading_deg) != HEAD_SEAS_DEG
+
+
+def cradle_dynamics_of_case(cradle: CradleCase) -> CradleDynamics:
+    """The dynamics of a case's cradles: its problem with the vertical model's damping, deck points and gravity.
+
+    The bilateral springs of a cradle case are the axial holds, on a deck that moves only vertically: no deck
+    coupling (the lashing wires move with the deck through their engagements).
+    """
+    model = cradle.model
+    problem = CradleProblem(
+        cradle.cargo,
+        cradle.pad_pairs,
+        cradle.stoppers,
+        cradle.lashings,
+        spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
+        load_N=cradle.load_N,
+    )
+    return CradleDynamics(problem, model.rayleigh_alpha_per_s, model.rayleigh_beta_s, model.saddle_x_m, None, model.gravity_m_per_s2)
+
+
+def case_cradle_excitation(cradle: CradleCase, excitation: HarmonicExcitation, vessel: VesselExcitation | None) -> CradleExcitation:
+    """The loads on the 3-D cargo from the run's own vertical ``excitation`` and the vessel's six motions.
+
+    A vessel without rigid-body motions (``vessel.motions: none``) moves the cargo by the deck's deflection alone.
+
+    Raises
+    ------
+    ValueError
+        If the motions' reference point has no height (the cargo's lever arms are unknown).
+    """
+    motions = np.zeros(6, dtype=complex)
+    axis = (0.0, 0.0, 0.0)
+    g = cradle.model.gravity_m_per_s2
+    if vessel is not None and vessel.rigid_body is not None and vessel.cargo_points is not None and vessel.motion_amplitudes is not None:
+        rigid, points = vessel.rigid_body, vessel.cargo_points
+        if not np.isfinite(rigid.reference_z_m):
+            raise ValueError("vessel: the motions' reference point has no height (reference_z_m): allowed motions with one")
+        motions = np.asarray(vessel.motion_amplitudes, dtype=complex)
+        axis = (vessel.cargo_aft_end_x_m - rigid.reference_x_m, points.y_m, points.z_m - rigid.reference_z_m)
+        g = vessel.gravity_m_per_s2
+    return cradle_excitation(cradle.cargo, excitation, motions, cradle.model.saddle_x_m, axis, g)
+
+
+def _still_water(excitation: CradleExcitation) -> CradleExcitation:
+    """The excitation's static part (k = 0): loads and deck of still water."""
+    keep = np.array([[1.0], [0.0]])
+    return replace(excitation, cargo_load_N=excitation.cargo_load_N * keep, deck_displacement=excitation.deck_displacement * keep)
+
+
+def _linear_row(dynamics: CradleDynamics, excitation: CradleExcitation, time_samples: int) -> CradleResponse:
+    """The pads and lashing wires bilateral, the stoppers open: ``k s`` of each, exact at k = 0, 1 (module docstring)."""
+    included = dynamics.damping_set
+    ops = cradle_operators(dynamics, excitation, 1, included)
+    q = harmonics_to_time(ops.linear_cargo_displacement, time_samples)
+    deck = np.array(excitation.deck_displacement, dtype=complex)
+    deck[0] = deck[0].real
+    s = (
+        dynamics.initial_engagement_m
+        + q @ dynamics.problem.engagement_matrix.T
+        + harmonics_to_time(deck, time_samples) @ dynamics.deck_engagement.T
+    )
+    force = np.where(included, dynamics.problem.element_stiffness_N_per_m * s, 0.0)
+    message = "3-D cradle linear model (pads and lashing wires bilateral, side stoppers open), solved directly"
+    response = cradle_response(dynamics, s, q, excitation.omega_rad_s, (SolverOutcome.CONVERGED, 0.0, message, 1))
+    return replace(response, element_force_N=force)
+
+
+def _layout(cradle: CradleCase) -> CradleLayout:
+    cargo = cradle.cargo
+    lateral = np.array([cargo.node_dofs(cargo.node_at(float(x)))[1] for x in cradle.saddle_x_m], dtype=np.intp)
+    directions: NDArray[np.float64] = np.array([w.direction for w in cradle.lashings], dtype=float).reshape(-1, 3)
+    angle = cradle.pad_pairs[0].contact_angle_deg if cradle.pad_pairs else float("nan")
+    return CradleLayout(
+        saddle_x_m=np.asarray(cradle.saddle_x_m, dtype=float),
+        tube_radius_m=np.asarray(cradle.tube_radius_m, dtype=float),
+        contact_angle_deg=float(angle),
+        lateral_dof=lateral,
+        stopper_x_m=np.array([s.x_m for s in cradle.stoppers], dtype=float),
+        stopper_side=tuple(str(s.side.value) for s in cradle.stoppers),
+        stopper_gap_m=np.array([s.gap_m for s in cradle.stoppers], dtype=float),
+        lashing_saddle=np.asarray(cradle.lashing_saddle, dtype=np.intp),
+        lashing_direction=directions,
+    )
+
+
+def cradle_rows(case: Case, cradle: CradleCase, dynamics: CradleDynamics, excitation: CradleExcitation) -> CradleRows:
+    """The four rows of ``dynamics`` under ``excitation`` (module docstring), on the dynamic row's time grid."""
+    options = hbm_options(case)
+    dynamic = solve_cradle_hbm(dynamics, excitation, options)
+    N = dynamic.time_s.size
+    still = _still_water(excitation)
+    rows = {
+        ("static", "linear"): CradleRow(_linear_row(dynamics, still, N), linear=True),
+        ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N), linear=True),
+        ("static", "nonlinear"): CradleRow(solve_cradle_quasi_static(dynamics, still, N), linear=False),
+        ("dynamic", "nonlinear"): CradleRow(dynamic, linear=False),
+    }
+    return CradleRows(rows, _layout(cradle))
+
+
+def solve_cradle_rows(case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: VesselExcitation | None) -> CradleRows:
+    """The four rows of the case's cargo on its cradles, loaded by the run's ``excitation`` and ``vessel``.
+
+    Raises
+    ------
+    ValueError
+        If the case's cradles cannot be built (naming the key) or the lashings hold no rest position.
+    """
+    cradle = build_cradle_case(case, model)
+    dynamics = cradle_dynamics_of_case(cradle)
+    return cradle_rows(case, cradle, dynamics, case_cradle_excitation(cradle, excitation, vessel))
