@@ -254,20 +254,20 @@ def solve_load_case(
     ``factors``: ``(gamma_G, gamma_E)``, the load factors of an LRFD combination: the permanent part of the apparent
     gravity (upright gravity ``(0, 0, -g)``) times ``gamma_G``, the environmental part (the rest: the angles' gravity
     components and the motion's acceleration) times ``gamma_E``; the lashings' pretensions are not factored. None: the
-    unfactored case.
+    unfactored case. Either way the angle's gravity goes through the solver's heel and trim and the rest of the field is
+    applied as consistent nodal loads, so that factors of one give the unfactored case exactly.
     """
     g = case.model.gravity_m_per_s2
     points = cargo_axis_points_m(case, cradle.cargo.node_x_m, origin)
     field = apparent_gravity_m_s2(load_case, points, g)
     if factors is None:
-        load, heel, trim, solver_g = _motion_load_N(cradle, load_case, points, g), load_case.roll_deg, load_case.pitch_deg, g
+        load = _motion_load_N(cradle, load_case, points, g)
     else:
         gamma_g, gamma_e = factors
         upright = np.array([0.0, 0.0, -g])
         slope = -np.cross(load_case.angular_acceleration_rad_s2, np.array([1.0, 0.0, 0.0]))
-        load = _field_load_N(cradle, gamma_e * (field - upright), gamma_e * slope)
-        heel, trim, solver_g = 0.0, 0.0, gamma_g * g
         field = gamma_g * upright + gamma_e * (field - upright)
+        load = _field_load_N(cradle, field - g * gravity_direction(load_case.roll_deg, load_case.pitch_deg), gamma_e * slope)
     problem = CradleProblem(
         cradle.cargo,
         cradle.pad_pairs,
@@ -276,7 +276,7 @@ def solve_load_case(
         spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
         load_N=cradle.load_N + load,
     )
-    statics = solve_transverse_statics(problem, heel, trim, gravity_m_per_s2=solver_g)
+    statics = solve_transverse_statics(problem, load_case.roll_deg, load_case.pitch_deg, gravity_m_per_s2=g)
     return _checked(case, cradle, load_case, origin, statics, field, factors)
 
 
