@@ -18,6 +18,7 @@ from seafast.cli import main
 from seafast.config import load_case
 from seafast.excitation.vessel import VesselCache
 from seafast.model.cradle_case import build_cradle_case
+from seafast.output.report import write_report
 
 OBLIQUE = 135.0
 
@@ -53,6 +54,13 @@ def test_the_motion_rows_equal_seafast_seastate_at_the_same_sea_state_and_headin
             assert row["heading_deg"] == f"{OBLIQUE:g}" and row["branch"] == f"motion_{method}"
             for key in ("F_N", "M_b_Nm", "sigma_b_Pa"):
                 assert float(row[key]) == pytest.approx(float(seastate[method][key]), rel=5e-9, abs=0.0), (method, key)
+    with (crit / "criteria_motions.csv").open() as handle:
+        motions = list(csv.DictReader(handle))
+    assert [r["heading_deg"] for r in motions] == [f"{OBLIQUE:g}"] and float(motions[0]["roll_deg"]) > 0.0
+    # the report's design-criteria section names the motion rows and the governing case over both branches
+    section = write_report(crit, figures=False).html.read_text(encoding="utf-8")
+    assert f"motion_h{OBLIQUE:g}_roll+" in section and f"motion_h{OBLIQUE:g}_design_wave" in section
+    assert "Governing over both branches" in section
 
 
 def test_the_motion_maxima_are_the_sea_state_analysis_own_to_the_bit(oblique):
