@@ -122,9 +122,7 @@ def _hand_normal_m_s2(case, item, origin):
 
 
 def test_friction_on_timber_is_mu_times_the_weight_reduced_by_the_vertical_acceleration():
-    case = load_case(
-        overrides={"criteria.friction.contact": "steel_on_timber", "seafastening.friction_coefficient": [0.25, 0.2, 0.3]}
-    )
+    case = load_case(overrides={"criteria.friction.contact": "steel_on_timber", "seafastening.friction_coefficient": [0.25, 0.2, 0.3]})
     cradle = build_cradle_case(case)
     mass = _mass_kg(cradle)
     origin = motion_origin(case)
