@@ -5,6 +5,12 @@
   apparent gravity at any cargo point.
 * :mod:`~seafast.analyses.criteria.check` - each case solved exactly on the cradles, stoppers and lashings, and
   checked against the case's limits.
+* :mod:`~seafast.analyses.criteria.design` - the design format (LRFD combinations or allowable stress) and the
+  friction credit.
+* :mod:`~seafast.analyses.criteria.motion_statistics` - the ship's motions in the case's sea state at a heading: their
+  covariances, most probable maxima and expected simultaneous values.
+* :mod:`~seafast.analyses.criteria.motion_branch` - the motion-analysis branch per heading beside the default
+  criteria, and the governing case over both.
 
 Its files (criteria.csv): :mod:`seafast.output.criteria`. Theory, sources and verification: ``docs/criteria.md``.
 """

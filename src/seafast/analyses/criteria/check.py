@@ -8,7 +8,9 @@ solver's heel and trim, the motion's acceleration as consistent nodal loads ``M 
 times the acceleration field, exact for the field, linear along the cargo). Per case: the saddles' vertical
 forces, the pads', stoppers' and lashings' forces, the axial hold, the cargo's bending moment (the resultant of
 the vertical and lateral ones) and stress, and the utilisations against ``limits.max_saddle_force_N`` and
-``limits.max_bending_stress_Pa``.
+``limits.max_bending_stress_Pa``; then (:func:`with_design`) the same checks in the case's design format
+(:mod:`seafast.analyses.criteria.design`: LRFD solves each case again under its load combinations) and the friction
+credit.
 """
 
 from __future__ import annotations
