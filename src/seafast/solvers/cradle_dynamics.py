@@ -44,7 +44,14 @@ from seafast.solvers.dynamic_stiffness import QuadraticMatrices, solve_dynamic_s
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
 
-__all__ = ["CradleDynamics", "CradleLinearParts", "cradle_dynamics_of", "cradle_operators", "rest_initial_engagement_m"]
+__all__ = [
+    "CradleDynamics",
+    "CradleLinearParts",
+    "coupling_pattern",
+    "cradle_dynamics_of",
+    "cradle_operators",
+    "rest_initial_engagement_m",
+]
 
 
 @dataclass(frozen=True)
@@ -227,10 +234,12 @@ class CradleLinearParts:
 
         Without lashings (the only elements coupling a node's five DOFs) the axial, lateral and vertical motions
         are uncoupled even with the pads bilateral, and each block is banded in its own order (half bandwidth 3 or 1,
-        against 9 for the five DOFs together): the solves per harmonic cost a ninth.
+        against 9 for the five DOFs together): the solves per harmonic cost a ninth. A pair's two pads couple
+        the lateral and vertical motions by ``k cos(alpha) sin(alpha)`` each, with opposite signs: their sum is
+        zero but for round-off, which is not a coupling (:func:`coupling_pattern`).
         """
         K, M, D = self.bilateral_stiffness, self.dynamics.matrices[1], self.dynamics.matrices[2]
-        pattern = (K != 0.0) | (M != 0.0) | (D != 0.0)
+        pattern = coupling_pattern(K) | coupling_pattern(M) | coupling_pattern(D)
         count, label = connected_components(sparse.csr_matrix(pattern), directed=False)
         out = []
         for c in range(count):
@@ -253,6 +262,15 @@ class CradleLinearParts:
             elif columns.size:
                 out[:, dofs[:, None], columns[None, :]] = solve_dynamic_stack(q, omegas, np.ascontiguousarray(part[:, :, columns]))
         return out
+
+
+def coupling_pattern(X: NDArray[np.float64], round_off: float = 1e-14) -> NDArray[np.bool_]:
+    """Where the symmetric matrix ``X`` couples two DOFs: ``|X_ij| > round_off sqrt(|X_ii X_jj|)`` (the diagonal
+    always); an entry below it is the round-off of terms that cancel (a pad pair's lateral-vertical stiffness)."""
+    d = np.sqrt(np.abs(np.diag(X)))
+    pattern = np.abs(X) > round_off * np.outer(d, d)
+    pattern[np.diag_indices_from(pattern)] = True
+    return pattern
 
 
 def cradle_operators(
