@@ -48,6 +48,10 @@ linear solution is exact and the solve ends there."""
 ADAPTIVE_HARMONICS = (64, 96, 128, 192, 256, 384, 512)
 """The H the adaptive choice climbs (up to the options' ``max_harmonics``), each started from the one before."""
 
+PASSED_LIMIT = 3
+"""The adaptive choice's first H that may fail to converge before it falls back on the ladder (where no H converges
+directly, climbing further costs seconds a solve: thousands of samples open)."""
+
 PEAK_SAMPLES = 4096
 """Samples per period on which the adaptive choice reads the peak forces (the harmonic series evaluated there:
 the AFT grid's own samples miss a peak between them by up to 1e-3 near H = 128)."""
@@ -254,8 +258,8 @@ def _adaptive(
     converged one, until the peaks move by at most ``options.truncation_tolerance`` of their scale.
 
     An H whose solve does not converge is passed over (a truncation among the modes the elements ring in leaves the
-    semi-smooth Newton wandering; above them it converges in a few steps). None converging: the fixed-H ladder at
-    the first H.
+    semi-smooth Newton wandering; above them it converges in a few steps). None of the first :data:`PASSED_LIMIT`
+    converging, or none at all: the fixed-H ladder at the first H (its fallback chain).
     """
     rungs = [h for h in ADAPTIVE_HARMONICS if h <= int(options.max_harmonics)] or [int(options.max_harmonics)]
     ops: CondensedOperators | None = None
@@ -267,6 +271,8 @@ def _adaptive(
         solution = _rung(ops, rung_options, start if best is None else best.solution.saddle_compression)
         if not solution.converged:
             passed.append(h)
+            if best is None and len(passed) == PASSED_LIMIT:
+                break  # not the truncation: the fallbacks, at the first H
             continue
         N = rung_options.fixed_grid()[1]
         if not np.any(solution.correction_force):
@@ -286,7 +292,7 @@ def _adaptive(
     assert ops is not None
     first = truncated_operators(ops, rungs[0])
     solution, words = _ladder(first, options.with_harmonics(rungs[0]))
-    words = f"adaptive H: no H up to {rungs[-1]} converged directly, the ladder at H = {rungs[0]}: {words}"
+    words = f"adaptive H: no H up to {passed[-1]} converged directly, the ladder at H = {rungs[0]}: {words}"
     return _SetSolution(solution, first, options.with_harmonics(rungs[0]).fixed_grid()[1], words, float("nan"))
 
 
