@@ -28,7 +28,8 @@ SEASTATE_EXAMPLES = """examples:
 
 Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged;
 rows linear/spectral, linear/monte_carlo, nonlinear/monte_carlo, nonlinear/design_wave; maxima are most
-probable maxima over sea_state.duration_s, still water included; empty cells = not computed),
+probable maxima over sea_state.duration_s, still water included; empty cells = not computed; off head seas
+also F_pad_N,F_stopper_N,lashing_tension_max_N,lashing_tension_min_N,transverse_slip_m after converged),
 seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
 """
 
@@ -67,6 +68,7 @@ def breaking_design_waves_warning(design: Any, heading_deg: float, gravity_m_per
 
 
 def _cmd_seastate(args: argparse.Namespace) -> int:
+    from seafast.analyses.seastate.cradle_extremes import cradle_columns, cradle_sea_state, is_off_head_seas
     from seafast.analyses.seastate.design_wave import sea_state_design_waves
     from seafast.analyses.seastate.spectral import spectral_analysis
     from seafast.config import CaseError, load_case, parse_overrides
@@ -93,6 +95,19 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     if analysis.directional is not None:
         say(analysis.directional.describe())
     rows = [analysis.extremes.row()]
+    cradle = None
+    if is_off_head_seas(case):
+        t1 = time.perf_counter()
+        try:
+            cradle = cradle_sea_state(analysis)
+        except (CaseError, ValueError) as exc:
+            return error(str(exc))
+        assert cradle.design is not None
+        rows[0].update(cradle_columns(cradle.spectral.totals))
+        say(
+            f"cradles, stoppers and lashings across the ship: linear spectral and {len(cradle.design.waves)} design waves by "
+            f"harmonic balance ({(time.perf_counter() - t1) * 1e3:.0f} ms)"
+        )
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)
     how = (
@@ -111,6 +126,9 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         else:  # the user asked for it: say so even when quiet
             print(f"seafast: warning: {message}", file=sys.stderr)
         rows += [not_computed_row(model, method) for model, method in ROWS[1:3]]
+        if cradle is not None:
+            for r in rows[-2:]:
+                r.update(cradle_columns(None))
     else:
         ss = case.sea_state
         say(
@@ -122,7 +140,19 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         except (CaseError, ValueError) as exc:
             return error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
+        if cradle is not None:  # the Monte Carlo stays in the vertical plane
+            for r in rows[-2:]:
+                r.update(cradle_columns(None))
     rows.append(design.row())
+    if cradle is not None and cradle.design is not None:
+        rows[-1].update(cradle_columns(cradle.design.totals))
+        rows[-1]["converged"] = bool(rows[-1]["converged"]) and cradle.design.converged
+        if not cradle.design.converged:
+            print(
+                f"seafast: warning: a cradle design wave's harmonic balance did not converge (largest residual "
+                f"{cradle.design.residual:.3g}); the design_wave row is flagged converged=false",
+                file=sys.stderr,
+            )
     if not args.quiet:  # the table as soon as it is known: seastate.nc and the figures take longer
         sp = analysis.spectrum
         d = case.sea_state.duration_s
@@ -130,7 +160,9 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         print(format_seastate_table(rows, title=f"{case.name}: {sp.description}, most probable maxima over {span}, still water included"))
         sys.stdout.flush()
     say(f"writing the results to {args.output}")
-    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design)
+    paths = write_seastate_outputs(
+        analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design, cradle=cradle
+    )
     if not args.quiet:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if r["converged"] is False]
