@@ -161,17 +161,7 @@ def cradle_unit_excitations(
     """
     chosen = np.arange(tf.omega_rad_s.size) if indices is None else np.asarray(indices, dtype=np.intp)
     w = tf.omega_rad_s[chosen]
-    if sea.motions is None:
-        rao = np.zeros((w.size, 6), dtype=complex)
-    else:
-        rao = extended_six_dof_rao(
-            sea.motions,
-            w,
-            tf.heading_deg,
-            gravity_m_per_s2=sea.gravity_m_per_s2,
-            draught_m=sea.draught_m,
-            additional_roll_damping_Nms_per_rad=tf.roll_damping_Nms_per_rad,
-        )
+    rao = _six_motions(sea, tf, w)
     static, cargo = sea.still_water, sea.cradle.cargo
     out = []
     for j, (i, om) in enumerate(zip(chosen, w, strict=True)):
@@ -223,6 +213,23 @@ def _lateral_dofs(dynamics: CradleDynamics, saddle_x_m: NDArray[np.float64]) -> 
     return np.array([cargo.node_dofs(cargo.node_at(float(x)))[1] for x in saddle_x_m], dtype=np.intp)
 
 
+def _linear_response(
+    dynamics: CradleDynamics, w: NDArray[np.float64], f: NDArray[np.complex128], xo: NDArray[np.complex128], heading_deg: float
+) -> CradleTransfer:
+    """The linear model's response to the loads ``f`` (n_w, 5 n) and deck motion ``xo`` (n_w, n_o) at ``w`` (n_w,)."""
+    problem = dynamics.problem
+    included = dynamics.damping_set
+    parts = dynamics.linear_parts(included)
+    K_co, D_co = parts.deck_coupling
+    load = f - xo @ K_co.T - 1j * w[:, None] * (xo @ D_co.T)
+    q = parts.solve_stack(w, load[:, :, None].astype(complex))[:, :, 0]
+    s = q @ problem.engagement_matrix.T + xo @ dynamics.deck_engagement.T
+    force = np.where(included, problem.element_stiffness_N_per_m, 0.0) * s
+    saddles = np.array([pair.x_m for pair in problem.pad_pairs], dtype=float)
+    lateral = q[:, _lateral_dofs(dynamics, saddles)]
+    return CradleTransfer(w, float(heading_deg), s, force, lateral, 2 * len(problem.pad_pairs), len(problem.stoppers))
+
+
 def cradle_linear_transfer(dynamics: CradleDynamics, excitations: Sequence[CradleExcitation], heading_deg: float) -> CradleTransfer:
     """The linear model's response (module docstring) to the k = 1 part of each excitation, one per frequency.
 
@@ -235,26 +242,55 @@ def cradle_linear_transfer(dynamics: CradleDynamics, excitations: Sequence[Cradl
     heading_deg
         The waves' heading [deg], carried for people.
     """
-    problem = dynamics.problem
-    included = dynamics.damping_set
-    parts = dynamics.linear_parts(included)
     w = np.array([e.omega_rad_s for e in excitations], dtype=float)
     f = np.stack([e.cargo_load_N[1] for e in excitations])
     xo = np.stack([e.deck_displacement[1] for e in excitations])
-    K_co, D_co = parts.deck_coupling
-    load = f - xo @ K_co.T - 1j * w[:, None] * (xo @ D_co.T)
-    q = parts.solve_stack(w, load[:, :, None].astype(complex))[:, :, 0]
-    s = q @ problem.engagement_matrix.T + xo @ dynamics.deck_engagement.T
-    force = np.where(included, problem.element_stiffness_N_per_m, 0.0) * s
-    saddles = np.array([pair.x_m for pair in problem.pad_pairs], dtype=float)
-    return CradleTransfer(
-        w, float(heading_deg), s, force, q[:, _lateral_dofs(dynamics, saddles)], 2 * len(problem.pad_pairs), len(problem.stoppers)
+    return _linear_response(dynamics, w, f, xo, heading_deg)
+
+
+def _motion_loads(sea: CradleSeaModel, tf: TransferFunctions) -> NDArray[np.complex128]:
+    """The unit waves' loads on the 3-D cargo (n_w, 5 n): those of :func:`cradle_unit_excitations`, superposed.
+
+    The loads of the lateral and axial blocks are linear in the six motions and affine in omega^2 (the reading
+    ``-omega^2 T q + g G q``): each motion's load at omega = 1 and 2 gives both parts, and every frequency is their
+    sum (the same numbers as an excitation per frequency, without n_w assemblies). The vertical block is ``tf``'s.
+    """
+    w = tf.omega_rad_s
+    cargo, model, n = sea.cradle.cargo, sea.cradle.model, sea.cradle.cargo.node_count
+    rao = _six_motions(sea, tf, w)
+    zero = np.zeros((2, model.deck_dof_count), dtype=complex)
+    unit = np.zeros((2, 6, cargo.dof_count), dtype=complex)
+    for i, om in enumerate((1.0, 2.0)):
+        vertical = HarmonicExcitation(om, zero, np.zeros((2, 2 * n), dtype=complex), np.zeros((2, n - 1), dtype=complex))
+        for k in range(6):
+            e = cradle_excitation(
+                cargo, vertical, np.eye(6)[k].astype(complex), model.saddle_x_m, sea.axis_from_reference_m, sea.gravity_m_per_s2
+            )
+            unit[i, k] = e.cargo_load_N[1]
+    slope = (unit[1] - unit[0]) / 3.0  # d load / d omega^2, per motion
+    base = unit[0] - slope
+    load = np.nan_to_num(rao, nan=0.0) @ base + (w**2)[:, None] * (np.nan_to_num(rao, nan=0.0) @ slope)
+    load[:, : 2 * n] = tf.cargo_load_N
+    return load
+
+
+def _six_motions(sea: CradleSeaModel, tf: TransferFunctions, w: NDArray[np.float64]) -> NDArray[np.complex128]:
+    """The six RAOs (n_w, 6) at ``w``, ``tf``'s heading and roll damping (zero without motions)."""
+    if sea.motions is None:
+        return np.zeros((w.size, 6), dtype=complex)
+    return extended_six_dof_rao(
+        sea.motions,
+        w,
+        tf.heading_deg,
+        gravity_m_per_s2=sea.gravity_m_per_s2,
+        draught_m=sea.draught_m,
+        additional_roll_damping_Nms_per_rad=tf.roll_damping_Nms_per_rad,
     )
 
 
 def cradle_transfer_functions(sea: CradleSeaModel, tf: TransferFunctions) -> CradleTransfer:
     """The cradle quantities' transfer functions at ``tf``'s frequencies and heading (module docstring)."""
-    return cradle_linear_transfer(sea.dynamics, cradle_unit_excitations(sea, tf), tf.heading_deg)
+    return _linear_response(sea.dynamics, tf.omega_rad_s, _motion_loads(sea, tf), tf.deck_displacement, tf.heading_deg)
 
 
 @dataclass(frozen=True)
