@@ -67,8 +67,44 @@ def breaking_design_waves_warning(design: Any, heading_deg: float, gravity_m_per
     )
 
 
+def _cradle_rows(analysis: Any, rows: list[dict[str, Any]], say: Any) -> Any:
+    """Off head seas the cargo on its cradles (``CradleSeaState``), its spectral columns put in ``rows[0]``; else None."""
+    from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state
+    from seafast.analyses.seastate.cradle_extremes import cradle_columns, is_off_head_seas
+
+    if not is_off_head_seas(analysis.case):
+        return None
+    t0 = time.perf_counter()
+    cradle = cradle_sea_state(analysis)
+    assert cradle.design is not None
+    rows[0].update(cradle_columns(cradle.spectral.totals))
+    say(
+        f"cradles, stoppers and lashings across the ship: linear spectral and {len(cradle.design.waves)} design waves by "
+        f"harmonic balance ({(time.perf_counter() - t0) * 1e3:.0f} ms)"
+    )
+    return cradle
+
+
+def _add_cradle_columns(cradle: Any, rows: list[dict[str, Any]]) -> None:
+    """The cradle columns of the Monte Carlo rows (empty: it stays in the vertical plane) and the design-wave row (last),
+    whose ``converged`` then covers the cradle waves too (warned of with the largest residual)."""
+    from seafast.analyses.seastate.cradle_extremes import cradle_columns
+
+    if cradle is None or cradle.design is None:
+        return
+    for r in rows[1:-1]:
+        r.update(cradle_columns(None))
+    rows[-1].update(cradle_columns(cradle.design.totals))
+    rows[-1]["converged"] = bool(rows[-1]["converged"]) and cradle.design.converged
+    if not cradle.design.converged:
+        print(
+            f"seafast: warning: a cradle design wave's harmonic balance did not converge (largest residual "
+            f"{cradle.design.residual:.3g}); the design_wave row is flagged converged=false",
+            file=sys.stderr,
+        )
+
+
 def _cmd_seastate(args: argparse.Namespace) -> int:
-    from seafast.analyses.seastate.cradle_extremes import cradle_columns, cradle_sea_state, is_off_head_seas
     from seafast.analyses.seastate.design_wave import sea_state_design_waves
     from seafast.analyses.seastate.spectral import spectral_analysis
     from seafast.config import CaseError, load_case, parse_overrides
@@ -95,19 +131,10 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     if analysis.directional is not None:
         say(analysis.directional.describe())
     rows = [analysis.extremes.row()]
-    cradle = None
-    if is_off_head_seas(case):
-        t1 = time.perf_counter()
-        try:
-            cradle = cradle_sea_state(analysis)
-        except (CaseError, ValueError) as exc:
-            return error(str(exc))
-        assert cradle.design is not None
-        rows[0].update(cradle_columns(cradle.spectral.totals))
-        say(
-            f"cradles, stoppers and lashings across the ship: linear spectral and {len(cradle.design.waves)} design waves by "
-            f"harmonic balance ({(time.perf_counter() - t1) * 1e3:.0f} ms)"
-        )
+    try:
+        cradle = _cradle_rows(analysis, rows, say)
+    except (CaseError, ValueError) as exc:
+        return error(str(exc))
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)
     how = (
@@ -126,9 +153,6 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         else:  # the user asked for it: say so even when quiet
             print(f"seafast: warning: {message}", file=sys.stderr)
         rows += [not_computed_row(model, method) for model, method in ROWS[1:3]]
-        if cradle is not None:
-            for r in rows[-2:]:
-                r.update(cradle_columns(None))
     else:
         ss = case.sea_state
         say(
@@ -140,19 +164,8 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         except (CaseError, ValueError) as exc:
             return error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
-        if cradle is not None:  # the Monte Carlo stays in the vertical plane
-            for r in rows[-2:]:
-                r.update(cradle_columns(None))
     rows.append(design.row())
-    if cradle is not None and cradle.design is not None:
-        rows[-1].update(cradle_columns(cradle.design.totals))
-        rows[-1]["converged"] = bool(rows[-1]["converged"]) and cradle.design.converged
-        if not cradle.design.converged:
-            print(
-                f"seafast: warning: a cradle design wave's harmonic balance did not converge (largest residual "
-                f"{cradle.design.residual:.3g}); the design_wave row is flagged converged=false",
-                file=sys.stderr,
-            )
+    _add_cradle_columns(cradle, rows)
     if not args.quiet:  # the table as soon as it is known: seastate.nc and the figures take longer
         sp = analysis.spectrum
         d = case.sea_state.duration_s

@@ -3,9 +3,7 @@
 ``seastate.csv`` has exactly :data:`~seafast.analyses.seastate.spectral.SEASTATE_COLUMNS`, one row per
 (model, method): (linear, spectral), (linear, monte_carlo), (nonlinear, monte_carlo), (nonlinear,
 design_wave). A row whose method was not run has empty cells (read as NaN), never made-up numbers.
-Off head seas (rows carrying the cradle columns) the five
-:data:`~seafast.analyses.seastate.cradle_extremes.CRADLE_COLUMNS` follow ``converged``; in head seas the file is
-today's, byte for byte.
+Off head seas the cradle columns follow ``converged`` (:mod:`seafast.output.seastate_cradle`); head seas: today's file.
 
 ``seastate.nc`` holds the spectrum, the transfer functions (real and imaginary parts, per metre
 of wave amplitude), the response spectra and spectral statistics, the table of seastate.csv as
@@ -27,10 +25,18 @@ import xarray as xr
 import yaml
 
 import seafast
-from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, CradleSeaState
+from seafast.analyses.seastate.cradle_design_wave import CradleSeaState
 from seafast.analyses.seastate.design_wave import DesignWaveExtremes
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
 from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
+from seafast.output.seastate_cradle import (
+    CRADLE_TABLE_HEAD,
+    cradle_coords,
+    cradle_table_cells,
+    cradle_table_variables,
+    cradle_variables,
+    seastate_columns,
+)
 from seafast.results.labelled import labelled_variable as _var
 
 if TYPE_CHECKING:  # the Monte Carlo engine (half a second to import) only when it runs: --no-monte-carlo needs none of it
@@ -39,8 +45,6 @@ if TYPE_CHECKING:  # the Monte Carlo engine (half a second to import) only when 
 __all__ = [
     "ROWS",
     "QUANTITIES",
-    "CRADLE_QUANTITIES",
-    "seastate_columns",
     "not_computed_row",
     "monte_carlo_row",
     "seastate_csv_text",
@@ -60,28 +64,6 @@ QUANTITIES = {
     "u_d_m": ("most probable maximum saddle detachment (gap); 0 for the linear model (bilateral saddles)", "m"),
     "uplift_per_hour": ("expected uplift events per hour (downward zero crossings of a saddle's compression), all saddles", "1/h"),
 }
-
-CRADLE_QUANTITIES = {
-    "F_pad_N": ("most probable maximum pad force over the saddles and sides, still water included", "N"),
-    "F_stopper_N": ("most probable maximum side-stopper force, still water included (0: no stopper, or none closes)", "N"),
-    "lashing_tension_max_N": ("most probable maximum lashing-wire tension, still water included (0: no wires)", "N"),
-    "lashing_tension_min_N": (
-        "most probable minimum lashing-wire tension, still water included (linear: below 0 where a wire would go slack)",
-        "N",
-    ),
-    "transverse_slip_m": (
-        "most probable maximum lateral displacement of the cargo axis relative to the deck at a saddle, still water included",
-        "m",
-    ),
-}
-"""The cradle columns (off head seas): long name and unit."""
-
-
-def seastate_columns(rows: Sequence[Mapping[str, Any]]) -> tuple[str, ...]:
-    """seastate.csv's columns: today's, and the cradle columns after ``converged`` when a row carries them (off head seas)."""
-    cradle = any(c in r for r in rows for c in CRADLE_COLUMNS)
-    return SEASTATE_COLUMNS + (CRADLE_COLUMNS if cradle else ())
-
 
 _DESIGN_WAVE_MAXIMA = {
     "F_N": "largest saddle force",
@@ -133,23 +115,14 @@ def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") ->
     head: tuple[str, ...] = ("model", "method", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "u_s [mm]", "u_d [mm]", "uplift [1/h]", "converged")
     scale = {"F_N": 1e-6, "M_b_Nm": 1e-6, "sigma_b_Pa": 1e-6, "u_s_m": 1e3, "u_d_m": 1e3, "uplift_per_hour": 1.0}
     cradle = len(seastate_columns(rows)) > len(SEASTATE_COLUMNS)
-    cradle_scale = {
-        "F_pad_N": 1e-6,
-        "F_stopper_N": 1e-6,
-        "lashing_tension_max_N": 1e-3,
-        "lashing_tension_min_N": 1e-3,
-        "transverse_slip_m": 1e3,
-    }
-    if cradle:
-        head += ("F_pad [MN]", "F_stopper [MN]", "T_max [kN]", "T_min [kN]", "slip [mm]")
+    head += CRADLE_TABLE_HEAD if cradle else ()
     lines = []
     for r in rows:
         cells = [str(r["model"]), str(r["method"])]
         for q, s in scale.items():
             cells.append("not computed" if r[q] is None else f"{r[q] * s:.{2 if q != 'F_N' else 3}f}")
         cells.append("-" if r["converged"] is None else ("yes" if r["converged"] else "NO"))
-        if cradle:
-            cells += ["not computed" if r.get(q) is None else f"{r[q] * s:.{3 if s == 1e-6 else 2}f}" for q, s in cradle_scale.items()]
+        cells += cradle_table_cells(r) if cradle else []
         lines.append(cells)
     widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
 
@@ -312,74 +285,12 @@ def _table_variables(rows: Sequence[Mapping[str, Any]]) -> dict[str, xr.Variable
             if r[q] is not None:
                 table[models.index(r["model"]), methods.index(r["method"])] = r[q]
         v[q] = _var(("model", "estimate_method"), table, long_name + " (NaN: not computed)", unit)
-    if len(seastate_columns(rows)) > len(SEASTATE_COLUMNS):
-        for q, (long_name, unit) in CRADLE_QUANTITIES.items():
-            table = np.full((2, 3), np.nan)
-            for r in rows:
-                if r.get(q) is not None:
-                    table[models.index(r["model"]), methods.index(r["method"])] = r[q]
-            v[q] = _var(("model", "estimate_method"), table, long_name + " (NaN: not computed)", unit)
+    v.update(cradle_table_variables(rows, models, methods))
     conv = np.full((2, 3), -1, dtype=np.int8)
     for r in rows:
         if r["converged"] is not None:
             conv[models.index(r["model"]), methods.index(r["method"])] = int(bool(r["converged"]))
     v["converged"] = _var(("model", "estimate_method"), conv, "all solves converged (1), not (0), not computed (-1)", "1")
-    return v
-
-
-def _cradle_variables(cradle: CradleSeaState) -> dict[str, xr.Variable]:
-    """The cradle quantities off head seas: per element (dimension ``cradle_element``) and saddle, and their design waves."""
-    e, problem = cradle.spectral, cradle.sea.dynamics.problem
-    kinds = [f"pad_{side}" for _ in problem.pad_pairs for side in ("port", "starboard")]
-    kinds += [f"stopper_{s.side.value}" for s in problem.stoppers] + ["lashing"] * len(problem.lashings)
-    saddle = [i // 2 for i in range(e.pad_count)] + [i // 2 for i in range(e.stopper_count)] + list(cradle.sea.cradle.lashing_saddle)
-    c, s = ("cradle_element",), ("saddle",)
-    v: dict[str, xr.Variable] = {
-        "cradle_element_kind": xr.Variable(
-            c, np.array(kinds, dtype=str), {"long_name": "pad (port, starboard), side stopper or lashing wire", "units": "1"}
-        ),
-        "cradle_element_saddle": _var(c, np.asarray(saddle, dtype=np.int64), "saddle index of the element", "1"),
-        "still_water_cradle_element_force_N": _var(
-            c, e.still_water.element_force_N, "still-water force of the element (exact statics)", "N"
-        ),
-        "still_water_cradle_element_engagement_m": _var(
-            c, e.still_water.engagement_m, "still-water engagement: pad compression, stopper overclosure, wire stretch (<= 0 open)", "m"
-        ),
-        "cradle_element_force_mpm_dynamic_N": _var(
-            c, e.element_force.mpm, "Rayleigh most probable maximum of the dynamic element force (linear; stoppers open: 0)", "N"
-        ),
-        "cradle_element_engagement_mpm_dynamic_m": _var(
-            c, e.engagement.mpm, "Rayleigh most probable maximum of the dynamic engagement of the element (linear)", "m"
-        ),
-        "still_water_lateral_displacement_m": _var(
-            s, e.still_water.lateral_displacement_m, "still-water lateral displacement of the cargo axis at the saddle, to port +", "m"
-        ),
-        "lateral_displacement_mpm_dynamic_m": _var(
-            s, e.lateral_displacement.mpm, "Rayleigh most probable maximum of the dynamic lateral displacement at the saddle (linear)", "m"
-        ),
-    }
-    design = cradle.design
-    if design is None:
-        return v
-    d = ("cradle_design_wave",)
-    w = design.waves
-    v["cradle_design_wave_quantity"] = xr.Variable(
-        d, np.array([x.quantity for x in w], dtype=str), {"long_name": "seastate.csv column the wave is designed for", "units": "1"}
-    )
-    v["cradle_design_wave_location"] = _var(
-        d, [x.location for x in w], "element (cradle_element) or saddle (transverse_slip_m) designed for", "1"
-    )
-    v["cradle_design_wave_omega_rad_s"] = _var(d, [x.omega_rad_s for x in w], "design wave frequency", "rad/s")
-    v["cradle_design_wave_amplitude_m"] = _var(
-        d, [x.amplitude_m for x in w], "design wave amplitude (linear response = linear spectral MPM)", "m"
-    )
-    v["cradle_design_wave_heading_deg"] = _var(d, [x.heading_deg for x in w], "design wave heading (180 = head seas)", "deg")
-    v["cradle_design_wave_reading"] = _var(
-        d, design.readings, "the element's largest (lashing_tension_min_N: least) value over the wave's period (nonlinear)", "N or m"
-    )
-    v["cradle_design_wave_converged"] = _var(
-        d, np.array([r.converged for r in design.responses], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"
-    )
     return v
 
 
@@ -431,8 +342,7 @@ def seastate_dataset(
     design: DesignWaveExtremes | None = None,
     cradle: CradleSeaState | None = None,
 ) -> xr.Dataset:
-    """The content of seastate.nc (see the module docstring); ``design``: the DesignWaveExtremes, if computed;
-    ``cradle``: the cradle quantities off head seas (variables on ``cradle_element``, ``saddle``, ``cradle_design_wave``)."""
+    """The content of seastate.nc (module docstring); ``design``, ``cradle``: the design waves, the cradles, if computed."""
     v = _transfer_variables(analysis)
     v.update(_spectral_variables(analysis))
     v.update(_table_variables(rows))
@@ -440,11 +350,7 @@ def seastate_dataset(
         v.update(_design_wave_variables(design))
     coords = _seastate_coords(analysis, design)
     if cradle is not None:
-        v.update(_cradle_variables(cradle))
-        coords["cradle_element"] = _var(("cradle_element",), np.arange(cradle.spectral.element_force.mpm.size), "cradle element index", "1")
-        if cradle.design is not None:
-            n = len(cradle.design.waves)
-            coords["cradle_design_wave"] = _var(("cradle_design_wave",), np.arange(n), "cradle design wave index", "1")
+        v, coords = {**v, **cradle_variables(cradle)}, {**coords, **cradle_coords(cradle)}
     ds = xr.Dataset(v, coords=coords, attrs=_seastate_attrs(analysis))
     if monte_carlo is not None:
         ds = xr.merge([ds, monte_carlo], combine_attrs="override")

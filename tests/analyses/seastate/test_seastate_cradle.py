@@ -17,7 +17,8 @@ import scipy.linalg
 import xarray as xr
 
 import seafast
-from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, cradle_sea_state, is_off_head_seas, scaled_excitation
+from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state, scaled_excitation
+from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, is_off_head_seas
 from seafast.analyses.seastate.cradle_transfer import (
     cradle_dynamics,
     cradle_linear_transfer,

@@ -1,6 +1,6 @@
 """The 3-D cargo on its cradles in a sea state: its linear transfer functions and its still-water state.
 
-Off head seas (docs/seastate.md#cradles-stoppers-and-lashings) ``seafast seastate`` also answers across the ship:
+Off head seas (docs/seastate.md#across-the-ship-cradles-stoppers-and-lashings) ``seafast seastate`` also answers across the ship:
 the pads' forces per saddle and side, the side stoppers' forces, the lashings' tensions and the cargo's lateral
 displacement at the saddles. The cargo and its restraints are the case's (:func:`~seafast.model.cradle_case.build_cradle_case`),
 their dynamics :class:`~seafast.solvers.cradle_dynamics.CradleDynamics` with the vertical plane's Rayleigh damping.
