@@ -8,6 +8,7 @@ design wave's harmonic balance against the quasi-static exact-contact reference,
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 
 import numpy as np
@@ -17,7 +18,8 @@ import scipy.linalg
 import xarray as xr
 
 import seafast
-from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state, scaled_excitation
+from seafast.analyses.seastate import cradle_design_wave
+from seafast.analyses.seastate.cradle_design_wave import cradle_design_waves, cradle_sea_state, scaled_excitation
 from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, is_off_head_seas
 from seafast.analyses.seastate.cradle_transfer import (
     cradle_dynamics,
@@ -37,6 +39,7 @@ from seafast.model.cradle_case import build_cradle_case
 from seafast.model.from_case import build_model
 from seafast.solvers.cradle_dynamics import cradle_operators
 from seafast.solvers.cradle_hbm import solve_cradle_hbm
+from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.transverse_statics import StaticsOutcome, solve_transverse_statics
 
@@ -177,6 +180,25 @@ def test_design_waves_give_the_linear_columns_where_nothing_opens(beam):
     for c in ("F_pad_N", "transverse_slip_m"):
         assert d.totals[c] == pytest.approx(e.totals[c], rel=1e-3), c
     assert d.totals["F_stopper_N"] == 0.0 == e.totals["F_stopper_N"]  # 20 mm gap: the stoppers stay open in 3 m
+
+
+def test_a_design_wave_that_does_not_converge_is_flagged_with_its_residual(beam, monkeypatch):
+    """Every H tried reports no convergence (the solver stood in for by one that says so, with a residual per H): each
+    wave keeps the response of the least residual, and the estimates are flagged not converged with the largest of
+    those residuals (never raised, never taken as converged)."""
+    analysis, state = beam
+    residual = {64: 3e-4, 96: 1e-4, 128: 2e-4, 48: 5e-4}
+
+    def failing(dynamics, excitation, options):
+        response = solve_cradle_hbm(dynamics, excitation, options.with_harmonics(8))
+        return dataclasses.replace(
+            response, outcome=SolverOutcome.NOT_CONVERGED, residual=residual[options.harmonics], harmonics=options.harmonics
+        )
+
+    monkeypatch.setattr(cradle_design_wave, "solve_cradle_hbm", failing)
+    d = cradle_design_waves(state.sea, analysis.directional, state.transfer, state.spectral)
+    assert not d.converged and d.residual == 1e-4
+    assert all(not r.converged and r.harmonics == 96 for r in d.responses)
 
 
 def test_seastate_csv_off_head_seas_has_the_cradle_columns_after_converged(beam, tmp_path):
