@@ -195,7 +195,8 @@ def add_seastate_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         help="extremes in an irregular head sea: linear spectral, nonlinear design waves and Monte Carlo",
         description="Most probable maxima of saddle force, bending moment and stress, saddle compression and "
         "detachment over a sea state (Hs, Tp, spectrum, duration), and the uplift rate: linear spectral analysis, "
-        "the nonlinear design-wave estimate (harmonic balance) and the nonlinear Monte Carlo reference.",
+        "the nonlinear design-wave estimate (harmonic balance) and the nonlinear Monte Carlo reference; off head seas also "
+        "the pad, side-stopper and lashing forces and the cargo's lateral slip at the saddles (spectral and design waves).",
         epilog=SEASTATE_EXAMPLES,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
