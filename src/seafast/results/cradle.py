@@ -154,7 +154,8 @@ class CradleRow:
         lifts = bool(np.any(r.open_fraction[: r.pad_count] > 0.0))
         if self.converged or not lifts:
             return r.message
-        return r.message + "; a pad lifts off, where the frictional harmonic balance may not converge (docs/transverse.md#8)"
+        why = "; a pad lifts off, where the frictional harmonic balance may not converge (docs/transverse.md#8-friction-at-the-pads)"
+        return r.message + why
 
 
 @dataclass(frozen=True)
