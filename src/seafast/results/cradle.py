@@ -280,7 +280,14 @@ class CradleRows:
         }
         if self.has_friction:
             data |= self._friction_variables(N)
-        coords = {
+        coords = self._coordinates(N)
+        attrs = {"saddle_contact_angle_deg": lay.contact_angle_deg}
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def _coordinates(self, N: int) -> dict[str, xr.Variable]:
+        """The cradle variables' coordinates on ``N`` samples of the period."""
+        lay = self.layout
+        return {
             "cradle_period_fraction": labelled_variable(
                 ("cradle_period_fraction",), period_fraction(N), "time over the wave period t/T", "1"
             ),
@@ -303,8 +310,6 @@ class CradleRows:
                 ("lashing", "xyz"), lay.lashing_direction.reshape(-1, 3), "unit direction of the wire from its lug to its anchor", "1"
             ),
         }
-        attrs = {"saddle_contact_angle_deg": lay.contact_angle_deg}
-        return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def _description(self, name: str, description: str) -> str:
         """A summary variable's long name; the slip's says what it is on frictional pads."""
