@@ -18,9 +18,10 @@ nonlinear rows (docs/transverse.md#9-in-seafast-run):
 * ``dynamic nonlinear``: the frictional harmonic balance
   (:func:`seafast.solvers.cradle_friction.solve_cradle_friction_hbm`; H = ``solver.harmonics`` or
   :data:`FRICTION_HARMONICS`, N = ``solver.time_samples`` or 8 H);
-* ``static nonlinear``: the same solver on the still-water loads (constant, H = 1): the sliders relaxed at the
-  frictionless rest at zero heel, the still-water loads and deck deflection applied from there (the friction does
-  change this state: the deck's still-water deflection moves the pads tangentially).
+* ``static nonlinear``: the same solver on the still-water loads (constant, H = 1).
+
+In both the sliders are relaxed in still water (the frictionless response to the still-water loads and deck
+deflection, ``rest=``): the friction answers the wave alone, and the still-water row carries none.
 
 The linear rows keep their pads bilateral and free tangentially (no friction). Nothing here prints or writes files.
 """
@@ -212,10 +213,10 @@ def _frictional_rows(
 ) -> CradleRows:
     """The four rows with the nonlinear ones on frictional pads (module docstring)."""
     options = friction_options(case)
-    dynamic = solve_cradle_friction_hbm(dynamics, friction, excitation, options)
-    N = dynamic.cradle.time_s.size
     still = _still_water(excitation)
-    static = solve_cradle_friction_hbm(dynamics, friction, still, replace(options, harmonics=1, time_samples=N))
+    dynamic = solve_cradle_friction_hbm(dynamics, friction, excitation, options, rest=still)
+    N = dynamic.cradle.time_s.size
+    static = solve_cradle_friction_hbm(dynamics, friction, still, replace(options, harmonics=1, time_samples=N), rest=still)
     rows = {
         ("static", "linear"): CradleRow(_linear_row(dynamics, still, N), linear=True),
         ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N), linear=True),

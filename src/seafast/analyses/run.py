@@ -309,10 +309,12 @@ class CaseResult:
         ds.attrs["validity_issues"] = "\n".join(issue.message for issue in self.validity)
         if self.vessel is not None:
             vds = self.vessel.to_dataset()
-            ds = xr.merge([ds, vds], combine_attrs="override")
+            ds = xr.merge([ds, vds], compat="no_conflicts", join="outer", combine_attrs="override")
             ds.attrs.update(vds.attrs)
         if self.coupling:
-            ds = xr.merge([ds, coupling_dataset(self.coupling, self.coupled_hull)], combine_attrs="override")
+            ds = xr.merge(
+                [ds, coupling_dataset(self.coupling, self.coupled_hull)], compat="no_conflicts", join="outer", combine_attrs="override"
+            )
         ds = ds if self.cradle is None else self.cradle.merged_into(ds)
         return ds if self.axial is None else self.axial.merged_into(ds)
 

@@ -186,7 +186,7 @@ class VesselExcitation:
             wave_variables(self.wave, coords, data)
         ds = xr.Dataset(data, coords=coords, attrs=attrs)
         if self.motions is not None:
-            ds = xr.merge([ds, rao_dataset(self.motions)])
+            ds = xr.merge([ds, rao_dataset(self.motions)], compat="no_conflicts", join="outer")
             if self.rigid_body is not None:
                 ds.attrs.update(rigid_body_attributes(self.rigid_body))
         ds = six_motion_variables(

@@ -302,18 +302,21 @@ def six_motion_variables(
     if motions6 is not None:
         omega, headings, raos = motions6.omega_rad_s, motions6.headings_deg, np.asarray(motions6.raos)
         ref, note = (motions6.reference_x_m, motions6.reference_z_m), "six-DOF BEM over headings"
-        ds = xr.merge([ds, six_motion_dataset(omega, headings, raos, note)], combine_attrs="override")
+        ds = xr.merge([ds, six_motion_dataset(omega, headings, raos, note)], compat="no_conflicts", join="outer", combine_attrs="override")
         ds.attrs.update(motions6.attributes())
     elif motions is not None:
         omega, headings, raos = motions.omega_rad_s, np.array([180.0]), head_sea_six_raos(motions)
         ref = (motions.reference_x_m, motions.reference_z_m)
         note = "head seas: heave-pitch model (surge coupled); sway, roll, yaw 0 by symmetry"
-        ds = xr.merge([ds, six_motion_dataset(omega, headings, raos, note)], combine_attrs="override")
+        ds = xr.merge([ds, six_motion_dataset(omega, headings, raos, note)], compat="no_conflicts", join="outer", combine_attrs="override")
     else:
         return ds
     if points is not None:
         ds = xr.merge(
-            [ds, acceleration_dataset(omega, raos, wave_omega_rad_s, amplitudes, points, ref, gravity_m_per_s2)], combine_attrs="override"
+            [ds, acceleration_dataset(omega, raos, wave_omega_rad_s, amplitudes, points, ref, gravity_m_per_s2)],
+            compat="no_conflicts",
+            join="outer",
+            combine_attrs="override",
         )
     if amplitudes is not None:
         ds.attrs.update(six_motion_attributes(amplitudes, heading_deg))

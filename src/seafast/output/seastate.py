@@ -353,7 +353,7 @@ def seastate_dataset(
         v, coords = {**v, **cradle_variables(cradle)}, {**coords, **cradle_coords(cradle)}
     ds = xr.Dataset(v, coords=coords, attrs=_seastate_attrs(analysis))
     if monte_carlo is not None:
-        ds = xr.merge([ds, monte_carlo], combine_attrs="override")
+        ds = xr.merge([ds, monte_carlo], compat="no_conflicts", join="outer", combine_attrs="override")
         ds.attrs.update(monte_carlo.attrs)
         ds.attrs["title"] = f"seafast sea state: {analysis.case.name}"
     return ds

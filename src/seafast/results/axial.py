@@ -132,7 +132,7 @@ class AxialCaseArrays:
     def merged_into(self, ds: xr.Dataset) -> xr.Dataset:
         """``ds`` (the case's results) with the axial variables and attributes merged in."""
         axial = self.to_dataset()
-        out = xr.merge([ds, axial], combine_attrs="override")
+        out = xr.merge([ds, axial], compat="no_conflicts", join="outer", combine_attrs="override")
         out.attrs.update(ds.attrs)
         out.attrs.update(axial.attrs)
         return out

@@ -195,7 +195,7 @@ class CradleRows:
         """``ds`` (a run's Dataset) with the cradle variables (:meth:`to_dataset`) and the pads' angle attribute; its
         ``converged`` false where the row's cradle solve did not converge (as the summary's)."""
         cradle = self.to_dataset()
-        out = xr.merge([ds, cradle], combine_attrs="override")
+        out = xr.merge([ds, cradle], compat="no_conflicts", join="outer", combine_attrs="override")
         out.attrs.update(cradle.attrs)
         if "converged" in out:
             ok = np.array([[self.rows[(lc, m)].converged for m in MODELS] for lc in LOAD_CASES])

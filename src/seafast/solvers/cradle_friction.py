@@ -26,7 +26,7 @@ Units: engagements and motions [m]; forces [N].
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -48,7 +48,7 @@ from seafast.solvers.newton import DenseJacobian, Globalisation, Merit, NewtonRe
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.pad_tangential import FrictionalCradleResponse, PadTangents, frictional_response, pad_tangents
 
-__all__ = ["FrictionHBMOptions", "solve_cradle_friction_hbm"]
+__all__ = ["FrictionHBMOptions", "solve_cradle_friction_hbm", "relaxed_at"]
 
 _GLOBALISATION = Globalisation(merit=Merit.SUM_OF_SQUARES, memory=4, accept_converged_trial=True)
 
@@ -186,7 +186,12 @@ def _linear_problem(
 
 
 def solve_cradle_friction_hbm(
-    dynamics: CradleDynamics, friction: PadFriction, excitation: CradleExcitation, options: FrictionHBMOptions | None = None
+    dynamics: CradleDynamics,
+    friction: PadFriction,
+    excitation: CradleExcitation,
+    options: FrictionHBMOptions | None = None,
+    *,
+    rest: CradleExcitation | None = None,
 ) -> FrictionalCradleResponse:
     """The periodic response of the cargo on frictional pads by harmonic balance (module docstring).
 
@@ -200,6 +205,10 @@ def solve_cradle_friction_hbm(
         The static and first-harmonic loads and deck motion.
     options
         H, N, tolerance, iterations.
+    rest
+        Where the sliders are relaxed: the frictionless response to this excitation's static part (e.g. still water
+        with its deck deflection, so that friction answers only the wave); None: the frictionless rest at zero heel
+        and trim on an undeflected deck (:func:`~seafast.solvers.pad_tangential.pad_tangents`).
 
     Returns
     -------
@@ -209,6 +218,8 @@ def solve_cradle_friction_hbm(
     options = options if options is not None else FrictionHBMOptions()
     H, N = int(options.harmonics), int(options.time_samples)
     tangents = pad_tangents(dynamics.problem, friction, dynamics.deck_x_m, dynamics.gravity_m_per_s2)
+    if rest is not None:
+        tangents = relaxed_at(tangents, dynamics, rest)
     mu = float(friction.friction_coefficient)
     if mu == 0.0:  # the pads slide freely: zero force, the slider follows the motion
         frictionless = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=H, time_samples=N))
@@ -262,6 +273,23 @@ def _newton_route(
             return result, route + f" (stopped at mu = {factor * system.mu:g})"
         start = result.u
     return result, route
+
+
+def relaxed_at(tangents: PadTangents, dynamics: CradleDynamics, rest: CradleExcitation) -> PadTangents:
+    """``tangents`` with the sliders relaxed at the frictionless response to ``rest``'s static part (loads and deck).
+
+    The static part alone is solved (one harmonic, exact for a constant load: the engagements do not change in time),
+    and the sliders' rest is the pads' tangential position there, ``A_t q + E_t x_o``.
+    """
+    keep = np.array([[1.0], [0.0]])  # k = 0 kept, k = 1 removed
+    still = replace(rest, cargo_load_N=rest.cargo_load_N * keep, deck_displacement=rest.deck_displacement * keep)
+    frictionless = solve_cradle_hbm(dynamics, still, HBMOptions(harmonics=1, time_samples=4))
+    if not frictionless.converged:
+        raise ValueError(
+            f"rest: the frictionless still-water state to relax the pads' sliders at did not converge ({frictionless.message})"
+        )
+    delta = _tangential_motion(frictionless, still, tangents, 0)[0]
+    return replace(tangents, rest_m=delta.reshape(tangents.pad_count, 2), rest_displacement=frictionless.cargo_displacement_m[0])
 
 
 def _tangential_motion(response: CradleResponse, excitation: CradleExcitation, tangents: PadTangents, H: int) -> NDArray[np.float64]:
