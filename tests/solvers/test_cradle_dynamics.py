@@ -14,8 +14,8 @@ from seafast.model.cargo3d import Cargo3D, build_cargo3d, vertical_plane_restrai
 from seafast.model.cradle import Lashing, PadPair, Side, SideStopper
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_cargo_beam
-from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_dynamics_of
-from seafast.solvers.cradle_hbm import solve_cradle_hbm
+from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_dynamics_of, cradle_operators
+from seafast.solvers.cradle_hbm import ADAPTIVE_HARMONICS, solve_cradle_hbm
 from seafast.solvers.hbm import HBMOptions, solve_hbm
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.references.cradle_time_domain import CradleTimeDomainOptions, solve_cradle_time_domain
@@ -102,6 +102,57 @@ def test_a_slack_lashing_and_an_open_pad_carry_exactly_zero(beam_sea_pair):
         engaged = ~open_
         k = np.broadcast_to(small_dynamics().problem.element_stiffness_N_per_m, result.engagement_m.shape)
         np.testing.assert_allclose(result.element_force_N[engaged], k[engaged] * result.engagement_m[engaged], rtol=1e-12)
+
+
+def test_the_adaptive_harmonic_balance_matches_the_time_domain_where_a_pad_lifts(beam_sea_pair):
+    """The default (H chosen by the change of the peak forces) on the same case: the same peaks as the time domain
+    within 0.5 %, and within 1e-3 of the largest of the fixed H = 128 solve."""
+    fixed, reference = beam_sea_pair
+    dynamics = small_dynamics()
+    adaptive = solve_cradle_hbm(dynamics, small_excitation(dynamics.problem.cargo, BEAM_SEA))
+    assert adaptive.converged, adaptive.message
+    assert adaptive.harmonics in ADAPTIVE_HARMONICS[1:] and "adaptive H" in adaptive.message
+    assert 0.0 < adaptive.peak_force_change <= 1e-3  # the peaks settled to the truncation tolerance
+    assert np.all(adaptive.open_fraction[[0, 2]] > 0.1) and np.all(adaptive.open_fraction[8:] > 0.1)
+    scale = np.max(reference.max_force_N)
+    np.testing.assert_allclose(adaptive.max_force_N, reference.max_force_N, rtol=5e-3, atol=5e-6 * scale)
+    np.testing.assert_allclose(adaptive.min_force_N, reference.min_force_N, atol=1e-3 * scale)
+    np.testing.assert_allclose(adaptive.max_force_N, fixed.max_force_N, atol=1e-3 * scale)
+    np.testing.assert_allclose(adaptive.open_fraction, reference.open_fraction, atol=4.0 / adaptive.time_s.size)
+
+
+def test_the_adaptive_harmonic_balance_is_the_linear_solution_where_every_element_stays_engaged():
+    """A small wave: no pad lifts, no lashing slackens; the first H's linear solution is the answer, exactly."""
+    dynamics = small_dynamics()
+    excitation = small_excitation(dynamics.problem.cargo, 0.05 * BEAM_SEA)
+    adaptive = solve_cradle_hbm(dynamics, excitation)
+    fixed = solve_cradle_hbm(dynamics, excitation, HBMOptions(harmonics=ADAPTIVE_HARMONICS[0]))
+    assert adaptive.converged and adaptive.peak_force_change == 0.0 and adaptive.harmonics == ADAPTIVE_HARMONICS[0]
+    assert np.all(adaptive.open_fraction[:4] == 0.0) and np.all(adaptive.open_fraction[8:] == 0.0)
+    np.testing.assert_array_equal(adaptive.element_force_N, fixed.element_force_N)
+
+
+def test_the_receptances_are_the_dense_dynamic_stiffness_solved_and_extend_to_more_harmonics():
+    """``G_k = A K_d(k w)^-1 A^T`` by the uncoupled banded blocks (a pad pair's cross terms dropped as round-off, a block
+    loaded at fewer DOFs than pads solved for unit loads) equals the dense solve of every DOF; operators extended from
+    fewer harmonics are the ones built afresh."""
+    dynamics = small_dynamics()
+    problem = dynamics.problem
+    pads_only = CradleDynamics(replace(problem, lashings=()), 2.0, 2e-3, np.array(SADDLES_M))
+    for case in (dynamics, pads_only):
+        excitation = small_excitation(case.problem.cargo, BEAM_SEA)
+        ops = cradle_operators(case, excitation, 40)
+        parts = case.linear_parts()
+        K, M, D = parts.bilateral_stiffness, case.matrices[1], case.matrices[2]
+        A = parts.engagement_matrix
+        for k in (0, 1, 7, 40):
+            w = k * excitation.omega_rad_s
+            G = A @ np.linalg.solve(K - w**2 * M + 1j * w * D, A.T)
+            np.testing.assert_allclose(ops.receptance_harmonics[k], G, rtol=1e-9, atol=1e-9 * np.max(np.abs(G)))
+        extended = cradle_operators(case, excitation, 40, reuse=cradle_operators(case, excitation, 24))
+        for name in ("receptance_harmonics", "linear_compression_m", "linear_cargo_displacement", "cargo_influence"):
+            np.testing.assert_array_equal(getattr(extended, name), getattr(ops, name))
+    assert len(pads_only.linear_parts().blocks) == 3  # axial, lateral, vertical: the pads do not couple them
 
 
 @pytest.mark.parametrize("heel_deg", [2.0, -2.0])

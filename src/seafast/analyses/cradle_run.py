@@ -5,7 +5,7 @@ the vertical model's Rayleigh damping and deck points, loaded by the same vessel
 (its six motions at the case's wave and the deck's deflection, built once by the run), solved in four rows:
 
 * ``dynamic nonlinear``: the harmonic balance of the exact law (:func:`seafast.solvers.cradle_hbm.solve_cradle_hbm`,
-  the case's solver settings, H = 64 unless ``solver.harmonics`` is set);
+  the case's solver settings, its adaptive H (docs/transverse.md#7-dynamics) unless ``solver.harmonics`` fixes it);
 * ``static nonlinear``: the quasi-static exact-contact reference in still water
   (:func:`seafast.solvers.references.cradle_quasi_static.solve_cradle_quasi_static`): the exact statics, loads constant;
 * ``static linear``, ``dynamic linear``: the same model with the pads and lashing wires bilateral and the side

@@ -28,7 +28,8 @@ SEASTATE_EXAMPLES = """examples:
 
 Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged;
 rows linear/spectral, linear/monte_carlo, nonlinear/monte_carlo, nonlinear/design_wave; maxima are most
-probable maxima over sea_state.duration_s, still water included; empty cells = not computed),
+probable maxima over sea_state.duration_s, still water included; empty cells = not computed; off head seas
+also F_pad_N,F_stopper_N,lashing_tension_max_N,lashing_tension_min_N,transverse_slip_m after converged),
 seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
 """
 
@@ -66,6 +67,43 @@ def breaking_design_waves_warning(design: Any, heading_deg: float, gravity_m_per
     )
 
 
+def _cradle_rows(analysis: Any, rows: list[dict[str, Any]], say: Any) -> Any:
+    """Off head seas the cargo on its cradles (``CradleSeaState``), its spectral columns put in ``rows[0]``; else None."""
+    from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state
+    from seafast.analyses.seastate.cradle_extremes import cradle_columns, is_off_head_seas
+
+    if not is_off_head_seas(analysis.case):
+        return None
+    t0 = time.perf_counter()
+    cradle = cradle_sea_state(analysis)
+    assert cradle.design is not None
+    rows[0].update(cradle_columns(cradle.spectral.totals))
+    say(
+        f"cradles, stoppers and lashings across the ship: linear spectral and {len(cradle.design.waves)} design waves by "
+        f"harmonic balance ({(time.perf_counter() - t0) * 1e3:.0f} ms)"
+    )
+    return cradle
+
+
+def _add_cradle_columns(cradle: Any, rows: list[dict[str, Any]]) -> None:
+    """The cradle columns of the Monte Carlo rows (empty: it stays in the vertical plane) and the design-wave row (last),
+    whose ``converged`` then covers the cradle waves too (warned of with the largest residual)."""
+    from seafast.analyses.seastate.cradle_extremes import cradle_columns
+
+    if cradle is None or cradle.design is None:
+        return
+    for r in rows[1:-1]:
+        r.update(cradle_columns(None))
+    rows[-1].update(cradle_columns(cradle.design.totals))
+    rows[-1]["converged"] = bool(rows[-1]["converged"]) and cradle.design.converged
+    if not cradle.design.converged:
+        print(
+            f"seafast: warning: a cradle design wave's harmonic balance did not converge (largest residual "
+            f"{cradle.design.residual:.3g}); the design_wave row is flagged converged=false",
+            file=sys.stderr,
+        )
+
+
 def _cmd_seastate(args: argparse.Namespace) -> int:
     from seafast.analyses.seastate.design_wave import sea_state_design_waves
     from seafast.analyses.seastate.spectral import spectral_analysis
@@ -93,6 +131,10 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
     if analysis.directional is not None:
         say(analysis.directional.describe())
     rows = [analysis.extremes.row()]
+    try:
+        cradle = _cradle_rows(analysis, rows, say)
+    except (CaseError, ValueError) as exc:
+        return error(str(exc))
     t1 = time.perf_counter()
     design = sea_state_design_waves(analysis)
     how = (
@@ -123,6 +165,7 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
             return error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
     rows.append(design.row())
+    _add_cradle_columns(cradle, rows)
     if not args.quiet:  # the table as soon as it is known: seastate.nc and the figures take longer
         sp = analysis.spectrum
         d = case.sea_state.duration_s
@@ -130,7 +173,9 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
         print(format_seastate_table(rows, title=f"{case.name}: {sp.description}, most probable maxima over {span}, still water included"))
         sys.stdout.flush()
     say(f"writing the results to {args.output}")
-    paths = write_seastate_outputs(analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design)
+    paths = write_seastate_outputs(
+        analysis, rows, args.output, monte_carlo=monte_carlo, plots=not args.no_plots, design=design, cradle=cradle
+    )
     if not args.quiet:
         print(f"wrote {', '.join(str(p) for p in paths.values())} ({time.perf_counter() - t0:.1f} s)")
     bad = [r for r in rows if r["converged"] is False]
@@ -150,7 +195,8 @@ def add_seastate_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         help="extremes in an irregular head sea: linear spectral, nonlinear design waves and Monte Carlo",
         description="Most probable maxima of saddle force, bending moment and stress, saddle compression and "
         "detachment over a sea state (Hs, Tp, spectrum, duration), and the uplift rate: linear spectral analysis, "
-        "the nonlinear design-wave estimate (harmonic balance) and the nonlinear Monte Carlo reference.",
+        "the nonlinear design-wave estimate (harmonic balance) and the nonlinear Monte Carlo reference; off head seas also "
+        "the pad, side-stopper and lashing forces and the cargo's lateral slip at the saddles (spectral and design waves).",
         epilog=SEASTATE_EXAMPLES,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -21,6 +21,8 @@ __all__ = [
     "MotionCoupling",
     "OperationClass",
     "ForecastLevel",
+    "DesignFormat",
+    "ContactSurface",
 ]
 
 
@@ -146,3 +148,27 @@ class ForecastLevel(StrEnum):
     LEVEL_A = "level_a"
     MONITORING = "monitoring"
     MONITORING_LEVEL_A = "monitoring_level_a"
+
+
+class DesignFormat(StrEnum):
+    """How ``seafast criteria`` factors its load effects and resistances (``criteria.design.format``).
+
+    ``ALLOWABLE_STRESS``: the unfactored load effects against allowable values (the cargo steel's yield times
+    ``criteria.design.allowable_stress_factor``); ``LRFD``: the ULS combinations of permanent and environmental load
+    factors against the yield over the material factor (docs/criteria.md).
+    """
+
+    ALLOWABLE_STRESS = "allowable_stress"
+    LRFD = "lrfd"
+
+
+class ContactSurface(StrEnum):
+    """The materials in contact between the cargo and its saddles (``criteria.friction.contact``).
+
+    ``STEEL_ON_STEEL``: no friction may be counted; ``STEEL_ON_TIMBER`` and ``STEEL_ON_RUBBER``: friction may be
+    counted, from ``seafastening.friction_coefficient``, reduced by the vertical acceleration (docs/criteria.md).
+    """
+
+    STEEL_ON_STEEL = "steel_on_steel"
+    STEEL_ON_TIMBER = "steel_on_timber"
+    STEEL_ON_RUBBER = "steel_on_rubber"

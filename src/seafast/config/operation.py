@@ -80,7 +80,7 @@ class RouteLegConfig(StrictSection):
 
 
 class OperationConfig(StrictSection):
-    """The transport's operation class and what it needs (``criteria.operation``; docs/criteria.md section 8)."""
+    """The transport's operation class and what it needs (``criteria.operation``; docs/criteria.md section 12)."""
 
     operation_class: OperationClass = Field(..., description="'weather_restricted' (alpha factor) or 'unrestricted' (route data)")
     planned_operation_period_h: Positive | None = Field(

@@ -24,7 +24,7 @@ from pydantic import Field, field_validator, model_validator
 
 from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles, transverse_position_error
 from seafast.config.fields import Finite, NonNegative, NotBool, Positive, StrictSection
-from seafast.config.modes import HullCargoCoupling, MotionCoupling
+from seafast.config.modes import ContactSurface, DesignFormat, HullCargoCoupling, MotionCoupling
 from seafast.config.operation import OperationConfig
 from seafast.config.solver_settings import SOURCE_SOLVER_SETTINGS, ModelConfig, OutputConfig, SolverConfig
 
@@ -418,12 +418,61 @@ class LimitsConfig(StrictSection):
     max_bending_stress_Pa: Positive = Field(20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]")
 
 
+class CriteriaDesignConfig(StrictSection):
+    """The design format of ``seafast criteria``: LRFD or allowable stress (docs/criteria.md)."""
+
+    format: DesignFormat = Field(
+        DesignFormat.ALLOWABLE_STRESS,
+        description="'allowable_stress' (unfactored load effects against the yield stress times allowable_stress_factor) or "
+        "'lrfd' (the ULS combinations a) and b) of permanent and environmental load factors against the yield over "
+        "material_factor)",
+    )
+    yield_stress_Pa: Positive = Field(355.0e6, description="Characteristic yield stress of the cargo's steel [Pa] (S355: 355 MPa)")
+    material_factor: Annotated[float, Field(ge=1.0, le=2.0, allow_inf_nan=False), NotBool] = Field(
+        1.15, description="LRFD material factor gamma_M on the yield stress [-]"
+    )
+    allowable_stress_factor: Annotated[float, Field(gt=0.0, le=1.0, allow_inf_nan=False), NotBool] = Field(
+        0.6, description="Allowable-stress format: the allowable bending stress as a fraction of the yield stress [-]"
+    )
+
+
+class CriteriaMotionConfig(StrictSection):
+    """The motion-analysis branch of ``seafast criteria``: the case's sea state at each heading (docs/criteria.md)."""
+
+    enabled: bool = Field(False, description="Add the motion-analysis load cases beside the default criteria")
+    headings_deg: tuple[Annotated[float, Field(ge=0.0, lt=360.0, allow_inf_nan=False), NotBool], ...] | None = Field(
+        None, description="Mean headings of the sea state [deg] (180 head seas, 90 beam seas); null = sea_state.heading_deg"
+    )
+    nonlinear: bool = Field(True, description="Add the nonlinear design-wave MPMs of F, M_b and sigma_b (as seafast seastate)")
+
+    @field_validator("headings_deg")
+    @classmethod
+    def _distinct(cls, v: tuple[float, ...] | None) -> tuple[float, ...] | None:
+        if v is not None and (len(v) == 0 or len(set(v)) != len(v)):
+            raise ValueError(f"{list(v)!r}: allowed a non-empty list of distinct headings in [0, 360) deg, or null")
+        return v
+
+
+class CriteriaFrictionConfig(StrictSection):
+    """The friction credit of ``seafast criteria`` (docs/criteria.md)."""
+
+    contact: ContactSurface = Field(
+        ContactSurface.STEEL_ON_STEEL,
+        description="Materials in contact at the saddles: 'steel_on_steel' (no friction may be counted), 'steel_on_timber' or "
+        "'steel_on_rubber' (seafastening.friction_coefficient counted, reduced by the vertical acceleration)",
+    )
+
+
 class CriteriaConfig(StrictSection):
-    """Design criteria of the transport (``seafast criteria``, ``seafast operability``)."""
+    """Design criteria of the transport (``seafast criteria``, ``seafast operability``): design format, motion-analysis
+    branch, friction credit, operation class."""
 
     operation: OperationConfig | None = Field(
         None, description="The operation class (weather-restricted with its alpha factor, or unrestricted on its route); null: none"
     )
+    design: CriteriaDesignConfig = CriteriaDesignConfig()
+    motion_analysis: CriteriaMotionConfig = CriteriaMotionConfig()
+    friction: CriteriaFrictionConfig = CriteriaFrictionConfig()
 
 
 class Case(StrictSection):

@@ -7,7 +7,7 @@
 * Unrestricted: route.csv (:data:`ROUTE_COLUMNS`), one row per route leg: its design sea state and, from
   ``seafast operability``, its check against the allowable Hs (empty in ``seafast criteria``).
 
-docs/criteria.md section 8 and docs/interface.md.
+docs/criteria.md section 12 and docs/interface.md.
 """
 
 from __future__ import annotations

@@ -3,6 +3,7 @@
 ``seastate.csv`` has exactly :data:`~seafast.analyses.seastate.spectral.SEASTATE_COLUMNS`, one row per
 (model, method): (linear, spectral), (linear, monte_carlo), (nonlinear, monte_carlo), (nonlinear,
 design_wave). A row whose method was not run has empty cells (read as NaN), never made-up numbers.
+Off head seas the cradle columns follow ``converged`` (:mod:`seafast.output.seastate_cradle`); head seas: today's file.
 
 ``seastate.nc`` holds the spectrum, the transfer functions (real and imaginary parts, per metre
 of wave amplitude), the response spectra and spectral statistics, the table of seastate.csv as
@@ -24,9 +25,18 @@ import xarray as xr
 import yaml
 
 import seafast
+from seafast.analyses.seastate.cradle_design_wave import CradleSeaState
 from seafast.analyses.seastate.design_wave import DesignWaveExtremes
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, SpectralAnalysis
 from seafast.analyses.seastate.wave_maxima import SADDLE_QUANTITIES
+from seafast.output.seastate_cradle import (
+    CRADLE_TABLE_HEAD,
+    cradle_coords,
+    cradle_table_cells,
+    cradle_table_variables,
+    cradle_variables,
+    seastate_columns,
+)
 from seafast.results.labelled import labelled_variable as _var
 
 if TYPE_CHECKING:  # the Monte Carlo engine (half a second to import) only when it runs: --no-monte-carlo needs none of it
@@ -54,7 +64,6 @@ QUANTITIES = {
     "u_d_m": ("most probable maximum saddle detachment (gap); 0 for the linear model (bilateral saddles)", "m"),
     "uplift_per_hour": ("expected uplift events per hour (downward zero crossings of a saddle's compression), all saddles", "1/h"),
 }
-
 
 _DESIGN_WAVE_MAXIMA = {
     "F_N": "largest saddle force",
@@ -91,25 +100,29 @@ def _cell(value: Any) -> str:
 
 
 def seastate_csv_text(rows: Sequence[Mapping[str, Any]]) -> str:
-    """seastate.csv text (SI units; booleans true/false; empty = not computed)."""
+    """seastate.csv text (SI units; booleans true/false; empty = not computed) with :func:`seastate_columns`."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(SEASTATE_COLUMNS)
+    columns = seastate_columns(rows)
+    w.writerow(columns)
     for r in rows:
-        w.writerow([_cell(r[c]) for c in SEASTATE_COLUMNS])
+        w.writerow([_cell(r.get(c)) for c in columns])
     return buf.getvalue()
 
 
 def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") -> str:
-    """Terminal table in engineering units (MN, MN m, MPa, mm)."""
-    head = ("model", "method", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "u_s [mm]", "u_d [mm]", "uplift [1/h]", "converged")
+    """Terminal table in engineering units (MN, MN m, MPa, mm; off head seas the cradle columns in MN, kN, mm)."""
+    head: tuple[str, ...] = ("model", "method", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "u_s [mm]", "u_d [mm]", "uplift [1/h]", "converged")
     scale = {"F_N": 1e-6, "M_b_Nm": 1e-6, "sigma_b_Pa": 1e-6, "u_s_m": 1e3, "u_d_m": 1e3, "uplift_per_hour": 1.0}
+    cradle = len(seastate_columns(rows)) > len(SEASTATE_COLUMNS)
+    head += CRADLE_TABLE_HEAD if cradle else ()
     lines = []
     for r in rows:
         cells = [str(r["model"]), str(r["method"])]
         for q, s in scale.items():
             cells.append("not computed" if r[q] is None else f"{r[q] * s:.{2 if q != 'F_N' else 3}f}")
         cells.append("-" if r["converged"] is None else ("yes" if r["converged"] else "NO"))
+        cells += cradle_table_cells(r) if cradle else []
         lines.append(cells)
     widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
 
@@ -272,6 +285,7 @@ def _table_variables(rows: Sequence[Mapping[str, Any]]) -> dict[str, xr.Variable
             if r[q] is not None:
                 table[models.index(r["model"]), methods.index(r["method"])] = r[q]
         v[q] = _var(("model", "estimate_method"), table, long_name + " (NaN: not computed)", unit)
+    v.update(cradle_table_variables(rows, models, methods))
     conv = np.full((2, 3), -1, dtype=np.int8)
     for r in rows:
         if r["converged"] is not None:
@@ -326,14 +340,18 @@ def seastate_dataset(
     rows: Sequence[Mapping[str, Any]],
     monte_carlo: xr.Dataset | None = None,
     design: DesignWaveExtremes | None = None,
+    cradle: CradleSeaState | None = None,
 ) -> xr.Dataset:
-    """The content of seastate.nc (see the module docstring); ``design``: the DesignWaveExtremes, if computed."""
+    """The content of seastate.nc (module docstring); ``design``, ``cradle``: the design waves, the cradles, if computed."""
     v = _transfer_variables(analysis)
     v.update(_spectral_variables(analysis))
     v.update(_table_variables(rows))
     if design is not None:
         v.update(_design_wave_variables(design))
-    ds = xr.Dataset(v, coords=_seastate_coords(analysis, design), attrs=_seastate_attrs(analysis))
+    coords = _seastate_coords(analysis, design)
+    if cradle is not None:
+        v, coords = {**v, **cradle_variables(cradle)}, {**coords, **cradle_coords(cradle)}
+    ds = xr.Dataset(v, coords=coords, attrs=_seastate_attrs(analysis))
     if monte_carlo is not None:
         ds = xr.merge([ds, monte_carlo], combine_attrs="override")
         ds.attrs.update(monte_carlo.attrs)
@@ -349,10 +367,12 @@ def write_seastate_outputs(
     monte_carlo: MonteCarloResult | None = None,
     plots: bool = True,
     design: DesignWaveExtremes | None = None,
+    cradle: CradleSeaState | None = None,
 ) -> dict[str, Path]:
     """Write seastate.csv, seastate.nc, case.yaml and (``plots``) the PNG figures; return their paths.
 
-    ``design``: the :class:`~seafast.analyses.seastate.design_wave.DesignWaveExtremes` (its waves go to seastate.nc).
+    ``design``: the :class:`~seafast.analyses.seastate.design_wave.DesignWaveExtremes` (its waves go to seastate.nc);
+    ``cradle``: the cradle quantities off head seas (:class:`~seafast.analyses.seastate.cradle_extremes.CradleSeaState`).
     """
     from seafast.output.files import write_netcdf
 
@@ -367,7 +387,7 @@ def write_seastate_outputs(
     )
     paths["case"] = out / "case.yaml"
     mc_ds = monte_carlo.to_dataset() if monte_carlo is not None else None
-    ds = seastate_dataset(analysis, rows, mc_ds, design)
+    ds = seastate_dataset(analysis, rows, mc_ds, design, cradle)
     nc = out / "seastate.nc"
     if nc.exists():
         nc.unlink()

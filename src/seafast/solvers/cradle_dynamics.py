@@ -44,7 +44,14 @@ from seafast.solvers.dynamic_stiffness import QuadraticMatrices, solve_dynamic_s
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
 
-__all__ = ["CradleDynamics", "CradleLinearParts", "cradle_dynamics_of", "cradle_operators", "rest_initial_engagement_m"]
+__all__ = [
+    "CradleDynamics",
+    "CradleLinearParts",
+    "coupling_pattern",
+    "cradle_dynamics_of",
+    "cradle_operators",
+    "rest_initial_engagement_m",
+]
 
 
 @dataclass(frozen=True)
@@ -227,11 +234,13 @@ class CradleLinearParts:
 
         Without lashings (the only elements coupling a node's five DOFs) the axial, lateral and vertical motions
         are uncoupled even with the pads bilateral, and each block is banded in its own order (half bandwidth 3 or 1,
-        against 9 for the five DOFs together): the solves per harmonic cost a ninth.
+        against 9 for the five DOFs together): the solves per harmonic cost a ninth. A pair's two pads couple
+        the lateral and vertical motions by ``k cos(alpha) sin(alpha)`` each, with opposite signs: their sum is
+        zero but for round-off, which is not a coupling (:func:`coupling_pattern`).
         """
         K, M, D = self.bilateral_stiffness, self.dynamics.matrices[1], self.dynamics.matrices[2]
-        pattern = (K != 0.0) | (M != 0.0) | (D != 0.0)
-        count, label = connected_components(sparse.csr_matrix(pattern), directed=False)
+        pattern = coupling_pattern(K) | coupling_pattern(M) | coupling_pattern(D)
+        count, label = connected_components(sparse.csr_matrix(pattern.astype(np.int8)), directed=False)
         out = []
         for c in range(count):
             dofs = self.dynamics.order[label[self.dynamics.order] == c]
@@ -243,20 +252,47 @@ class CradleLinearParts:
         return tuple(out)
 
     def solve_stack(self, omegas: NDArray[np.float64], rhs: NDArray[np.complex128]) -> NDArray[np.complex128]:
-        """``K_d(w_k)^-1 rhs_k`` with every element bilateral, (n_k, 5 n, r) in the block order [m, rad per N]."""
+        """``K_d(w_k)^-1 rhs_k`` with every element bilateral, (n_k, 5 n, r) in the block order [m, rad per N].
+
+        Per block, the right-hand sides that load it; where they load fewer DOFs than they are (a pad pair's two
+        pads push on the same two DOFs), the block is solved for a unit load at each loaded DOF and the
+        right-hand sides combined from those: ``K^-1 b = sum_i K^-1 e_i b_i``.
+        """
         out = np.zeros(rhs.shape, dtype=complex)
         for dofs, q in self.blocks:
             part = rhs[:, dofs]
             columns = np.flatnonzero(np.any(part != 0.0, axis=(0, 1)))  # the right-hand sides that load this block
-            if columns.size == rhs.shape[2]:
+            rows = np.flatnonzero(np.any(part != 0.0, axis=(0, 2)))  # the DOFs they load
+            if columns.size == 0:
+                continue
+            if rows.size < columns.size:
+                units = np.zeros((omegas.size, dofs.size, rows.size), dtype=complex)
+                units[:, rows, np.arange(rows.size)] = 1.0
+                Z = solve_dynamic_stack(q, omegas, units)
+                out[:, dofs[:, None], columns[None, :]] = Z @ part[:, rows[:, None], columns[None, :]]
+            elif columns.size == rhs.shape[2]:
                 out[:, dofs] = solve_dynamic_stack(q, omegas, np.ascontiguousarray(part))
-            elif columns.size:
+            else:
                 out[:, dofs[:, None], columns[None, :]] = solve_dynamic_stack(q, omegas, np.ascontiguousarray(part[:, :, columns]))
         return out
 
 
+def coupling_pattern(X: NDArray[np.float64], round_off: float = 1e-14) -> NDArray[np.bool_]:
+    """Where the symmetric matrix ``X`` couples two DOFs: ``|X_ij| > round_off sqrt(|X_ii X_jj|)`` (the diagonal
+    always); an entry below it is the round-off of terms that cancel (a pad pair's lateral-vertical stiffness)."""
+    d = np.sqrt(np.abs(np.diag(X)))
+    pattern = np.abs(X) > round_off * np.outer(d, d)
+    pattern[np.diag_indices_from(pattern)] = True
+    return pattern
+
+
 def cradle_operators(
-    dynamics: CradleDynamics, excitation: CradleExcitation, harmonics: int, included: NDArray[np.bool_] | None = None
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    harmonics: int,
+    included: NDArray[np.bool_] | None = None,
+    *,
+    reuse: CondensedOperators | None = None,
 ) -> CondensedOperators:
     """The linear problem condensed onto the included engagements, harmonics 0 .. H (those elements bilateral).
 
@@ -264,8 +300,13 @@ def cradle_operators(
     order): ``saddle_stiffness_N_per_m`` their k, ``linear_compression_m`` their engagements in the linear part,
     ``receptance_harmonics`` ``G_k = A_I K_d^-1 A_I^T``, ``cargo_influence`` ``K_d^-1 (-A_I^T)`` (block order).
     ``included``: default every element; the others are open in the linear part (and carry nothing).
+    ``reuse``: the operators of the same dynamics, excitation and ``included`` at fewer harmonics (at least 1):
+    theirs are kept and only the receptances of the new harmonics solved (the loads and the deck's motion
+    live on k = 0, 1), the same numbers as built afresh.
     """
     H = int(harmonics)
+    if reuse is not None and 1 <= reuse.harmonics < H and reuse.omega_rad_s == float(excitation.omega_rad_s):
+        return _extended_operators(dynamics.linear_parts(included), reuse, H)
     parts = dynamics.linear_parts(included)
     A, k = parts.engagement_matrix, parts.element_stiffness_N_per_m
     E, s0 = dynamics.deck_engagement[parts.included], dynamics.initial_engagement_m[parts.included]
@@ -297,4 +338,26 @@ def cradle_operators(
         linear_cargo_displacement=X_lin,
         cargo_influence=Y,
         ignored_harmonics=False,
+    )
+
+
+def _extended_operators(parts: CradleLinearParts, ops: CondensedOperators, harmonics: int) -> CondensedOperators:
+    """``ops`` extended to ``harmonics``: the receptances of the new harmonics solved, the rest kept."""
+    A = parts.engagement_matrix
+    if A.shape[0] != ops.saddle_count:
+        raise ValueError(f"reuse: operators of {ops.saddle_count} elements; the included set has {A.shape[0]}")
+    H, h0 = int(harmonics), ops.harmonics
+    wk = ops.omega_rad_s * np.arange(h0 + 1, H + 1, dtype=np.float64)
+    Y = parts.solve_stack(wk, np.broadcast_to(-A.T[None], (wk.size,) + A.T.shape).astype(complex))
+    X_lin = np.zeros((H + 1, A.shape[1]), dtype=complex)
+    X_lin[: h0 + 1] = ops.linear_cargo_displacement
+    s_lin = np.zeros((2 * H + 1, A.shape[0]))
+    s_lin[: 2 * h0 + 1] = ops.linear_compression_m
+    return replace(
+        ops,
+        harmonics=H,
+        receptance_harmonics=np.concatenate([ops.receptance_harmonics, -(A @ Y)]),
+        linear_compression_m=s_lin,
+        linear_cargo_displacement=X_lin,
+        cargo_influence=np.concatenate([ops.cargo_influence, Y]),
     )

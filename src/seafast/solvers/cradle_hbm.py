@@ -17,18 +17,44 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.excitation.cradle_loads import CradleExcitation
-from seafast.fourier import harmonics_to_time, period_fraction, real_to_complex_harmonics
+from seafast.fourier import (
+    harmonics_to_time,
+    period_fraction,
+    real_harmonics_to_time,
+    real_to_complex_harmonics,
+    time_to_real_harmonics,
+)
 from seafast.model.cradle import Side
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
 from seafast.solvers.hbm import CondensedOperators, HBMOptions, solve_condensed
 from seafast.solvers.hbm.fixed import QUICK_ITERATIONS, CondensedSolution
-from seafast.solvers.hbm.harmonics import pad_harmonics
+from seafast.solvers.hbm.harmonics import force_scale_N, pad_harmonics
 from seafast.solvers.outcome import HBMStart, SolverOutcome
 
-__all__ = ["CradleResponse", "cradle_response", "solve_cradle_hbm", "truncated_operators", "DEFAULT_CRADLE_HARMONICS"]
+__all__ = [
+    "ADAPTIVE_HARMONICS",
+    "CradleResponse",
+    "DEFAULT_CRADLE_HARMONICS",
+    "cradle_response",
+    "peak_forces_N",
+    "solve_cradle_hbm",
+    "truncated_operators",
+]
 
 DEFAULT_CRADLE_HARMONICS = 64
-"""H when the options leave it open (the 3-D solve takes a fixed H)."""
+"""The first H of the adaptive choice (the options' ``harmonics`` None): where every element stays engaged the
+linear solution is exact and the solve ends there."""
+
+ADAPTIVE_HARMONICS = (64, 96, 128, 192, 256, 384, 512)
+"""The H the adaptive choice climbs (up to the options' ``max_harmonics``), each started from the one before."""
+
+PASSED_LIMIT = 3
+"""The adaptive choice's first H that may fail to converge before it falls back on the ladder (where no H converges
+directly, climbing further costs seconds a solve: thousands of samples open)."""
+
+PEAK_SAMPLES = 4096
+"""Samples per period on which the adaptive choice reads the peak forces (the harmonic series evaluated there:
+the AFT grid's own samples miss a peak between them by up to 1e-3 near H = 128)."""
 
 
 @dataclass(frozen=True)
@@ -56,6 +82,10 @@ class CradleResponse:
         rigid-body frame, static part included.
     pad_normal
         Unit (y, z) push of each pad on the cargo, (n_pairs, 2, 2).
+    peak_force_change
+        With H chosen adaptively, the largest change of an element's peak force from the H before, over its force
+        scale (:func:`~seafast.solvers.hbm.harmonics.force_scale_N`) [-]; 0 where the linear solution is exact
+        (every element engaged all period); NaN at a fixed H.
     """
 
     outcome: SolverOutcome
@@ -70,6 +100,7 @@ class CradleResponse:
     stopper_count: int
     cargo_displacement_m: NDArray[np.float64]
     pad_normal: NDArray[np.float64]
+    peak_force_change: float = float("nan")
 
     @property
     def converged(self) -> bool:
@@ -187,6 +218,102 @@ def _ladder(ops: CondensedOperators, options: HBMOptions) -> tuple[CondensedSolu
     return previous, f"peak forces changed by {change:.2e} of the largest from H = {rungs[-2]}"
 
 
+def peak_forces_N(ops: CondensedOperators, compression: NDArray[np.float64], time_samples: int = PEAK_SAMPLES) -> NDArray[np.float64]:
+    """Each element's largest force ``k max(s, 0)`` over the period [N], (m,), from real-layout engagement
+    harmonics (2H+1, m) [m] evaluated on ``time_samples`` samples."""
+    s = real_harmonics_to_time(compression, max(int(time_samples), 2 * (compression.shape[0] // 2) + 2))
+    return np.asarray(np.max(ops.saddle_stiffness_N_per_m * np.maximum(s, 0.0), axis=0), dtype=float)
+
+
+@dataclass(frozen=True)
+class _SetSolution:
+    """One included set solved: the solution, its operators (at its H), its grid, how H was reached, the peak change."""
+
+    solution: CondensedSolution
+    ops: CondensedOperators
+    time_samples: int
+    words: str
+    peak_force_change: float
+
+
+def _rung(ops: CondensedOperators, options: HBMOptions, start: NDArray[np.float64] | None) -> CondensedSolution:
+    """One H of the adaptive choice: a few Newton steps from ``start`` (real layout, padded), else a direct solve."""
+    H = ops.harmonics
+    if start is not None:
+        quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), QUICK_ITERATIONS))
+        solution = solve_condensed(ops, quick, pad_harmonics(start, H), HBMStart.PREVIOUS_HARMONICS)
+        if solution.converged:
+            return solution
+    return solve_condensed(ops, replace(options, continuation=False))
+
+
+def _adaptive(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    options: HBMOptions,
+    included: NDArray[np.bool_],
+    start: NDArray[np.float64] | None,
+) -> _SetSolution:
+    """H chosen by the change of the peak forces: :data:`ADAPTIVE_HARMONICS` climbed, each H started from the last
+    converged one, until the peaks move by at most ``options.truncation_tolerance`` of their scale.
+
+    An H whose solve does not converge is passed over (a truncation among the modes the elements ring in leaves the
+    semi-smooth Newton wandering; above them it converges in a few steps). None of the first :data:`PASSED_LIMIT`
+    converging, or none at all: the fixed-H ladder at the first H (its fallback chain).
+    """
+    rungs = [h for h in ADAPTIVE_HARMONICS if h <= int(options.max_harmonics)] or [int(options.max_harmonics)]
+    ops: CondensedOperators | None = None
+    best: _SetSolution | None = None
+    passed: list[int] = []
+    for h in rungs:
+        ops = cradle_operators(dynamics, excitation, h, included, reuse=ops)
+        rung_options = options.with_harmonics(h)
+        solution = _rung(ops, rung_options, start if best is None else best.solution.saddle_compression)
+        if not solution.converged:
+            passed.append(h)
+            if best is None and len(passed) == PASSED_LIMIT:
+                break  # not the truncation: the fallbacks, at the first H
+            continue
+        N = rung_options.fixed_grid()[1]
+        if not np.any(solution.correction_force):
+            return _SetSolution(solution, ops, N, "every element engaged all period: the linear solution, exact at any H", 0.0)
+        if best is not None:
+            peaks, before = peak_forces_N(ops, solution.saddle_compression), peak_forces_N(best.ops, best.solution.saddle_compression)
+            change = float(np.max(np.abs(peaks - before) / force_scale_N(peaks)))
+            words = f"adaptive H: peak forces changed by {change:.1e} of their scale from H = {best.ops.harmonics}"
+            words += f" (H = {', '.join(map(str, passed))} not converged, passed over)" if passed else ""
+            if change <= float(options.truncation_tolerance):
+                return _SetSolution(solution, ops, N, words, change)
+            best = _SetSolution(solution, ops, N, words + f", above the tolerance {options.truncation_tolerance:g} at the cap", change)
+        else:
+            best = _SetSolution(solution, ops, N, "adaptive H: no second H within max_harmonics to compare with", float("nan"))
+    if best is not None:
+        return best
+    assert ops is not None
+    first = truncated_operators(ops, rungs[0])
+    solution, words = _ladder(first, options.with_harmonics(rungs[0]))
+    words = f"adaptive H: no H up to {passed[-1]} converged directly, the ladder at H = {rungs[0]}: {words}"
+    return _SetSolution(solution, first, options.with_harmonics(rungs[0]).fixed_grid()[1], words, float("nan"))
+
+
+def _fixed(
+    dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions, included: NDArray[np.bool_], start: NDArray | None
+) -> _SetSolution:
+    """At the options' H: a direct solve (a few Newton steps from ``start`` first, if given), else the ladder."""
+    H, N = options.fixed_grid()
+    ops = cradle_operators(dynamics, excitation, H, included)
+    solution = None
+    if start is not None:
+        quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), QUICK_ITERATIONS))
+        solution = solve_condensed(ops, quick, pad_harmonics(start, H), HBMStart.PREVIOUS_HARMONICS)
+    if solution is None or not solution.converged:
+        solution = solve_condensed(ops, replace(options, continuation=False))
+    truncation = "solved directly at H"
+    if not solution.converged:
+        solution, truncation = _ladder(ops, options)
+    return _SetSolution(solution, ops, N, truncation, float("nan"))
+
+
 def _deck_time_m(excitation: CradleExcitation, time_samples: int) -> NDArray[np.float64]:
     """The deck DOFs over the period (N, n_o) [m, rad]."""
     xo = np.array(excitation.deck_displacement, dtype=complex)
@@ -194,35 +321,32 @@ def _deck_time_m(excitation: CradleExcitation, time_samples: int) -> NDArray[np.
     return harmonics_to_time(xo, time_samples)
 
 
-def _solve_set(
-    dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions, included: NDArray[np.bool_]
-) -> tuple[CondensedSolution, str, NDArray[np.float64], NDArray[np.float64]]:
-    """One condensed solve with the ``included`` elements: (solution, truncation words, engagements (N, m), q (N, 5 n)).
-
-    The engagements of the elements left out follow from the cargo's motion and the deck's (open where <= 0).
-    """
-    H, N = options.fixed_grid()
-    ops = cradle_operators(dynamics, excitation, H, included)
-    solution = solve_condensed(ops, replace(options, continuation=False))
-    truncation = "solved directly at H"
-    if not solution.converged:
-        solution, truncation = _ladder(ops, options)
-    C = real_to_complex_harmonics(solution.correction_force)  # (H+1, m_I)
+def _samples(
+    dynamics: CradleDynamics, excitation: CradleExcitation, solved: _SetSolution, included: NDArray[np.bool_]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(engagements (N, m), cargo DOFs (N, 5 n)) of a solved set: the elements left out follow from the cargo's
+    motion and the deck's (open where <= 0)."""
+    ops, N = solved.ops, solved.time_samples
+    C = real_to_complex_harmonics(solved.solution.correction_force)  # (H+1, m_I)
     q = harmonics_to_time(ops.linear_cargo_displacement + np.einsum("kcs,ks->kc", ops.cargo_influence, C), N)
     problem = dynamics.problem
     s = dynamics.initial_engagement_m + q @ problem.engagement_matrix.T + _deck_time_m(excitation, N) @ dynamics.deck_engagement.T
-    s[:, included] = harmonics_to_time(real_to_complex_harmonics(solution.saddle_compression), N)
-    return solution, truncation, s, q
+    s[:, included] = harmonics_to_time(real_to_complex_harmonics(solved.solution.saddle_compression), N)
+    return s, q
 
 
 def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions | None = None) -> CradleResponse:
-    """The periodic response by the condensed harmonic balance at a fixed H.
+    """The periodic response by the condensed harmonic balance, H chosen adaptively or fixed.
 
     The side stoppers are left out of the linear part at first (taken open: they usually are); any that closes
-    in the solution is brought in and the problem solved again, until none left out closes. Each solve is direct
-    at H (from the better of the linear solution and the quasi-static exact-contact predictor); if that fails, H is
-    doubled from 8, each rung started from the one before, with the fallback chain of the vertical plane
-    (:func:`~seafast.solvers.hbm.solve_condensed`) where a rung's start is not enough.
+    in the solution is brought in and the problem solved again (started from the solution before), until none
+    left out closes. With ``options.harmonics`` None (the default) H climbs :data:`ADAPTIVE_HARMONICS` from
+    :data:`DEFAULT_CRADLE_HARMONICS`, each H started from the one before, until the elements' peak forces change
+    by at most ``options.truncation_tolerance`` of their scale (the linear solution, exact, where every element
+    stays engaged). At a given H: a direct solve (from the better of the linear solution and the quasi-static
+    exact-contact predictor); if that fails, H is doubled from 8, each rung started from the one before, with
+    the fallback chain of the vertical plane (:func:`~seafast.solvers.hbm.solve_condensed`) where a rung's start
+    is not enough.
 
     Parameters
     ----------
@@ -232,30 +356,37 @@ def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, opt
         The static and first-harmonic loads and deck motion (:func:`~seafast.excitation.cradle_loads.cradle_excitation`).
     options
         The vertical plane's :class:`~seafast.solvers.hbm.HBMOptions` (condensed formulation, exact law or a smooth
-        one, Newton or hybr, tolerance, fallbacks); ``harmonics`` None means :data:`DEFAULT_CRADLE_HARMONICS`.
+        one, Newton or hybr, tolerance, fallbacks; ``harmonics`` None: adaptive, up to ``max_harmonics``, to
+        ``truncation_tolerance``; a given ``time_samples`` is then a minimum).
 
     Returns
     -------
     CradleResponse
         On the AFT grid (N samples); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance.
-        Its message says how the solve went (with the peak forces' change from the previous H when the ladder ran).
+        Its message says how the solve went and how H was reached; ``peak_force_change`` the adaptive H's last
+        change of the peak forces.
     """
     options = options if options is not None else HBMOptions()
-    H = DEFAULT_CRADLE_HARMONICS if options.harmonics is None else int(options.harmonics)
-    options = options.with_harmonics(H, options.time_samples)
     problem = dynamics.problem
     stopper = np.zeros(len(problem.engagements), dtype=bool)
     stopper[2 * len(problem.pad_pairs) : 2 * len(problem.pad_pairs) + len(problem.stoppers)] = True
     included = ~stopper if np.any(~stopper) else stopper
+    start: NDArray[np.float64] | None = None
     for _ in range(stopper.size + 1):
-        solution, truncation, s, q = _solve_set(dynamics, excitation, options, included)
+        if options.harmonics is None:
+            solved = _adaptive(dynamics, excitation, options, included, start)
+        else:
+            solved = _fixed(dynamics, excitation, options.with_harmonics(int(options.harmonics), options.time_samples), included, start)
+        s, q = _samples(dynamics, excitation, solved, included)
         closing = ~included & np.any(s > 0.0, axis=0)
-        if not solution.converged or not np.any(closing):
+        if not solved.solution.converged or not np.any(closing):
             break
         included = included | closing
-    left_out = int(np.count_nonzero(~included))
+        start = time_to_real_harmonics(s[:, included], solved.ops.harmonics)
+    solution, H, N = solved.solution, solved.ops.harmonics, solved.time_samples
     message = (
-        f"3-D cradle harmonic balance, H = {H}, N = {options.fixed_grid()[1]}: {solution.message}; {truncation}; "
-        f"{left_out} stopper(s) open all period, left out"
+        f"3-D cradle harmonic balance, H = {H}, N = {N}: {solution.message}; {solved.words}; "
+        f"{int(np.count_nonzero(~included))} stopper(s) open all period, left out"
     )
-    return cradle_response(dynamics, s, q, excitation.omega_rad_s, (solution.outcome, solution.residual_norm, message, H))
+    response = cradle_response(dynamics, s, q, excitation.omega_rad_s, (solution.outcome, solution.residual_norm, message, H))
+    return replace(response, peak_force_change=solved.peak_force_change)

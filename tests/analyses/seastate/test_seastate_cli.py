@@ -42,6 +42,19 @@ def test_seastate_csv_has_the_contract_columns_and_rows(spectral_run):
     # not computed: empty cells, never made-up numbers
     for r in rows[1:3]:
         assert all(r[c] == "" for c in SEASTATE_COLUMNS[2:])
+    # head seas: the file byte for byte as before the cradle columns (which only a sea off head seas adds)
+    quantities = ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m", "uplift_per_hour")
+    expected = (
+        "model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged\n"
+        "linear,spectral,"
+        + ",".join(repr(float(spectral[q])) for q in quantities)
+        + ",true\n"
+        + "linear,monte_carlo,,,,,,,\nnonlinear,monte_carlo,,,,,,,\n"
+        + "nonlinear,design_wave,"
+        + ",".join(repr(float(design[q])) for q in quantities)
+        + ",true\n"
+    )
+    assert (spectral_run / "seastate.csv").read_bytes() == expected.encode()
 
 
 def test_seastate_nc_labels_every_variable_and_the_figures_exist(spectral_run):

@@ -11,7 +11,7 @@ steps, no interpolation between them is stated); along the row alpha is interpol
 the columns, the last column's value from 6 m up. Below 1 m the standard decides case by case: no value.
 
 The values were transcribed from a published verbatim transcription of DNV-OS-H101 (2011) Sec.4 (see
-docs/criteria.md section 8); they were not compared with DNV-ST-N001's own tables.
+docs/criteria.md section 12); they were not compared with DNV-ST-N001's own tables.
 """
 
 from __future__ import annotations

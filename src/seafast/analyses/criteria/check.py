@@ -8,19 +8,23 @@ solver's heel and trim, the motion's acceleration as consistent nodal loads ``M 
 times the acceleration field, exact for the field, linear along the cargo). Per case: the saddles' vertical
 forces, the pads', stoppers' and lashings' forces, the axial hold, the cargo's bending moment (the resultant of
 the vertical and lateral ones) and stress, and the utilisations against ``limits.max_saddle_force_N`` and
-``limits.max_bending_stress_Pa``.
+``limits.max_bending_stress_Pa``; then (:func:`with_design`) the same checks in the case's design format
+(:mod:`seafast.analyses.criteria.design`: LRFD solves each case again under its load combinations) and the friction
+credit.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import StrEnum
 
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.criteria.design import LRFD_COMBINATIONS, UNFACTORED, DesignCheck, FrictionCredit, design_checks, friction_credit
 from seafast.analyses.criteria.load_cases import CriteriaLoadCase, apparent_gravity_m_s2, default_load_cases
 from seafast.analyses.criteria.standard import MotionCriteria, select_motion_criteria
+from seafast.config.modes import DesignFormat
 from seafast.config.schema import Case
 from seafast.excitation.vessel_inputs import cargo_axis_height_m, hull_form_of
 from seafast.model.beam import bending_moment_line
@@ -37,6 +41,7 @@ __all__ = [
     "cargo_axis_points_m",
     "criteria_check",
     "solve_load_case",
+    "with_design",
 ]
 
 MOMENT_POINTS_PER_ELEMENT = 4
@@ -118,6 +123,8 @@ class CriteriaCaseResult:
     rise_max_m: float
     rise_limit_m: float
     residual_limit_N: float
+    design: tuple[DesignCheck, DesignCheck] | None = None
+    friction: FrictionCredit | None = None
 
     @property
     def outcome(self) -> str:
@@ -203,18 +210,24 @@ def cargo_axis_points_m(case: Case, node_x_m: NDArray[np.float64], origin: Motio
     return points
 
 
-def _motion_load_N(cradle: CradleCase, load_case: CriteriaLoadCase, points_m: NDArray[np.float64], g: float) -> NDArray[np.float64]:
-    """Consistent nodal loads of the motion's part of the field (gravity left to the solver): ``M p`` with p the
-    field's nodal values and slopes along the cargo (exact for a field linear along it)."""
+def _field_load_N(cradle: CradleCase, field: NDArray[np.float64], slope: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Consistent nodal loads ``M p`` of a force-per-mass field linear along the cargo: ``p`` its nodal values (n, 3) and
+    its slope along the axis (3,) [m/s^2, 1/s^2] (exact for such a field)."""
     cargo = cradle.cargo
     n = cargo.node_count
-    field = apparent_gravity_m_s2(load_case, points_m, g) - g * gravity_direction(load_case.roll_deg, load_case.pitch_deg)
-    slope = -np.cross(load_case.angular_acceleration_rad_s2, np.array([1.0, 0.0, 0.0]))
     p = np.zeros(cargo.dof_count)
     p[0 : 2 * n : 2], p[1 : 2 * n : 2] = field[:, 2], slope[2]
     p[2 * n : 4 * n : 2], p[2 * n + 1 : 4 * n : 2] = field[:, 1], slope[1]
     p[4 * n :] = field[:, 0]
     return np.asarray(cargo.mass @ p, dtype=float)
+
+
+def _motion_load_N(cradle: CradleCase, load_case: CriteriaLoadCase, points_m: NDArray[np.float64], g: float) -> NDArray[np.float64]:
+    """Consistent nodal loads of the motion's part of the field (gravity left to the solver): ``M p`` with p the
+    field's nodal values and slopes along the cargo (exact for a field linear along it)."""
+    field = apparent_gravity_m_s2(load_case, points_m, g) - g * gravity_direction(load_case.roll_deg, load_case.pitch_deg)
+    slope = -np.cross(load_case.angular_acceleration_rad_s2, np.array([1.0, 0.0, 0.0]))
+    return _field_load_N(cradle, field, slope)
 
 
 def _bending(cradle: CradleCase, statics: TransverseStatics, field: NDArray[np.float64]) -> tuple[float, float]:
@@ -235,20 +248,52 @@ def _bending(cradle: CradleCase, statics: TransverseStatics, field: NDArray[np.f
     return float(np.max(moment)), float(np.max(moment / modulus))
 
 
-def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase, origin: MotionOrigin) -> CriteriaCaseResult:
-    """One load case on the cradle case, solved exactly and checked against the case's limits."""
+def solve_load_case(
+    case: Case, cradle: CradleCase, load_case: CriteriaLoadCase, origin: MotionOrigin, factors: tuple[float, float] | None = None
+) -> CriteriaCaseResult:
+    """One load case on the cradle case, solved exactly and checked against the case's limits.
+
+    ``factors``: ``(gamma_G, gamma_E)``, the load factors of an LRFD combination: the permanent part of the apparent
+    gravity (upright gravity ``(0, 0, -g)``) times ``gamma_G``, the environmental part (the rest: the angles' gravity
+    components and the motion's acceleration) times ``gamma_E``; the lashings' pretensions are not factored. None: the
+    unfactored case. Either way the angle's gravity goes through the solver's heel and trim and the rest of the field is
+    applied as consistent nodal loads, so that factors of one give the unfactored case exactly.
+    """
     g = case.model.gravity_m_per_s2
     points = cargo_axis_points_m(case, cradle.cargo.node_x_m, origin)
+    field = apparent_gravity_m_s2(load_case, points, g)
+    if factors is None:
+        load = _motion_load_N(cradle, load_case, points, g)
+    else:
+        gamma_g, gamma_e = factors
+        upright = np.array([0.0, 0.0, -g])
+        slope = -np.cross(load_case.angular_acceleration_rad_s2, np.array([1.0, 0.0, 0.0]))
+        field = gamma_g * upright + gamma_e * (field - upright)
+        load = _field_load_N(cradle, field - g * gravity_direction(load_case.roll_deg, load_case.pitch_deg), gamma_e * slope)
     problem = CradleProblem(
         cradle.cargo,
         cradle.pad_pairs,
         cradle.stoppers,
         cradle.lashings,
         spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
-        load_N=cradle.load_N + _motion_load_N(cradle, load_case, points, g),
+        load_N=cradle.load_N + load,
     )
     statics = solve_transverse_statics(problem, load_case.roll_deg, load_case.pitch_deg, gravity_m_per_s2=g)
-    field = apparent_gravity_m_s2(load_case, points, g)
+    return _checked(case, cradle, load_case, origin, statics, field, factors)
+
+
+def _checked(
+    case: Case,
+    cradle: CradleCase,
+    load_case: CriteriaLoadCase,
+    origin: MotionOrigin,
+    statics: TransverseStatics,
+    field: NDArray[np.float64],
+    factors: tuple[float, float] | None,
+) -> CriteriaCaseResult:
+    """The solved case's forces, moments and utilisations; ``field`` the (factored) apparent gravity at the cargo's nodes
+    [m/s^2]."""
+    g = case.model.gravity_m_per_s2
     moment, stress = _bending(cradle, statics, field)
     hold = cradle.spring_diagonal_N_per_m * statics.displacement
     axial = float(-np.sum(hold[4 * cradle.cargo.node_count :]))
@@ -257,12 +302,16 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
     beam = cradle.cargo.vertical
     weight = beam.element_mass_per_length_kg_per_m * np.diff(beam.node_x_m)
     cog = cargo_axis_points_m(case, np.array([float(weight @ beam.element_mid_x_m / weight.sum())]), origin)[0]
+    at_cog = apparent_gravity_m_s2(load_case, cog, g)
+    if factors is not None:
+        upright = np.array([0.0, 0.0, -g])
+        at_cog = factors[0] * upright + factors[1] * (at_cog - upright)
     lim = case.limits
     saddles = np.array([cradle.cargo.node_at(float(x)) for x in cradle.saddle_x_m], dtype=np.intp)
     return CriteriaCaseResult(
         load_case=load_case,
         statics=statics,
-        apparent_gravity_cog_m_s2=apparent_gravity_m_s2(load_case, cog, g),
+        apparent_gravity_cog_m_s2=at_cog,
         saddle_vertical_force_N=force,
         axial_hold_force_N=axial,
         bending_moment_Nm=moment,
@@ -273,6 +322,32 @@ def solve_load_case(case: Case, cradle: CradleCase, load_case: CriteriaLoadCase,
         rise_limit_m=SMALL_DISPLACEMENT_FRACTION * float(np.min(cradle.tube_radius_m)),
         residual_limit_N=RESIDUAL_FRACTION * float(weight.sum()) * g,
     )
+
+
+def cargo_mass_kg(cradle: CradleCase) -> float:
+    """The analysed cargo unit's mass [kg]."""
+    beam = cradle.cargo.vertical
+    return float(np.sum(beam.element_mass_per_length_kg_per_m * np.diff(beam.node_x_m)))
+
+
+def with_design(case: Case, cradle: CradleCase, item: CriteriaCaseResult, origin: MotionOrigin) -> CriteriaCaseResult:
+    """``item`` with its checks in the case's design format (LRFD: solved again under each ULS combination) and its
+    friction credit (docs/criteria.md)."""
+    settings = case.criteria.design
+    converged = StaticsOutcome.CONVERGED.value
+    if settings.format is DesignFormat.LRFD:
+        solved = [(c, solve_load_case(case, cradle, item.load_case, origin, (c.gamma_G, c.gamma_E))) for c in LRFD_COMBINATIONS]
+    else:
+        solved = [(UNFACTORED, item)]
+    effects = [(c, r.saddle_force_N, r.bending_stress_Pa, r.outcome == converged) for c, r in solved]
+    friction = friction_credit(
+        case.criteria.friction.contact,
+        case.friction_coefficients(),
+        cargo_mass_kg(cradle),
+        float(item.apparent_gravity_cog_m_s2[2]),
+        item.axial_hold_force_N,
+    )
+    return replace(item, design=design_checks(settings, case.limits.max_saddle_force_N, effects), friction=friction)
 
 
 def criteria_check(case: Case, cradle: CradleCase | None = None) -> CriteriaResult:
@@ -287,7 +362,7 @@ def criteria_check(case: Case, cradle: CradleCase | None = None) -> CriteriaResu
     criteria = select_motion_criteria(case.vessel.length_m, case.vessel.breadth_m)
     origin = motion_origin(case)
     g = case.model.gravity_m_per_s2
-    cases = tuple(solve_load_case(case, cradle, lc, origin) for lc in default_load_cases(criteria, g))
+    cases = tuple(with_design(case, cradle, solve_load_case(case, cradle, lc, origin), origin) for lc in default_load_cases(criteria, g))
     return CriteriaResult(
         criteria=criteria,
         origin=origin,

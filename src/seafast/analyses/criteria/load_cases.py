@@ -40,6 +40,7 @@ class Motion(StrEnum):
 
     ROLL = "roll"
     PITCH = "pitch"
+    HEAVE = "heave"
 
 
 @dataclass(frozen=True)
@@ -58,6 +59,14 @@ class CriteriaLoadCase:
         The motion's full-cycle period [s].
     heave_acceleration_m_s2
         Heave acceleration [m/s^2], + up.
+    origin_acceleration_m_s2
+        The motion origin's acceleration (x, y, z), ship frame [m/s^2]; None: ``(0, 0, heave_acceleration_m_s2)``
+        (the default criteria). The motion-analysis cases give all three.
+    rotation_acceleration_rad_s2
+        The angular acceleration as a right-handed rotation vector, ship frame [rad/s^2]; None: the extreme of the
+        angle over its period (``(2 pi / T)^2 (-phi, theta, 0)``).
+    wave_heading_deg
+        The sea's heading [deg]; None: 90 for roll, 180 for pitch (the seas the default criteria stand for).
     """
 
     name: str
@@ -66,15 +75,29 @@ class CriteriaLoadCase:
     pitch_deg: float
     period_s: float
     heave_acceleration_m_s2: float
+    origin_acceleration_m_s2: tuple[float, float, float] | None = None
+    rotation_acceleration_rad_s2: tuple[float, float, float] | None = None
+    wave_heading_deg: float | None = None
 
     @property
     def heading_deg(self) -> float:
-        """The wave heading the motion stands for: 90 (beam seas) for roll, 180 (head seas) for pitch [deg]."""
+        """The wave heading [deg]: the case's own, else 90 (beam seas) for roll, 180 (head seas) for pitch."""
+        if self.wave_heading_deg is not None:
+            return self.wave_heading_deg
         return 90.0 if self.motion is Motion.ROLL else 180.0
 
     @property
+    def linear_acceleration_m_s2(self) -> NDArray[np.float64]:
+        """The motion origin's acceleration (x, y, z), ship frame [m/s^2]."""
+        if self.origin_acceleration_m_s2 is not None:
+            return np.array(self.origin_acceleration_m_s2, dtype=float)
+        return np.array([0.0, 0.0, self.heave_acceleration_m_s2])
+
+    @property
     def angular_acceleration_rad_s2(self) -> NDArray[np.float64]:
-        """``alpha = (2 pi / T)^2 (-phi, theta, 0)`` in the ship frame [rad/s^2] (module docstring)."""
+        """``alpha = (2 pi / T)^2 (-phi, theta, 0)`` in the ship frame [rad/s^2] (module docstring), or the case's own."""
+        if self.rotation_acceleration_rad_s2 is not None:
+            return np.array(self.rotation_acceleration_rad_s2, dtype=float)
         w2 = (2.0 * math.pi / self.period_s) ** 2
         return w2 * np.array([-math.radians(self.roll_deg), math.radians(self.pitch_deg), 0.0])
 
@@ -96,7 +119,9 @@ def default_load_cases(criteria: MotionCriteria, gravity_m_per_s2: float = 9.81)
 
 
 def apparent_gravity_m_s2(load_case: CriteriaLoadCase, points_m: ArrayLike, gravity_m_per_s2: float = 9.81) -> NDArray[np.float64]:
-    """The apparent gravity ``g_app = g_ship - alpha x r - (0, 0, a_h)`` at points ``r`` from the motion origin.
+    """The apparent gravity ``g_app = g_ship - alpha x r - a_0`` at points ``r`` from the motion origin.
+
+    ``a_0`` is the origin's acceleration, ``(0, 0, a_h)`` for the default criteria.
 
     Parameters
     ----------
@@ -115,4 +140,4 @@ def apparent_gravity_m_s2(load_case: CriteriaLoadCase, points_m: ArrayLike, grav
     r = np.asarray(points_m, dtype=float)
     g_ship = gravity_m_per_s2 * gravity_direction(load_case.roll_deg, load_case.pitch_deg)
     rotation = np.cross(load_case.angular_acceleration_rad_s2, r)
-    return g_ship - rotation - np.array([0.0, 0.0, load_case.heave_acceleration_m_s2])
+    return g_ship - rotation - load_case.linear_acceleration_m_s2
