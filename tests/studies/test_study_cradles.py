@@ -14,9 +14,10 @@ from seafast.analyses.run import run_case
 from seafast.config.schema import Case
 from seafast.parallel.executor import ExecutionOptions
 from seafast.results.cradle import CRADLE_SUMMARY_COLUMNS
-from seafast.studies.assembly import CORE_COLUMNS
+from seafast.studies.assembly import CORE_COLUMNS, assemble_dataset
+from seafast.studies.limits import DesignLimits, compliance
 from seafast.studies.runner import run_study
-from seafast.studies.spec import build_grid, load_study_spec
+from seafast.studies.spec import StudyError, build_grid, load_study_spec
 
 SERIAL = ExecutionOptions(workers=1, progress=False)
 OK_WIRE_N_PER_M, STIFF_WIRE_N_PER_M = 37500.0, 1.0e10  # the base case's wires; wires stiffer than the saddles (no pads left)
@@ -151,3 +152,45 @@ def test_a_store_of_the_vertical_plane_resumes_with_the_cradles(mixed, tmp_path:
     again = run_study(grid, out, execution=SERIAL)
     assert (again.reused, again.computed) == (4, 0)
     assert not math.isnan(float(again.dataset["F_pad_N"].isel({"wave.heading_deg": 0}).max()))
+
+
+def test_cradle_limits_judge_the_points_off_head_seas(mixed):
+    """A pad-force limit between the beam sea's still-water and wave pad forces fails the point at 90 deg (its
+    margin 1 - F_pad / limit), leaves those at 180 deg as they were, and a point whose cradle solve raised never
+    complies; a limit above every pad force changes no verdict."""
+    _, run = mixed
+    ds = run.dataset
+    plain = compliance(ds, DesignLimits())
+    beam = {"wave.heading_deg": 90.0, "seafastening.lashing.stiffness_N_per_m": OK_WIRE_N_PER_M}
+    wave_pad = float(ds["F_pad_N"].sel(beam).sel(load_case="dynamic", model="nonlinear"))
+    still_pad = float(ds["F_pad_N"].sel(beam).sel(load_case="static", model="nonlinear"))
+    assert 1.1 * still_pad < wave_pad  # the wave adds to the pads' still-water force: a limit fits between
+    limit = 0.5 * (still_pad + wave_pad)
+    judged = compliance(ds, DesignLimits(max_pad_force_N=limit))
+    nl = judged.sel(model="nonlinear")
+    assert float(nl["margin_F_pad_N"].sel(beam)) == pytest.approx(1.0 - wave_pad / limit, rel=1e-12)
+    assert float(nl["margin"].sel(beam)) == pytest.approx(1.0 - wave_pad / limit, rel=1e-12)  # the smallest margin
+    assert bool(plain["complies"].sel(beam).sel(model="nonlinear")) and not bool(nl["complies"].sel(beam))
+    head = {"wave.heading_deg": 180.0}
+    xr.testing.assert_equal(judged["complies"].sel(head), plain["complies"].sel(head))
+    assert np.isnan(judged["margin_F_pad_N"].sel(head).values).all()
+    failed = {"wave.heading_deg": 90.0, "seafastening.lashing.stiffness_N_per_m": STIFF_WIRE_N_PER_M}
+    assert not judged["complies"].sel(failed).any()  # the linear row too: its cradle solve raised
+    above = compliance(ds, DesignLimits(max_pad_force_N=2.0 * wave_pad, max_transverse_slip_m=1.0, max_lashing_tension_N=1e9))
+    beam_and_head = above["complies"].sel({"seafastening.lashing.stiffness_N_per_m": OK_WIRE_N_PER_M})
+    xr.testing.assert_equal(beam_and_head, plain["complies"].sel({"seafastening.lashing.stiffness_N_per_m": OK_WIRE_N_PER_M}))
+
+
+def test_cradle_limits_in_the_study_file(tmp_path: Path):
+    text = MIXED + "limits:\n  max_pad_force_N: 6.0e+6\n  max_transverse_slip_m: 0.01\n"
+    grid = _grid(tmp_path, text)
+    limits = DesignLimits.from_spec(grid.spec.limits)
+    assert (limits.max_pad_force_N, limits.max_lashing_tension_N, limits.max_transverse_slip_m) == (6.0e6, None, 0.01)
+    attrs = assemble_dataset(grid, {}).attrs
+    assert attrs["max_pad_force_N"] == 6.0e6 and "max_lashing_tension_N" not in attrs
+    assert DesignLimits.from_attrs(attrs) == limits
+    bad = MIXED + "limits:\n  max_lashing_tension_N: -2.0e+5\n"
+    with pytest.raises(StudyError, match=r"limits\.max_lashing_tension_N = -200000\.0: .*greater than 0"):
+        _grid(tmp_path, bad)
+    with pytest.raises(StudyError, match=r"allowed: .*max_pad_force_N"):
+        _grid(tmp_path, MIXED + "limits:\n  max_pad_N: 1.0\n")

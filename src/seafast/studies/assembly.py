@@ -22,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.results.cradle import CRADLE_FIELD_LONG_NAMES, CRADLE_SUMMARY_COLUMNS
+from seafast.studies.limits import CRADLE_LIMITS
 from seafast.studies.messages import warning_kinds, warning_values
 from seafast.studies.spec import StudyError, StudyGrid, units_of_key
 from seafast.studies.store import PointRecord
@@ -179,6 +180,9 @@ def _attributes(grid: StudyGrid, records: dict[int, PointRecord]) -> dict[str, A
         "points": grid.size,
         "failed_points": int(sum(1 for r in records.values() if r.error)),
     }
+    for name, _ in CRADLE_LIMITS:  # recorded where set (a study without them keeps its attributes)
+        if getattr(grid.spec.limits, name) is not None:
+            attrs[name] = float(getattr(grid.spec.limits, name))
     if base_counts:
         attrs["saddle_count"] = int(grid.base["seafastening"]["saddle_count"])
     return attrs
