@@ -11,7 +11,18 @@ the vertical model's Rayleigh damping and deck points, loaded by the same vessel
 * ``static linear``, ``dynamic linear``: the same model with the pads and lashing wires bilateral and the side
   stoppers open, solved directly (every harmonic of the excitation, k = 0, 1).
 
-All four on the dynamic row's time grid. Nothing here prints or writes files.
+All four on the dynamic row's time grid. With ``seafastening.friction_coefficient`` set, the pads carry Coulomb
+friction (:class:`~seafast.model.pad_friction.PadFriction`, tangential stiffness equal to the normal one) in the two
+nonlinear rows (docs/transverse.md#9-in-seafast-run):
+
+* ``dynamic nonlinear``: the frictional harmonic balance
+  (:func:`seafast.solvers.cradle_friction.solve_cradle_friction_hbm`; H = ``solver.harmonics`` or
+  :data:`FRICTION_HARMONICS`, N = ``solver.time_samples`` or 8 H);
+* ``static nonlinear``: the same solver on the still-water loads (constant, H = 1): the sliders relaxed at the
+  frictionless rest at zero heel, the still-water loads and deck deflection applied from there (the friction does
+  change this state: the deck's still-water deflection moves the pads tangentially).
+
+The linear rows keep their pads bilateral and free tangentially (no friction). Nothing here prints or writes files.
 """
 
 from __future__ import annotations
@@ -27,19 +38,34 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.vessel import VesselExcitation
 from seafast.fourier import harmonics_to_time
 from seafast.model.cradle_case import CradleCase, build_cradle_case
+from seafast.model.pad_friction import PadFriction
 from seafast.model.structure import StructuralModel
 from seafast.results.cradle import CradleLayout, CradleRow, CradleRows
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
+from seafast.solvers.cradle_friction import FrictionHBMOptions, solve_cradle_friction_hbm
 from seafast.solvers.cradle_hbm import CradleResponse, cradle_response, solve_cradle_hbm
 from seafast.solvers.from_case import hbm_options
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.transverse_statics import CradleProblem
 
-__all__ = ["HEAD_SEAS_DEG", "solves_cradles", "cradle_dynamics_of_case", "case_cradle_excitation", "cradle_rows", "solve_cradle_rows"]
+__all__ = [
+    "HEAD_SEAS_DEG",
+    "FRICTION_HARMONICS",
+    "solves_cradles",
+    "cradle_dynamics_of_case",
+    "case_cradle_excitation",
+    "pad_friction_of_case",
+    "friction_options",
+    "cradle_rows",
+    "solve_cradle_rows",
+]
 
 HEAD_SEAS_DEG = 180.0
 """The heading at which a run solves the vertical plane alone (its answers today's, bit for bit)."""
+
+FRICTION_HARMONICS = 32
+"""The frictional dynamic row's harmonics H when ``solver.harmonics`` is unset (its Jacobian is dense: H of tens)."""
 
 
 def solves_cradles(case: Case) -> bool:
@@ -88,6 +114,37 @@ def case_cradle_excitation(cradle: CradleCase, excitation: HarmonicExcitation, v
     return cradle_excitation(cradle.cargo, excitation, motions, cradle.model.saddle_x_m, axis, g)
 
 
+def pad_friction_of_case(case: Case) -> PadFriction | None:
+    """The pads' friction from ``seafastening.friction_coefficient`` (None when unset: frictionless pads).
+
+    Raises
+    ------
+    ValueError
+        If the key gives different values per saddle: the pads off head seas take one coefficient.
+    """
+    mu = case.friction_coefficients()
+    if mu is None:
+        return None
+    if len(set(mu)) > 1:
+        raise ValueError(
+            f"seafastening.friction_coefficient = {list(mu)}: the cradle pads off head seas take one coefficient for every "
+            "saddle; allowed one value (or the same value per saddle)"
+        )
+    return PadFriction(float(mu[0]))
+
+
+def friction_options(case: Case) -> FrictionHBMOptions:
+    """The frictional dynamic row's settings: H = ``solver.harmonics`` or :data:`FRICTION_HARMONICS` (at most
+    (N - 2) / 2 when only ``solver.time_samples`` is set), N = ``solver.time_samples`` or 8 H (the slips' onsets
+    fall between samples)."""
+    samples = case.solver.time_samples
+    H = FRICTION_HARMONICS if case.solver.harmonics is None else int(case.solver.harmonics)
+    if case.solver.harmonics is None and samples is not None:
+        H = max(1, min(H, (int(samples) - 2) // 2))
+    N = 8 * H if samples is None else int(samples)
+    return FrictionHBMOptions(harmonics=H, time_samples=N)
+
+
 def _still_water(excitation: CradleExcitation) -> CradleExcitation:
     """The excitation's static part (k = 0): loads and deck of still water."""
     keep = np.array([[1.0], [0.0]])
@@ -130,8 +187,13 @@ def _layout(cradle: CradleCase) -> CradleLayout:
     )
 
 
-def cradle_rows(case: Case, cradle: CradleCase, dynamics: CradleDynamics, excitation: CradleExcitation) -> CradleRows:
-    """The four rows of ``dynamics`` under ``excitation`` (module docstring), on the dynamic row's time grid."""
+def cradle_rows(
+    case: Case, cradle: CradleCase, dynamics: CradleDynamics, excitation: CradleExcitation, friction: PadFriction | None = None
+) -> CradleRows:
+    """The four rows of ``dynamics`` under ``excitation`` (module docstring), on the dynamic row's time grid; the
+    nonlinear rows on frictional pads when ``friction`` is given."""
+    if friction is not None:
+        return _frictional_rows(case, cradle, dynamics, excitation, friction)
     options = hbm_options(case)
     dynamic = solve_cradle_hbm(dynamics, excitation, options)
     N = dynamic.time_s.size
@@ -145,14 +207,35 @@ def cradle_rows(case: Case, cradle: CradleCase, dynamics: CradleDynamics, excita
     return CradleRows(rows, _layout(cradle))
 
 
+def _frictional_rows(
+    case: Case, cradle: CradleCase, dynamics: CradleDynamics, excitation: CradleExcitation, friction: PadFriction
+) -> CradleRows:
+    """The four rows with the nonlinear ones on frictional pads (module docstring)."""
+    options = friction_options(case)
+    dynamic = solve_cradle_friction_hbm(dynamics, friction, excitation, options)
+    N = dynamic.cradle.time_s.size
+    still = _still_water(excitation)
+    static = solve_cradle_friction_hbm(dynamics, friction, still, replace(options, harmonics=1, time_samples=N))
+    rows = {
+        ("static", "linear"): CradleRow(_linear_row(dynamics, still, N), linear=True),
+        ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N), linear=True),
+        ("static", "nonlinear"): CradleRow(static.cradle, linear=False, friction=static),
+        ("dynamic", "nonlinear"): CradleRow(dynamic.cradle, linear=False, friction=dynamic),
+    }
+    return CradleRows(rows, _layout(cradle))
+
+
 def solve_cradle_rows(case: Case, model: StructuralModel, excitation: HarmonicExcitation, vessel: VesselExcitation | None) -> CradleRows:
-    """The four rows of the case's cargo on its cradles, loaded by the run's ``excitation`` and ``vessel``.
+    """The four rows of the case's cargo on its cradles, loaded by the run's ``excitation`` and ``vessel``; the pads
+    frictional when ``seafastening.friction_coefficient`` is set (:func:`pad_friction_of_case`).
 
     Raises
     ------
     ValueError
-        If the case's cradles cannot be built (naming the key) or the lashings hold no rest position.
+        If the case's cradles cannot be built (naming the key), the lashings hold no rest position or the friction
+        coefficient differs between saddles.
     """
+    friction = pad_friction_of_case(case)
     cradle = build_cradle_case(case, model)
     dynamics = cradle_dynamics_of_case(cradle)
-    return cradle_rows(case, cradle, dynamics, case_cradle_excitation(cradle, excitation, vessel))
+    return cradle_rows(case, cradle, dynamics, case_cradle_excitation(cradle, excitation, vessel), friction)

@@ -38,7 +38,7 @@ from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
 from seafast.results.axial import AxialCaseArrays
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
-from seafast.results.cradle import CRADLE_SUMMARY_COLUMNS, CradleRows, failed_cradle_summary
+from seafast.results.cradle import CradleRows, failed_cradle_summary
 from seafast.results.dataset import (
     LOAD_CASES,
     MODELS,
@@ -281,7 +281,7 @@ class CaseResult:
     @property
     def summary_columns(self) -> tuple[str, ...]:
         """The columns of ``summary.csv``: the source's, the cradle ones off head seas, the axial ones when the axial analysis ran."""
-        cradle = CRADLE_SUMMARY_COLUMNS if self.cradle is not None else ()
+        cradle = self.cradle.summary_column_names if self.cradle is not None else ()
         return SUMMARY_COLUMNS + cradle + (self.axial.summary_column_names if self.axial is not None else ())
 
     @functools.cached_property

@@ -97,7 +97,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"> tolerance {coupling.tolerance_m:.2e} m after {coupling.iterations} step(s)"
             )
         elif r.get("cradle_converged") is False:
-            why = f"the cargo on its cradles: {r['cradle_outcome'].replace('_', ' ')}, residual {r['cradle_residual']:.3e}"
+            why = (
+                f"the cargo on its cradles: {r['cradle_outcome'].replace('_', ' ')}, residual {r['cradle_residual']:.3e}: "
+                f"{r.get('cradle_message', '')}"
+            )
         else:
             from seafast.results.dataset import LOAD_CASES, MODELS
 

@@ -74,8 +74,11 @@ def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
 
 
 def format_cradle_table(rows: Sequence[dict[str, Any]]) -> str:
-    """The cradle columns of the summary rows (off head seas) in engineering units (MN, kN, mm)."""
-    head = ("load case", "model", "pad [MN]", "least pad [MN]", "stopper [MN]", "lashing max [kN]", "lashing min [kN]", "slip [mm]")
+    """The cradle columns of the summary rows (off head seas) in engineering units (MN, kN, mm); with pad friction its
+    utilisation (nan in a linear row) and the slip the pads' (docs/interface.md#51-summarycsv)."""
+    friction = any("pad_friction_utilisation" in r for r in rows)
+    head: tuple[str, ...] = ("load case", "model", "pad [MN]", "least pad [MN]", "stopper [MN]", "lashing max [kN]", "lashing min [kN]")
+    head += ("slip [mm]",) + (("pad friction util.",) if friction else ())
     lines = [
         (
             r["load_case"],
@@ -87,6 +90,7 @@ def format_cradle_table(rows: Sequence[dict[str, Any]]) -> str:
             f"{r['lashing_tension_min_N'] / 1e3:.1f}",
             f"{r['transverse_slip_m'] * 1e3:.2f}",
         )
+        + ((f"{r['pad_friction_utilisation']:.3f}",) if friction else ())
         for r in rows
     ]
     widths = _column_widths(head, lines)

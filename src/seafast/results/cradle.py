@@ -11,8 +11,17 @@ A run at a heading other than 180 deg also solves the 3-D cargo on its cradles, 
 * ``lashing_tension_max_N``, ``lashing_tension_min_N``: the largest and least lashing-wire tension [N] (0 without
   lashing wires);
 * ``transverse_slip_m``: the largest lateral displacement of the cargo's axis at a saddle, relative to the deck,
-  over the saddles and the period [m]: the motion across the pads' tangent at bottom dead centre. The pads are
-  frictionless in this model, so it is the motion the pads' normals allow, not a slip against friction.
+  over the saddles and the period [m]: the motion across the pads' tangent at bottom dead centre. Without friction
+  the pads are frictionless, so it is the motion the pads' normals allow, not a slip against friction.
+
+With ``seafastening.friction_coefficient`` set, the nonlinear rows are solved on frictional pads
+(:class:`~seafast.solvers.pad_tangential.FrictionalCradleResponse`) and:
+
+* ``transverse_slip_m`` of a nonlinear row is the largest slip of a pad: its slider's largest displacement from its
+  position at rest ``|w - w_rest|`` (circumferential and axial together) over the pads and the period [m];
+* ``pad_friction_utilisation`` (:data:`FRICTION_SUMMARY_COLUMNS`, after the five) is the largest ``|f| / (mu F_n)``
+  over the pads and the period [-]: 1 where a pad slips. A linear row has no friction: its slip keeps the
+  definition above and its utilisation is NaN.
 
 A linear row keeps the pads and lashing wires bilateral and the side stoppers open, as at rest (a bilateral
 stopper with a gap would pull the cargo across its gap): its pad force ``k s`` goes negative where the pad would
@@ -31,12 +40,15 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from seafast.fourier import period_fraction
+from seafast.model.pad_friction import TANGENTIAL_DIRECTIONS
 from seafast.results.dataset import LOAD_CASES, MODELS
 from seafast.results.labelled import labelled_variable
 from seafast.solvers.cradle_hbm import CradleResponse
+from seafast.solvers.pad_tangential import FrictionalCradleResponse
 
 __all__ = [
     "CRADLE_SUMMARY_COLUMNS",
+    "FRICTION_SUMMARY_COLUMNS",
     "CRADLE_FIELD_LONG_NAMES",
     "CRADLE_ERROR_OUTCOME",
     "CradleRow",
@@ -47,6 +59,9 @@ __all__ = [
 
 CRADLE_SUMMARY_COLUMNS = ("F_pad_N", "F_stopper_N", "lashing_tension_max_N", "lashing_tension_min_N", "transverse_slip_m")
 """The columns ``summary.csv`` gains off head seas, right after ``converged``."""
+
+FRICTION_SUMMARY_COLUMNS = ("pad_friction_utilisation",)
+"""The column ``summary.csv`` gains after :data:`CRADLE_SUMMARY_COLUMNS` when the pads carry friction."""
 
 SIDES = ("port", "starboard")
 
@@ -69,6 +84,8 @@ CRADLE_FIELD_LONG_NAMES: dict[str, str] = {
     "cradle_outcome": "outcome of the cradle solve (SolverOutcome value, or error)",
     "cradle_residual": "largest residual of the cradle solve relative to its scale",
     "cradle_error": "why the cradle solve raised (empty when it did not)",
+    "pad_friction_utilisation": "largest pad friction utilisation |f| / (mu F_n) (frictional pads; NaN in a linear row)",
+    "cradle_message": "the frictional cradle solve's account (why it did not converge)",
 }
 """The long name of every field a row's cradle solve adds to a summary row (what a study's ``study.nc`` labels them)."""
 
@@ -107,26 +124,38 @@ class CradleRow:
     """One (load case, model) row of the cargo on its cradles.
 
     ``response.element_force_N`` is the nonlinear law's ``k max(s, 0)`` in a nonlinear row, and ``k s`` of the
-    bilateral pads and wires (signed; the stoppers open, 0) in a linear row (module docstring).
+    bilateral pads and wires (signed; the stoppers open, 0) in a linear row (module docstring). ``friction`` is the
+    solve on frictional pads the row came from (its ``cradle`` is ``response``), None on frictionless pads.
     """
 
     response: CradleResponse
     linear: bool
+    friction: FrictionalCradleResponse | None = None
 
     @property
     def converged(self) -> bool:
         return bool(self.response.converged)
 
     def transverse_slip_m(self, layout: CradleLayout) -> float:
-        """The largest |v| of the cargo's axis at a saddle over the period [m] (relative to the deck)."""
+        """On frictional pads the largest slider displacement from rest over the pads and the period [m]; else the
+        largest |v| of the cargo's axis at a saddle over the period [m] (relative to the deck)."""
+        if self.friction is not None:
+            return float(np.max(self.friction.max_slip_m, initial=0.0))
         return float(np.max(np.abs(self.response.cargo_displacement_m[:, layout.lateral_dof]), initial=0.0))
+
+    def friction_utilisation(self) -> float:
+        """The largest ``|f| / (mu F_n)`` over the pads and the period [-]; NaN without friction."""
+        if self.friction is None:
+            return float("nan")
+        return float(np.max(self.friction.friction_utilisation, initial=0.0))
 
     def summary_fields(self, layout: CradleLayout) -> dict[str, Any]:
         """The row's :data:`CRADLE_SUMMARY_COLUMNS` and what the validity lines and the CLI read.
 
         Beside the five columns: ``pad_force_min_N`` (the least pad force [N]; negative in a linear row where a pad
         would pull), ``stopper_overclosure_m`` (how far a linear row's cargo passes a stopper it leaves open [m];
-        0 in a nonlinear row), ``cradle_converged``, ``cradle_outcome`` and ``cradle_residual``.
+        0 in a nonlinear row), ``cradle_converged``, ``cradle_outcome`` and ``cradle_residual``; on frictional pads
+        also ``pad_friction_utilisation`` and ``cradle_message`` (the solver's account, with why it did not converge).
         """
         r = self.response
         pads, stoppers, wires = r.pad_force_N.reshape(r.time_s.size, -1), r.stopper_force_N, r.lashing_tension_N
@@ -142,7 +171,16 @@ class CradleRow:
             "cradle_converged": self.converged,
             "cradle_outcome": r.outcome.value,
             "cradle_residual": float(r.residual),
-        }
+        } | ({} if self.friction is None else {"pad_friction_utilisation": self.friction_utilisation(), "cradle_message": self._message()})
+
+    def _message(self) -> str:
+        """The solver's message; on frictional pads that did not converge with a pad lifting off, why."""
+        r = self.response
+        lifts = bool(np.any(r.open_fraction[: r.pad_count] > 0.0))
+        if self.converged or not lifts:
+            return r.message
+        why = "; a pad lifts off, where the frictional harmonic balance may not converge (docs/transverse.md#8-friction-at-the-pads)"
+        return r.message + why
 
 
 @dataclass(frozen=True)
@@ -156,9 +194,22 @@ class CradleRows:
     def converged(self) -> bool:
         return all(row.converged for row in self.rows.values())
 
+    @property
+    def has_friction(self) -> bool:
+        """Whether the nonlinear rows were solved on frictional pads."""
+        return any(row.friction is not None for row in self.rows.values())
+
+    @property
+    def summary_column_names(self) -> tuple[str, ...]:
+        """The columns these rows add to ``summary.csv``: the five, and the friction's with friction."""
+        return CRADLE_SUMMARY_COLUMNS + (FRICTION_SUMMARY_COLUMNS if self.has_friction else ())
+
     def fields(self, load_case: str, model: str) -> dict[str, Any]:
-        """The summary fields of one row (:meth:`CradleRow.summary_fields`)."""
-        return self.rows[(load_case, model)].summary_fields(self.layout)
+        """The summary fields of one row (:meth:`CradleRow.summary_fields`); with friction every row has
+        ``pad_friction_utilisation`` (NaN in a row without friction)."""
+        row = self.rows[(load_case, model)]
+        extra = {"pad_friction_utilisation": row.friction_utilisation()} if self.has_friction else {}
+        return row.summary_fields(self.layout) | extra
 
     def extend_summary(self, rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
         """Summary rows with each row's cradle fields; a row is converged when its cradle solve is too."""
@@ -240,7 +291,7 @@ class CradleRows:
                 name: labelled_variable(
                     row_dims,
                     [[self.fields(lc, m)[name] for m in MODELS] for lc in LOAD_CASES],
-                    f"{description} (as in summary.csv)",
+                    f"{self._description(name, description)} (as in summary.csv)",
                     unit,
                 )
                 for name, description, unit in _SUMMARY_VARIABLES
@@ -252,11 +303,29 @@ class CradleRows:
                 row_dims, stack(lambda r: r.residual), "largest residual of the cradle solve relative to its scale", "1"
             ),
         }
-        coords = {
+        if self.has_friction:
+            data |= self._friction_variables(N)
+        coords = self._coordinates(N)
+        attrs = {"saddle_contact_angle_deg": lay.contact_angle_deg}
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def _coordinates(self, N: int) -> dict[str, xr.Variable]:
+        """The cradle variables' coordinates on ``N`` samples of the period."""
+        lay = self.layout
+        return {
             "cradle_period_fraction": labelled_variable(
                 ("cradle_period_fraction",), period_fraction(N), "time over the wave period t/T", "1"
             ),
             "pad_side": labelled_variable(("pad_side",), np.array(SIDES), "the pad's side of bottom dead centre", "1"),
+            **(
+                {
+                    "pad_direction": labelled_variable(
+                        ("pad_direction",), np.array(TANGENTIAL_DIRECTIONS), "the pad's tangential direction", "1"
+                    )
+                }
+                if self.has_friction
+                else {}
+            ),
             "cradle_tube_radius_m": labelled_variable(("saddle",), lay.tube_radius_m, "cargo outer radius at the saddle", "m"),
             "stopper_x_m": labelled_variable(("stopper",), lay.stopper_x_m, "side stopper position along the cargo", "m"),
             "stopper_side": labelled_variable(("stopper",), np.array(lay.stopper_side, dtype=str), "side stopper's side", "1"),
@@ -266,8 +335,54 @@ class CradleRows:
                 ("lashing", "xyz"), lay.lashing_direction.reshape(-1, 3), "unit direction of the wire from its lug to its anchor", "1"
             ),
         }
-        attrs = {"saddle_contact_angle_deg": lay.contact_angle_deg}
-        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    def _description(self, name: str, description: str) -> str:
+        """A summary variable's long name; the slip's says what it is on frictional pads."""
+        if name != "transverse_slip_m" or not self.has_friction:
+            return description
+        return "nonlinear rows: largest pad slider displacement from rest; linear rows: " + description
+
+    def _friction_variables(self, N: int) -> dict[str, xr.Variable]:
+        """The pads' friction in ``results.nc`` (rows without friction NaN): per-pad histories and maxima, and the
+        summary's ``pad_friction_utilisation``."""
+        n_s = self.layout.saddle_x_m.size
+        nan = np.full((N, n_s, 2, 2), np.nan)
+
+        def stack(get: Any) -> NDArray[np.float64]:
+            return np.array([[get(self.rows[(lc, m)].friction) for m in MODELS] for lc in LOAD_CASES])
+
+        force = stack(lambda f: nan if f is None else f.friction_force_N.reshape(N, n_s, 2, 2))
+        slip = stack(lambda f: nan if f is None else f.slip_m.reshape(N, n_s, 2, 2))
+        use = stack(lambda f: nan[..., 0] if f is None else f.friction_utilisation.reshape(N, n_s, 2))
+        rows = ("load_case", "model")
+        history = rows + ("cradle_period_fraction", "saddle", "pad_side")
+        per_pad = rows + ("saddle", "pad_side")
+        return {
+            "pad_friction_force_N": labelled_variable(
+                history + ("pad_direction",),
+                force,
+                "pad friction force resisting the pad's motion (circumferential to port +, axial forward +); on the cargo the opposite",
+                "N",
+            ),
+            "pad_slip_m": labelled_variable(
+                history + ("pad_direction",), slip, "pad slider's displacement from its position at rest (circumferential, axial)", "m"
+            ),
+            "pad_friction_utilisation_history": labelled_variable(
+                history, use, "pad friction force over its limit |f| / (mu F_n) (1 in slip, 0 where the pad is open)", "1"
+            ),
+            "pad_friction_utilisation_max": labelled_variable(
+                per_pad, use.max(axis=2), "largest friction utilisation of the pad over the period", "1"
+            ),
+            "pad_slip_max_m": labelled_variable(
+                per_pad, np.hypot(slip[..., 0], slip[..., 1]).max(axis=2), "largest slider displacement of the pad from rest", "m"
+            ),
+            "pad_friction_utilisation": labelled_variable(
+                rows,
+                [[self.rows[(lc, m)].friction_utilisation() for m in MODELS] for lc in LOAD_CASES],
+                "largest pad friction utilisation (as in summary.csv; NaN without friction)",
+                "1",
+            ),
+        }
 
 
 def failed_cradle_summary(rows: list[dict[str, Any]], reason: str) -> list[dict[str, Any]]:

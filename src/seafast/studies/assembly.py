@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seafast.results.cradle import CRADLE_FIELD_LONG_NAMES, CRADLE_SUMMARY_COLUMNS
+from seafast.results.cradle import CRADLE_FIELD_LONG_NAMES, CRADLE_SUMMARY_COLUMNS, FRICTION_SUMMARY_COLUMNS
 from seafast.studies.limits import CRADLE_LIMITS
 from seafast.studies.messages import warning_kinds, warning_values
 from seafast.studies.spec import StudyError, StudyGrid, units_of_key
@@ -96,13 +96,15 @@ def _labels(records: Iterable[PointRecord], key: str, canonical: tuple[str, ...]
 
 
 def _cradle_columns(records: Iterable[PointRecord]) -> tuple[str, ...]:
-    """The cargo-on-its-cradles columns when some row has them (a point off head seas), else none (head seas)."""
-    found = any(k in row for r in records for row in r.rows for k in CRADLE_SUMMARY_COLUMNS)
-    return CRADLE_SUMMARY_COLUMNS if found else ()
+    """The cargo-on-its-cradles columns when some row has them (a point off head seas), else none (head seas); with
+    frictional pads the friction's after them, as in ``summary.csv``."""
+    rows = [row for r in records for row in r.rows]
+    cradle = CRADLE_SUMMARY_COLUMNS if any(k in row for row in rows for k in CRADLE_SUMMARY_COLUMNS) else ()
+    return cradle + (FRICTION_SUMMARY_COLUMNS if any(k in row for row in rows for k in FRICTION_SUMMARY_COLUMNS) else ())
 
 
 def _extra_keys(records: Iterable[PointRecord]) -> list[str]:
-    core = {*CORE_COLUMNS, *CRADLE_SUMMARY_COLUMNS, WARNINGS_COLUMN}
+    core = {*CORE_COLUMNS, *CRADLE_SUMMARY_COLUMNS, *FRICTION_SUMMARY_COLUMNS, WARNINGS_COLUMN}
     extras: list[str] = []
     for r in records:
         for row in r.rows:
