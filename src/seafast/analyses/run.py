@@ -38,7 +38,7 @@ from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
 from seafast.results.axial import AxialCaseArrays
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
-from seafast.results.cradle import CradleRows
+from seafast.results.cradle import CradleRows, failed_cradle_summary
 from seafast.results.dataset import (
     LOAD_CASES,
     MODELS,
@@ -390,10 +390,13 @@ def run_case(
 
 
 def evaluate_summary(case: Case) -> list[dict[str, Any]]:
-    """The summary rows of one case, what a study records per point: ``run_case(case, cradles=False).summary``.
-
-    The rows are read from the solution's harmonics; no time series or Dataset is formed (unless a
-    reference method or the axial analysis needs them). The cargo on its cradles is not solved: a study
-    records the vertical plane at every heading (docs/transverse.md#10-what-is-not-yet-in).
-    """
-    return run_case(case, cradles=False).summary
+    """What a study records per point: ``run_case(case).summary`` (off head seas with the cargo on its cradles; a
+    cradle solve that raises keeps the vertical plane, not converged, with the reason: ``failed_cradle_summary``)."""
+    result = run_case(case, cradles=False)
+    if not solves_cradles(case) or result.vessel is None:
+        return result.summary
+    try:
+        cradle = solve_cradle_rows(case, result.model, result.excitation, result.vessel)
+    except (ValueError, ArithmeticError) as exc:  # the cradles cannot be built or held: recorded, the study goes on
+        return failed_cradle_summary(result.summary, f"the cargo on its cradles: {exc}")
+    return replace(result, cradle=cradle).summary

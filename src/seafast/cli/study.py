@@ -135,7 +135,7 @@ def cmd_study(args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         print(f"seafast: interrupted; finished points are kept in {out}; rerun the same command to resume", file=sys.stderr)
         return EXIT_INTERRUPTED
-    limits = DesignLimits(spec.limits.max_saddle_force_N, spec.limits.max_bending_stress_Pa)
+    limits = DesignLimits.from_spec(spec.limits)
     comp_rows = compliance_rows(run.dataset, limits)
     ranking = rank_compliant(run.dataset, limits)
     keys = list(grid.keys)
@@ -167,7 +167,9 @@ def cmd_study(args: argparse.Namespace) -> int:
         compliant = sum(1 for r in comp_rows if r.get("complies_nonlinear"))
         print(
             f"study {spec.name}: {compliant} of {len(comp_rows)} points comply with F <= {limits.max_saddle_force_N / 1e6:g} MN "
-            f"and sigma_b <= {limits.max_bending_stress_Pa / 1e6:g} MPa (nonlinear model, total response); "
+            f"and sigma_b <= {limits.max_bending_stress_Pa / 1e6:g} MPa"
+            + "".join(f", {column} <= {value:g}" for column, value in limits.cradle_limits().items())
+            + " (nonlinear model, total response); "
             f"linear model: {sum(1 for r in comp_rows if r.get('complies_linear'))}"
         )
         print("compliant arrangements, fewest saddles first, then largest margin:")

@@ -46,7 +46,16 @@ from seafast.results.labelled import labelled_variable
 from seafast.solvers.cradle_hbm import CradleResponse
 from seafast.solvers.pad_tangential import FrictionalCradleResponse
 
-__all__ = ["CRADLE_SUMMARY_COLUMNS", "FRICTION_SUMMARY_COLUMNS", "CradleRow", "CradleLayout", "CradleRows"]
+__all__ = [
+    "CRADLE_SUMMARY_COLUMNS",
+    "FRICTION_SUMMARY_COLUMNS",
+    "CRADLE_FIELD_LONG_NAMES",
+    "CRADLE_ERROR_OUTCOME",
+    "CradleRow",
+    "CradleLayout",
+    "CradleRows",
+    "failed_cradle_summary",
+]
 
 CRADLE_SUMMARY_COLUMNS = ("F_pad_N", "F_stopper_N", "lashing_tension_max_N", "lashing_tension_min_N", "transverse_slip_m")
 """The columns ``summary.csv`` gains off head seas, right after ``converged``."""
@@ -63,6 +72,22 @@ _SUMMARY_VARIABLES = (
     ("lashing_tension_min_N", "least lashing-wire tension", "N"),
     ("transverse_slip_m", "largest lateral displacement of the cargo's axis at a saddle relative to the deck", "m"),
 )
+
+CRADLE_ERROR_OUTCOME = "error"
+"""``cradle_outcome`` of a row whose cradle solve raised (the reason in ``cradle_error``; :func:`failed_cradle_summary`)."""
+
+CRADLE_FIELD_LONG_NAMES: dict[str, str] = {
+    **{name: description for name, description, _ in _SUMMARY_VARIABLES},
+    "pad_force_min_N": "least cradle pad force (negative in a linear row where a pad would pull)",
+    "stopper_overclosure_m": "how far a linear row's cargo passes a side stopper it leaves open",
+    "cradle_converged": "the cargo's solve on its cradles converged",
+    "cradle_outcome": "outcome of the cradle solve (SolverOutcome value, or error)",
+    "cradle_residual": "largest residual of the cradle solve relative to its scale",
+    "cradle_error": "why the cradle solve raised (empty when it did not)",
+    "pad_friction_utilisation": "largest pad friction utilisation |f| / (mu F_n) (frictional pads; NaN in a linear row)",
+    "cradle_message": "the frictional cradle solve's account (why it did not converge)",
+}
+"""The long name of every field a row's cradle solve adds to a summary row (what a study's ``study.nc`` labels them)."""
 
 
 @dataclass(frozen=True)
@@ -358,3 +383,14 @@ class CradleRows:
                 "1",
             ),
         }
+
+
+def failed_cradle_summary(rows: list[dict[str, Any]], reason: str) -> list[dict[str, Any]]:
+    """Summary rows whose cradle solve raised: the vertical plane kept, the cradle's maxima unknown (None).
+
+    Each row gains the fields :meth:`CradleRow.summary_fields` gives (numbers None), ``cradle_converged`` and
+    ``converged`` false, ``cradle_outcome`` :data:`CRADLE_ERROR_OUTCOME` and ``cradle_error`` the ``reason``.
+    """
+    unknown = dict.fromkeys((*CRADLE_SUMMARY_COLUMNS, "pad_force_min_N", "stopper_overclosure_m"))
+    failed = {**unknown, "cradle_converged": False, "cradle_outcome": CRADLE_ERROR_OUTCOME, "cradle_residual": None}
+    return [{**row, **failed, "cradle_error": reason, "converged": False} for row in rows]

@@ -21,6 +21,8 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from seafast.results.cradle import CRADLE_FIELD_LONG_NAMES, CRADLE_SUMMARY_COLUMNS, FRICTION_SUMMARY_COLUMNS
+from seafast.studies.limits import CRADLE_LIMITS
 from seafast.studies.messages import warning_kinds, warning_values
 from seafast.studies.spec import StudyError, StudyGrid, units_of_key
 from seafast.studies.store import PointRecord
@@ -68,6 +70,7 @@ _LONG_NAMES: dict[str, str] = {
     "error": "error text of a point whose evaluation failed (empty when it succeeded)",
     "eval_seconds": "wall time to evaluate the point",
     "warning_flag": "typed warning raised by the row's solution or model (one per warning kind, coordinate warning)",
+    **CRADLE_FIELD_LONG_NAMES,
 }
 WARNINGS_COLUMN = "warnings"
 """The column of ``study.csv`` (and the row key) holding a row's typed warnings."""
@@ -92,8 +95,16 @@ def _labels(records: Iterable[PointRecord], key: str, canonical: tuple[str, ...]
     return [c for c in canonical if c in found] + [v for v in found if v not in canonical]
 
 
+def _cradle_columns(records: Iterable[PointRecord]) -> tuple[str, ...]:
+    """The cargo-on-its-cradles columns when some row has them (a point off head seas), else none (head seas); with
+    frictional pads the friction's after them, as in ``summary.csv``."""
+    rows = [row for r in records for row in r.rows]
+    cradle = CRADLE_SUMMARY_COLUMNS if any(k in row for row in rows for k in CRADLE_SUMMARY_COLUMNS) else ()
+    return cradle + (FRICTION_SUMMARY_COLUMNS if any(k in row for row in rows for k in FRICTION_SUMMARY_COLUMNS) else ())
+
+
 def _extra_keys(records: Iterable[PointRecord]) -> list[str]:
-    core = {*CORE_COLUMNS, WARNINGS_COLUMN}
+    core = {*CORE_COLUMNS, *CRADLE_SUMMARY_COLUMNS, *FRICTION_SUMMARY_COLUMNS, WARNINGS_COLUMN}
     extras: list[str] = []
     for r in records:
         for row in r.rows:
@@ -171,6 +182,9 @@ def _attributes(grid: StudyGrid, records: dict[int, PointRecord]) -> dict[str, A
         "points": grid.size,
         "failed_points": int(sum(1 for r in records.values() if r.error)),
     }
+    for name, _ in CRADLE_LIMITS:  # recorded where set (a study without them keeps its attributes)
+        if getattr(grid.spec.limits, name) is not None:
+            attrs[name] = float(getattr(grid.spec.limits, name))
     if base_counts:
         attrs["saddle_count"] = int(grid.base["seafastening"]["saddle_count"])
     return attrs
@@ -206,7 +220,7 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
     ]
     text_extras = [k for k in extras if k not in numeric_extras]
     n, nl, nm = grid.size, len(load_cases), len(models)
-    floats = {k: np.full((n, nl, nm), np.nan) for k in (*_FLOAT_RESULTS, *numeric_extras)}
+    floats = {k: np.full((n, nl, nm), np.nan) for k in (*_FLOAT_RESULTS, *_cradle_columns(values), *numeric_extras)}
     bools = {k: np.zeros((n, nl, nm), dtype=bool) for k in _BOOL_RESULTS}
     texts = {k: np.full((n, nl, nm), "", dtype=object) for k in text_extras}
     kinds = warning_kinds(values)
@@ -237,7 +251,7 @@ def assemble_dataset(grid: StudyGrid, records: dict[int, PointRecord]) -> xr.Dat
     for k, a in bools.items():
         data_vars[k] = (dims, a.reshape(shape), {"units": "1", "long_name": _LONG_NAMES[k]})
     for k, a in texts.items():
-        data_vars[k] = (dims, a.reshape(shape).astype(str), {"units": "1", "long_name": k})
+        data_vars[k] = (dims, a.reshape(shape).astype(str), {"units": "1", "long_name": _LONG_NAMES.get(k, k)})
     flags = _warning_flags(records, (n, nl, nm), lc_index, m_index, kinds).reshape((*shape, len(kinds)))
     data_vars["warning_flag"] = ((*dims, "warning"), flags, {"units": "1", "long_name": _LONG_NAMES["warning_flag"]})
     data_vars["error"] = (grid.keys, error.reshape(grid.shape).astype(str), {"units": "1", "long_name": _LONG_NAMES["error"]})
@@ -268,7 +282,8 @@ def study_rows(grid: StudyGrid, records: dict[int, PointRecord]) -> tuple[list[s
     models = _labels(values, "model", MODELS)
     extras = _extra_keys(values)
     derived = list(grid.spec.derived)
-    header = [*_axis_columns(grid), *CORE_COLUMNS, *extras, *derived, WARNINGS_COLUMN, "error"]
+    cradle = _cradle_columns(values)
+    header = [*_axis_columns(grid), *CORE_COLUMNS, *cradle, *extras, *derived, WARNINGS_COLUMN, "error"]
     derived_values = _derived_values(grid)
     rows: list[list[Any]] = []
     for index in range(grid.size):
@@ -282,7 +297,7 @@ def study_rows(grid: StudyGrid, records: dict[int, PointRecord]) -> tuple[list[s
                 row = by_label.get((lc, m), {})
                 cells: list[Any] = [point[k] for k in grid.keys]
                 cells += [lc, m]
-                cells += [_csv_value(row.get(k)) for k in CORE_COLUMNS[2:]]
+                cells += [_csv_value(row.get(k)) for k in (*CORE_COLUMNS[2:], *cradle)]
                 cells += [_csv_value(row.get(k)) for k in extras]
                 cells += dvals
                 cells.append(";".join(warning_values(row.get(WARNINGS_COLUMN))))

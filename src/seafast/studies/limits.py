@@ -7,6 +7,12 @@ made with the nonlinear model; the linear model's verdict is reported alongside.
 
 Compliant arrangements are ranked by fewest saddles first, then by the larger margin, where the
 margin is the smaller of the two relative margins ``1 - F / F_max`` and ``1 - sigma_b / sigma_max``.
+
+Optional limits on the cargo on its cradles (:data:`CRADLE_LIMITS`: the largest pad force, lashing-wire
+tension and lateral displacement at a saddle) are judged the same way where a point's cradles were solved
+(off head seas): each one set adds its condition and its relative margin. Where no cradle was solved (head
+seas: the columns NaN and ``cradle_converged`` unknown) they do not apply; where the cradle solve raised
+(``cradle_converged`` false, the columns NaN) the point does not comply.
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ import xarray as xr
 
 __all__ = [
     "DesignLimits",
+    "CRADLE_LIMITS",
     "SADDLE_COUNT_KEY",
     "compliance",
     "compliance_rows",
@@ -36,6 +43,13 @@ __all__ = [
 
 SADDLE_COUNT_KEY = "seafastening.saddle_count"
 
+CRADLE_LIMITS: tuple[tuple[str, str], ...] = (
+    ("max_pad_force_N", "F_pad_N"),
+    ("max_lashing_tension_N", "lashing_tension_max_N"),
+    ("max_transverse_slip_m", "transverse_slip_m"),
+)
+"""Each optional cradle limit (:class:`DesignLimits` attribute, ``limits`` key of a study) and the study column it bounds."""
+
 
 @dataclass(frozen=True)
 class DesignLimits:
@@ -47,15 +61,32 @@ class DesignLimits:
         Largest allowed saddle force F_max [N] (source: 7 MN).
     max_bending_stress_Pa : float
         Largest allowed cargo bending stress sigma_max [Pa] (source: 20 MPa, about 10 % of yield).
+    max_pad_force_N, max_lashing_tension_N, max_transverse_slip_m : float or None
+        Largest allowed cradle pad force [N], lashing-wire tension [N] and lateral displacement of the cargo at a
+        saddle [m], judged off head seas (:data:`CRADLE_LIMITS`); None: not checked.
     """
 
     max_saddle_force_N: float = 7.0e6
     max_bending_stress_Pa: float = 20.0e6
+    max_pad_force_N: float | None = None
+    max_lashing_tension_N: float | None = None
+    max_transverse_slip_m: float | None = None
 
     @staticmethod
     def from_attrs(attrs: Mapping[str, Any]) -> DesignLimits:
-        """The limits recorded in a study dataset's attributes (defaults where absent)."""
-        return DesignLimits(float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6)))
+        """The limits recorded in a study dataset's attributes (defaults where absent, cradle limits None)."""
+        cradle = {name: float(attrs[name]) for name, _ in CRADLE_LIMITS if name in attrs}
+        return DesignLimits(float(attrs.get("max_saddle_force_N", 7.0e6)), float(attrs.get("max_bending_stress_Pa", 20.0e6)), **cradle)
+
+    @staticmethod
+    def from_spec(limits: Any) -> DesignLimits:
+        """The limits of a study file's ``limits`` section (:class:`~seafast.studies.spec.LimitsSpec`)."""
+        cradle = {name: getattr(limits, name) for name, _ in CRADLE_LIMITS}
+        return DesignLimits(limits.max_saddle_force_N, limits.max_bending_stress_Pa, **cradle)
+
+    def cradle_limits(self) -> dict[str, float]:
+        """The cradle limits that are set: study column -> its largest allowed value."""
+        return {column: float(v) for name, column in CRADLE_LIMITS if (v := getattr(self, name)) is not None}
 
 
 def _axis_keys(ds: xr.Dataset) -> list[str]:
@@ -98,6 +129,10 @@ def compliance(ds: xr.Dataset, limits: DesignLimits | None = None) -> xr.Dataset
     converged = total["converged"].astype(bool) if "converged" in total else xr.ones_like(force, dtype=bool)
     solved = converged | (total["model"] != "nonlinear")
     within = (force <= limits.max_saddle_force_N) & (stress <= limits.max_bending_stress_Pa)
+    cradle_margins = _cradle_margins(total, limits)
+    for column, cradle_margin in cradle_margins.items():
+        within = within & _cradle_within(total, column, cradle_margin)
+        margin = xr.where(cradle_margin < margin, cradle_margin, margin)  # NaN (no cradle solved): not a margin
     complies = within & evaluated & solved
     contact = total["contact_preserved"].astype(bool) if "contact_preserved" in total else xr.zeros_like(force, dtype=bool)
     out = xr.Dataset(
@@ -110,16 +145,29 @@ def compliance(ds: xr.Dataset, limits: DesignLimits | None = None) -> xr.Dataset
             "complies": complies.assign_attrs(units="1", long_name="F <= F_max and sigma_b <= sigma_max"),
             "converged": converged.assign_attrs(units="1", long_name="solver converged"),
             "contact_preserved": contact.assign_attrs(units="1", long_name="contact preserved at every saddle"),
+            **{f"margin_{c}": m.assign_attrs(units="1", long_name=f"1 - {c} / its limit") for c, m in cradle_margins.items()},
         }
     )
     out.attrs.update(
         study=ds.attrs.get("study", ""),
         max_saddle_force_N=limits.max_saddle_force_N,
         max_bending_stress_Pa=limits.max_bending_stress_Pa,
+        **{name: getattr(limits, name) for name, _ in CRADLE_LIMITS if getattr(limits, name) is not None},
     )
     if "saddle_count" in ds.attrs:
         out.attrs["saddle_count"] = ds.attrs["saddle_count"]
     return out.drop_vars("load_case", errors="ignore")
+
+
+def _cradle_margins(total: xr.Dataset, limits: DesignLimits) -> dict[str, xr.DataArray]:
+    """``1 - value / limit`` of each cradle limit set whose column the study holds (NaN where no cradle was solved)."""
+    return {column: 1.0 - total[column] / limit for column, limit in limits.cradle_limits().items() if column in total}
+
+
+def _cradle_within(total: xr.Dataset, column: str, cradle_margin: xr.DataArray) -> xr.DataArray:
+    """Within the column's limit; where it is NaN, only if no cradle was solved (head seas), not if the solve raised."""
+    solved = total["cradle_converged"] if "cradle_converged" in total else xr.full_like(cradle_margin, np.nan)
+    return (cradle_margin >= 0.0) | (np.isnan(total[column]) & np.isnan(solved))
 
 
 COMPLIANCE_COLUMNS: tuple[str, ...] = (

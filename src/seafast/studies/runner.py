@@ -38,7 +38,7 @@ from seafast.parallel.errors import ParallelError
 from seafast.parallel.executor import ExecutionOptions, plan_batches
 from seafast.parallel.progress import progress
 from seafast.studies.assembly import assemble_dataset, write_study_csv, write_study_netcdf
-from seafast.studies.execution import Evaluator, evaluate_batches, resolve_evaluator
+from seafast.studies.execution import Evaluator, default_evaluator, evaluate_batches, resolve_evaluator
 from seafast.studies.messages import point_label, points_with_warning, replay_point_messages, warning_count_lines
 from seafast.studies.spec import StudyError, StudyGrid
 from seafast.studies.store import POINTS_FILE, PointRecord, point_store
@@ -102,6 +102,25 @@ class StudyRun:
         return self.computed / self.seconds if self.seconds > 0 else float("nan")
 
 
+HEADING_KEY = "wave.heading_deg"
+
+
+@dataclass(frozen=True)
+class _OffHeadSeas:
+    """Whether a point of ``grid`` lies off head seas: the default evaluator records its cargo on its cradles."""
+
+    grid: StudyGrid
+
+    def __call__(self, index: int) -> bool:
+        from seafast.analyses.cradle_run import HEAD_SEAS_DEG  # the numerics, imported once a store is read
+
+        try:
+            heading = self.grid.point_overrides(index).get(HEADING_KEY, self.grid.base_value(HEADING_KEY))
+            return float(heading) != HEAD_SEAS_DEG
+        except Exception:  # noqa: BLE001 - an invalid point: its record holds its error
+            return False
+
+
 def _replay(grid: StudyGrid, records: list[PointRecord]) -> None:
     """Log the captured messages of freshly computed points again, each naming its point."""
     for record in records:
@@ -150,8 +169,9 @@ def run_study(
         evaluator = SEA_STATE_EVALUATOR
     if isinstance(evaluator, str):
         resolve_evaluator(evaluator)  # fail early on a bad reference
+    records_cradles = resolve_evaluator(evaluator) is default_evaluator  # the sea-state and plug-in evaluators: no cradles
     try:
-        with point_store(out, grid) as store:
+        with point_store(out, grid, cradle_points=_OffHeadSeas(grid) if records_cradles else None) as store:
             reused = len(store.completed)
             pending = store.pending(grid.size)
             mode = execution.mode()

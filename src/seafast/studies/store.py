@@ -10,12 +10,16 @@ says how a study's points are laid out in it (:data:`STUDY_MANIFEST`, :data:`POI
 
 A record holds each row's typed ``warnings`` (their values), so a resumed study restores the
 warnings of the points computed before the interruption. A record without them (written by a
-seafast that did not store warnings) is not trusted: its point is recomputed.
+seafast that did not store warnings) is not trusted: its point is recomputed. So is a record of a
+point off head seas without the cargo on its cradles (``cradle_converged`` in its rows), written by a
+seafast whose studies recorded the vertical plane alone, when the store is told which points solve
+the cradles (``cradle_points``).
 """
 
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
@@ -113,11 +117,17 @@ def _point_fields(record: PointRecord) -> dict[str, Any]:
     return record.fields()
 
 
+CRADLE_MARKER = "cradle_converged"
+"""The row key every row of a point off head seas holds (its cradle solve's outcome, failed or not)."""
+
+
 @dataclass(frozen=True)
 class _PointDecoder:
-    """A stored line back to a point of a study of ``size`` points; None for a point stored without its warnings."""
+    """A stored line back to a point of a study of ``size`` points; None for a point stored without its warnings,
+    or (``cradle_points``) off head seas without the cargo on its cradles."""
 
     size: int
+    cradle_points: Callable[[int], bool] | None = None
 
     def __call__(self, line: dict[str, Any]) -> PointRecord | None:
         record = PointRecord.from_json(line)
@@ -125,10 +135,18 @@ class _PointDecoder:
             return None
         if not record.error and not all("warnings" in row for row in record.rows):
             return None  # stored without its warnings: recomputed
-        return record
+        if record.error or self.cradle_points is None or all(CRADLE_MARKER in row for row in record.rows):
+            return record
+        return None if self.cradle_points(record.index) else record  # the vertical plane alone: recomputed
 
 
-def point_store(directory: str | Path, grid: StoredPoints, *, fsync_interval_s: float = 1.0) -> RecordStore[PointRecord]:
+def point_store(
+    directory: str | Path,
+    grid: StoredPoints,
+    *,
+    fsync_interval_s: float = 1.0,
+    cradle_points: Callable[[int], bool] | None = None,
+) -> RecordStore[PointRecord]:
     """The resumable store of a study's points in ``directory`` (``study.json``, ``points.jsonl``).
 
     Parameters
@@ -141,6 +159,10 @@ def point_store(directory: str | Path, grid: StoredPoints, *, fsync_interval_s: 
     fsync_interval_s : float
         Least time between two ``fsync`` calls [s] (:class:`~seafast.parallel.store.RecordStore`);
         0 syncs every append.
+    cradle_points : callable, optional
+        Whether point ``index`` records the cargo on its cradles (its heading is not head seas and the
+        evaluator is the default); a stored point for which it is true but whose rows lack them is recomputed.
+        None: no such check (another evaluator).
 
     Raises
     ------
@@ -149,7 +171,7 @@ def point_store(directory: str | Path, grid: StoredPoints, *, fsync_interval_s: 
     """
     manifest = grid.manifest()
     fingerprint = grid.fingerprint()
-    layout = StoreLayout(STUDY_MANIFEST, POINTS_FILE, "study", _point_index, _point_fields, _PointDecoder(grid.size))
+    layout = StoreLayout(STUDY_MANIFEST, POINTS_FILE, "study", _point_index, _point_fields, _PointDecoder(grid.size, cradle_points))
     try:
         store = RecordStore(directory, fingerprint, manifest, layout, fsync_interval_s=fsync_interval_s)
     except ForeignStoreError as exc:
@@ -165,5 +187,9 @@ def point_store(directory: str | Path, grid: StoredPoints, *, fsync_interval_s: 
             "allowed: the same study (to resume) or an empty directory; choose another -o DIR"
         ) from None
     if store.rejected:
-        logger.info("%d point(s) in %s were stored without their warnings; they are recomputed", store.rejected, store.path)
+        logger.info(
+            "%d point(s) in %s were stored without their warnings or, off head seas, without the cargo on its cradles; they are recomputed",
+            store.rejected,
+            store.path,
+        )
     return store

@@ -31,7 +31,8 @@ def _format_error(err: ValidationError, source: str) -> str:
         if e["type"] == "extra_forbidden":
             lines.append(
                 f"{loc}: unknown key (value {value!r}); allowed: name, description, base, set, axes, derived, limits, response "
-                "(axes: key, values, start, stop, num, scale; limits: max_saddle_force_N, max_bending_stress_Pa)"
+                "(axes: key, values, start, stop, num, scale; limits: max_saddle_force_N, max_bending_stress_Pa, max_pad_force_N, "
+                "max_lashing_tension_N, max_transverse_slip_m)"
             )
         elif e["type"] == "missing":
             lines.append(f"{loc}: required key is missing")

@@ -96,12 +96,23 @@ class AxisSpec(_Strict):
         return raw
 
 
+_OptionalLimit = Annotated[float, Field(gt=0, allow_inf_nan=False)] | None
+
+
 class LimitsSpec(_Strict):
-    """Design limits (the source's: 7 MN saddle force, 20 MPa bending stress)."""
+    """Design limits (the source's: 7 MN saddle force, 20 MPa bending stress), and optional limits on the cargo on
+    its cradles, judged at the points off head seas (null: not checked)."""
 
     max_saddle_force_N: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(7.0e6, description="Largest allowed saddle force F [N]")
     max_bending_stress_Pa: Annotated[float, Field(gt=0, allow_inf_nan=False)] = Field(
         20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]"
+    )
+    max_pad_force_N: _OptionalLimit = Field(None, description="Largest allowed cradle pad force F_pad_N [N]; null: not checked")
+    max_lashing_tension_N: _OptionalLimit = Field(
+        None, description="Largest allowed lashing-wire tension lashing_tension_max_N [N]; null: not checked"
+    )
+    max_transverse_slip_m: _OptionalLimit = Field(
+        None, description="Largest allowed lateral displacement of the cargo at a saddle transverse_slip_m [m]; null: not checked"
     )
 
 
