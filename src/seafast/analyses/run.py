@@ -360,8 +360,6 @@ def run_case(
 ) -> CaseResult:
     """Run one case: linear and nonlinear, static and dynamic (and the axial analysis when friction is set).
 
-    Off head seas the cargo on its cradles too (:mod:`seafast.analyses.cradle_run`), unless ``vessel`` is unknown.
-
     Parameters
     ----------
     case
@@ -371,7 +369,8 @@ def run_case(
     progress
         Called with a short message as each stage starts (e.g. to print it).
     cradles
-        Solve the cargo on its cradles; default: off head seas (:func:`~seafast.analyses.cradle_run.solves_cradles`).
+        Solve the cargo on its cradles (:mod:`seafast.analyses.cradle_run`; not without ``vessel``); default: off head
+        seas (:func:`~seafast.analyses.cradle_run.solves_cradles`).
     """
     say = progress or (lambda message: None)
     model = build_model(case)
