@@ -358,7 +358,7 @@ def run_case(
     progress: Callable[[str], None] | None = None,
     cradles: bool | None = None,
 ) -> CaseResult:
-    """Run one case: linear and nonlinear, static and dynamic (and the axial analysis when friction is set).
+    """Run one case: linear and nonlinear, static and dynamic (the cradles off head seas, the axial analysis with friction).
 
     Parameters
     ----------
@@ -369,8 +369,7 @@ def run_case(
     progress
         Called with a short message as each stage starts (e.g. to print it).
     cradles
-        Solve the cargo on its cradles (:mod:`seafast.analyses.cradle_run`; not without ``vessel``); default: off head
-        seas (:func:`~seafast.analyses.cradle_run.solves_cradles`).
+        Solve the cargo on its cradles (:mod:`seafast.analyses.cradle_run`; needs ``vessel``); default: :func:`~seafast.analyses.cradle_run.solves_cradles`.
     """
     say = progress or (lambda message: None)
     model = build_model(case)
