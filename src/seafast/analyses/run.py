@@ -369,7 +369,7 @@ def run_case(
     progress
         Called with a short message as each stage starts (e.g. to print it).
     cradles
-        Solve the cargo on its cradles (:mod:`seafast.analyses.cradle_run`; needs ``vessel``); default: :func:`~seafast.analyses.cradle_run.solves_cradles`.
+        Solve the cargo on its cradles (:mod:`seafast.analyses.cradle_run`; needs ``vessel``); default: off head seas.
     """
     say = progress or (lambda message: None)
     model = build_model(case)
