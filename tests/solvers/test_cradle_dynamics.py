@@ -15,9 +15,10 @@ from seafast.model.cradle import Lashing, PadPair, Side, SideStopper
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_cargo_beam
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_dynamics_of, cradle_operators
-from seafast.solvers.cradle_hbm import ADAPTIVE_HARMONICS, solve_cradle_hbm
-from seafast.solvers.cradle_march import Periodicity, march_cradle
+from seafast.solvers.cradle_hbm import ADAPTIVE_HARMONICS, MARCH_SAMPLES, solve_cradle_hbm
+from seafast.solvers.cradle_march import Periodicity, contact_correction_N, march_cradle
 from seafast.solvers.hbm import HBMOptions, solve_hbm
+from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.references.cradle_time_domain import CradleTimeDomainOptions, solve_cradle_time_domain
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
@@ -254,3 +255,34 @@ def test_the_march_of_the_correction_system_matches_the_time_domain_where_a_pad_
     np.testing.assert_allclose(force.min(axis=0), reference.min_force_N, atol=3e-3 * scale)
     np.testing.assert_allclose(np.mean(march.engagement_m <= 0.0, axis=0), reference.open_fraction, atol=2.0 / 512)
     assert np.all(march.change_history[-1] <= 1e-6) and march.change_history[0] > 1e-3  # it did move from the linear start
+
+
+def test_where_no_harmonic_balance_converges_directly_the_solve_marches_and_says_the_state_is_periodic():
+    """1.5 times the beam sea: the port pads lift a third of the period and the stoppers close; capped at H = 32 without
+    continuations no H converges directly, so the solve marches: the state repeats every wave period."""
+    dynamics = small_dynamics()
+    excitation = small_excitation(dynamics.problem.cargo, 1.5 * BEAM_SEA)
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False))
+    march = response.march
+    assert march is not None and response.periodicity is Periodicity.PERIODIC and march.period_multiple == 1
+    assert response.outcome is not SolverOutcome.NOT_PERIODIC
+    assert march.period_change <= 1e-6 and march.engagement_m.shape == (MARCH_SAMPLES, 12)
+    open_fraction = np.mean(march.engagement_m <= 0.0, axis=0)
+    assert np.all(open_fraction[[0, 2]] > 0.3) and np.all(open_fraction[4:8] < 0.99)  # strong lift-off; stoppers close
+    assert response.harmonics == 32
+
+
+def test_each_march_step_solves_its_contact_exactly():
+    """The step's complementarity problem, ``s = s_p - G c``, ``c = k max(-s, 0)``: exact from any start of the active
+    set, on a receptance of stiff elements on a soft structure (``diag(1/k) - G`` nearly singular)."""
+    rng = np.random.default_rng(3)
+    A = rng.normal(size=(8, 5))
+    k = np.full(8, 1e9)
+    G = A @ np.linalg.solve(A.T @ (k[:, None] * A) + 1e3 * np.eye(5), A.T)
+    for _ in range(20):
+        s_p = rng.normal(scale=1e-2, size=8)
+        c, open_set = contact_correction_N(G, k, s_p, rng.random(8) < 0.5)
+        s = s_p - G @ c
+        assert np.all(c >= 0.0)
+        np.testing.assert_allclose(c, k * np.maximum(-s, 0.0), atol=1e-6 * np.max(np.abs(k * s_p)))
+        assert np.array_equal(open_set, c > 0.0) or np.allclose(c[open_set ^ (c > 0.0)], 0.0)
