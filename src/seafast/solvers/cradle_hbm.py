@@ -6,6 +6,12 @@ The linear part, every element bilateral, is condensed onto the engagements harm
 where an element is open, the quasi-static exact-contact predictor as its start, the continuations as its fallback)
 solves for the engagements' harmonics. Friction at the pads is left out (docs/transverse.md#7-dynamics).
 
+Where no H converges directly, the correction system marched in time (:mod:`seafast.solvers.cradle_march`) says
+whether the steady state repeats every wave period and, if it does, starts the adaptive choice again.
+
+Size: the adaptive choice of H, its march fallback, the ladder and the stoppers' passes share one solved set
+(:class:`_SetSolution`) and its account in words; split, they would hand private state across modules.
+
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s].
 """
 
