@@ -68,6 +68,8 @@ class CradleMarch:
     ----------
     engagement_m
         Every element's engagement over the last wave period at ``t_n = n T / N`` (N, m) [m].
+    element_force_N
+        ``k max(s, 0)`` over the last wave period (N, m) [N]: exactly 0 where open or slack.
     periodicity, period_multiple
         What the steady state is (:class:`Periodicity`) and after how many wave periods it repeats (1 periodic,
         2 to 6 a subharmonic, 0 not periodic).
@@ -84,6 +86,7 @@ class CradleMarch:
     """
 
     engagement_m: NDArray[np.float64]
+    element_force_N: NDArray[np.float64]
     periodicity: Periodicity
     period_multiple: int
     periods: int
@@ -206,7 +209,7 @@ def march_cradle(
         raise ValueError(f"time_samples = {time_samples!r}: allowed an integer >= 16")
     if P < 2 * max(SUBHARMONIC_ORDERS):
         raise ValueError(f"max_periods = {max_periods!r}: allowed an integer >= {2 * max(SUBHARMONIC_ORDERS)}")
-    m = len(dynamics.problem.engagements)
+    m, k = len(dynamics.problem.engagements), dynamics.problem.element_stiffness_N_per_m
     ops = cradle_operators(dynamics, excitation, 1, np.ones(m, dtype=bool))
     s_lin = real_harmonics_to_time(ops.linear_compression_m, N)
     scale = max(float(np.max(np.abs(ops.linear_compression_m[1:]))), 1e-12)
@@ -225,10 +228,23 @@ def march_cradle(
             lags[0] = float(np.max(np.abs(kept[-1] - kept[-2]))) / scale
             history.append(float(lags[0]))
             if lags[0] <= tolerance:
-                return CradleMarch(kept[-1], Periodicity.PERIODIC, 1, periods, float(lags[0]), lags, np.array(history))
+                return CradleMarch(
+                    kept[-1], k * np.maximum(kept[-1], 0.0), Periodicity.PERIODIC, 1, periods, float(lags[0]), lags, np.array(history)
+                )
     for lag in range(2, len(kept)):
         lags[lag - 1] = float(np.max(np.abs(kept[-1] - kept[-1 - lag]))) / scale
     for lag in SUBHARMONIC_ORDERS:
         if lags[lag - 1] <= tolerance:
-            return CradleMarch(kept[-1], Periodicity.SUBHARMONIC, lag, periods, float(lags[lag - 1]), lags, np.array(history))
-    return CradleMarch(kept[-1], Periodicity.NOT_PERIODIC, 0, periods, float(lags[0]), lags, np.array(history))
+            return CradleMarch(
+                kept[-1],
+                k * np.maximum(kept[-1], 0.0),
+                Periodicity.SUBHARMONIC,
+                lag,
+                periods,
+                float(lags[lag - 1]),
+                lags,
+                np.array(history),
+            )
+    return CradleMarch(
+        kept[-1], k * np.maximum(kept[-1], 0.0), Periodicity.NOT_PERIODIC, 0, periods, float(lags[0]), lags, np.array(history)
+    )
