@@ -287,3 +287,20 @@ def test_each_march_step_solves_its_contact_exactly():
         assert np.all(c >= 0.0)
         np.testing.assert_allclose(c, k * np.maximum(-s, 0.0), atol=1e-6 * np.max(np.abs(k * s_p)))
         assert np.array_equal(open_set, c > 0.0) or np.allclose(c[open_set ^ (c > 0.0)], 0.0)
+
+
+def test_a_march_that_does_not_repeat_is_reported_as_such_and_the_solve_says_not_periodic(monkeypatch):
+    """The classification and its wiring: held to a tolerance no march meets (1e-300), the same march is NOT_PERIODIC,
+    and the harmonic balance that needed it ends with the
+    outcome NOT_PERIODIC, no ladder, the march on the response."""
+    import seafast.solvers.cradle_hbm as cradle_hbm
+
+    dynamics = small_dynamics()
+    excitation = small_excitation(dynamics.problem.cargo, 1.5 * BEAM_SEA)
+    march = march_cradle(dynamics, excitation, 256, max_periods=12, tolerance=1e-300)
+    assert march.periodicity is Periodicity.NOT_PERIODIC and march.period_multiple == 0 and march.periods == 12
+    assert march.period_change > 0.0 and march.change_history.size == 11 and np.all(np.isfinite(march.lag_change))
+    monkeypatch.setattr(cradle_hbm, "march_cradle", lambda d, e, n: march_cradle(d, e, 256, max_periods=12, tolerance=1e-300))
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False))
+    assert response.outcome is SolverOutcome.NOT_PERIODIC and not response.converged
+    assert response.periodicity is Periodicity.NOT_PERIODIC and response.march is not None and response.march.periods == 12
