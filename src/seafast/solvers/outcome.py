@@ -142,8 +142,8 @@ class HBMStart(StrEnum):
     ``GIVEN``
         A start the caller gave (``initial_compression_m``: e.g. a neighbouring solution).
     ``MARCH``
-        The periodic march of the adaptive choice of H (:mod:`seafast.solvers.hbm.harmonics`), projected on
-        the harmonics solved for.
+        The periodic march of the adaptive choice of H (:mod:`seafast.solvers.hbm.harmonics`), or of the 3-D
+        cargo's correction system (:mod:`seafast.solvers.cradle_march`), projected on the harmonics solved for.
     ``PREVIOUS_HARMONICS``
         The solution at the previous, smaller H of the adaptive refinement.
     """
