@@ -15,8 +15,10 @@ from seafast.model.cradle import Lashing, PadPair, Side, SideStopper
 from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_cargo_beam
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_dynamics_of, cradle_operators
-from seafast.solvers.cradle_hbm import ADAPTIVE_HARMONICS, solve_cradle_hbm
+from seafast.solvers.cradle_hbm import ADAPTIVE_HARMONICS, MARCH_SAMPLES, solve_cradle_hbm
+from seafast.solvers.cradle_march import Periodicity, contact_correction_N, march_cradle
 from seafast.solvers.hbm import HBMOptions, solve_hbm
+from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.references.cradle_time_domain import CradleTimeDomainOptions, solve_cradle_time_domain
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
@@ -236,3 +238,69 @@ def test_head_seas_pad_pairs_carry_todays_saddle_forces(head_seas_base_case, alp
     assert np.max(np.abs(response.pair_force_N[:, :, 0])) < 1e-7 * scale
     np.testing.assert_allclose(response.cargo_displacement_m[:, : model.cargo_dof_count], today.cargo_displacement_time_m, atol=1e-9)
     assert np.all(response.stopper_force_N == 0.0)
+
+
+def test_the_march_of_the_correction_system_matches_the_time_domain_where_a_pad_lifts(beam_sea_pair):
+    """The march (modes of the cargo on bilateral elements, the rest static; Newmark at T / 512) settles on the
+    time domain's periodic state: peaks within 0.5 %, least forces within 0.3 % of the largest, open fractions
+    within 2 samples."""
+    _, reference = beam_sea_pair
+    dynamics = small_dynamics()
+    march = march_cradle(dynamics, small_excitation(dynamics.problem.cargo, BEAM_SEA), 512)
+    assert march.periodicity is Periodicity.PERIODIC and march.period_multiple == 1
+    assert march.period_change <= 1e-6 and march.periods < 20
+    force = march.element_force_N
+    np.testing.assert_array_equal(force, dynamics.problem.element_stiffness_N_per_m * np.maximum(march.engagement_m, 0.0))
+    scale = np.max(reference.max_force_N)
+    np.testing.assert_allclose(force.max(axis=0), reference.max_force_N, rtol=5e-3, atol=5e-3 * 1e-3 * scale)
+    np.testing.assert_allclose(force.min(axis=0), reference.min_force_N, atol=3e-3 * scale)
+    np.testing.assert_allclose(np.mean(march.engagement_m <= 0.0, axis=0), reference.open_fraction, atol=2.0 / 512)
+    assert np.all(march.change_history[-1] <= 1e-6) and march.change_history[0] > 1e-3  # it did move from the linear start
+
+
+def test_where_no_harmonic_balance_converges_directly_the_solve_marches_and_says_the_state_is_periodic():
+    """1.5 times the beam sea: the port pads lift a third of the period and the stoppers close; capped at H = 32 without
+    continuations no H converges directly, so the solve marches: the state repeats every wave period."""
+    dynamics = small_dynamics()
+    excitation = small_excitation(dynamics.problem.cargo, 1.5 * BEAM_SEA)
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False))
+    march = response.march
+    assert march is not None and response.periodicity is Periodicity.PERIODIC and march.period_multiple == 1
+    assert response.outcome is not SolverOutcome.NOT_PERIODIC
+    assert march.period_change <= 1e-6 and march.engagement_m.shape == (MARCH_SAMPLES, 12)
+    open_fraction = np.mean(march.engagement_m <= 0.0, axis=0)
+    assert np.all(open_fraction[[0, 2]] > 0.3) and np.all(open_fraction[4:8] < 0.99)  # strong lift-off; stoppers close
+    assert response.harmonics == 32
+
+
+def test_each_march_step_solves_its_contact_exactly():
+    """The step's complementarity problem, ``s = s_p - G c``, ``c = k max(-s, 0)``: exact from any start of the active
+    set, on a receptance of stiff elements on a soft structure (``diag(1/k) - G`` nearly singular)."""
+    rng = np.random.default_rng(3)
+    A = rng.normal(size=(8, 5))
+    k = np.full(8, 1e9)
+    G = A @ np.linalg.solve(A.T @ (k[:, None] * A) + 1e3 * np.eye(5), A.T)
+    for _ in range(20):
+        s_p = rng.normal(scale=1e-2, size=8)
+        c, open_set = contact_correction_N(G, k, s_p, rng.random(8) < 0.5)
+        s = s_p - G @ c
+        assert np.all(c >= 0.0)
+        np.testing.assert_allclose(c, k * np.maximum(-s, 0.0), atol=1e-6 * np.max(np.abs(k * s_p)))
+        assert np.array_equal(open_set, c > 0.0) or np.allclose(c[open_set ^ (c > 0.0)], 0.0)
+
+
+def test_a_march_that_does_not_repeat_is_reported_as_such_and_the_solve_says_not_periodic(monkeypatch):
+    """The classification and its wiring: held to a tolerance no march meets (1e-300), the same march is NOT_PERIODIC,
+    and the harmonic balance that needed it ends with the
+    outcome NOT_PERIODIC, no ladder, the march on the response."""
+    import seafast.solvers.cradle_hbm as cradle_hbm
+
+    dynamics = small_dynamics()
+    excitation = small_excitation(dynamics.problem.cargo, 1.5 * BEAM_SEA)
+    march = march_cradle(dynamics, excitation, 256, max_periods=12, tolerance=1e-300)
+    assert march.periodicity is Periodicity.NOT_PERIODIC and march.period_multiple == 0 and march.periods == 12
+    assert march.period_change > 0.0 and march.change_history.size == 11 and np.all(np.isfinite(march.lag_change))
+    monkeypatch.setattr(cradle_hbm, "march_cradle", lambda d, e, n: march_cradle(d, e, 256, max_periods=12, tolerance=1e-300))
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False))
+    assert response.outcome is SolverOutcome.NOT_PERIODIC and not response.converged
+    assert response.periodicity is Periodicity.NOT_PERIODIC and response.march is not None and response.march.periods == 12

@@ -6,6 +6,12 @@ The linear part, every element bilateral, is condensed onto the engagements harm
 where an element is open, the quasi-static exact-contact predictor as its start, the continuations as its fallback)
 solves for the engagements' harmonics. Friction at the pads is left out (docs/transverse.md#7-dynamics).
 
+Where no H converges directly, the correction system marched in time (:mod:`seafast.solvers.cradle_march`) says
+whether the steady state repeats every wave period and, if it does, starts the adaptive choice again.
+
+Size: the adaptive choice of H, its march fallback, the ladder and the stoppers' passes share one solved set
+(:class:`_SetSolution`) and its account in words; split, they would hand private state across modules.
+
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s].
 """
 
@@ -26,6 +32,7 @@ from seafast.fourier import (
 )
 from seafast.model.cradle import Side
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
+from seafast.solvers.cradle_march import CradleMarch, Periodicity, march_cradle
 from seafast.solvers.hbm import CondensedOperators, HBMOptions, solve_condensed
 from seafast.solvers.hbm.fixed import QUICK_ITERATIONS, CondensedSolution
 from seafast.solvers.hbm.harmonics import force_scale_N, pad_harmonics
@@ -34,6 +41,7 @@ from seafast.solvers.outcome import HBMStart, SolverOutcome
 __all__ = [
     "ADAPTIVE_HARMONICS",
     "CradleResponse",
+    "MARCH_SAMPLES",
     "DEFAULT_CRADLE_HARMONICS",
     "cradle_response",
     "peak_forces_N",
@@ -51,6 +59,11 @@ ADAPTIVE_HARMONICS = (64, 96, 128, 192, 256, 384, 512)
 PASSED_LIMIT = 3
 """The adaptive choice's first H that may fail to converge before it falls back on the ladder (where no H converges
 directly, climbing further costs seconds a solve: thousands of samples open)."""
+
+MARCH_SAMPLES = 2048
+"""Steps per wave period of the march that starts the adaptive choice where no H converges directly (about 17
+per period of the highest ringing harmonic, 120, of the base case's beam-sea wave; 1024 with a lower modal cutoff
+showed a spurious subharmonic there)."""
 
 PEAK_SAMPLES = 4096
 """Samples per period on which the adaptive choice reads the peak forces (the harmonic series evaluated there:
@@ -86,6 +99,11 @@ class CradleResponse:
         With H chosen adaptively, the largest change of an element's peak force from the H before, over its force
         scale (:func:`~seafast.solvers.hbm.harmonics.force_scale_N`) [-]; 0 where the linear solution is exact
         (every element engaged all period); NaN at a fixed H.
+    march
+        Where the adaptive choice needed it (no H converging directly), the march of the correction system in
+        time (:class:`~seafast.solvers.cradle_march.CradleMarch`): its ``periodicity`` says whether the steady state
+        repeats every wave period (the harmonic balance then started from it), after several
+        (``SUBHARMONIC``) or not at all (``NOT_PERIODIC``; ``outcome`` then ``NOT_PERIODIC``); None otherwise.
     """
 
     outcome: SolverOutcome
@@ -101,6 +119,12 @@ class CradleResponse:
     cargo_displacement_m: NDArray[np.float64]
     pad_normal: NDArray[np.float64]
     peak_force_change: float = float("nan")
+    march: CradleMarch | None = None
+
+    @property
+    def periodicity(self) -> Periodicity | None:
+        """What the march found the steady state to be (None where no march was needed)."""
+        return None if self.march is None else self.march.periodicity
 
     @property
     def converged(self) -> bool:
@@ -234,15 +258,17 @@ class _SetSolution:
     time_samples: int
     words: str
     peak_force_change: float
+    march: CradleMarch | None = None
 
 
-def _rung(ops: CondensedOperators, options: HBMOptions, start: NDArray[np.float64] | None) -> CondensedSolution:
-    """One H of the adaptive choice: a few Newton steps from ``start`` (real layout, padded), else a direct solve."""
+def _rung(ops: CondensedOperators, options: HBMOptions, start: NDArray[np.float64] | None, quick_only: bool = False) -> CondensedSolution:
+    """One H of the adaptive choice: a few Newton steps from ``start`` (real layout, padded), else (unless
+    ``quick_only``) a direct solve."""
     H = ops.harmonics
     if start is not None:
         quick = replace(options, continuation=False, max_iterations=min(int(options.max_iterations), QUICK_ITERATIONS))
-        solution = solve_condensed(ops, quick, pad_harmonics(start, H), HBMStart.PREVIOUS_HARMONICS)
-        if solution.converged:
+        solution = solve_condensed(ops, quick, pad_harmonics(start, H), HBMStart.MARCH if quick_only else HBMStart.PREVIOUS_HARMONICS)
+        if solution.converged or quick_only:
             return solution
     return solve_condensed(ops, replace(options, continuation=False))
 
@@ -253,24 +279,28 @@ def _adaptive(
     options: HBMOptions,
     included: NDArray[np.bool_],
     start: NDArray[np.float64] | None,
+    march: CradleMarch | None = None,
 ) -> _SetSolution:
     """H chosen by the change of the peak forces: :data:`ADAPTIVE_HARMONICS` climbed, each H started from the last
     converged one, until the peaks move by at most ``options.truncation_tolerance`` of their scale.
 
     An H whose solve does not converge is passed over (a truncation among the modes the elements ring in leaves the
     semi-smooth Newton wandering; above them it converges in a few steps). None of the first :data:`PASSED_LIMIT`
-    converging, or none at all: the fixed-H ladder at the first H (its fallback chain).
+    converging, or none at all: the correction system marched in time (:func:`_after_march`); where that does not
+    settle on a solution, the fixed-H ladder at the first H (its fallback chain).
     """
     rungs = [h for h in ADAPTIVE_HARMONICS if h <= int(options.max_harmonics)] or [int(options.max_harmonics)]
     ops: CondensedOperators | None = None
     best: _SetSolution | None = None
     passed: list[int] = []
+    failed: CondensedSolution | None = None
     for h in rungs:
         ops = cradle_operators(dynamics, excitation, h, included, reuse=ops)
         rung_options = options.with_harmonics(h)
-        solution = _rung(ops, rung_options, start if best is None else best.solution.saddle_compression)
+        solution = _rung(ops, rung_options, start if best is None else best.solution.saddle_compression, march is not None)
         if not solution.converged:
             passed.append(h)
+            failed = solution
             if best is None and len(passed) == PASSED_LIMIT:
                 break  # not the truncation: the fallbacks, at the first H
             continue
@@ -289,11 +319,47 @@ def _adaptive(
             best = _SetSolution(solution, ops, N, "adaptive H: no second H within max_harmonics to compare with", float("nan"))
     if best is not None:
         return best
-    assert ops is not None
+    assert ops is not None and failed is not None
+    if march is None:
+        return _after_march(dynamics, excitation, options, included, (failed, ops, rungs))
     first = truncated_operators(ops, rungs[0])
     solution, words = _ladder(first, options.with_harmonics(rungs[0]))
     words = f"adaptive H: no H up to {passed[-1]} converged directly, the ladder at H = {rungs[0]}: {words}"
     return _SetSolution(solution, first, options.with_harmonics(rungs[0]).fixed_grid()[1], words, float("nan"))
+
+
+def _after_march(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    options: HBMOptions,
+    included: NDArray[np.bool_],
+    failed: tuple[CondensedSolution, CondensedOperators, list[int]],
+) -> _SetSolution:
+    """No H converging directly: the correction system marched from the linear solution (:func:`march_cradle`).
+
+    Periodic with the wave: the adaptive choice again, started from the march's last period (its engagements'
+    harmonics), then the ladder should that fail. A subharmonic or no periodic state: no harmonic balance at the wave's
+    period describes it; the last H's iterate returned with the outcome ``NOT_PERIODIC`` (no ladder).
+    """
+    solution, ops, rungs = failed
+    marched = march_cradle(dynamics, excitation, MARCH_SAMPLES)
+    said = f"a march of {marched.periods} wave periods ({MARCH_SAMPLES} steps each): {marched.periodicity.value}"
+    if marched.periodicity is Periodicity.PERIODIC:
+        start = time_to_real_harmonics(marched.engagement_m[:, included], min(rungs[-1], MARCH_SAMPLES // 2 - 1))
+        solved = _adaptive(dynamics, excitation, options, included, start, marched)
+        return replace(
+            solved,
+            words=f"no H up to {rungs[2 if len(rungs) > 2 else -1]} converged directly; {said}, started from it; {solved.words}",
+            march=marched,
+        )
+    if marched.periodicity is Periodicity.SUBHARMONIC:
+        said += f", repeating every {marched.period_multiple} wave periods (change {marched.period_change:.1e} over them"
+    else:
+        said += f" (change {marched.period_change:.1e} over a wave period"
+    said += ", of the largest linear engagement): no periodic response at the wave's period for the harmonic balance"
+    words = f"adaptive H: no H up to {ops.harmonics} converged directly; {said}"
+    not_periodic = replace(solution, outcome=SolverOutcome.NOT_PERIODIC)
+    return _SetSolution(not_periodic, ops, options.with_harmonics(ops.harmonics).fixed_grid()[1], words, float("nan"), marched)
 
 
 def _fixed(
@@ -372,9 +438,11 @@ def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, opt
     stopper[2 * len(problem.pad_pairs) : 2 * len(problem.pad_pairs) + len(problem.stoppers)] = True
     included = ~stopper if np.any(~stopper) else stopper
     start: NDArray[np.float64] | None = None
+    march: CradleMarch | None = None
     for _ in range(stopper.size + 1):
         if options.harmonics is None:
-            solved = _adaptive(dynamics, excitation, options, included, start)
+            solved = _adaptive(dynamics, excitation, options, included, start, march)
+            march = solved.march
         else:
             solved = _fixed(dynamics, excitation, options.with_harmonics(int(options.harmonics), options.time_samples), included, start)
         s, q = _samples(dynamics, excitation, solved, included)
@@ -383,10 +451,12 @@ def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, opt
             break
         included = included | closing
         start = time_to_real_harmonics(s[:, included], solved.ops.harmonics)
+        if march is not None:  # the march's state has every element in: the better start
+            start = time_to_real_harmonics(march.engagement_m[:, included], min(solved.ops.harmonics, MARCH_SAMPLES // 2 - 1))
     solution, H, N = solved.solution, solved.ops.harmonics, solved.time_samples
     message = (
         f"3-D cradle harmonic balance, H = {H}, N = {N}: {solution.message}; {solved.words}; "
         f"{int(np.count_nonzero(~included))} stopper(s) open all period, left out"
     )
     response = cradle_response(dynamics, s, q, excitation.omega_rad_s, (solution.outcome, solution.residual_norm, message, H))
-    return replace(response, peak_force_change=solved.peak_force_change)
+    return replace(response, peak_force_change=solved.peak_force_change, march=solved.march)

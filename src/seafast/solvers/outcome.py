@@ -33,7 +33,9 @@ class SolverOutcome(Enum):
         best iterate is returned with its residual.
     ``NOT_PERIODIC``
         Time-domain reference: no periodic steady state within ``max_periods`` (a motion that
-        wanders, is chaotic, or repeats only after several periods).
+        wanders, is chaotic, or repeats only after several periods). The 3-D cradle harmonic
+        balance: no H converged and the march of its correction system in time settled on no state
+        repeating every wave period (its ``march.periodicity`` says which: a subharmonic or none).
     ``OTHER_ORBIT``
         Time-domain reference started on a given periodic solution (e.g. the harmonic balance's):
         it reached a periodic steady state, but not the start's (the start's orbit is unstable,
@@ -140,8 +142,8 @@ class HBMStart(StrEnum):
     ``GIVEN``
         A start the caller gave (``initial_compression_m``: e.g. a neighbouring solution).
     ``MARCH``
-        The periodic march of the adaptive choice of H (:mod:`seafast.solvers.hbm.harmonics`), projected on
-        the harmonics solved for.
+        The periodic march of the adaptive choice of H (:mod:`seafast.solvers.hbm.harmonics`), or of the 3-D
+        cargo's correction system (:mod:`seafast.solvers.cradle_march`), projected on the harmonics solved for.
     ``PREVIOUS_HARMONICS``
         The solution at the previous, smaller H of the adaptive refinement.
     """
