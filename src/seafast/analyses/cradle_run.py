@@ -38,6 +38,7 @@ from seafast.excitation.cradle_loads import CradleExcitation, cradle_excitation
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.vessel import VesselExcitation
 from seafast.fourier import harmonics_to_time
+from seafast.hull.oblique import HEAD_SEAS_DEG
 from seafast.model.cradle_case import CradleCase, build_cradle_case
 from seafast.model.pad_friction import PadFriction
 from seafast.model.structure import StructuralModel
@@ -54,6 +55,7 @@ __all__ = [
     "HEAD_SEAS_DEG",
     "FRICTION_HARMONICS",
     "solves_cradles",
+    "cradle_problem",
     "cradle_dynamics_of_case",
     "case_cradle_excitation",
     "pad_friction_of_case",
@@ -61,9 +63,6 @@ __all__ = [
     "cradle_rows",
     "solve_cradle_rows",
 ]
-
-HEAD_SEAS_DEG = 180.0
-"""The heading at which a run solves the vertical plane alone (its answers today's, bit for bit)."""
 
 FRICTION_HARMONICS = 32
 """The frictional dynamic row's harmonics H when ``solver.harmonics`` is unset (its Jacobian is dense: H of tens)."""
@@ -74,6 +73,20 @@ def solves_cradles(case: Case) -> bool:
     return float(case.wave.heading_deg) != HEAD_SEAS_DEG
 
 
+def cradle_problem(cradle: CradleCase, extra_load_N: NDArray[np.float64] | None = None) -> CradleProblem:
+    """A case's cargo on its cradles as a :class:`~seafast.solvers.transverse_statics.CradleProblem`: its pads,
+    stoppers, lashing wires and axial holds, loaded by its weight and given loads plus ``extra_load_N`` (5 n,) [N, N m]."""
+    load = cradle.load_N if extra_load_N is None else cradle.load_N + extra_load_N
+    return CradleProblem(
+        cradle.cargo,
+        cradle.pad_pairs,
+        cradle.stoppers,
+        cradle.lashings,
+        spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
+        load_N=load,
+    )
+
+
 def cradle_dynamics_of_case(cradle: CradleCase) -> CradleDynamics:
     """The dynamics of a case's cradles: its problem with the vertical model's damping, deck points and gravity.
 
@@ -81,15 +94,9 @@ def cradle_dynamics_of_case(cradle: CradleCase) -> CradleDynamics:
     coupling (the lashing wires move with the deck through their engagements).
     """
     model = cradle.model
-    problem = CradleProblem(
-        cradle.cargo,
-        cradle.pad_pairs,
-        cradle.stoppers,
-        cradle.lashings,
-        spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
-        load_N=cradle.load_N,
+    return CradleDynamics(
+        cradle_problem(cradle), model.rayleigh_alpha_per_s, model.rayleigh_beta_s, model.saddle_x_m, None, model.gravity_m_per_s2
     )
-    return CradleDynamics(problem, model.rayleigh_alpha_per_s, model.rayleigh_beta_s, model.saddle_x_m, None, model.gravity_m_per_s2)
 
 
 def case_cradle_excitation(cradle: CradleCase, excitation: HarmonicExcitation, vessel: VesselExcitation | None) -> CradleExcitation:
@@ -146,12 +153,6 @@ def friction_options(case: Case) -> FrictionHBMOptions:
     return FrictionHBMOptions(harmonics=H, time_samples=N)
 
 
-def _still_water(excitation: CradleExcitation) -> CradleExcitation:
-    """The excitation's static part (k = 0): loads and deck of still water."""
-    keep = np.array([[1.0], [0.0]])
-    return replace(excitation, cargo_load_N=excitation.cargo_load_N * keep, deck_displacement=excitation.deck_displacement * keep)
-
-
 def _linear_row(dynamics: CradleDynamics, excitation: CradleExcitation, time_samples: int) -> CradleResponse:
     """The pads and lashing wires bilateral, the stoppers open: ``k s`` of each, exact at k = 0, 1 (module docstring)."""
     included = dynamics.damping_set
@@ -198,7 +199,7 @@ def cradle_rows(
     options = hbm_options(case)
     dynamic = solve_cradle_hbm(dynamics, excitation, options)
     N = dynamic.time_s.size
-    still = _still_water(excitation)
+    still = excitation.still_water()
     rows = {
         ("static", "linear"): CradleRow(_linear_row(dynamics, still, N), linear=True),
         ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N), linear=True),
@@ -213,7 +214,7 @@ def _frictional_rows(
 ) -> CradleRows:
     """The four rows with the nonlinear ones on frictional pads (module docstring)."""
     options = friction_options(case)
-    still = _still_water(excitation)
+    still = excitation.still_water()
     dynamic = solve_cradle_friction_hbm(dynamics, friction, excitation, options, rest=still)
     N = dynamic.cradle.time_s.size
     static = solve_cradle_friction_hbm(dynamics, friction, still, replace(options, harmonics=1, time_samples=N), rest=still)

@@ -19,7 +19,7 @@ vertical block exactly as today. Units: loads [N, N m], deck DOFs [m, rad].
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -68,6 +68,11 @@ class CradleExcitation:
             )
         if np.ndim(self.cargo_load_N) != 2 or np.shape(self.cargo_load_N)[0] != 2:
             raise ValueError(f"cargo_load_N: shape {np.shape(self.cargo_load_N)}; allowed (2, 5 n), rows k = 0, 1")
+
+    def still_water(self) -> CradleExcitation:
+        """The static part alone (k = 0 kept, k = 1 zero): the loads and deck deflection of still water."""
+        keep = np.array([[1.0], [0.0]])
+        return replace(self, cargo_load_N=self.cargo_load_N * keep, deck_displacement=self.deck_displacement * keep)
 
 
 def _reading_at_nodes(

@@ -281,8 +281,7 @@ def relaxed_at(tangents: PadTangents, dynamics: CradleDynamics, rest: CradleExci
     The static part alone is solved (one harmonic, exact for a constant load: the engagements do not change in time),
     and the sliders' rest is the pads' tangential position there, ``A_t q + E_t x_o``.
     """
-    keep = np.array([[1.0], [0.0]])  # k = 0 kept, k = 1 removed
-    still = replace(rest, cargo_load_N=rest.cargo_load_N * keep, deck_displacement=rest.deck_displacement * keep)
+    still = rest.still_water()
     frictionless = solve_cradle_hbm(dynamics, still, HBMOptions(harmonics=1, time_samples=4))
     if not frictionless.converged:
         raise ValueError(

@@ -18,11 +18,11 @@ import scipy.linalg
 import xarray as xr
 
 import seafast
+from seafast.analyses.cradle_run import cradle_dynamics_of_case
 from seafast.analyses.seastate import cradle_design_wave
 from seafast.analyses.seastate.cradle_design_wave import cradle_design_waves, cradle_sea_state, scaled_excitation
 from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, is_off_head_seas
 from seafast.analyses.seastate.cradle_transfer import (
-    cradle_dynamics,
     cradle_linear_transfer,
     cradle_sea_model,
     cradle_still_water,
@@ -67,7 +67,7 @@ def test_pad_transfer_at_a_low_frequency_is_the_heeled_statics_sensitivity():
     case = seafast.load_case(None, STOPPERS)
     model = build_model(case)
     cradle = build_cradle_case(case, model)
-    dynamics = cradle_dynamics(cradle)
+    dynamics = cradle_dynamics_of_case(cradle)
     n = cradle.cargo.node_count
     zero = HarmonicExcitation(
         1e-3, np.zeros((2, model.deck_dof_count), complex), np.zeros((2, 2 * n), complex), np.zeros((2, n - 1), complex)

@@ -21,6 +21,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.cradle_run import cradle_problem
 from seafast.analyses.criteria.design import LRFD_COMBINATIONS, UNFACTORED, DesignCheck, FrictionCredit, design_checks, friction_credit
 from seafast.analyses.criteria.load_cases import CriteriaLoadCase, apparent_gravity_m_s2, default_load_cases
 from seafast.analyses.criteria.standard import MotionCriteria, select_motion_criteria
@@ -30,7 +31,7 @@ from seafast.excitation.vessel_inputs import cargo_axis_height_m, hull_form_of
 from seafast.model.beam import bending_moment_line
 from seafast.model.cargo3d import gravity_direction
 from seafast.model.cradle_case import CradleCase, build_cradle_case
-from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, TransverseStatics, solve_transverse_statics
+from seafast.solvers.transverse_statics import StaticsOutcome, TransverseStatics, solve_transverse_statics
 
 __all__ = [
     "Verdict",
@@ -270,15 +271,7 @@ def solve_load_case(
         slope = -np.cross(load_case.angular_acceleration_rad_s2, np.array([1.0, 0.0, 0.0]))
         field = gamma_g * upright + gamma_e * (field - upright)
         load = _field_load_N(cradle, field - g * gravity_direction(load_case.roll_deg, load_case.pitch_deg), gamma_e * slope)
-    problem = CradleProblem(
-        cradle.cargo,
-        cradle.pad_pairs,
-        cradle.stoppers,
-        cradle.lashings,
-        spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
-        load_N=cradle.load_N + load,
-    )
-    statics = solve_transverse_statics(problem, load_case.roll_deg, load_case.pitch_deg, gravity_m_per_s2=g)
+    statics = solve_transverse_statics(cradle_problem(cradle, load), load_case.roll_deg, load_case.pitch_deg, gravity_m_per_s2=g)
     return _checked(case, cradle, load_case, origin, statics, field, factors)
 
 

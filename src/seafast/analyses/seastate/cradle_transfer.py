@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.cradle_run import cradle_dynamics_of_case
 from seafast.analyses.seastate.transfer import HEAD_SEAS_DEG, TransferFunctions, six_dof_motions
 from seafast.config.schema import Case
 from seafast.excitation.cradle_loads import CradleExcitation, cradle_excitation
@@ -46,44 +47,17 @@ from seafast.model.cradle_case import CradleCase, build_cradle_case
 from seafast.model.structure import StructuralModel
 from seafast.solvers.cradle_dynamics import CradleDynamics
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
-from seafast.solvers.transverse_statics import CradleProblem
 
 __all__ = [
     "CradleSeaModel",
     "CradleTransfer",
     "CradleStillWater",
     "cradle_sea_model",
-    "cradle_problem",
-    "cradle_dynamics",
     "cradle_unit_excitations",
     "cradle_linear_transfer",
     "cradle_still_water",
     "cradle_transfer_functions",
 ]
-
-
-def cradle_problem(cradle: CradleCase) -> CradleProblem:
-    """The case's cargo on its cradles as a :class:`~seafast.solvers.transverse_statics.CradleProblem` (the criteria's)."""
-    return CradleProblem(
-        cradle.cargo,
-        cradle.pad_pairs,
-        cradle.stoppers,
-        cradle.lashings,
-        spring_diagonal_N_per_m=cradle.spring_diagonal_N_per_m,
-        load_N=cradle.load_N,
-    )
-
-
-def cradle_dynamics(cradle: CradleCase) -> CradleDynamics:
-    """The dynamics of the case's cradles: the vertical plane's Rayleigh damping, its saddles as the deck points.
-
-    The bilateral springs are the axial holds alone (the lashings are wires, :mod:`seafast.model.cradle_case`), on a
-    deck that moves only vertically: they take no deck motion.
-    """
-    model = cradle.model
-    return CradleDynamics(
-        cradle_problem(cradle), model.rayleigh_alpha_per_s, model.rayleigh_beta_s, model.saddle_x_m, None, model.gravity_m_per_s2
-    )
 
 
 @dataclass(frozen=True)
@@ -142,7 +116,7 @@ def cradle_sea_model(case: Case, model: StructuralModel) -> CradleSeaModel:
         )
     return CradleSeaModel(
         cradle,
-        cradle_dynamics(cradle),
+        cradle_dynamics_of_case(cradle),
         vessel.cargo_excitation(model, head).static_part(),
         motions,
         axis,
