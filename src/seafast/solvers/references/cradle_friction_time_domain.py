@@ -22,81 +22,49 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.integrate import solve_ivp
 
 from seafast.excitation.cradle_loads import CradleExcitation
-from seafast.fourier import period_fraction
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_dynamics import CradleDynamics
 from seafast.solvers.cradle_hbm import cradle_response
 from seafast.solvers.friction_cone import ConePeriod
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.pad_tangential import FrictionalCradleResponse, PadTangents, frictional_response, pad_tangents
+from seafast.solvers.references.cradle_time_domain import CradleEquations, CradleTimeDomainOptions, integrate_to_periodic
 
 __all__ = ["FrictionTimeDomainOptions", "solve_cradle_friction_time_domain"]
 
 
 @dataclass(frozen=True)
-class FrictionTimeDomainOptions:
-    """Settings of the frictional time-domain reference.
+class FrictionTimeDomainOptions(CradleTimeDomainOptions):
+    """Settings of the frictional time-domain reference: the frictionless reference's
+    (:class:`~seafast.solvers.references.cradle_time_domain.CradleTimeDomainOptions`: ``time_samples``,
+    ``relative_tolerance``, ``periodicity_tolerance``, ``max_periods``) and the sliders' relaxation.
 
     Parameters
     ----------
-    time_samples
-        N samples of the last period reported (>= 8).
-    relative_tolerance
-        The integrator's relative tolerance (absolute: this times each state's scale).
-    periodicity_tolerance
-        Two successive period starts agree to this, relative to the state's scale.
-    max_periods
-        Periods integrated at most (>= 2).
     relaxation_fraction
         tau / T, the sliders' relaxation time over the period (0, 1e-3].
     """
 
-    time_samples: int = 256
-    relative_tolerance: float = 1e-8
-    periodicity_tolerance: float = 1e-6
-    max_periods: int = 40
     relaxation_fraction: float = 1e-7
 
     def __post_init__(self) -> None:
-        if int(self.time_samples) < 8:
-            raise ValueError(f"time_samples = {self.time_samples!r}: allowed an integer >= 8")
-        for name in ("relative_tolerance", "periodicity_tolerance"):
-            if not 0.0 < float(getattr(self, name)) < 1.0:
-                raise ValueError(f"{name} = {getattr(self, name)!r}: allowed a number in (0, 1)")
-        if int(self.max_periods) < 2:
-            raise ValueError(f"max_periods = {self.max_periods!r}: allowed an integer >= 2")
+        super().__post_init__()
         if not 0.0 < float(self.relaxation_fraction) <= 1e-3:
             raise ValueError(f"relaxation_fraction = {self.relaxation_fraction!r}: allowed a number in (0, 1e-3]")
 
 
-class _Equations:
-    """The first-order system in (q, q', w) and its Jacobian."""
+class _Equations(CradleEquations):
+    """The frictionless reference's system extended to (q, q', w), the sliders' rate law, and its Jacobian."""
 
     def __init__(self, dynamics: CradleDynamics, excitation: CradleExcitation, tangents: PadTangents, tau_s: float) -> None:
-        problem = dynamics.problem
-        K0, M, D = dynamics.matrices
-        self.n, self.P, self.tau = K0.shape[0], tangents.pad_count, float(tau_s)
-        self.w = float(excitation.omega_rad_s)
-        self.A, self.k = problem.engagement_matrix, problem.element_stiffness_N_per_m
-        self.E, self.s0 = dynamics.deck_engagement, dynamics.initial_engagement_m
+        super().__init__(dynamics, excitation)
+        self.P, self.tau = tangents.pad_count, float(tau_s)
         self.At, self.Et = tangents.rows, tangents.deck.reshape(2 * self.P, -1)
         self.kt = np.repeat(tangents.stiffness_N_per_m, 2)
         self.mu_kn = tangents.friction_coefficient * tangents.normal_stiffness_N_per_m
-        self.Minv_K0, self.Minv_D = np.linalg.solve(M, K0), np.linalg.solve(M, D)
-        self.Minv_At, self.Minv_Att = np.linalg.solve(M, self.A.T), np.linalg.solve(M, self.At.T)
-        xo = np.array(excitation.deck_displacement[:2], dtype=complex)
-        xo[0] = xo[0].real
-        self.xo = xo
-        f = np.array(excitation.cargo_load_N[:2], dtype=complex)
-        f[0] = (f[0] + dynamics.static_load_N()).real
-        K_co, D_co = dynamics.spring_coupling, dynamics.support_damping_coupling
-        self.g = np.linalg.solve(M, (f - xo @ K_co.T - 1j * self.w * np.array([0.0, 1.0])[:, None] * (xo @ D_co.T)).T).T
-
-    def deck(self, t: float) -> NDArray[np.float64]:
-        return np.real(self.xo[0] + self.xo[1] * np.exp(1j * self.w * t))
+        self.Minv_Att = np.linalg.solve(dynamics.matrices[1], self.At.T)
 
     def split(self, t: float, y: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """(engagements (m,), friction forces (P, 2), limits (P,)) at a state."""
@@ -161,30 +129,19 @@ def solve_cradle_friction_time_domain(
     scale_q = max(float(np.max(np.abs(q0))), 1e-6)
     scale = np.concatenate([np.full(eq.n, scale_q), np.full(eq.n, eq.w * 1e-3), np.full(2 * eq.P, scale_q)])
     N = int(options.time_samples)
-    change = np.inf
-    for period in range(int(options.max_periods)):
-        t0 = period * T
-        run = solve_ivp(
-            eq.rhs, (t0, t0 + T), y, method="LSODA", t_eval=t0 + T * period_fraction(N), jac=eq.jacobian,
-            rtol=float(options.relative_tolerance), atol=float(options.relative_tolerance) * scale,
-        )  # fmt: skip
-        if not run.success:
-            raise RuntimeError(f"the time integration failed in period {period}: {run.message}")
-        change = float(np.max(np.abs(run.y[:, -1] - y) / (np.abs(y) + scale)))
-        y = run.y[:, -1]
-        if change < options.periodicity_tolerance and period > 0:
-            break
-    states = [eq.split(t, yt) for t, yt in zip(run.t, run.y.T, strict=True)]
+    run = integrate_to_periodic(eq.rhs, eq.jacobian, y, scale, T, options)
+    change, periods = run.change, run.periods
+    states = [eq.split(t, yt) for t, yt in zip(run.time_s, run.states.T, strict=True)]
     s = np.array([state[0] for state in states])
     forces = np.array([state[1] for state in states])
-    slider = run.y[2 * eq.n :].T.reshape(N, eq.P, 2)
+    slider = run.states[2 * eq.n :].T.reshape(N, eq.P, 2)
     outcome = SolverOutcome.CONVERGED if change < options.periodicity_tolerance else SolverOutcome.NOT_PERIODIC
     message = (
         f"3-D cradle time domain with pad friction (LSODA, rtol {options.relative_tolerance:g}, tau/T "
-        f"{options.relaxation_fraction:g}): {period + 1} periods, period-start change {change:.2e}"
+        f"{options.relaxation_fraction:g}): {periods} periods, period-start change {change:.2e}"
     )
-    cradle = cradle_response(dynamics, s, run.y[: eq.n].T, eq.w, (outcome, change, message, 0))
+    cradle = cradle_response(dynamics, s, run.states[: eq.n].T, eq.w, (outcome, change, message, 0))
     limits = np.array([state[2] for state in states])
     slipping = np.hypot(forces[..., 0], forces[..., 1]) > limits  # the viscoplastic slider moves only above the cone
-    record = ConePeriod(forces, slider, slipping, tangents.rest_m, slider[0], period + 1, change)
+    record = ConePeriod(forces, slider, slipping, tangents.rest_m, slider[0], periods, change)
     return frictional_response(cradle, tangents, record)

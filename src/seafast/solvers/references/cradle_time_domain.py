@@ -13,6 +13,7 @@ Units: SI; time [s].
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,7 +27,7 @@ from seafast.solvers.cradle_hbm import CradleResponse, cradle_response
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.transverse_statics import StaticsOutcome, solve_transverse_statics
 
-__all__ = ["CradleTimeDomainOptions", "solve_cradle_time_domain"]
+__all__ = ["CradleTimeDomainOptions", "CradleEquations", "PeriodicRun", "integrate_to_periodic", "solve_cradle_time_domain"]
 
 
 @dataclass(frozen=True)
@@ -60,8 +61,12 @@ class CradleTimeDomainOptions:
             raise ValueError(f"max_periods = {self.max_periods!r}: allowed an integer >= 2")
 
 
-class _Equations:
-    """The right-hand side of the first-order system and its Jacobian (the contact state of the evaluation)."""
+class CradleEquations:
+    """The right-hand side of the first-order system in (q, q') and its Jacobian (the contact state of the evaluation).
+
+    The frictional reference (:mod:`seafast.solvers.references.cradle_friction_time_domain`) extends it with the
+    pads' sliders.
+    """
 
     def __init__(self, dynamics: CradleDynamics, excitation: CradleExcitation) -> None:
         problem = dynamics.problem
@@ -102,6 +107,56 @@ class _Equations:
         return J
 
 
+@dataclass(frozen=True)
+class PeriodicRun:
+    """The last period integrated, sampled at ``t_n = t0 + n T / N``.
+
+    Attributes
+    ----------
+    time_s, states
+        Sample times (N,) [s] and the states there (n_state, N).
+    periods
+        Periods integrated.
+    change
+        The largest change of the period-start state over the last period, relative to the state and its scale [-].
+    """
+
+    time_s: NDArray[np.float64]
+    states: NDArray[np.float64]
+    periods: int
+    change: float
+
+
+def integrate_to_periodic(
+    rhs: Callable[[float, NDArray[np.float64]], NDArray[np.float64]],
+    jacobian: Callable[[float, NDArray[np.float64]], NDArray[np.float64]],
+    start: NDArray[np.float64],
+    scale: NDArray[np.float64],
+    period_s: float,
+    options: CradleTimeDomainOptions,
+) -> PeriodicRun:
+    """Integrate ``y' = rhs(t, y)`` by LSODA period after period from ``start`` until two successive period starts
+    agree to ``options.periodicity_tolerance`` (relative to ``|y| + scale``) or ``options.max_periods`` are done.
+
+    Raises RuntimeError when the integrator fails.
+    """
+    T, N, y = float(period_s), int(options.time_samples), np.asarray(start, dtype=float)
+    change = np.inf
+    for period in range(int(options.max_periods)):
+        t0 = period * T
+        run = solve_ivp(
+            rhs, (t0, t0 + T), y, method="LSODA", t_eval=t0 + T * period_fraction(N), jac=jacobian,
+            rtol=float(options.relative_tolerance), atol=float(options.relative_tolerance) * scale,
+        )  # fmt: skip
+        if not run.success:
+            raise RuntimeError(f"the time integration failed in period {period}: {run.message}")
+        change = float(np.max(np.abs(run.y[:, -1] - y) / (np.abs(y) + scale)))
+        y = run.y[:, -1]
+        if change < options.periodicity_tolerance and period > 0:
+            break
+    return PeriodicRun(run.t, run.y, period + 1, change)
+
+
 def solve_cradle_time_domain(
     dynamics: CradleDynamics, excitation: CradleExcitation, options: CradleTimeDomainOptions | None = None
 ) -> CradleResponse:
@@ -112,30 +167,19 @@ def solve_cradle_time_domain(
     ``NOT_PERIODIC`` with the last period and the relative change as its residual.
     """
     options = options if options is not None else CradleTimeDomainOptions()
-    eq = _Equations(dynamics, excitation)
+    eq = CradleEquations(dynamics, excitation)
     statics = solve_transverse_statics(dynamics.problem, 0.0, 0.0, gravity_m_per_s2=dynamics.gravity_m_per_s2)
     if statics.outcome is not StaticsOutcome.CONVERGED:
         raise ValueError(f"problem: no static equilibrium to start from ({statics.message})")
     T = 2.0 * np.pi / eq.w
     y = np.concatenate([statics.displacement, np.zeros(eq.n)])
     scale = np.concatenate([np.full(eq.n, max(float(np.max(np.abs(statics.displacement))), 1e-6)), np.full(eq.n, eq.w * 1e-3)])
-    N = int(options.time_samples)
-    change = np.inf
-    for period in range(int(options.max_periods)):
-        t0 = period * T
-        grid = t0 + T * period_fraction(N)
-        run = solve_ivp(
-            eq.rhs, (t0, t0 + T), y, method="LSODA", t_eval=grid, jac=eq.jacobian,
-            rtol=float(options.relative_tolerance), atol=float(options.relative_tolerance) * scale,
-        )  # fmt: skip
-        if not run.success:
-            raise RuntimeError(f"the time integration failed in period {period}: {run.message}")
-        change = float(np.max(np.abs(run.y[:, -1] - y) / (np.abs(y) + scale)))
-        y = run.y[:, -1]
-        if change < options.periodicity_tolerance and period > 0:
-            break
-    q = run.y[: eq.n].T
-    s = np.array([eq.engagement(t, qt) for t, qt in zip(run.t, q, strict=True)])
+    run = integrate_to_periodic(eq.rhs, eq.jacobian, y, scale, T, options)
+    q = run.states[: eq.n].T
+    s = np.array([eq.engagement(t, qt) for t, qt in zip(run.time_s, q, strict=True)])
+    change = run.change
     outcome = SolverOutcome.CONVERGED if change < options.periodicity_tolerance else SolverOutcome.NOT_PERIODIC
-    message = f"3-D cradle time domain (LSODA, rtol {options.relative_tolerance:g}): {period + 1} periods, period-start change {change:.2e}"
+    message = (
+        f"3-D cradle time domain (LSODA, rtol {options.relative_tolerance:g}): {run.periods} periods, period-start change {change:.2e}"
+    )
     return cradle_response(dynamics, s, q, eq.w, (outcome, change, message, 0))
