@@ -26,6 +26,7 @@ from seafast.analyses.criteria.route_extremes import RouteDesignSeaState
 from seafast.analyses.operability.allowable import OperabilityResult
 from seafast.analyses.operability.headings import HeadingOperabilityResult
 from seafast.output.operability import operability_cell
+from seafast.output.tables import text_table
 
 __all__ = [
     "ROUTING_COLUMNS",
@@ -181,12 +182,6 @@ def _fmt(x: float, spec: str = ".2f") -> str:
     return "-" if not math.isfinite(x) else format(x, spec)
 
 
-def _table(head: Sequence[str], lines: Sequence[Sequence[str]]) -> str:
-    widths = [max(len(h), *(len(r[i]) for r in lines)) if lines else len(h) for i, h in enumerate(head)]
-    rows = [head, ["-" * w for w in widths], *lines]
-    return "\n".join("  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)) for r in rows)
-
-
 def operation_summary(plan: OperationPlan) -> str:
     """One line: the operation class and what it rests on."""
     r = plan.restriction
@@ -220,7 +215,7 @@ def format_routing_table(limits: WeatherRoutingLimits) -> str:
         )
     head = ["Tp [s]", "heading [deg]", "OP_LIM nonlin [m]", "alpha", "OP_WF nonlin [m]", "OP_WF lin [m]"]
     title = "weather-routing limit OP_WF = alpha OP_LIM (the forecast Hs must stay below it; '-': alpha not defined below 1 m)"
-    return title + "\n" + _table(head, lines)
+    return title + "\n" + text_table(head, lines, label_columns=0)
 
 
 def format_route_table(checks: Sequence[RouteCheck]) -> str:
@@ -239,7 +234,9 @@ def format_route_table(checks: Sequence[RouteCheck]) -> str:
         for c in checks
     ]
     head = ["leg", "design Hs [m]", "Tp range [s]", "method", "allowable Hs [m]", "at Tp [s]", "utilisation", "verdict"]
-    return "route design sea states (10-year monthly extremes) against the allowable Hs (nonlinear)\n" + _table(head, lines)
+    return "route design sea states (10-year monthly extremes) against the allowable Hs (nonlinear)\n" + text_table(
+        head, lines, label_columns=0
+    )
 
 
 def write_operation_class(plan: OperationPlan, out_dir: str | Path) -> tuple[Path, str]:
@@ -252,7 +249,7 @@ def write_operation_class(plan: OperationPlan, out_dir: str | Path) -> tuple[Pat
         path.write_text(operation_csv_text(r), encoding="utf-8")
         hs = np.array(DESIGN_HS_COLUMNS_M)
         lines = [[f"{h:g}", _fmt(a, ".3f"), _fmt(a * h)] for h, a in zip(hs, r.alpha(hs), strict=True)]
-        table = _table(["OP_LIM [m]", "alpha", "OP_WF [m]"], lines)
+        table = text_table(["OP_LIM [m]", "alpha", "OP_WF [m]"], lines, label_columns=0)
         note = "OP_LIM per peak period and heading: seafast operability (operability.csv's hs_forecast_limit_* columns)"
         return path, f"{operation_summary(plan)}\n{table}\n{note}"
     path = out / "route.csv"
@@ -260,5 +257,5 @@ def write_operation_class(plan: OperationPlan, out_dir: str | Path) -> tuple[Pat
     lines = [
         [f"{s.sector}, {s.season}", _fmt(s.design_hs_m), f"{s.tp_min_s:.1f}-{s.tp_max_s:.1f}", s.method.value, s.source] for s in plan.route
     ]
-    table = _table(["leg", "design Hs [m]", "Tp range [s]", "method", "source"], lines)
+    table = text_table(["leg", "design Hs [m]", "Tp range [s]", "method", "source"], lines, label_columns=0)
     return path, f"{operation_summary(plan)}\n{table}\nchecked against the allowable Hs by seafast operability (route.csv)"

@@ -10,7 +10,7 @@ from typing import Any
 
 from seafast.results.dataset import SUMMARY_COLUMNS
 
-__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table", "format_axial_table", "format_cradle_table"]
+__all__ = ["write_summary_csv", "summary_csv_text", "format_summary_table", "format_axial_table", "format_cradle_table", "text_table"]
 
 
 def _cell(value: Any) -> str:
@@ -62,15 +62,7 @@ def format_axial_table(rows: Sequence[dict[str, Any]]) -> str:
         )
         for r in rows
     ]
-    widths = _column_widths(head, lines)
-    return "\n".join(
-        [
-            "axial sliding (per period; slides where utilisation = 1)",
-            _format_row(head, widths),
-            _format_row(["-" * w for w in widths], widths),
-        ]
-        + [_format_row(line, widths) for line in lines]
-    )
+    return text_table(head, lines, "axial sliding (per period; slides where utilisation = 1)")
 
 
 def format_cradle_table(rows: Sequence[dict[str, Any]]) -> str:
@@ -93,15 +85,7 @@ def format_cradle_table(rows: Sequence[dict[str, Any]]) -> str:
         + ((f"{r['pad_friction_utilisation']:.3f}",) if friction else ())
         for r in rows
     ]
-    widths = _column_widths(head, lines)
-    return "\n".join(
-        [
-            "the cargo on its cradles (pads, side stoppers, lashing wires; a linear pad below 0 would pull)",
-            _format_row(head, widths),
-            _format_row(["-" * w for w in widths], widths),
-        ]
-        + [_format_row(line, widths) for line in lines]
-    )
+    return text_table(head, lines, "the cargo on its cradles (pads, side stoppers, lashing wires; a linear pad below 0 would pull)")
 
 
 def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str:
@@ -132,17 +116,15 @@ def format_summary_table(rows: Sequence[dict[str, Any]], title: str = "") -> str
         if show_validity:
             line += ("yes" if r.get("within_validity", True) else "NO",)
         lines.append(line)
-    widths = _column_widths(head, lines)
-    out = [title] if title else []
-    out += [_format_row(head, widths), _format_row(["-" * w for w in widths], widths)] + [_format_row(line, widths) for line in lines]
-    return "\n".join(out)
+    return text_table(head, lines, title)
 
 
-def _column_widths(head: Sequence[str], lines: Sequence[Sequence[str]]) -> list[int]:
-    """Each column's width: its widest cell, heading included."""
-    return [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
+def text_table(head: Sequence[str], lines: Sequence[Sequence[str]], title: str = "", label_columns: int = 2) -> str:
+    """A plain-text table: an optional title line, the heading, a rule of dashes, the lines; each column as wide as
+    its widest cell, the first ``label_columns`` left-aligned and the rest (numbers) right-aligned, two spaces apart."""
+    widths = [max(len(h), *(len(line[i]) for line in lines)) if lines else len(h) for i, h in enumerate(head)]
 
+    def row(cells: Sequence[str]) -> str:
+        return "  ".join(c.ljust(w) if i < label_columns else c.rjust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
 
-def _format_row(cells: Sequence[str], widths: Sequence[int]) -> str:
-    """One table row: the two label columns left-aligned, the numbers right-aligned."""
-    return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
+    return "\n".join(([title] if title else []) + [row(head), row(["-" * w for w in widths])] + [row(line) for line in lines])
