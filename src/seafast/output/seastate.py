@@ -37,6 +37,7 @@ from seafast.output.seastate_cradle import (
     cradle_variables,
     seastate_columns,
 )
+from seafast.output.tables import text_table
 from seafast.results.labelled import labelled_variable as _var
 
 if TYPE_CHECKING:  # the Monte Carlo engine (half a second to import) only when it runs: --no-monte-carlo needs none of it
@@ -124,13 +125,7 @@ def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") ->
         cells.append("-" if r["converged"] is None else ("yes" if r["converged"] else "NO"))
         cells += cradle_table_cells(r) if cradle else []
         lines.append(cells)
-    widths = [max(len(h), *(len(line[i]) for line in lines)) for i, h in enumerate(head)]
-
-    def fmt(cells: Sequence[str]) -> str:
-        return "  ".join(c.rjust(w) if i > 1 else c.ljust(w) for i, (c, w) in enumerate(zip(cells, widths, strict=True)))
-
-    out = [title] if title else []
-    return "\n".join(out + [fmt(head), fmt(["-" * w for w in widths])] + [fmt(line) for line in lines])
+    return text_table(head, lines, title)
 
 
 def _complex(out: dict[str, xr.Variable], name: str, dims: tuple[str, ...], data: Any, long_name: str, units: str) -> None:
