@@ -33,12 +33,11 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.config.schema import Case
+from seafast.config.schema import HEAD_SEAS_DEG, Case
 from seafast.excitation.cradle_loads import CradleExcitation, cradle_excitation
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.vessel import VesselExcitation
 from seafast.fourier import harmonics_to_time
-from seafast.hull.oblique import HEAD_SEAS_DEG
 from seafast.model.cradle_case import CradleCase, build_cradle_case
 from seafast.model.pad_friction import PadFriction
 from seafast.model.structure import StructuralModel
@@ -52,7 +51,6 @@ from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_st
 from seafast.solvers.transverse_statics import CradleProblem
 
 __all__ = [
-    "HEAD_SEAS_DEG",
     "FRICTION_HARMONICS",
     "solves_cradles",
     "cradle_problem",

@@ -46,6 +46,7 @@ __all__ = [
     "CriteriaConfig",
     "BASE_SADDLE_STIFFNESS_N_PER_M",
     "BREAKING_STEEPNESS",
+    "HEAD_SEAS_DEG",
     "SOURCE_SOLVER_SETTINGS",
     "max_significant_height_m",
 ]
@@ -304,6 +305,9 @@ class VesselConfig(StrictSection):
         return self
 
 
+HEAD_SEAS_DEG = 180.0
+"""Head seas [deg], the default heading: the waves travel from bow to stern (the heave-pitch model serves it)."""
+
 BREAKING_STEEPNESS = 1.0 / 7.0
 """Wave height over length above which a deep-water wave breaks (Michell's limit, ~0.142) [-]."""
 
@@ -317,7 +321,7 @@ class WaveConfig(StrictSection):
     )
     frequency_rad_s: Positive | None = Field(None, description="Wave frequency [rad/s]; default from deep-water dispersion")
     heading_deg: float = Field(
-        180.0,
+        HEAD_SEAS_DEG,
         ge=0.0,
         lt=360.0,
         description="Wave heading beta [deg]: the direction the waves travel, from the ship's x axis (forward) towards y (port); 180 = head seas, 90 = beam seas (waves from starboard), 0 = following seas",
@@ -372,7 +376,7 @@ class SeaStateConfig(StrictSection):
     )
     seed: Annotated[int, Field(ge=0), NotBool] = Field(0, description="Seed of the random phases (reproducible realisations)")
     heading_deg: float = Field(
-        180.0,
+        HEAD_SEAS_DEG,
         ge=0.0,
         lt=360.0,
         description="Mean wave heading beta of the sea state [deg], as wave.heading_deg: the direction the waves travel, from "

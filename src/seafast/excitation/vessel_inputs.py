@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
 from seafast.config.arrangement import abreast_lanes_m
-from seafast.config.schema import Case
+from seafast.config.schema import HEAD_SEAS_DEG, Case
 from seafast.excitation.cargo_acceleration import CargoPoints
 from seafast.excitation.hydrodynamics.heading_motions import SixDofMotions
 from seafast.excitation.hydrodynamics.memory_cache import HydrodynamicsCache
@@ -46,9 +46,6 @@ __all__ = [
     "loaded_ship_of",
     "six_dof_motions_of",
 ]
-
-HEAD_SEAS_DEG = 180.0
-"""The heading of the heave-pitch model [deg]: head seas keep it, and its answers, unchanged."""
 
 
 def is_head_seas(case: Case) -> bool:

@@ -30,12 +30,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["HEAD_SEAS_DEG", "heading_cosines", "breadth_factor", "along_ship_wave_number_per_m", "max_local_draught_change"]
+__all__ = ["heading_cosines", "breadth_factor", "along_ship_wave_number_per_m", "max_local_draught_change"]
 
 FloatArray = NDArray[np.float64]
 
-HEAD_SEAS_DEG = 180.0
-"""The default heading [deg]: head seas, the waves travelling from bow to stern."""
 
 _QUADRANTS = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))
 

@@ -14,10 +14,11 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicHermiteSpline
 
+from seafast.config.schema import HEAD_SEAS_DEG
 from seafast.hull.balance import hydrostatic_balance
 from seafast.hull.girder import HullBeam, HullGirder, shear_moment
 from seafast.hull.grid import WeightSource, hull_grid, loading_breakpoints, weight_element_ends
-from seafast.hull.oblique import HEAD_SEAS_DEG, along_ship_wave_number_per_m, breadth_factor, heading_cosines, max_local_draught_change
+from seafast.hull.oblique import along_ship_wave_number_per_m, breadth_factor, heading_cosines, max_local_draught_change
 
 __all__ = ["WaveTransferFunctions", "wave_transfer_functions"]
 

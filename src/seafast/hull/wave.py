@@ -12,11 +12,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.schema import HEAD_SEAS_DEG
 from seafast.fourier import period_fraction, time_to_harmonics
 from seafast.hull.balance import hydrostatic_balance
 from seafast.hull.girder import HullBeam, HullGirder, shear_moment
 from seafast.hull.grid import WeightSource, hull_grid, loading_breakpoints, nodal_weight, weight_element_ends
-from seafast.hull.oblique import HEAD_SEAS_DEG, along_ship_wave_number_per_m, breadth_factor
+from seafast.hull.oblique import along_ship_wave_number_per_m, breadth_factor
 from seafast.hull.still_water import HullGirderResponse
 
 __all__ = ["WaveHullResponse", "wave_response", "wave_surfaces"]

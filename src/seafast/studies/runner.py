@@ -34,6 +34,7 @@ from pathlib import Path
 
 import xarray as xr
 
+from seafast.config.schema import HEAD_SEAS_DEG
 from seafast.parallel.errors import ParallelError
 from seafast.parallel.executor import ExecutionOptions, plan_batches
 from seafast.parallel.progress import progress
@@ -112,8 +113,6 @@ class _OffHeadSeas:
     grid: StudyGrid
 
     def __call__(self, index: int) -> bool:
-        from seafast.analyses.cradle_run import HEAD_SEAS_DEG  # the numerics, imported once a store is read
-
         try:
             heading = self.grid.point_overrides(index).get(HEADING_KEY, self.grid.base_value(HEADING_KEY))
             return float(heading) != HEAD_SEAS_DEG

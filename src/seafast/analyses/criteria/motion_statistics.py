@@ -31,7 +31,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.analyses.seastate.spectral import SpectralAnalysis, rayleigh_mpm
-from seafast.analyses.seastate.transfer import HEAD_SEAS_DEG, six_dof_motions
+from seafast.analyses.seastate.transfer import six_dof_motions
+from seafast.config.schema import HEAD_SEAS_DEG
 from seafast.excitation.cargo_acceleration import acceleration_transfer
 from seafast.excitation.rao_extension import extended_six_dof_rao
 from seafast.excitation.vessel import vessel_excitation

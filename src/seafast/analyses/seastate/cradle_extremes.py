@@ -43,8 +43,7 @@ from seafast.analyses.seastate.directional import DirectionalQuadrature, weighte
 from seafast.analyses.seastate.directional_transfer import SeaStateTransfer
 from seafast.analyses.seastate.spectral import ResponseStatistics, squared_response_statistics
 from seafast.analyses.seastate.spectrum import WaveSpectrum
-from seafast.analyses.seastate.transfer import HEAD_SEAS_DEG
-from seafast.config.schema import Case
+from seafast.config.schema import HEAD_SEAS_DEG, Case
 
 __all__ = [
     "CRADLE_COLUMNS",

@@ -36,8 +36,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.analyses.cradle_run import cradle_dynamics_of_case
-from seafast.analyses.seastate.transfer import HEAD_SEAS_DEG, TransferFunctions, six_dof_motions
-from seafast.config.schema import Case
+from seafast.analyses.seastate.transfer import TransferFunctions, six_dof_motions
+from seafast.config.schema import HEAD_SEAS_DEG, Case
 from seafast.excitation.cradle_loads import CradleExcitation, cradle_excitation
 from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.excitation.hydrodynamics.heading_motions import SixDofMotions

@@ -25,8 +25,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from seafast.analyses.seastate.directional import DirectionalQuadrature, directional_quadrature, weighted_squared_transfer
 from seafast.analyses.seastate.spectrum import WaveSpectrum
-from seafast.analyses.seastate.transfer import HEAD_SEAS_DEG, TransferFunctions, six_dof_motions, transfer_functions
-from seafast.config.schema import Case
+from seafast.analyses.seastate.transfer import TransferFunctions, six_dof_motions, transfer_functions
+from seafast.config.schema import HEAD_SEAS_DEG, Case
 from seafast.excitation.hydrodynamics.roll_damping import QuadraticRollDamping, RollModel, StochasticRollResponse, stochastic_linearisation
 from seafast.excitation.vessel import VesselCache, shared_vessel_cache
 from seafast.model.structure import StructuralModel

@@ -35,7 +35,7 @@ from scipy.linalg import solve_banded
 
 from seafast.config.loader import CaseError
 from seafast.config.modes import HullCargoCoupling
-from seafast.config.schema import Case
+from seafast.config.schema import HEAD_SEAS_DEG, Case
 from seafast.excitation.deck_motion import RigidBodyAmplitudes, assemble_excitation
 from seafast.excitation.hydrodynamics.heading_motions import SixDofMotions
 from seafast.excitation.rao_extension import extended_rao, extended_six_dof_rao
@@ -47,8 +47,6 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.linear import solve_harmonic, solve_linear
 
 __all__ = ["TransferFunctions", "StillWater", "transfer_functions", "still_water", "six_dof_motions", "MOMENT_POINTS_PER_ELEMENT"]
-
-HEAD_SEAS_DEG = 180.0
 
 MOMENT_POINTS_PER_ELEMENT = 2
 _HALF_BANDWIDTH = 3  # Hermite beam elements: node i couples to i + 1 (4 DOFs)
