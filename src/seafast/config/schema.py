@@ -43,7 +43,6 @@ __all__ = [
     "OutputConfig",
     "SeaStateConfig",
     "LimitsConfig",
-    "CRADLE_LIMIT_KEYS",
     "CriteriaConfig",
     "BASE_SADDLE_STIFFNESS_N_PER_M",
     "BREAKING_STEEPNESS",
@@ -413,35 +412,18 @@ class SeaStateConfig(StrictSection):
 
 
 class LimitsConfig(StrictSection):
-    """Design limits the sea-state extremes are judged against (``seafast operability``, the reports).
-
-    The cradle limits (``max_pad_force_N``, ``max_lashing_tension_N``, ``max_transverse_slip_m``: the names of a study
-    file's ``limits``) bound the cargo on its cradles, solved off head seas only; None (the default) is not checked,
-    and an unset one is left out of the case's dump (case.yaml, fingerprints: as before the keys).
-    """
+    """Design limits the sea-state extremes are judged against; the cradle limits (a study file's names) off head seas
+    only, None = not checked (an unset one is left out of the case's dump: case.yaml, fingerprints as before)."""
 
     max_saddle_force_N: Positive = Field(7.0e6, description="Largest allowed saddle force F [N]")
     max_bending_stress_Pa: Positive = Field(20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]")
-    max_pad_force_N: Positive | None = Field(
-        None, description="Largest allowed cradle pad force F_pad_N [N], judged off head seas; null: not checked"
-    )
-    max_lashing_tension_N: Positive | None = Field(
-        None, description="Largest allowed lashing-wire tension lashing_tension_max_N [N], judged off head seas; null: not checked"
-    )
-    max_transverse_slip_m: Positive | None = Field(
-        None,
-        description="Largest allowed lateral displacement of the cargo relative to the deck at a saddle transverse_slip_m [m], "
-        "judged off head seas; null: not checked",
-    )
+    max_pad_force_N: Positive | None = Field(None, description="Largest pad force [N], off head seas; null: unchecked")
+    max_lashing_tension_N: Positive | None = Field(None, description="Largest lashing tension [N], off head seas; null: unchecked")
+    max_transverse_slip_m: Positive | None = Field(None, description="Largest cargo slip at a saddle [m], off head seas; null: unchecked")
 
     @model_serializer(mode="wrap")
     def _dump(self, handler: SerializerFunctionWrapHandler) -> dict[str, Any]:
-        data: dict[str, Any] = handler(self)
-        return {k: v for k, v in data.items() if not (k in CRADLE_LIMIT_KEYS and v is None)}
-
-
-CRADLE_LIMIT_KEYS = ("max_pad_force_N", "max_lashing_tension_N", "max_transverse_slip_m")
-"""The optional ``limits`` keys on the cargo on its cradles (None: not checked)."""
+        return {k: v for k, v in handler(self).items() if v is not None}  # only the cradle limits can be None
 
 
 class CriteriaDesignConfig(StrictSection):

@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import Finding, ReportFigure, findings_html, plain_table_html
-from seafast.output.report.operability import cradle_governing_finding, limits_html
+from seafast.output.report.operability_limits import cradle_governing_finding, limits_html
 
 __all__ = ["heading_operability_findings", "heading_operability_figure", "heading_operability_report_sections"]
 
