@@ -193,8 +193,14 @@ def _operability_attrs(result: OperabilityResult) -> dict[str, Any]:
         "design_wave_band_points": result.settings.design_wave.band_points,
         "hs_tolerance_m": result.settings.hs_tolerance_m,
         "case_json": case.model_dump_json(),
-        "conventions": "MPMs over duration_s, still water included; head seas; Hs = 4 sqrt(m0)",
+        "conventions": f"MPMs over duration_s, still water included; {_heading_words(case)}; Hs = 4 sqrt(m0)",
     }
+
+
+def _heading_words(case: Case) -> str:
+    """``head seas`` or ``heading B deg (180 = head seas)``: the sea state's heading as the file's conventions say it."""
+    heading = float(case.sea_state.heading_deg)
+    return "head seas" if heading == 180.0 else f"heading {heading:g} deg (180 = head seas, 90 = beam seas)"
 
 
 def _scatter_variables(scatter: ScatterAssessment) -> dict[str, xr.Variable]:

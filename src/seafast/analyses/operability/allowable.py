@@ -16,6 +16,10 @@ proportional to Hs (``MPM = sigma sqrt(2 ln(D / Tz))``, sigma proportional to Hs
   evaluation reuses the wave operators and starts each solve from the previous Hs's solution at that
   frequency (the converged design waves, the default, are solved afresh by exact-event shooting).
 
+Off head seas, each cradle limit set (``limits.max_pad_force_N``, ``limits.max_lashing_tension_N``,
+``limits.max_transverse_slip_m``) is one more limit of both models, in closed form and by the cradle design waves
+(:mod:`seafast.analyses.operability.cradle`); the limits are searched in the order the linear model reaches them.
+
 The sea states share their transfer functions (:mod:`seafast.analyses.operability.family`).
 """
 
@@ -105,11 +109,12 @@ class OperabilityPoint:
     evaluations
         Design-wave evaluations (each a few harmonic-balance solves) of the nonlinear search.
     hs_pad_force_linear_m, hs_lashing_tension_linear_m, hs_transverse_slip_linear_m
-        Hs at which each cradle limit alone is reached by the linear spectral MPMs [m] (inf: not below the
-        steepness limit; NaN: not checked, i.e. the limit is not set or the sea is a head sea).
+        Hs at which each cradle limit alone is reached by the linear spectral MPMs [m] (beyond the steepness limit
+        where it is not reached below it; inf: never; NaN: not checked, i.e. the limit is not set or the sea is a
+        head sea).
     hs_pad_force_nonlinear_m, hs_lashing_tension_nonlinear_m, hs_transverse_slip_nonlinear_m
-        The same by the cradle design waves [m] (NaN also: not searched, another limit reached first, or the
-        search did not converge).
+        The same by the cradle design waves [m] (inf: not below the steepness limit; NaN also: not searched, another
+        limit reached first, or the search did not converge).
     """
 
     peak_period_s: float
@@ -348,7 +353,8 @@ def allowable_sea_states(
     ----------
     case
         The case: its sea state's spectrum shape, gamma and duration (its Hs and Tp are not
-        used), its limits (``limits.max_saddle_force_N``, ``limits.max_bending_stress_Pa``).
+        used), its limits (``limits.max_saddle_force_N``, ``limits.max_bending_stress_Pa``; off head seas also the
+        cradle limits set).
     peak_periods_s
         Tp values [s].
     settings
