@@ -18,9 +18,9 @@ from __future__ import annotations
 import math
 from itertools import pairwise
 from pathlib import Path
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, SerializerFunctionWrapHandler, field_validator, model_serializer, model_validator
 
 from seafast.config.arrangement import abreast_lanes_m, evenly_spaced_saddles, transverse_position_error
 from seafast.config.fields import Finite, NonNegative, NotBool, Positive, StrictSection
@@ -416,10 +416,18 @@ class SeaStateConfig(StrictSection):
 
 
 class LimitsConfig(StrictSection):
-    """Design limits the sea-state extremes are judged against (the studies' defaults)."""
+    """Design limits the sea-state extremes are judged against; the cradle limits (a study file's names) off head seas
+    only, None = not checked (an unset one is left out of the case's dump: case.yaml, fingerprints as before)."""
 
     max_saddle_force_N: Positive = Field(7.0e6, description="Largest allowed saddle force F [N]")
     max_bending_stress_Pa: Positive = Field(20.0e6, description="Largest allowed cargo bending stress sigma_b [Pa]")
+    max_pad_force_N: Positive | None = Field(None, description="Largest pad force [N], off head seas; null: unchecked")
+    max_lashing_tension_N: Positive | None = Field(None, description="Largest lashing tension [N], off head seas; null: unchecked")
+    max_transverse_slip_m: Positive | None = Field(None, description="Largest cargo slip at a saddle [m], off head seas; null: unchecked")
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler: SerializerFunctionWrapHandler) -> dict[str, Any]:
+        return {k: v for k, v in handler(self).items() if v is not None}  # only the cradle limits can be None
 
 
 class CriteriaDesignConfig(StrictSection):

@@ -2,8 +2,11 @@
 
 ``operability.csv`` has exactly :data:`OPERABILITY_COLUMNS`, one row per peak period; an Hs that
 could not be found (the nonlinear search did not converge, or no lift-off below the limiting
-steepness for the uplift onset) is an empty cell. ``operability.nc`` holds the same and the
-diagnostics of each search (per limit, steepness cap, convergence, evaluations), ``units`` and
+steepness for the uplift onset) is an empty cell. When the case sets a cradle limit
+(``limits.max_pad_force_N``, ``limits.max_lashing_tension_N``, ``limits.max_transverse_slip_m``) it has
+:data:`~seafast.analyses.operability.allowable.CRADLE_OPERABILITY_COLUMNS` after them (each cradle limit's Hs alone;
+empty where not checked: the limit unset or head seas, not reached below the steepness limit, or not searched).
+``operability.nc`` holds the same and the diagnostics of each search (per limit, steepness cap, convergence, evaluations), ``units`` and
 ``long_name`` on every variable; with a scatter diagram also its cells and the shares within the
 limits. The chart plots Hs against Tp: both allowable curves, the uplift onset and the limiting
 steepness (and the scatter cells).
@@ -23,13 +26,16 @@ import xarray as xr
 import yaml
 
 import seafast
-from seafast.analyses.operability.allowable import OperabilityResult
+from seafast.analyses.operability.allowable import CRADLE_OPERABILITY_COLUMNS, OperabilityResult
+from seafast.analyses.operability.limits import CRADLE_LIMITS, GOVERNING, cradle_limits
 from seafast.analyses.operability.scatter import ScatterAssessment
+from seafast.config.schema import Case
 from seafast.results.labelled import labelled_variable as _var
 
 __all__ = [
     "OPERABILITY_COLUMNS",
     "SCATTER_RESULT_COLUMNS",
+    "operability_columns",
     "operability_cell",
     "operability_csv_text",
     "operability_dataset",
@@ -63,14 +69,20 @@ def operability_cell(value: Any) -> str:
     return str(value)
 
 
+def operability_columns(case: Case) -> tuple[str, ...]:
+    """operability.csv's columns: :data:`OPERABILITY_COLUMNS`, and the cradle limits' when the case sets one."""
+    return OPERABILITY_COLUMNS + (CRADLE_OPERABILITY_COLUMNS if cradle_limits(case) else ())
+
+
 def operability_csv_text(result: OperabilityResult) -> str:
     """operability.csv text (SI units; empty cell = not found)."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(OPERABILITY_COLUMNS)
+    columns = operability_columns(result.case)
+    w.writerow(columns)
     for p in result.points:
-        row = p.row()
-        w.writerow([operability_cell(row[c]) for c in OPERABILITY_COLUMNS])
+        row = p.row() | p.cradle_row()
+        w.writerow([operability_cell(row[c]) for c in columns])
     return buf.getvalue()
 
 
@@ -95,12 +107,12 @@ def _point_variables(result: OperabilityResult) -> dict[str, xr.Variable]:
         "governing_linear": xr.Variable(
             d,
             np.array([p.governing_linear for p in P], dtype=str),
-            {"long_name": "limit reached first, linear: saddle_force, bending_stress or steepness", "units": "1"},
+            {"long_name": f"limit reached first, linear: {', '.join(GOVERNING[:-1])}", "units": "1"},
         ),
         "governing_nonlinear": xr.Variable(
             d,
             np.array([p.governing_nonlinear for p in P], dtype=str),
-            {"long_name": "limit reached first, nonlinear: saddle_force, bending_stress, steepness or not_converged", "units": "1"},
+            {"long_name": f"limit reached first, nonlinear: {', '.join(GOVERNING)}", "units": "1"},
         ),
         "hs_max_steepness_m": _var(
             d,
@@ -135,7 +147,32 @@ def _point_variables(result: OperabilityResult) -> dict[str, xr.Variable]:
             "1",
         ),
         "evaluations": _var(d, [p.evaluations for p in P], "design-wave evaluations of the nonlinear search", "1"),
+        **(_cradle_point_variables(result) if cradle_limits(result.case) else {}),
     }
+
+
+_CRADLE_LIMIT_TEXT = {
+    "pad_force": "pad force",
+    "lashing_tension": "largest lashing-wire tension",
+    "transverse_slip": "lateral displacement of the cargo at a saddle",
+}
+
+
+def _cradle_point_variables(result: OperabilityResult) -> dict[str, xr.Variable]:
+    """Each cradle limit's Hs alone, linear and nonlinear (dimension ``peak_period_s``; written when one is set)."""
+    d = ("peak_period_s",)
+    out: dict[str, xr.Variable] = {}
+    for model, source in (("linear", "linear spectral MPM"), ("nonlinear", "nonlinear design-wave")):
+        for name, text in _CRADLE_LIMIT_TEXT.items():
+            key = f"hs_{name}_{model}_m"
+            out[key] = _var(
+                d,
+                [getattr(p, key) for p in result.points],
+                f"Hs at which the {source} {text} reaches its limit (inf: never; NaN: not checked (limit unset, head seas)"
+                + (", not searched or not converged)" if model == "nonlinear" else ")"),
+                "m",
+            )
+    return out
 
 
 def _operability_attrs(result: OperabilityResult) -> dict[str, Any]:
@@ -149,14 +186,21 @@ def _operability_attrs(result: OperabilityResult) -> dict[str, Any]:
         "duration_s": case.sea_state.duration_s,
         "max_saddle_force_N": case.limits.max_saddle_force_N,
         "max_bending_stress_Pa": case.limits.max_bending_stress_Pa,
+        **{key: v for _, key, _ in CRADLE_LIMITS if (v := getattr(case.limits, key)) is not None},
         # the design waves' solve: their converged periodic answer (the default) or a fixed H
         "design_wave_harmonics": "converged" if result.settings.design_wave.harmonics is None else result.settings.design_wave.harmonics,
         "design_wave_band_fraction": result.settings.design_wave.band_fraction,
         "design_wave_band_points": result.settings.design_wave.band_points,
         "hs_tolerance_m": result.settings.hs_tolerance_m,
         "case_json": case.model_dump_json(),
-        "conventions": "MPMs over duration_s, still water included; head seas; Hs = 4 sqrt(m0)",
+        "conventions": f"MPMs over duration_s, still water included; {_heading_words(case)}; Hs = 4 sqrt(m0)",
     }
+
+
+def _heading_words(case: Case) -> str:
+    """``head seas`` or ``heading B deg (180 = head seas)``: the sea state's heading as the file's conventions say it."""
+    heading = float(case.sea_state.heading_deg)
+    return "head seas" if heading == 180.0 else f"heading {heading:g} deg (180 = head seas, 90 = beam seas)"
 
 
 def _scatter_variables(scatter: ScatterAssessment) -> dict[str, xr.Variable]:

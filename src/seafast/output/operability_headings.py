@@ -1,7 +1,8 @@
 """What ``seafast operability --headings`` writes: operability.csv and .nc over headings, the polar chart, the table.
 
-``operability.csv`` has ``heading_deg`` then exactly the columns of :data:`~seafast.output.operability.OPERABILITY_COLUMNS`,
-one row per heading and peak period (headings in the order given, peak periods within each);
+``operability.csv`` has ``heading_deg`` then exactly the columns of :data:`~seafast.output.operability.OPERABILITY_COLUMNS`
+(and, when the case sets a cradle limit, the cradle limits' columns after them: their cells empty at head seas,
+where no cradle is solved), one row per heading and peak period (headings in the order given, peak periods within each);
 empty cell = not found; a heading whose analysis failed has governing ``failed`` and empty Hs.
 ``operability.nc`` holds every variable of the single-heading file over the dimensions
 ``(heading_deg, peak_period_s)``, each heading's error (``heading_error``) and per peak period the
@@ -22,7 +23,7 @@ import xarray as xr
 import yaml
 
 from seafast.analyses.operability.headings import AllowableModel, GoverningHeading, HeadingOperabilityResult
-from seafast.output.operability import OPERABILITY_COLUMNS, operability_cell, operability_dataset
+from seafast.output.operability import OPERABILITY_COLUMNS, operability_cell, operability_columns, operability_dataset
 from seafast.output.operability_polar import plot_heading_operability
 from seafast.results.labelled import labelled_variable
 
@@ -49,11 +50,12 @@ def heading_operability_csv_text(result: HeadingOperabilityResult) -> str:
     """operability.csv text with the leading ``heading_deg`` column (SI units and degrees; empty cell = not found)."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(HEADING_OPERABILITY_COLUMNS)
+    columns = ("heading_deg", *operability_columns(result.case))
+    w.writerow(columns)
     for h in result.headings:
         for p in h.result.points:
-            row = {"heading_deg": float(h.heading_deg), **p.row()}
-            w.writerow([operability_cell(row[c]) for c in HEADING_OPERABILITY_COLUMNS])
+            row = {"heading_deg": float(h.heading_deg), **p.row(), **p.cradle_row()}
+            w.writerow([operability_cell(row[c]) for c in columns])
     return buf.getvalue()
 
 

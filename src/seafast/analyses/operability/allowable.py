@@ -16,6 +16,10 @@ proportional to Hs (``MPM = sigma sqrt(2 ln(D / Tz))``, sigma proportional to Hs
   evaluation reuses the wave operators and starts each solve from the previous Hs's solution at that
   frequency (the converged design waves, the default, are solved afresh by exact-event shooting).
 
+Off head seas, each cradle limit set (``limits.max_pad_force_N``, ``limits.max_lashing_tension_N``,
+``limits.max_transverse_slip_m``) is one more limit of both models, in closed form and by the cradle design waves
+(:mod:`seafast.analyses.operability.cradle`); the limits are searched in the order the linear model reaches them.
+
 The sea states share their transfer functions (:mod:`seafast.analyses.operability.family`).
 """
 
@@ -31,8 +35,11 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
+from seafast.analyses.operability.cradle import cradle_at_peak_period, cradle_design_wave_value, cradle_linear_limits
 from seafast.analyses.operability.family import MASTER_STEP_RAD_S, SeaStateFamily, analysis_at, rescaled, sea_state_family
+from seafast.analyses.operability.limits import GOVERNING, VERTICAL_LIMITS, linear_limit_hs, vertical_limits
 from seafast.analyses.seastate.design_wave import DesignWaveSettings, design_wave_extremes
+from seafast.analyses.seastate.spectral import SpectralAnalysis
 from seafast.analyses.seastate.wave_response import WaveOperators, WaveSolution
 from seafast.config.schema import Case, max_significant_height_m
 
@@ -41,16 +48,13 @@ __all__ = [
     "OperabilitySettings",
     "OperabilityPoint",
     "OperabilityResult",
+    "CRADLE_OPERABILITY_COLUMNS",
     "allowable_sea_states",
 ]
 
 logger = logging.getLogger(__name__)
 
-GOVERNING: tuple[str, ...] = ("saddle_force", "bending_stress", "steepness", "not_converged")
-"""Values of the governing_* columns: the limit reached first; ``steepness`` when neither is reached
-up to the steepest sea state at that Tp; ``not_converged`` when a nonlinear solve failed."""
-
-_LIMIT_QUANTITY = {"saddle_force": "F_N", "bending_stress": "sigma_b_Pa"}
+_LIMIT_QUANTITY = {name: column for name, _, column in VERTICAL_LIMITS}
 
 
 @dataclass(frozen=True)
@@ -104,6 +108,13 @@ class OperabilityPoint:
         Every harmonic-balance solve of the search converged.
     evaluations
         Design-wave evaluations (each a few harmonic-balance solves) of the nonlinear search.
+    hs_pad_force_linear_m, hs_lashing_tension_linear_m, hs_transverse_slip_linear_m
+        Hs at which each cradle limit alone is reached by the linear spectral MPMs [m] (beyond the steepness limit
+        where it is not reached below it; inf: never; NaN: not checked, i.e. the limit is not set or the sea is a
+        head sea).
+    hs_pad_force_nonlinear_m, hs_lashing_tension_nonlinear_m, hs_transverse_slip_nonlinear_m
+        The same by the cradle design waves [m] (inf: not below the steepness limit; NaN also: not searched, another
+        limit reached first, or the search did not converge).
     """
 
     peak_period_s: float
@@ -119,6 +130,12 @@ class OperabilityPoint:
     hs_stress_nonlinear_m: float
     converged: bool
     evaluations: int
+    hs_pad_force_linear_m: float = math.nan
+    hs_lashing_tension_linear_m: float = math.nan
+    hs_transverse_slip_linear_m: float = math.nan
+    hs_pad_force_nonlinear_m: float = math.nan
+    hs_lashing_tension_nonlinear_m: float = math.nan
+    hs_transverse_slip_nonlinear_m: float = math.nan
 
     def row(self) -> dict[str, Any]:
         """The row of operability.csv."""
@@ -130,6 +147,21 @@ class OperabilityPoint:
             "governing_linear": self.governing_linear,
             "governing_nonlinear": self.governing_nonlinear,
         }
+
+    def cradle_row(self) -> dict[str, float]:
+        """The cradle limits' columns of operability.csv (:data:`CRADLE_OPERABILITY_COLUMNS`): each limit's Hs [m]."""
+        return {c: float(getattr(self, c)) for c in CRADLE_OPERABILITY_COLUMNS}
+
+
+CRADLE_OPERABILITY_COLUMNS = (
+    "hs_pad_force_linear_m",
+    "hs_lashing_tension_linear_m",
+    "hs_transverse_slip_linear_m",
+    "hs_pad_force_nonlinear_m",
+    "hs_lashing_tension_nonlinear_m",
+    "hs_transverse_slip_nonlinear_m",
+)
+"""The columns operability.csv adds when a cradle limit is set: the Hs at which each cradle limit alone is reached [m]."""
 
 
 @dataclass(frozen=True)
@@ -144,15 +176,6 @@ class OperabilityResult:
     def converged(self) -> bool:
         """Every point's nonlinear search converged."""
         return all(p.converged for p in self.points)
-
-
-def _linear_limit_hs(static: NDArray, per_hs: NDArray, limit: float) -> float:
-    """Smallest Hs with ``max(static + Hs per_hs) = limit`` (0 if the still water exceeds it; inf if never)."""
-    if np.any(static >= limit):
-        return 0.0
-    with np.errstate(divide="ignore"):
-        hs = np.where(per_hs > 0, (limit - static) / np.where(per_hs > 0, per_hs, 1.0), np.inf)
-    return float(np.min(hs))
 
 
 def _governing(candidates: dict[str, float], cap: float) -> tuple[float, str]:
@@ -203,31 +226,27 @@ def _nonlinear_limit_hs(
     return float(root), ok[0], len(seen)
 
 
-def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> OperabilityPoint:
-    case = family.case
-    cap = max_significant_height_m(tp, case.model.gravity_m_per_s2)
-    ref = analysis_at(family, tp, 1.0)  # MPMs per metre of Hs
-    e, sw = ref.extremes, family.still
-    limits = {"saddle_force": case.limits.max_saddle_force_N, "bending_stress": case.limits.max_bending_stress_Pa}
-    linear = {
-        "saddle_force": _linear_limit_hs(sw.saddle_force_N, e.saddle_force.mpm, limits["saddle_force"]),
-        "bending_stress": _linear_limit_hs(np.abs(sw.bending_stress_Pa), e.bending_stress.mpm, limits["bending_stress"]),
-    }
-    hs_lin, gov_lin = _governing(linear, cap)
-    comp0, comp_mpm = sw.saddle_compression_m, e.saddle_compression.mpm
-    if np.any(comp0 <= 0.0):
+def _uplift_onset(still_compression_m: NDArray[np.float64], compression_mpm_m: NDArray[np.float64], cap: float) -> float:
+    """The Hs at which some saddle's MPM compression reaches its still-water compression [m] (NaN beyond ``cap``)."""
+    if np.any(still_compression_m <= 0.0):
         onset = 0.0
     else:
         with np.errstate(divide="ignore"):
-            onset = float(np.min(np.where(comp_mpm > 0, comp0 / np.where(comp_mpm > 0, comp_mpm, 1.0), np.inf)))
-    onset = onset if onset <= cap else math.nan
+            mpm = compression_mpm_m
+            onset = float(np.min(np.where(mpm > 0, still_compression_m / np.where(mpm > 0, mpm, 1.0), np.inf)))
+    return onset if onset <= cap else math.nan
+
+
+Value = Callable[[float], tuple[float, bool]]
+"""``value(Hs) -> (the nonlinear design-wave estimate of a limit's quantity, every solve converged)``."""
+
+
+def _vertical_values(family: SeaStateFamily, ref: SpectralAnalysis, settings: OperabilitySettings) -> dict[str, Value]:
+    """The design-wave estimates of the saddle force and the bending stress at an Hs (operators and warm starts shared)."""
     operators: dict[tuple[int, int, int], WaveOperators] = {}
     warm: dict[int, WaveSolution] = {}
-    evaluations = 0
-    converged = True
-    nonlinear = dict.fromkeys(_LIMIT_QUANTITY, math.nan)
 
-    def value_of(quantity: str) -> Callable[[float], tuple[float, bool]]:
+    def value_of(quantity: str) -> Value:
         def value(hs: float) -> tuple[float, bool]:
             dw = design_wave_extremes(
                 rescaled(ref, hs),
@@ -242,32 +261,66 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
 
         return value
 
-    # the limit the linear model reaches first is searched first; the other only below its Hs, and
-    # not at all when it is still within its limit there (the MPMs grow with Hs)
-    first, second = sorted(_LIMIT_QUANTITY, key=lambda n: linear[n])
-    bound = cap
-    for name in (first, second):
+    return {name: value_of(quantity) for name, quantity in _LIMIT_QUANTITY.items()}
+
+
+def _nonlinear_limits(
+    linear: dict[str, float], limits: dict[str, float], values: dict[str, Value], cap: float, settings: OperabilitySettings
+) -> tuple[dict[str, float], bool, int]:
+    """Each limit's nonlinear Hs (NaN: not searched), whether every solve converged, and the evaluations.
+
+    The limit the linear model reaches first is searched first; each other only below the smallest Hs found so far,
+    and not at all when it is still within its limit there (the MPMs grow with Hs).
+    """
+    nonlinear = dict.fromkeys(limits, math.nan)
+    evaluations, converged, bound = 0, True, cap
+    for name in sorted(limits, key=lambda n: linear[n]):
         if linear[name] == 0.0:
             nonlinear[name] = 0.0  # the still water alone exceeds the limit: no waves allowed, either model
             break
-        value = value_of(_LIMIT_QUANTITY[name])
-        if name == second and bound < cap:
+        value = values[name]
+        if bound < cap:
             v, ok = value(bound)
             evaluations += 1
             converged &= ok
             if v < limits[name]:
-                break  # within its limit where the first is reached: not searched (NaN)
+                continue  # within its limit where another is reached: not searched (NaN)
         hs, ok, count = _nonlinear_limit_hs(value, limits[name], min(linear[name], bound), bound, settings)
         evaluations += count
         converged &= ok
         nonlinear[name] = hs if ok else math.nan
         if ok and math.isfinite(hs):
             bound = min(bound, hs)
+    return nonlinear, converged, evaluations
+
+
+def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> OperabilityPoint:
+    case = family.case
+    cap = max_significant_height_m(tp, case.model.gravity_m_per_s2)
+    ref = analysis_at(family, tp, 1.0)  # MPMs per metre of Hs
+    e, sw = ref.extremes, family.still
+    limits = vertical_limits(case)
+    linear = {
+        "saddle_force": linear_limit_hs(sw.saddle_force_N, e.saddle_force.mpm, limits["saddle_force"]),
+        "bending_stress": linear_limit_hs(np.abs(sw.bending_stress_Pa), e.bending_stress.mpm, limits["bending_stress"]),
+    }
+    values = _vertical_values(family, ref, settings)
+    if family.cradle is not None:  # off head seas with a cradle limit set
+        at = cradle_at_peak_period(family.cradle, ref)
+        limits |= family.cradle.limits
+        linear |= cradle_linear_limits(at)
+        band = settings.design_wave.band_fraction
+        values |= {n: cradle_design_wave_value(at, n, lambda hs: rescaled(ref, hs).spectrum, band) for n in family.cradle.limits}
+    hs_lin, gov_lin = _governing(linear, cap)
+    onset = _uplift_onset(sw.saddle_compression_m, e.saddle_compression.mpm, cap)
+    nonlinear, converged, evaluations = _nonlinear_limits(linear, limits, values, cap, settings)
     if converged:
         hs_nl, gov_nl = _governing({k: (math.inf if math.isnan(v) else v) for k, v in nonlinear.items()}, cap)
     else:
         hs_nl, gov_nl = math.nan, "not_converged"
         logger.warning("operability: Tp = %g s: a harmonic-balance solve of the nonlinear search did not converge", tp)
+    cradle = {f"hs_{n}_linear_m": v for n, v in linear.items() if n not in _LIMIT_QUANTITY}
+    cradle |= {f"hs_{n}_nonlinear_m": v for n, v in nonlinear.items() if n not in _LIMIT_QUANTITY}
     return OperabilityPoint(
         peak_period_s=float(tp),
         hs_allowable_linear_m=float(hs_lin),
@@ -282,6 +335,7 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
         hs_stress_nonlinear_m=nonlinear["bending_stress"],
         converged=converged,
         evaluations=evaluations,
+        **{k: float(v) for k, v in cradle.items()},
     )
 
 
@@ -299,7 +353,8 @@ def allowable_sea_states(
     ----------
     case
         The case: its sea state's spectrum shape, gamma and duration (its Hs and Tp are not
-        used), its limits (``limits.max_saddle_force_N``, ``limits.max_bending_stress_Pa``).
+        used), its limits (``limits.max_saddle_force_N``, ``limits.max_bending_stress_Pa``; off head seas also the
+        cradle limits set).
     peak_periods_s
         Tp values [s].
     settings

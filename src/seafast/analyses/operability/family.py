@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 
+from seafast.analyses.operability.cradle import CradleFamily, cradle_family
 from seafast.analyses.seastate.spectral import (
     ResponseStatistics,
     SpectralAnalysis,
@@ -61,6 +62,9 @@ class SeaStateFamily:
         (name, shape) of each stacked transfer function, in order.
     pitch_reference_x_m, moment_x_m, section_modulus_m3
         Copied from the master transfer functions.
+    cradle
+        Off head seas with a cradle limit set, the cargo on its cradles
+        (:func:`~seafast.analyses.operability.cradle.cradle_family`); else None.
     """
 
     case: Case
@@ -74,6 +78,7 @@ class SeaStateFamily:
     pitch_reference_x_m: float
     moment_x_m: NDArray[np.float64]
     section_modulus_m3: NDArray[np.float64]
+    cradle: CradleFamily | None = None
 
 
 _COMPLEX_FIELDS = (
@@ -121,6 +126,8 @@ def sea_state_family(case: Case, peak_periods_s: Sequence[float], master_step_ra
         A spectrum table, a peak period whose spectrum the transfer functions do not resolve
         (the message names the peak period and the allowed range), or a vessel set-up without
         per-frequency hull response.
+    ValueError
+        Off head seas with a cradle limit set, cradles that cannot be built from the case (naming the key).
     """
     _check_parametric(case)
     _check_long_crested(case)
@@ -146,6 +153,7 @@ def sea_state_family(case: Case, peak_periods_s: Sequence[float], master_step_ra
         pitch_reference_x_m=tf.pitch_reference_x_m,
         moment_x_m=tf.bending_moment_x_m,
         section_modulus_m3=tf.bending_section_modulus_m3,
+        cradle=cradle_family(case, model),
     )
 
 

@@ -93,7 +93,8 @@ class GoverningHeading:
     hs_allowable_m
         The smallest allowable Hs [m].
     governing
-        What limits it there: ``saddle_force``, ``bending_stress`` or ``steepness``.
+        What limits it there: ``saddle_force``, ``bending_stress``, off head seas a cradle limit (``pad_force``,
+        ``lashing_tension``, ``transverse_slip``), or ``steepness``.
     """
 
     heading_deg: float

@@ -7,14 +7,21 @@ in :mod:`~seafast.output.report.html` and :mod:`~seafast.output.report.write`.
 from __future__ import annotations
 
 import html
+import json
 import math
 
 import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import Finding, ReportError, ReportFigure, findings_html, plain_table_html
+from seafast.output.report.operability_limits import cradle_governing_finding, limits_html
 
-__all__ = ["operability_findings", "operability_figure", "operability_report_sections", "OPERABILITY_TABLE_HEADER"]
+__all__ = [
+    "operability_findings",
+    "operability_figure",
+    "operability_report_sections",
+    "OPERABILITY_TABLE_HEADER",
+]
 
 OPERABILITY_TABLE_HEADER = (
     "Tp [s]",
@@ -49,6 +56,15 @@ def _rows(ds: xr.Dataset) -> list[list[str]]:
     return out
 
 
+def _heading_text(ds: xr.Dataset) -> str:
+    """The analysed heading of a single-heading operability.nc (from its case), as words."""
+    try:
+        heading = float(json.loads(str(ds.attrs.get("case_json", "{}")))["sea_state"]["heading_deg"])
+    except (ValueError, KeyError, TypeError):
+        return "head seas"
+    return "head seas" if heading == 180.0 else f"heading {heading:g} deg (180 = head seas, 90 = beam seas)"
+
+
 def operability_findings(ds: xr.Dataset) -> list[Finding]:
     """WARNING / NOTE / OK statements on an operability result."""
     out: list[Finding] = []
@@ -74,6 +90,12 @@ def operability_findings(ds: xr.Dataset) -> list[Finding]:
         )
     else:
         out.append(Finding("OK", "No saddle lifts off below the allowable Hs: the linear and nonlinear curves agree", ""))
+    tps = [f"Tp {float(t):g} s" for t in tp]
+    for model in ("nonlinear", "linear"):
+        note = cradle_governing_finding(ds[f"governing_{model}"].values, tps, model)
+        if note is not None:
+            out.append(note)
+            break
     if "share_within_limits_nonlinear" in ds.attrs:
         out.append(
             Finding(
@@ -143,7 +165,8 @@ def operability_figure(ds: xr.Dataset) -> ReportFigure:
         "fig-operability",
         "Allowable sea states",
         fig,
-        "Largest Hs per peak period within the saddle-force and bending-stress limits (most probable maxima over "
+        "Largest Hs per peak period within the saddle-force and bending-stress limits (off head seas also the cradle "
+        "limits set; most probable maxima over "
         "the duration, still water included): linear spectral and nonlinear design-wave estimates; the Hs at "
         "which a saddle first lifts off; the steepest sea state (DNV-RP-C205).",
     )
@@ -175,12 +198,11 @@ def operability_report_sections(
     fig = operability_figure(ds)
     findings = operability_findings(ds)
     div = fig.figure.to_html(full_html=False, include_plotlyjs=True if first_figure else False, div_id=fig.id, config=_PLOTLY_CONFIG)
-    f_max, s_max = float(ds.attrs.get("max_saddle_force_N", math.nan)), float(ds.attrs.get("max_bending_stress_Pa", math.nan))
     body = (
-        f"<p>Limits: saddle force F &le; {f_max / 1e6:g} MN, bending stress &sigma;<sub>b</sub> &le; {s_max / 1e6:g} MPa; most "
+        f"<p>{limits_html(ds)}; most "
         f"probable maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included; "
         f"{html.escape(str(ds.attrs.get('spectrum', '')))} spectrum (&gamma; = {float(ds.attrs.get('peak_enhancement', math.nan)):g}), "
-        "head seas. Nonlinear: design waves solved by harmonic balance (docs/operability.md).</p>"
+        f"{_heading_text(ds)}. Nonlinear: design waves solved by harmonic balance (docs/operability.md).</p>"
         + findings_html(findings)
         + f'<div class="figure" data-figure="{html.escape(fig.id)}"><h3>{html.escape(fig.title)}</h3>{div}'
         f'<p class="caption">{html.escape(fig.caption)}</p></div>' + plain_table_html(OPERABILITY_TABLE_HEADER, _rows(ds))

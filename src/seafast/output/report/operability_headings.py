@@ -15,12 +15,14 @@ import numpy as np
 import xarray as xr
 
 from seafast.output.report.common import Finding, ReportFigure, findings_html, plain_table_html
+from seafast.output.report.operability_limits import cradle_governing_finding, limits_html
 
 __all__ = ["heading_operability_findings", "heading_operability_figure", "heading_operability_report_sections"]
 
 _PLOTLY_CONFIG = {"displaylogo": False, "responsive": True}
 POLAR_CAPTION = (
-    "Largest Hs [m] (radial) within the saddle-force and bending-stress limits, nonlinear design-wave estimate, against "
+    "Largest Hs [m] (radial) within the limits (saddle force, bending stress; off head seas the cradle limits set), "
+    "nonlinear design-wave estimate, against "
     "the wave heading [deg]: 180 deg (head seas, waves from ahead) at the top, the bow; 90 deg (beam seas, waves from "
     "starboard) on the right; 0 deg (following seas) at the bottom. One curve per peak period; in black the smallest "
     "over the peak periods; the star marks the governing heading."
@@ -58,6 +60,12 @@ def heading_operability_findings(ds: xr.Dataset) -> list[Finding]:
                 "Its allowable Hs are empty and it takes no part in the governing heading: " + "; ".join(e for _, e in failed),
             ),
         )
+    headings_tp = [f"{float(h):g} deg Tp {float(t):g} s" for h in headings for t in ds["peak_period_s"].values]
+    for model in ("nonlinear", "linear"):
+        note = cradle_governing_finding(ds[f"governing_{model}"].values, headings_tp, model)
+        if note is not None:
+            out.append(note)
+            break
     gov = ds["governing_nonlinear"].values
     stuck = [float(h) for i, h in enumerate(headings) if any(str(g) == "not_converged" for g in gov[i])]
     if stuck:
@@ -130,10 +138,9 @@ def heading_operability_report_sections(
     fig = heading_operability_figure(ds)
     findings = heading_operability_findings(ds)
     div = fig.figure.to_html(full_html=False, include_plotlyjs=True if first_figure else False, div_id=fig.id, config=_PLOTLY_CONFIG)
-    f_max, s_max = float(ds.attrs.get("max_saddle_force_N", math.nan)), float(ds.attrs.get("max_bending_stress_Pa", math.nan))
     header, rows = _table(ds)
     body = (
-        f"<p>Limits: saddle force F &le; {f_max / 1e6:g} MN, bending stress &sigma;<sub>b</sub> &le; {s_max / 1e6:g} MPa; most "
+        f"<p>{limits_html(ds)}; most "
         f"probable maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included; "
         f"{html.escape(str(ds.attrs.get('spectrum', '')))} spectrum (&gamma; = {float(ds.attrs.get('peak_enhancement', math.nan)):g}) "
         "at each heading (180 deg = head seas, 90 deg = beam seas from starboard). Nonlinear: design waves solved by harmonic "

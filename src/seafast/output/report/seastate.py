@@ -7,6 +7,7 @@ stay in :mod:`~seafast.output.report.html` and :mod:`~seafast.output.report.writ
 from __future__ import annotations
 
 import html
+import json
 import math
 from typing import Any
 
@@ -15,10 +16,32 @@ import xarray as xr
 
 from seafast.output.report.common import Finding, ReportError, ReportFigure, findings_html, plain_table_html
 
-__all__ = ["seastate_findings", "seastate_figures", "seastate_report_sections", "SEASTATE_TABLE_HEADER"]
+__all__ = [
+    "seastate_findings",
+    "seastate_figures",
+    "seastate_report_sections",
+    "seastate_table_header",
+    "SEASTATE_TABLE_HEADER",
+    "CRADLE_TABLE_HEADER",
+]
 
 SEASTATE_TABLE_HEADER = ("model", "method", "F [MN]", "M_b [MN m]", "sigma_b [MPa]", "u_s [mm]", "u_d [mm]", "uplift [1/h]", "converged")
 _SCALE = (("F_N", 1e-6, 3), ("M_b_Nm", 1e-6, 2), ("sigma_b_Pa", 1e-6, 2), ("u_s_m", 1e3, 2), ("u_d_m", 1e3, 2), ("uplift_per_hour", 1.0, 2))
+_CRADLE_SCALE = (
+    ("F_pad_N", 1e-6, 3),
+    ("F_stopper_N", 1e-6, 3),
+    ("lashing_tension_max_N", 1e-3, 2),
+    ("lashing_tension_min_N", 1e-3, 2),
+    ("transverse_slip_m", 1e3, 2),
+)
+"""seastate.csv's cradle columns (off head seas) in the table: variable, scale to the head's unit, digits."""
+CRADLE_TABLE_HEADER = ("F_pad [MN]", "F_stopper [MN]", "T_max [kN]", "T_min [kN]", "slip [mm]")
+"""The cradle columns' heads, after ``converged``: pad force, stopper force, lashing tension max and min, transverse slip."""
+_CRADLE_LIMITS = (
+    ("F_pad_N", "max_pad_force_N", "pad force", "MN", 1e-6),
+    ("lashing_tension_max_N", "max_lashing_tension_N", "lashing tension", "kN", 1e-3),
+    ("transverse_slip_m", "max_transverse_slip_m", "transverse slip", "mm", 1e3),
+)
 _PLOTLY_CONFIG = {"displaylogo": False, "responsive": True}
 
 
@@ -33,8 +56,19 @@ def _methods(ds: xr.Dataset) -> tuple[tuple[str, str], ...]:
     return tuple(r for r in rows if r[1] in methods)
 
 
+def _has_cradles(ds: xr.Dataset) -> bool:
+    """Whether seastate.nc carries the cradle columns (a sea state off head seas)."""
+    return all(name in ds for name, _, _ in _CRADLE_SCALE)
+
+
+def seastate_table_header(ds: xr.Dataset) -> tuple[str, ...]:
+    """The table's heads: :data:`SEASTATE_TABLE_HEADER`, and :data:`CRADLE_TABLE_HEADER` when the file has the cradle columns."""
+    return SEASTATE_TABLE_HEADER + (CRADLE_TABLE_HEADER if _has_cradles(ds) else ())
+
+
 def _rows(ds: xr.Dataset) -> list[list[str]]:
     out = []
+    cradle = _CRADLE_SCALE if _has_cradles(ds) else ()
     for model, method in _methods(ds):
         row = [model, method]
         for name, scale, digits in _SCALE:
@@ -42,8 +76,48 @@ def _rows(ds: xr.Dataset) -> list[list[str]]:
             row.append(f"{v * scale:.{digits}f}" if math.isfinite(v) else "not computed")
         c = int(ds["converged"].sel({"model": model, "estimate_method": method}).values)
         row.append({1: "yes", 0: "NO", -1: "-"}[c])
+        for name, scale, digits in cradle:
+            v = _value(ds, name, model, method)
+            row.append(f"{v * scale:.{digits}f}" if math.isfinite(v) else "not computed")
         out.append(row)
     return out
+
+
+def _case_limits(ds: xr.Dataset) -> dict[str, Any]:
+    """The case's ``limits`` section recorded in seastate.nc (``case_json``), or {}."""
+    try:
+        limits = json.loads(str(ds.attrs.get("case_json", "{}"))).get("limits", {})
+    except (ValueError, AttributeError):
+        return {}
+    return limits if isinstance(limits, dict) else {}
+
+
+def _cradle_limit_findings(ds: xr.Dataset) -> list[Finding]:
+    """A WARNING per cradle column above its limit (``limits.max_pad_force_N`` etc., when set) in a row judged on."""
+    if not _has_cradles(ds):
+        return []
+    limits, out = _case_limits(ds), []
+    for name, key, label, unit, scale in _CRADLE_LIMITS:
+        limit = limits.get(key)
+        if limit is None:
+            continue
+        for model, method in (r for r in _methods(ds) if r[1] != "monte_carlo"):
+            v = _value(ds, name, model, method)
+            if math.isfinite(v) and v > float(limit):
+                out.append(
+                    Finding(
+                        "WARNING",
+                        f"{model} {method}: MPM {label} {v * scale:.2f} {unit} exceeds the limit {float(limit) * scale:g} {unit}",
+                        f"limits.{key} of the case (the cargo on its cradles).",
+                    )
+                )
+    return out
+
+
+def _heading_text(ds: xr.Dataset) -> str:
+    """``head seas``, or the sea state's heading off head seas (seastate.nc's ``sea_state_heading_deg``)."""
+    heading = float(ds.attrs.get("sea_state_heading_deg", 180.0))
+    return "head seas" if heading == 180.0 else f"heading {heading:g} deg (180 = head seas, 90 = beam seas)"
 
 
 def seastate_findings(ds: xr.Dataset) -> list[Finding]:
@@ -85,6 +159,7 @@ def seastate_findings(ds: xr.Dataset) -> list[Finding]:
                         "limits.* keys of the case.",
                     )
                 )
+    out += _cradle_limit_findings(ds)
     for model, method in _methods(ds):
         if int(ds["converged"].sel({"model": model, "estimate_method": method}).values) == 0:
             what = "A design wave's harmonic balance" if method == "design_wave" else "A Monte Carlo realisation"
@@ -168,7 +243,7 @@ def seastate_figures(ds: xr.Dataset) -> list[ReportFigure]:
             "fig-seastate-transfer",
             "Transfer functions",
             tf,
-            "Magnitude of the linear transfer functions per metre of wave amplitude (head seas).",
+            f"Magnitude of the linear transfer functions per metre of wave amplitude ({_heading_text(ds)}).",
         ),
     ]
     if "mc_F_N" in ds:
@@ -260,6 +335,13 @@ def _example_figure(ds: xr.Dataset) -> ReportFigure:
     )
 
 
+_CRADLE_NOTE = (
+    "<p>Off head seas the cargo on its cradles (docs/seastate.md): the largest pad force F_pad, side-stopper force "
+    "F_stopper, lashing-wire tension T_max and T_min, and lateral displacement of the cargo at a saddle (slip), most "
+    "probable maxima (T_min: minimum) with still water; the Monte Carlo rows stay in the vertical plane (not computed).</p>"
+)
+
+
 def seastate_report_sections(
     ds: xr.Dataset, first_figure: bool
 ) -> tuple[list[tuple[str, str, str]], list[ReportFigure], list[Finding], bool]:
@@ -284,12 +366,13 @@ def seastate_report_sections(
         )
     hs, tp = float(ds.attrs.get("significant_height_m", math.nan)), float(ds.attrs.get("peak_period_s", math.nan))
     summary = (
-        f"<p>{html.escape(str(ds.attrs.get('spectrum', '')))}: Hs = {hs:g} m, Tp = {tp:.3g} s, head seas; most probable "
+        f"<p>{html.escape(str(ds.attrs.get('spectrum', '')))}: Hs = {hs:g} m, Tp = {tp:.3g} s, {_heading_text(ds)}; most probable "
         f"maxima over {float(ds.attrs.get('duration_s', math.nan)) / 3600:g} h, still water included "
         "(linear spectral: Rayleigh; design waves: harmonic balance of the regular waves whose linear response is the "
         "linear MPM, docs/operability.md; Monte Carlo: mode of the Gumbel fit to the per-realisation maxima).</p>"
         + findings_html(findings)
-        + plain_table_html(SEASTATE_TABLE_HEADER, _rows(ds))
+        + (_CRADLE_NOTE if _has_cradles(ds) else "")
+        + plain_table_html(seastate_table_header(ds), _rows(ds))
     )
     sections = [("seastate-summary", "Sea state: extremes", summary), ("seastate-figures", "Sea state: figures", "".join(parts))]
     return sections, figs, findings, first_figure
