@@ -57,14 +57,14 @@ t = {"start": now()}
 import seafast.cli.command
 from seafast.analyses.run import run_case
 from seafast.config import load_case
-from seafast.output.files import no_dask_array_lookup, write_netcdf, write_run_outputs
+from seafast.output.files import no_dask_lookup, write_netcdf, write_run_outputs
 from seafast.output.tables import format_summary_table, write_summary_csv
 t["imports"] = now()
 case = load_case(None, {})
 stamps = []
 out = Path(sys.argv[1])
 out.mkdir(parents=True, exist_ok=True)
-with no_dask_array_lookup():  # as seafast run
+with no_dask_lookup():  # as seafast run
     result = run_case(case, progress=lambda message: stamps.append(now()))
     t["solved"] = now()
     rows = result.summary
