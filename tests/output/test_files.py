@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-from seafast.output.files import write_netcdf
+from seafast.output.files import NETCDF_COMPRESS_LEVEL, write_netcdf
 
 PROBE = """
 import json, sys
@@ -44,7 +44,7 @@ def test_write_netcdf_compresses_the_numbers_and_keeps_the_attributes(tmp_path):
     path = write_netcdf(ds, tmp_path / "r.nc")
     with xr.open_dataset(path) as back:
         assert back.identical(ds)
-        assert back["M_b_Nm"].encoding["zlib"] and back["M_b_Nm"].encoding["complevel"] == 4
+        assert back["M_b_Nm"].encoding["zlib"] and back["M_b_Nm"].encoding["complevel"] == NETCDF_COMPRESS_LEVEL > 0
 
 
 def test_a_run_writes_the_same_files_whether_helpers_draw_the_figures_or_not(tmp_path):
@@ -77,3 +77,45 @@ def test_a_run_writes_the_same_files_whether_helpers_draw_the_figures_or_not(tmp
             assert shared[key].read_bytes() == path.read_bytes(), key
     with xr.open_dataset(alone["results"]) as a, xr.open_dataset(shared["results"]) as b:
         assert a.identical(b)
+
+
+HIDDEN = """
+import json, sys
+from seafast.output.files import no_dask_lookup, write_netcdf
+with no_dask_lookup():
+    import numpy as np, xarray as xr
+    ds = xr.Dataset({"F_N": (("t", "s"), np.arange(6.0).reshape(3, 2), {"units": "N"})}, coords={"t": [0.0, 0.5, 1.0]})
+    write_netcdf(ds, sys.argv[1])
+    with xr.open_dataset(sys.argv[1]) as back:
+        same = back.identical(ds) and float(back["F_N"].sel(t=0.5, s=1)) == 3.0
+    try:
+        import dask
+        refused = False
+    except ImportError:
+        refused = True
+    loaded_inside = sorted(name for name in sys.modules if name.split(".")[0] in ("dask", "distributed") and sys.modules[name] is not None)
+import dask
+import dask.array as da
+chunked = xr.DataArray(da.ones((4,), chunks=2), dims="t")  # a Dask collection only if xarray sees a Dask array inside
+print(json.dumps({
+    "same": same,
+    "refused": refused,
+    "loaded_inside": loaded_inside,
+    "recognised_after": dask.is_dask_collection(chunked) and float(chunked.sum()) == 4.0,
+    "none_left": [name for name, module in sys.modules.items() if module is None and name.startswith("dask")],
+}))
+"""
+
+
+def test_a_block_without_dask_reads_writes_and_selects_then_dask_arrays_are_recognised_again(tmp_path):
+    """``no_dask_lookup``: xarray works inside without importing Dask; after the block Dask imports and its arrays are Dask arrays."""
+    probe = [sys.executable, "-c", HIDDEN, str(tmp_path / "probe.nc")]
+    done = subprocess.run(probe, capture_output=True, text=True, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == {
+        "same": True,
+        "refused": True,
+        "loaded_inside": [],
+        "recognised_after": True,
+        "none_left": [],
+    }

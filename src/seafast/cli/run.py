@@ -47,7 +47,7 @@ def add_run_subcommand(subparsers: Any) -> argparse.ArgumentParser:
 def _cmd_run(args: argparse.Namespace) -> int:
     from seafast.config import CaseError, load_case, parse_overrides
     from seafast.output.case_figures import figure_helpers
-    from seafast.output.files import no_dask_array_lookup
+    from seafast.output.files import no_dask_lookup
 
     try:
         overrides = parse_overrides(args.overrides)
@@ -59,9 +59,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
     source = f"from {args.case}" if args.case else "(built-in base case)"
     logger.info("seafast %s: running '%s' %s", seafast.__version__, case.name, source)
     t0 = time.perf_counter()
-    # a run makes no Dask array: xarray need not import dask.array to tell; the figures' helpers
+    # a run makes no Dask collection: xarray need not import Dask to tell; the figures' helpers
     # are forked first, before the numerical stack loads here, and load matplotlib meanwhile
-    with no_dask_array_lookup(), figure_helpers(case.outputs.plots) as helpers:
+    with no_dask_lookup(), figure_helpers(case.outputs.plots) as helpers:
         from seafast.analyses.run import run_case
         from seafast.output.files import write_run_outputs
 
