@@ -249,17 +249,12 @@ DIRECTION_STREAM = 1
 
 
 def drawn_transfer(transfer: NDArray[np.complex128], weights: NDArray[np.float64] | None, seed: int, index: int) -> NDArray[np.complex128]:
-    """Realisation ``index``'s transfer functions (n_f, n_ch) of a plan's ``transfer`` (:attr:`RealisationPlan.transfer`).
-
-    Long-crested (``weights`` None): ``transfer``. Short-crested ((n_d, n_f, n_ch) and the quadrature's weights): each
-    component's direction drawn as :meth:`RealisationPlan.realisation_transfer` says.
-    """
+    """Realisation ``index``'s (n_f, n_ch) of a plan's ``transfer`` and ``weights``: :meth:`RealisationPlan.realisation_transfer`."""
     if weights is None:
         return transfer
     rng = np.random.default_rng(np.random.SeedSequence(int(seed), spawn_key=(int(index), DIRECTION_STREAM)))
-    n_f = transfer.shape[1]
-    drawn = rng.choice(weights.size, size=n_f, p=weights)
-    return np.ascontiguousarray(transfer[drawn, np.arange(n_f)])
+    drawn = rng.choice(weights.size, size=transfer.shape[1], p=weights)
+    return np.ascontiguousarray(transfer[drawn, np.arange(transfer.shape[1])])
 
 
 def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: NDArray, moments: NDArray, share: float) -> float:
