@@ -280,11 +280,16 @@ def march_step(
     dt = stepper.dt
     A, F, G, k = stepper.engagement_modes, stepper.flexibility, stepper.receptance, stepper.stiffness_N_per_m
     q_p = stepper.predictor @ x
-    c, open_ = contact_correction_N(G, k, s_next + A @ q_p, open_set, stepper.sign)
-    q = q_p - F @ c
+    s_p = s_next + A @ q_p
+    if not open_set.any() and not np.any((s_p if stepper.sign is None else stepper.sign * s_p) < 0.0):
+        c, open_, q, s = np.zeros(s_p.size), open_set, q_p, s_p  # nothing to correct: the solve's answer, c = 0
+    else:
+        c, open_ = contact_correction_N(G, k, s_p, open_set, stepper.sign)
+        q = q_p - F @ c
+        s = s_next + A @ q - (G - A @ F) @ c
     a = (4.0 / dt**2) * (q - x[:n]) - (4.0 / dt) * x[n : 2 * n] - x[2 * n :]
     v = x[n : 2 * n] + 0.5 * dt * (x[2 * n :] + a)
-    return np.concatenate([q, v, a]), open_, s_next + A @ q - (G - A @ F) @ c, c
+    return np.concatenate([q, v, a]), open_, s, c
 
 
 def _march_period(stepper: CradleStepper, s_lin: NDArray[np.float64], state: list[NDArray]) -> NDArray[np.float64]:

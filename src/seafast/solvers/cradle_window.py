@@ -136,7 +136,8 @@ def march_cradle_window(
             force = k * np.maximum(s, 0.0)
             hi, lo = np.maximum(hi, force), np.minimum(lo, force)
             corrected += chosen
-            solved = solved and _complementarity_holds(k, sign, s, c, float(np.max(np.abs(k * row[:m]))) + 1.0)
+            if c.any():
+                solved = solved and _complementarity_holds(k, sign, s, c, float(np.max(np.abs(k * row[:m]))) + 1.0)
             if p:
                 assert stepper.output_modes is not None and stepper.output_residual is not None
                 y = row[m:] + stepper.output_modes @ x[:r] + stepper.output_residual @ c

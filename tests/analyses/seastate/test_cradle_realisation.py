@@ -18,6 +18,7 @@ import seafast
 from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state, scaled_excitation
 from seafast.analyses.seastate.cradle_realisation import (
     CRADLE_QUANTITIES,
+    CradleRealisationSettings,
     cradle_realisation_plan,
     evaluate_cradle_realisation,
 )
@@ -48,8 +49,8 @@ SEVERE = {
 }
 
 
-def _plan(overrides):
-    """The case's spectral analysis, its cradle sea state (no design waves) and cradle realisation plan."""
+def _plan(overrides, settings=None):
+    """The case's cradle sea state (no design waves), cradle realisation plan and spectral analysis."""
     case = seafast.load_case(None, overrides)
     analysis = spectral_analysis(case)
     cradle = cradle_sea_state(analysis, design_waves=False)
@@ -58,7 +59,9 @@ def _plan(overrides):
     def transfer_at(w):
         return [cradle_transfer_functions(cradle.sea, tf) for tf in sea_state_transfer(case, analysis.model, w, roll).per_direction]
 
-    plan = cradle_realisation_plan(case, analysis.spectrum, transfer_at, cradle.sea.dynamics, cradle.spectral.still_water)
+    plan = cradle_realisation_plan(
+        case, analysis.spectrum, transfer_at, cradle.sea.dynamics, cradle.spectral.still_water, settings or CradleRealisationSettings()
+    )
     return cradle, plan, analysis
 
 
@@ -117,8 +120,9 @@ def test_linear_maxima_of_many_records_match_the_spectral_most_probable_maxima(m
 
 @pytest.fixture(scope="module")
 def severe():
-    """Beam sea, Hs 9 m, one-minute records, stoppers 2 mm off, lashings without pretension: everything changes state."""
-    return _plan(SEVERE)
+    """Beam sea, Hs 9 m, one-minute records, stoppers 2 mm off, lashings without pretension: everything changes state
+    (16 steps a period: the windows' check, not the step's)."""
+    return _plan(SEVERE, CradleRealisationSettings(steps_per_period=16))
 
 
 def test_windowed_march_equals_the_march_over_the_whole_record(severe):

