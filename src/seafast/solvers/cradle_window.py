@@ -1,7 +1,8 @@
 """Windows of the 3-D cargo's correction system marched along a given record of linear engagements.
 
 The march of :mod:`seafast.solvers.cradle_march` (the same :class:`~seafast.solvers.cradle_march.CradleStepper` and
-:func:`~seafast.solvers.cradle_march.march_step`: Newmark's average acceleration, the exact contact per step) driven
+the arithmetic of :func:`~seafast.solvers.cradle_march.march_step`, compiled over blocks of steps in
+:mod:`seafast.solvers.cradle_kernels`: Newmark's average acceleration, the exact contact per step) driven
 not by a periodic linear solution but by any record ``s_lin(t)`` of every element's linear engagement, e.g. a
 random sea's (:mod:`seafast.analyses.seastate.cradle_realisation`). The linear system is the cargo with the elements
 ``included`` bilateral (the pads and lashings) and the others open (the side stoppers), so the nonlinear response
@@ -28,7 +29,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from seafast.solvers.cradle_march import CradleStepper, contact_correction_N, march_step
+from seafast.solvers.cradle_kernels import march_block
+from seafast.solvers.cradle_march import CradleStepper, contact_correction_N
 
 __all__ = ["CradleWindow", "march_cradle_window", "quasi_static_state"]
 
@@ -77,16 +79,8 @@ def quasi_static_state(stepper: CradleStepper, s_lin: NDArray[np.float64]) -> tu
     return x, chosen
 
 
-def _free_vibration_bound(stepper: CradleStepper, x: NDArray[np.float64], peak: NDArray[np.float64]) -> float:
-    """``sum_r max_i |(A Phi)_ir| sqrt(eta_r^2 + (eta_r' / omega_r)^2)`` [m]."""
-    assert stepper.modal_stiffness is not None
-    r = stepper.modal_stiffness.size
-    return float(peak @ np.sqrt(x[:r] ** 2 + x[r : 2 * r] ** 2 / stepper.modal_stiffness))
-
-
-def _complementarity_holds(k: NDArray, sign: NDArray, s: NDArray, c: NDArray, scale: float) -> bool:
-    """``c = k max(-sign s, 0)`` to round-off of ``scale`` [N]."""
-    return bool(np.all(np.abs(c - k * np.maximum(-sign * s, 0.0)) <= 1e-8 * scale))
+def _c(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    return np.ascontiguousarray(a, dtype=np.float64)
 
 
 def march_cradle_window(
@@ -121,28 +115,21 @@ def march_cradle_window(
         The state at ``start`` (:func:`quasi_static_state`); default at rest.
     """
     m, k = stepper.stiffness_N_per_m.size, stepper.stiffness_N_per_m
-    sign = np.ones(m) if stepper.sign is None else stepper.sign
+    assert stepper.modal_stiffness is not None
     r = stepper.engagement_modes.shape[1]
     x, chosen = (np.zeros(3 * r), np.zeros(m, dtype=bool)) if state is None else (state[0].copy(), state[1].copy())
-    peak = np.max(np.abs(stepper.engagement_modes), axis=0)
     p = 0 if stepper.output_modes is None else stepper.output_modes.shape[0]
-    hi, lo, out_max = np.full(m, -np.inf), np.full(m, np.inf), np.zeros(p)
-    corrected, solved, step = np.zeros(m, dtype=np.int64), True, start
-    while step < last:
-        block = linear_at(step + 1, min(CHUNK_SAMPLES * ratio, last - step))
-        for row in block:
-            step += 1
-            x, chosen, s, c = march_step(stepper, x, chosen, row[:m])
-            force = k * np.maximum(s, 0.0)
-            hi, lo = np.maximum(hi, force), np.minimum(lo, force)
-            corrected += chosen
-            if c.any():
-                solved = solved and _complementarity_holds(k, sign, s, c, float(np.max(np.abs(k * row[:m]))) + 1.0)
-            if p:
-                assert stepper.output_modes is not None and stepper.output_residual is not None
-                y = row[m:] + stepper.output_modes @ x[:r] + stepper.output_residual @ c
-                out_max = np.maximum(out_max, np.abs(y))
-            if step % ratio == 0 and not trigger[step // ratio] and not chosen.any() and not c.any():
-                if _free_vibration_bound(stepper, x, peak) <= tolerance_m:
-                    return CradleWindow(step, hi, lo, out_max, corrected, solved)
-    return CradleWindow(step, hi, lo, out_max, corrected, solved)
+    E, F, G = stepper.engagement_modes, stepper.flexibility, stepper.receptance
+    sign = np.ones(m) if stepper.sign is None else stepper.sign
+    Yo = np.zeros((0, r)) if stepper.output_modes is None else stepper.output_modes
+    Yr = np.zeros((0, m)) if stepper.output_residual is None else stepper.output_residual
+    ops = (_c(stepper.predictor), _c(F), _c(E), _c(G), _c(G - E @ F), _c(k), _c(sign), _c(Yo), _c(Yr), _c(stepper.modal_stiffness))
+    tallies = (np.full(m, -np.inf), np.full(m, np.inf), np.zeros(p), np.zeros(m, dtype=np.int64))
+    solved, step, ended = True, start, False
+    while step < last and not ended:
+        rows = np.ascontiguousarray(linear_at(step + 1, min(CHUNK_SAMPLES * ratio, last - step)))
+        x, chosen, step, ended, ok = march_block(
+            ops, float(stepper.dt), rows, x, chosen, np.asarray(trigger, dtype=np.bool_), int(ratio), int(step), float(tolerance_m), tallies
+        )
+        solved = solved and ok
+    return CradleWindow(step, tallies[0], tallies[1], tallies[2], tallies[3], solved)

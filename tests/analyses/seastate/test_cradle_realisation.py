@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.interpolate import CubicSpline
 
 import seafast
 from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state, scaled_excitation
@@ -35,6 +36,7 @@ from seafast.solvers.cradle_march import (
     march_step,
     pivoting_correction_N,
 )
+from seafast.solvers.cradle_window import march_cradle_window
 
 COARSE = {"model.element_length_m": 4.0, "sea_state.peak_period_s": 10.0}
 MODERATE = {**COARSE, "sea_state.heading_deg": 120.0, "sea_state.significant_height_m": 2.0}
@@ -158,6 +160,40 @@ def test_nonlinear_extremes_are_the_linear_ones_exactly_where_nothing_changes_st
     for q in ("F_pad_N", "lashing_tension_max_N", "transverse_slip_m"):
         assert lin[q] <= nl[q] <= lin[q] * (1.0 + 2.8e-3), q
     assert lin["lashing_tension_min_N"] >= nl["lashing_tension_min_N"] >= lin["lashing_tension_min_N"] * (1.0 - 2.8e-3)
+
+
+def test_the_compiled_window_is_the_python_step(severe):
+    """The compiled window (:mod:`seafast.solvers.cradle_kernels`) against :func:`march_step` step by step over 4000
+    fine steps of the severe record (pads lift, stoppers close, wires slacken): the same maxima, least forces, slip
+    and corrected steps to round-off."""
+    _, plan, _ = severe
+    n_f, m = plan.grid.omega_rad_s.size, plan.element_count
+    X = synthesise(plan.grid, realisation_phases(plan.seed, 1, n_f), plan.transfer, amplitude_factors(plan.seed, 1, n_f, True))
+    totals = np.hstack([plan.engagement_static_m, plan.lateral_static_m]) + X
+    t = np.arange(totals.shape[0] + 1) * plan.grid.time_step_s
+    spline = CubicSpline(t, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic")
+    dt_f = plan.grid.time_step_s / plan.ratio
+
+    def linear_at(first, count):
+        return spline((first + np.arange(count)) * dt_f)
+
+    n = 4000
+    window = march_cradle_window(plan.stepper, linear_at, np.ones(plan.grid.samples, dtype=bool), plan.ratio, 0, n, 1e-300)
+    st, k = plan.stepper, plan.stiffness_N_per_m
+    x, chosen = np.zeros(3 * st.engagement_modes.shape[1]), np.zeros(m, dtype=bool)
+    hi, lo, slip, corrected = np.full(m, -np.inf), np.full(m, np.inf), np.zeros(plan.lateral_static_m.size), np.zeros(m, int)
+    r = st.engagement_modes.shape[1]
+    for row in linear_at(1, n):
+        x, chosen, s, c = march_step(st, x, chosen, row[:m])
+        hi, lo = np.maximum(hi, k * np.maximum(s, 0.0)), np.minimum(lo, k * np.maximum(s, 0.0))
+        slip = np.maximum(slip, np.abs(row[m:] + st.output_modes @ x[:r] + st.output_residual @ c))
+        corrected += chosen
+    assert window.end == n and window.solved and corrected[:6].max() > 100 and corrected[-4:].max() > 100
+    scale = np.max(hi)
+    np.testing.assert_allclose(window.max_force_N, hi, rtol=1e-9, atol=1e-9 * scale)
+    np.testing.assert_allclose(window.min_force_N, lo, rtol=1e-9, atol=1e-9 * scale)
+    np.testing.assert_allclose(window.max_abs_output, slip, rtol=1e-9)
+    np.testing.assert_array_equal(window.corrected_steps, corrected)
 
 
 def _marched_periods(dynamics, s_lin, dt, periods):
