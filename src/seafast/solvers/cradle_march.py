@@ -18,6 +18,10 @@ new correction) gives ``s = s_p - G c`` with ``G = A K_eff^-1 A^T``, solved exac
 active set started from the step before (a linear complementarity problem with the positive definite
 ``diag(1/k) - G``: one solution). From rest (``q_c = 0``: the linear periodic solution), period after period.
 
+The stepper and its step (:func:`cradle_stepper`, :func:`march_step`) also march any record of linear engagements with
+some elements open in the linear system (the side stoppers: their correction is the force they carry once closed),
+in windows along a sea state's record (:mod:`seafast.solvers.cradle_window`).
+
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s].
 """
 
