@@ -85,15 +85,18 @@ def _cradle_rows(analysis: Any, rows: list[dict[str, Any]], say: Any) -> Any:
     return cradle
 
 
-def _add_cradle_columns(cradle: Any, rows: list[dict[str, Any]]) -> None:
-    """The cradle columns of the Monte Carlo rows (empty: it stays in the vertical plane) and the design-wave row (last),
-    whose ``converged`` then covers the cradle waves too (warned of with the largest residual)."""
+def _add_cradle_columns(cradle: Any, monte_carlo: Any, rows: list[dict[str, Any]]) -> None:
+    """The cradle columns of the Monte Carlo rows (each model's most probable extremes; empty cells where the Monte
+    Carlo was not run) and the design-wave row (last), whose ``converged`` then covers the cradle waves too (warned of
+    with the largest residual)."""
     from seafast.analyses.seastate.cradle_extremes import cradle_columns
+    from seafast.output.seastate_cradle import monte_carlo_cradle_columns
 
     if cradle is None or cradle.design is None:
         return
-    for r in rows[1:-1]:
-        r.update(cradle_columns(None))
+    statistics = (None, None) if monte_carlo is None or monte_carlo.cradle is None else monte_carlo.cradle
+    for r, model_statistics in zip(rows[1:-1], statistics, strict=True):
+        r.update(monte_carlo_cradle_columns(model_statistics))
     rows[-1].update(cradle_columns(cradle.design.totals))
     rows[-1]["converged"] = bool(rows[-1]["converged"]) and cradle.design.converged
     if not cradle.design.converged:
@@ -165,7 +168,7 @@ def _cmd_seastate(args: argparse.Namespace) -> int:
             return error(str(exc))
         rows += [monte_carlo_row(monte_carlo.linear), monte_carlo_row(monte_carlo.nonlinear)]
     rows.append(design.row())
-    _add_cradle_columns(cradle, rows)
+    _add_cradle_columns(cradle, monte_carlo, rows)
     if not args.quiet:  # the table as soon as it is known: seastate.nc and the figures take longer
         sp = analysis.spectrum
         d = case.sea_state.duration_s

@@ -14,7 +14,8 @@ import numpy as np
 import xarray as xr
 
 from seafast.analyses.seastate.cradle_design_wave import CradleSeaState
-from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS
+from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, cradle_columns
+from seafast.analyses.seastate.cradle_statistics import CradleStatistics
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS
 from seafast.results.labelled import labelled_variable as _var
 
@@ -26,6 +27,7 @@ __all__ = [
     "cradle_table_variables",
     "cradle_variables",
     "cradle_coords",
+    "monte_carlo_cradle_columns",
 ]
 
 CRADLE_TABLE_HEAD = ("F_pad [MN]", "F_stopper [MN]", "T_max [kN]", "T_min [kN]", "slip [mm]")
@@ -146,3 +148,9 @@ def cradle_coords(cradle: CradleSeaState) -> dict[str, xr.Variable]:
         n = len(cradle.design.waves)
         coords["cradle_design_wave"] = _var(("cradle_design_wave",), np.arange(n), "cradle design wave index", "1")
     return coords
+
+
+def monte_carlo_cradle_columns(statistics: CradleStatistics | None) -> dict[str, float | None]:
+    """The five cradle columns of a Monte Carlo row: one model's most probable extremes
+    (:class:`~seafast.analyses.seastate.cradle_statistics.CradleStatistics`), or empty cells (None) without them."""
+    return cradle_columns(None if statistics is None else statistics.mpm)

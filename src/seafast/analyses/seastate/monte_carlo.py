@@ -37,6 +37,8 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.cradle_realisation import CradleRealisationPlan, evaluate_cradle_realisation
+from seafast.analyses.seastate.cradle_statistics import CradleStatistics, cradle_statistics, cradle_statistics_variables
 from seafast.analyses.seastate.extremes import CONFIDENCE_LEVEL, MPMEstimate, most_probable_maximum
 from seafast.analyses.seastate.realisation import (
     QUANTITIES,
@@ -60,6 +62,7 @@ __all__ = [
     "MonteCarloSettings",
     "RealisationTimeSeries",
     "build_plan",
+    "build_cradle_plan",
     "run_monte_carlo",
     "statistics_from_records",
     "benchmark_realisation",
@@ -70,6 +73,7 @@ STORE_DIRECTORY = "monte_carlo"
 """Subdirectory of the output directory holding the resumable store."""
 
 _NUMERICS_VERSION = 1  # bump when a change alters stored realisations (the fingerprint then refuses old stores)
+_CRADLE_VERSION = 1  # off head seas the records hold the cradle extremes: stores without them are another run
 
 _UNITS = {"F_N": "N", "M_b_Nm": "N m", "sigma_b_Pa": "Pa", "u_s_m": "m", "u_d_m": "m"}
 _LONG = {
@@ -161,6 +165,9 @@ class MonteCarloResult:
         Wall time per realisation [s] (n_r,), NaN where reused from the store.
     reused
         Realisations found in the store (not recomputed by this run).
+    cradle
+        Off head seas the cargo on its cradles' statistics, linear and nonlinear
+        (:mod:`seafast.analyses.seastate.cradle_realisation`); None at head seas.
     """
 
     linear: MonteCarloStatistics
@@ -175,6 +182,7 @@ class MonteCarloResult:
     saddle_x_m: NDArray[np.float64]
     seconds: NDArray[np.float64]
     reused: int = 0
+    cradle: tuple[CradleStatistics, CradleStatistics] | None = None
 
     def to_dataset(self) -> xr.Dataset:
         """Per-realisation maxima and uplift statistics, MPMs and intervals, the example series.
@@ -190,6 +198,8 @@ class MonteCarloResult:
         for q in QUANTITIES:
             dv.update(_quantity_variables(self, q, caveat))
         dv.update(_record_variables(self))
+        if self.cradle is not None:
+            dv.update(cradle_statistics_variables(self.cradle))
         coords = _coordinates(self)
         if self.example is not None:
             coords.update(_example_coordinate(self.example))
@@ -338,7 +348,25 @@ def build_plan(case: Case, settings: MonteCarloSettings = MonteCarloSettings()) 
     )
 
 
-def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan) -> str:
+def build_cradle_plan(case: Case) -> CradleRealisationPlan | None:
+    """Off head seas the plan of the cargo on its cradles' realisations (the same sea); None at head seas."""
+    from seafast.analyses.seastate.cradle_extremes import is_off_head_seas
+    from seafast.analyses.seastate.cradle_realisation import cradle_realisation_plan
+    from seafast.analyses.seastate.cradle_transfer import cradle_sea_model, cradle_still_water, cradle_transfer_functions
+    from seafast.analyses.seastate.directional_transfer import sea_state_quadrature, sea_state_roll_damping, sea_state_transfer
+    from seafast.analyses.seastate.spectrum import sea_state_spectrum
+    from seafast.model.from_case import build_model
+
+    if not is_off_head_seas(case):
+        return None
+    model, spectrum = build_model(case), sea_state_spectrum(case)
+    roll, sea = sea_state_roll_damping(case, spectrum), cradle_sea_model(case, model)
+    weights = None if case.sea_state.spreading_exponent is None else sea_state_quadrature(case).weight
+    per = lambda w: [cradle_transfer_functions(sea, tf) for tf in sea_state_transfer(case, model, w, roll).per_direction]  # noqa: E731
+    return cradle_realisation_plan(case, spectrum, per, sea.dynamics, cradle_still_water(sea), direction_weights=weights)
+
+
+def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan, cradle: bool = False) -> str:
     """Identity of a run's realisations.
 
     The case without the realisation count and name, the settings, and the plan's amplitudes and
@@ -352,7 +380,10 @@ def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan
         sea.pop("heading_deg", None)
         sea.pop("spreading_exponent", None)
     data.pop("name", None)
-    blob = json.dumps({"case": data, "settings": settings.__dict__, "numerics": _NUMERICS_VERSION}, sort_keys=True, default=str)
+    identity = {"case": data, "settings": settings.__dict__, "numerics": _NUMERICS_VERSION} | (
+        {"cradle": _CRADLE_VERSION} if cradle else {}
+    )
+    blob = json.dumps(identity, sort_keys=True, default=str)
     digest = hashlib.sha256(blob.encode("utf-8"))
     for array in (plan.grid.amplitude_m, plan.transfer.real, plan.transfer.imag, plan.compression_static_m):
         scale = float(np.max(np.abs(array))) or 1.0
@@ -360,13 +391,18 @@ def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan
     return digest.hexdigest()[:16]
 
 
-def _realisations(plan: RealisationPlan, indices: list[int]) -> list[dict[str, Any]]:
-    """The records of a batch of realisations; one that fails is a record with its error text (the run goes on)."""
+def _realisations(plans: tuple[RealisationPlan, CradleRealisationPlan | None], indices: list[int]) -> list[dict[str, Any]]:
+    """The records of a batch of realisations (off head seas with their ``cradle`` part); one that fails is a record
+    with its error text (the run goes on)."""
+    plan, cradle = plans
     records = []
     for index in indices:
         t0 = time.perf_counter()
         try:
-            records.append(evaluate_realisation(plan, index)[0])
+            record = evaluate_realisation(plan, index)[0]
+            if cradle is not None:
+                record["cradle"] = {k: v for k, v in evaluate_cradle_realisation(cradle, index).items() if k != "index"}
+            records.append(record)
         except Exception as exc:  # noqa: BLE001 - any failure of one realisation is recorded
             records.append({"index": int(index), "error": error_text(exc), "seconds": time.perf_counter() - t0})
     return records
@@ -445,10 +481,11 @@ def run_monte_carlo(
         The directory holds another run (:class:`~seafast.parallel.errors.ForeignStoreError`), or
         the scheduler cannot be reached.
     """
-    plan = build_plan(case, settings)
+    plan, cradle_plan = build_plan(case, settings), build_cradle_plan(case)
     n_r = int(case.sea_state.realisations)
-    fingerprint = _fingerprint(case, settings, plan)
-    manifest = {"case": case.name, "duration_s": plan.duration_s, "seed": plan.seed, "settings": plan.describe()}
+    fingerprint = _fingerprint(case, settings, plan, cradle_plan is not None)
+    described = plan.describe() | ({} if cradle_plan is None else cradle_plan.describe())
+    manifest = {"case": case.name, "duration_s": plan.duration_s, "seed": plan.seed, "settings": described}
     seconds = np.full(n_r, np.nan)
     execution = ExecutionOptions(workers=workers, scheduler=scheduler, batch_size=1, progress=progress)
     with RecordStore(Path(directory) / STORE_DIRECTORY, fingerprint, manifest, DICT_RECORDS) as store:
@@ -457,7 +494,7 @@ def run_monte_carlo(
         bar = progress_reporter(n_r, reused, label=f"Monte Carlo {case.name}", unit="realisations", enabled=progress and bool(pending))
         try:
             batches = plan_batches(pending, execution.worker_count(), execution.batch_size)
-            for batch in map_batches(_realisations, plan, batches, execution):
+            for batch in map_batches(_realisations, (plan, cradle_plan), batches, execution):
                 bar.update(store.append(batch))
                 for record in batch:
                     if 0 <= int(record["index"]) < n_r:
@@ -479,13 +516,16 @@ def run_monte_carlo(
         example=example,
         duration_s=plan.duration_s,
         seed=plan.seed,
-        settings=plan.describe(),
+        settings=described,
         std_saddle_force_N=np.array([r.get("std_saddle_force_N", nan_s) for r in records], dtype=float),
         std_bending_moment_Nm=np.array([r.get("std_bending_moment_Nm", nan_x) for r in records], dtype=float),
         moment_x_m=plan.moment_x_m,
         saddle_x_m=plan.saddle_x_m,
         seconds=seconds,
         reused=reused,
+        cradle=None
+        if cradle_plan is None
+        else (cradle_statistics("linear", records, plan.seed), cradle_statistics("nonlinear", records, plan.seed)),
     )
 
 

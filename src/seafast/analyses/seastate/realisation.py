@@ -81,6 +81,8 @@ __all__ = [
     "realisation_plan",
     "RealisationTimeSeries",
     "evaluate_realisation",
+    "spectral_density",
+    "drawn_transfer",
 ]
 
 QUANTITIES: tuple[str, ...] = ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m")
@@ -187,12 +189,7 @@ class RealisationPlan:
         weights) from its own generator stream, ``SeedSequence(seed, spawn_key=(index, 1))``, apart from the phases' and
         amplitudes' stream (``spawn_key=(index,)``), so these are the long-crested realisation's, unchanged.
         """
-        if self.direction_weights is None:
-            return self.transfer
-        rng = np.random.default_rng(np.random.SeedSequence(int(self.seed), spawn_key=(int(index), DIRECTION_STREAM)))
-        n_f = self.transfer.shape[1]
-        drawn = rng.choice(self.direction_weights.size, size=n_f, p=self.direction_weights)
-        return np.ascontiguousarray(self.transfer[drawn, np.arange(n_f)])
+        return drawn_transfer(self.transfer, self.direction_weights, self.seed, index)
 
     @property
     def fine_step_s(self) -> float:
@@ -251,6 +248,15 @@ DIRECTION_STREAM = 1
 """Second spawn-key entry of the generator that draws a short-crested realisation's component directions."""
 
 
+def drawn_transfer(transfer: NDArray[np.complex128], weights: NDArray[np.float64] | None, seed: int, index: int) -> NDArray[np.complex128]:
+    """Realisation ``index``'s (n_f, n_ch) of a plan's ``transfer`` and ``weights``: :meth:`RealisationPlan.realisation_transfer`."""
+    if weights is None:
+        return transfer
+    rng = np.random.default_rng(np.random.SeedSequence(int(seed), spawn_key=(int(index), DIRECTION_STREAM)))
+    drawn = rng.choice(weights.size, size=transfer.shape[1], p=weights)
+    return np.ascontiguousarray(transfer[drawn, np.arange(transfer.shape[1])])
+
+
 def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: NDArray, moments: NDArray, share: float) -> float:
     """Highest frequency that matters for sampling [rad/s].
 
@@ -291,7 +297,7 @@ def _channels(
     return tfs[0], basis, channels_per, omega_s
 
 
-def _density(case: Case, spectrum: WaveSpectrum) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+def spectral_density(case: Case, spectrum: WaveSpectrum) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """S(omega) of the case's spectrum anywhere (parametric formulas; tables interpolated as the spectrum does)."""
     ss = case.sea_state
     if ss.spectrum in ("jonswap", "pierson_moskowitz"):
@@ -334,7 +340,7 @@ def realisation_plan(
     """
     ss = case.sea_state
     lo, hi = float(spectrum.omega_rad_s[0]), float(spectrum.omega_rad_s[-1])
-    density = _density(case, spectrum)
+    density = spectral_density(case, spectrum)
     # transfer functions on a uniform interpolation grid, then cubic splines to the synthesis grid
     n_i = max(int(np.ceil((hi - lo) / settings.transfer_step_rad_s)) + 1, 8)
     omega_i = np.linspace(lo, hi, n_i)
