@@ -114,7 +114,7 @@ def test_seastate_command_puts_each_models_cradle_extremes_in_its_monte_carlo_ro
 
     from seafast.cli import main
 
-    case, out, result = beam_run
+    _case, out, result = beam_run
     args = ["seastate", "-o", str(out), "--workers", "1", "--no-plots", "-q"]
     for key, value in BEAM.items():
         args += ["--set", f"{key}={value}"]
