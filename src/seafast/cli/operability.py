@@ -51,12 +51,25 @@ MAX_HEADINGS = 361
 # response peak (Tp 9.5-10 s on the base case) well inside (docs/operability.md section 4)
 DEFAULT_PEAK_PERIODS = "5:20:0.5"
 
+
+def _limits_text(limits: Any) -> str:
+    """The limits judged, for the table's title: the vertical plane's two and each cradle limit set."""
+    parts = [f"F <= {limits.max_saddle_force_N / 1e6:g} MN", f"sigma_b <= {limits.max_bending_stress_Pa / 1e6:g} MPa"]
+    if limits.max_pad_force_N is not None:
+        parts.append(f"F_pad <= {limits.max_pad_force_N / 1e6:g} MN off head seas")
+    if limits.max_lashing_tension_N is not None:
+        parts.append(f"lashing tension <= {limits.max_lashing_tension_N / 1e3:g} kN off head seas")
+    if limits.max_transverse_slip_m is not None:
+        parts.append(f"slip <= {limits.max_transverse_slip_m * 1e3:g} mm off head seas")
+    return ", ".join(parts)
+
 OPERABILITY_EXAMPLES = """examples:
   seafast operability                                        # the base case, Tp 5-20 s every 0.5 s, limits 7 MN / 20 MPa
   seafast operability --tp 5:16:0.5                          # 23 peak periods
   seafast operability case.yaml --tp 6:14:1 -o out/op --set limits.max_saddle_force_N=11.5e6
   seafast operability --tp 4:18:1 --scatter hindcast.csv    # also the share of a scatter diagram within the limits
   seafast operability --headings 90:180:15 --tp 6:14:1       # per heading (180 = head seas, 90 = beam seas): polar chart
+  seafast operability --headings 90:180:30 --set limits.max_pad_force_N=5e6   # also the cradles' pads off head seas
 
 Outputs in DIR: operability.csv (peak_period_s,hs_allowable_linear_m,hs_allowable_nonlinear_m,hs_uplift_onset_m,
 governing_linear,governing_nonlinear; empty cell = not found), operability.nc, operability.png (Hs against Tp),
@@ -66,7 +79,9 @@ the top) and the governing heading (smallest allowable Hs) is printed. With crit
 operability.csv gains alpha_linear,hs_forecast_limit_linear_m,alpha_nonlinear,hs_forecast_limit_nonlinear_m (the
 weather-routing limit OP_WF = alpha x allowable Hs); unrestricted, route.csv checks each route leg's design sea state.
 The spectrum shape, gamma and duration are the case's sea_state keys
-(its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa.
+(its Hs and Tp are not used); the limits are limits.max_saddle_force_N and limits.max_bending_stress_Pa, and off head
+seas also limits.max_pad_force_N, max_lashing_tension_N and max_transverse_slip_m where set (the cargo on its
+cradles; operability.csv then gains hs_{pad_force,lashing_tension,transverse_slip}_{linear,nonlinear}_m).
 'seafast report DIR' adds the operability section.
 """
 
@@ -210,10 +225,9 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     operation_paths, operation_text = _operation_outputs(plan, result, paths["operability_csv"], Path(args.output))
     paths |= operation_paths
     if not args.quiet:
-        lim = case.limits
         print(
             f"{case.name}: allowable Hs per peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
-            f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)"
+            f"{_limits_text(case.limits)})"
         )
         print(format_operability_table(result))
         if operation_text:
@@ -309,10 +323,9 @@ def _run_headings(
     operation_paths, operation_text = _operation_outputs(plan, result, paths["operability_csv"], Path(args.output))
     paths |= operation_paths
     if not args.quiet:
-        lim = case.limits
         print(
             f"{case.name}: allowable Hs per heading and peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
-            f"F <= {lim.max_saddle_force_N / 1e6:g} MN, sigma_b <= {lim.max_bending_stress_Pa / 1e6:g} MPa)"
+            f"{_limits_text(case.limits)})"
         )
         print(format_heading_table(result))
         if operation_text:
