@@ -1,0 +1,322 @@
+"""The periodic response of the 3-D cargo on its cradles by exact-event shooting (:func:`solve_cradle_shooting`).
+
+The correction system of the cradle (docs/transverse.md#7-dynamics): with the elements of the included set I
+bilateral the cargo is linear, its periodic response ``s_lin(t)`` the condensed operators' at H = 1
+(:func:`~seafast.solvers.cradle_dynamics.cradle_operators`), and the nonlinear response ``q = q_lin + q_c`` with::
+
+    M q_c'' + D q_c' + K_I q_c = -A_I^T c,    s = s_lin(t) + A_I q_c,    c = k max(-s, 0)
+
+(the tension a bilateral pad or stopper would carry, the compression of a bilateral lashing, removed; a stopper's gap
+is in its ``s0``). Reduced on the modes of ``(K_I, M)`` up to a cutoff, their damping ``Phi^T D Phi`` kept whole,
+and the static residual flexibility of the others, it is the vertical plane's correction system
+(:class:`~seafast.solvers.modal_correction.ModalCorrectionSystem`) with the engagements for the saddles: its
+``B = -A_I^T``, so ``saddle_mode_shape = -A_I Phi`` and ``residual_flexibility = A_I (K_I^-1 - Phi Omega^-2 Phi^T)
+A_I^T``. Piecewise linear in the contact states, it is solved by the vertical plane's exact-event shooting as it is
+(:func:`~seafast.solvers.shooting.orbit.shoot_orbit`: closed-form segments, exact events, Newton on the monodromy
+matrix), whatever harmonics the ringing after a re-contact needs.
+
+The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
+orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`).
+
+Units: engagements [m]; forces [N]; displacements [m, rad]; time [s]. Nothing here prints, reads or writes files.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.linalg import eigh
+
+from seafast.excitation.cradle_loads import CradleExcitation
+from seafast.fourier import real_to_complex_harmonics
+from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
+from seafast.solvers.cradle_march import MARCH_SAMPLES, march_cradle
+from seafast.solvers.cradle_response import CradleResponse, cradle_response
+from seafast.solvers.hbm.condensed import CondensedOperators
+from seafast.solvers.hbm.harmonics import force_scale_N
+from seafast.solvers.modal_correction import ModalCorrectionSystem
+from seafast.solvers.outcome import SolverOutcome
+from seafast.solvers.shooting.options import ShootingOptions
+from seafast.solvers.shooting.orbit import Orbit, shoot_orbit
+from seafast.solvers.shooting.period import TooManyEventsError
+from seafast.solvers.shooting.states import ContactStates, SingularStateError
+from seafast.solvers.shooting.stiff import MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
+
+__all__ = [
+    "CradleModes",
+    "cradle_correction_system",
+    "cradle_modes",
+    "first_harmonic_time",
+    "kept_modes",
+    "reference_frequency_rad_s",
+    "solve_cradle_shooting",
+]
+
+
+@dataclass(frozen=True)
+class CradleModes:
+    """Every undamped mode of the cargo with the elements ``included`` bilateral (deck fixed), mass-normalised.
+
+    Attributes
+    ----------
+    natural_frequency_rad_s
+        (n,) ascending [rad/s].
+    mode_shape
+        (5 n, n) in the cargo's block order [m or rad per unit modal coordinate].
+    damping
+        ``D`` (5 n, 5 n) [N s/m, ...]: the modal damping of the modes kept is ``Phi^T D Phi`` (formed for those alone).
+    """
+
+    natural_frequency_rad_s: NDArray[np.float64]
+    mode_shape: NDArray[np.float64]
+    damping: NDArray[np.float64]
+
+
+def cradle_modes(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> CradleModes:
+    """The modes of ``(K_I, M)``, solved per uncoupled block (:attr:`CradleLinearParts.blocks`) and merged.
+
+    Without lashings the axial, lateral and vertical motions are uncoupled: three dense eigensolves of a third of the
+    DOFs each, a ninth of the work of one.
+    """
+    parts = dynamics.linear_parts(included)
+    K, M, D = parts.bilateral_stiffness, dynamics.matrices[1], dynamics.matrices[2]
+    n = K.shape[0]
+    frequencies, shapes = [], []
+    for dofs, _ in parts.blocks:
+        w2, phi = eigh(K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)])
+        full = np.zeros((n, w2.size))
+        full[dofs] = phi
+        frequencies.append(np.sqrt(np.maximum(w2, 0.0)))
+        shapes.append(full)
+    w = np.concatenate(frequencies)
+    order = np.argsort(w, kind="stable")
+    phi = np.ascontiguousarray(np.hstack(shapes)[:, order])
+    return CradleModes(w[order], phi, D)
+
+
+def kept_modes(modes: CradleModes, cutoff_rad_s: float, minimum: int) -> int:
+    """How many modes a reduction at ``cutoff_rad_s`` keeps: those at or below it, at least ``minimum``."""
+    w = modes.natural_frequency_rad_s
+    return max(int(np.searchsorted(w, float(cutoff_rad_s), side="right")), min(int(minimum), w.size))
+
+
+def cradle_correction_system(
+    dynamics: CradleDynamics, ops: CondensedOperators, included: NDArray[np.bool_], modes: CradleModes, cutoff_rad_s: float
+) -> ModalCorrectionSystem:
+    """The cradle's correction system on the modes up to ``cutoff_rad_s`` (at least one per element), the rest static.
+
+    ``ops``: the condensed operators of ``included`` (their ``cargo_influence`` at k = 0 is ``K_I^-1 (-A_I^T)``, the
+    static response to unit corrections). The rows of ``saddle_mode_shape`` are the engagements (see the module
+    docstring); ``saddle_dof`` is empty (an engagement is no single DOF).
+    """
+    A = dynamics.problem.engagement_matrix[included]
+    w = modes.natural_frequency_rad_s
+    m = kept_modes(modes, cutoff_rad_s, A.shape[0])
+    complete = m == w.size
+    phi, w = modes.mode_shape[:, :m], w[:m]
+    engagement_modes = -(A @ phi)  # Phi_s = B^T Phi with B = -A^T
+    static = np.asarray(ops.cargo_influence[0].real, dtype=float)  # K_I^-1 B
+    residual = np.zeros_like(static) if complete else static - phi @ (engagement_modes.T / w[:, None] ** 2)
+    residual_s = -(A @ residual)  # B^T (K^-1 - Phi Omega^-2 Phi^T) B
+    flexibility = -(A @ static)
+    return ModalCorrectionSystem(
+        natural_frequency_rad_s=np.ascontiguousarray(w),
+        modal_damping=np.ascontiguousarray(phi.T @ (modes.damping @ phi)),
+        mode_shape=np.ascontiguousarray(phi),
+        saddle_mode_shape=np.ascontiguousarray(engagement_modes),
+        residual_displacement_m_per_N=np.ascontiguousarray(residual),
+        residual_flexibility_m_per_N=np.ascontiguousarray(0.5 * (residual_s + residual_s.T)),
+        static_flexibility_m_per_N=0.5 * (flexibility + flexibility.T),
+        unilateral_stiffness_N_per_m=np.asarray(ops.saddle_stiffness_N_per_m, dtype=float).copy(),
+        saddle_dof=np.zeros(0, dtype=np.intp),
+        cutoff_rad_s=float(cutoff_rad_s),
+        complete=bool(complete),
+    )
+
+
+def reference_frequency_rad_s(modes: CradleModes, engagement_modes: NDArray[np.float64], count: int) -> float:
+    """The highest of the ``count`` lowest modes the elements drive (a mode no engagement moves, e.g. the axial
+    one on a cargo without lashings, is not one) [rad/s]."""
+    driven = modes.natural_frequency_rad_s[np.any(np.abs(engagement_modes) > 1e-9 * np.max(np.abs(engagement_modes)), axis=0)]
+    return float(driven[min(max(int(count), 1), driven.size) - 1])
+
+
+@dataclass(frozen=True)
+class _SetOrbit:
+    """One included set solved: its engagements of every element (N, m) and cargo DOFs (N, 5 n), how it ended."""
+
+    engagement_m: NDArray[np.float64]
+    cargo_displacement_m: NDArray[np.float64]
+    outcome: SolverOutcome
+    residual: float
+    note: str
+    orbit: Orbit | None
+
+
+def first_harmonic_time(harmonics: NDArray[np.complex128], samples: int) -> NDArray[np.float64]:
+    """``Re(X_0) + Re(X_1 e^{i w t_n})`` at ``t_n = n T / N`` (N, ...) from the harmonics k = 0, 1 (2, ...): what
+    :func:`~seafast.fourier.harmonics_to_time` gives for two harmonics, without a transform of N points per column."""
+    phase = np.exp(2j * np.pi * np.arange(int(samples)) / int(samples))
+    return np.real(harmonics[0])[None] + np.outer(phase.real, harmonics[1].real) - np.outer(phase.imag, harmonics[1].imag)
+
+
+def _deck_time_m(excitation: CradleExcitation, samples: int) -> NDArray[np.float64]:
+    """The deck DOFs over the period (N, n_o) [m, rad]."""
+    return first_harmonic_time(np.asarray(excitation.deck_displacement, dtype=complex), samples)
+
+
+def _all_engagements(
+    dynamics: CradleDynamics, excitation: CradleExcitation, q: NDArray[np.float64], included: NDArray[np.bool_], s_included: NDArray
+) -> NDArray[np.float64]:
+    """Every element's engagement (N, m): the included ones as solved, the others from the cargo's and the deck's motion."""
+    s = dynamics.initial_engagement_m + q @ dynamics.problem.engagement_matrix.T
+    s += _deck_time_m(excitation, q.shape[0]) @ dynamics.deck_engagement.T
+    s[:, included] = s_included
+    return s
+
+
+def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included: NDArray[np.bool_], opts: ShootingOptions) -> _SetOrbit:
+    """The orbit with the elements ``included`` in the linear part (the others open).
+
+    With a side stopper included (a stiff element open most of the period: the bilateral modes' reduction of its
+    impacts converges slowly) and ``opts.cutoff_check``, the cutoff is doubled until no element's peak force moves by
+    more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE` of its force scale (or every mode is kept).
+    """
+    omega = float(excitation.omega_rad_s)
+    ops = cradle_operators(dynamics, excitation, 1, included)
+    D = real_to_complex_harmonics(ops.linear_compression_m)
+    modes = cradle_modes(dynamics, included)
+    A = dynamics.problem.engagement_matrix[included]
+    reference = reference_frequency_rad_s(modes, A @ modes.mode_shape, opts.reference_modes)
+    N = opts.time_samples or int(2 ** math.ceil(math.log2(max(opts.samples_per_mode * reference / omega, opts.minimum_samples))))
+    d_grid = first_harmonic_time(D, N)
+    if np.all(d_grid > 0.0):
+        q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
+        s = _all_engagements(dynamics, excitation, q_lin, included, d_grid)
+        return _SetOrbit(s, q_lin, SolverOutcome.CONVERGED, 0.0, "every element engaged all period: the linear solution, exact", None)
+    problem = dynamics.problem
+    first_stopper = 2 * len(problem.pad_pairs)
+    stiff = bool(np.any(included[first_stopper : first_stopper + len(problem.stoppers)]))
+    factor, changes = float(opts.cutoff_factor), []
+    solved = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N)
+    while opts.cutoff_check and stiff and solved.outcome is SolverOutcome.CONVERGED and len(changes) < MAX_CUTOFF_DOUBLINGS:
+        kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
+        while kept < modes.natural_frequency_rad_s.size and kept_modes(modes, 2.0 * factor * reference, kept) == kept:
+            factor *= 2.0  # no mode between: the same reduction
+        factor *= 2.0
+        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N)
+        if finer.outcome is not SolverOutcome.CONVERGED:
+            break
+        k = problem.element_stiffness_N_per_m
+        peaks, before = k * np.max(np.maximum(finer.engagement_m, 0.0), axis=0), k * np.max(np.maximum(solved.engagement_m, 0.0), axis=0)
+        changes.append(float(np.max(np.abs(peaks - before) / force_scale_N(np.maximum(peaks, before)))))
+        solved = finer
+        if changes[-1] <= MODAL_TOLERANCE or "every mode" in finer.note:
+            break
+    if changes:
+        steps = ", ".join(f"{c:.2g}" for c in changes)
+        settled = changes[-1] <= MODAL_TOLERANCE or "every mode" in solved.note
+        words = f"; cutoff doubled {len(changes)} time(s) for the stoppers' impacts (peak force changes {steps})"
+        if not settled:
+            words += "; not converged in the modal reduction"
+        solved = replace(solved, note=solved.note + words, outcome=solved.outcome if settled else SolverOutcome.NOT_CONVERGED)
+    return solved
+
+
+def _orbit_at(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    ops: CondensedOperators,
+    modes: CradleModes,
+    cutoff: float,
+    opts: ShootingOptions,
+    samples: int,
+) -> _SetOrbit:
+    """The orbit of the correction system reduced at ``cutoff`` [rad/s], from the event grid of ``samples``."""
+    N = samples
+    D = real_to_complex_harmonics(ops.linear_compression_m)
+    system = cradle_correction_system(dynamics, ops, included, modes, cutoff)
+    states = ContactStates(system, D, float(excitation.omega_rad_s))
+    d_grid = first_harmonic_time(D, N)
+    scale = max(float(np.max(np.abs(d_grid))), 1e-9)
+    try:
+        orbit = shoot_orbit(states, N, scale, opts, system.unilateral_stiffness_N_per_m)
+    except (SingularStateError, TooManyEventsError) as error:
+        q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
+        s = _all_engagements(dynamics, excitation, q_lin, included, d_grid)  # the linear solution, not converged
+        return _SetOrbit(s, q_lin, SolverOutcome.NOT_CONVERGED, math.inf, f"exact-event shooting: {error}", None)
+    assert orbit.flow.state_samples is not None
+    N = orbit.samples
+    q = first_harmonic_time(ops.linear_cargo_displacement, N)
+    q += orbit.flow.state_samples[:, : system.mode_count] @ system.mode_shape.T
+    q += orbit.correction_N @ system.residual_displacement_m_per_N.T
+    s = _all_engagements(dynamics, excitation, q, included, orbit.compression_m)
+    missed = float(np.max(orbit.missed, initial=0.0))
+    kept = "every mode" if system.complete else f"{system.mode_count} modes up to {cutoff:.4g} rad/s"
+    note = (
+        f"exact-event shooting: {kept}, {N} samples per period, "
+        f"{orbit.flow.events} events per period, {states.visited} contact states, {orbit.periods} period(s) marched, "
+        f"{orbit.newton_steps} Newton step(s), residual {orbit.residual:.2g}, largest Floquet multiplier "
+        f"{orbit.floquet_multiplier_max:.4f}, sampled peaks within {missed:.1g} of the continuous ones"
+    )
+    if not orbit.converged:
+        note += "; not converged" if orbit.residual > opts.tolerance else "; the orbit found is unstable"
+    outcome = SolverOutcome.CONVERGED if orbit.converged else SolverOutcome.NOT_CONVERGED
+    return _SetOrbit(s, q, outcome, orbit.residual, note, orbit)
+
+
+def solve_cradle_shooting(
+    dynamics: CradleDynamics, excitation: CradleExcitation, options: ShootingOptions | None = None, *, march: bool = True
+) -> CradleResponse:
+    """The periodic response of the 3-D cargo on its cradles by exact-event shooting (see the module docstring).
+
+    Parameters
+    ----------
+    dynamics
+        The 3-D cargo on its cradles (frictionless pads).
+    excitation
+        The static and first-harmonic loads and deck motion (:func:`~seafast.excitation.cradle_loads.cradle_excitation`).
+    options
+        :class:`~seafast.solvers.shooting.ShootingOptions` (None: the defaults). ``cutoff_factor`` times the reference
+        frequency (the ``reference_modes``-th lowest mode the elements drive) is the modal cutoff; ``basis`` and
+        ``cutoff_check`` are the vertical plane's stiff-saddle route, not taken here (the bilateral basis always).
+
+    Returns
+    -------
+    CradleResponse
+        On the event grid (N samples, ``harmonics`` N / 2 - 1: the harmonics the samples carry); ``outcome``
+        ``CONVERGED``, or ``NOT_CONVERGED`` with its residual (relative to the largest linear engagement) where Newton
+        did not close the period, the orbit is unstable, a contact state has no stiffness or the contact chatters.
+        ``peak_force_change`` NaN (no H climbed). Where every element stays engaged all period, the linear solution
+        (exact) with ``harmonics`` 1. Not converged and ``march``: the correction system marched in time
+        (:func:`~seafast.solvers.cradle_march.march_cradle`, :data:`~seafast.solvers.cradle_march.MARCH_SAMPLES` steps a
+        period) says on ``march`` whether a periodic state exists (its ``periodicity``).
+    """
+    opts = ShootingOptions() if options is None else options
+    problem = dynamics.problem
+    stopper = np.zeros(len(problem.engagements), dtype=bool)
+    stopper[2 * len(problem.pad_pairs) : 2 * len(problem.pad_pairs) + len(problem.stoppers)] = True
+    included = ~stopper if np.any(~stopper) else stopper
+    for _ in range(stopper.size + 1):
+        solved = _solve_set(dynamics, excitation, included, opts)
+        closing = ~included & np.any(solved.engagement_m > 0.0, axis=0)
+        if solved.outcome is not SolverOutcome.CONVERGED and np.any(~included):
+            # without the stoppers the cargo may find no orbit (lifted off its pads, nothing holds it across): every
+            # element in, once
+            closing = ~included
+        elif solved.outcome is not SolverOutcome.CONVERGED or not np.any(closing):
+            break
+        included = included | closing
+    N = solved.engagement_m.shape[0]
+    message = f"3-D cradle {solved.note}; {int(np.count_nonzero(~included))} stopper(s) open all period, left out"
+    outcome = (solved.outcome, solved.residual, message, N // 2 - 1 if solved.orbit is not None else 1)
+    response = cradle_response(dynamics, solved.engagement_m, solved.cargo_displacement_m, excitation.omega_rad_s, outcome)
+    if solved.outcome is SolverOutcome.CONVERGED or not march:
+        return response
+    marched = march_cradle(dynamics, excitation, MARCH_SAMPLES)
+    said = f"; a march of {marched.periods} wave periods ({MARCH_SAMPLES} steps each): {marched.periodicity.value}"
+    return replace(response, march=marched, message=response.message + said)
