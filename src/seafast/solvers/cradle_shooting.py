@@ -58,21 +58,38 @@ __all__ = [
 
 @dataclass(frozen=True)
 class CradleModes:
-    """Every undamped mode of the cargo with the elements ``included`` bilateral (deck fixed), mass-normalised.
+    """Every undamped mode of the cargo with the elements ``included`` bilateral (deck fixed), mass-normalised, kept per
+    uncoupled block (a mode lives in one block) and assembled on the cargo's DOFs only for the modes asked for.
 
     Attributes
     ----------
     natural_frequency_rad_s
         (n,) ascending [rad/s].
-    mode_shape
-        (5 n, n) in the cargo's block order [m or rad per unit modal coordinate].
+    block, column
+        (n,) each mode's block and its column in that block's eigenvectors.
+    blocks
+        Each block's DOFs (cargo block order) and eigenvectors (n_b, n_b) [m or rad per unit modal coordinate].
     damping
         ``D`` (5 n, 5 n) [N s/m, ...]: the modal damping of the modes kept is ``Phi^T D Phi`` (formed for those alone).
+    engagement_modes
+        ``A Phi`` (m, n): how each mode moves each element's engagement [m per unit modal coordinate].
     """
 
     natural_frequency_rad_s: NDArray[np.float64]
-    mode_shape: NDArray[np.float64]
+    block: NDArray[np.intp]
+    column: NDArray[np.intp]
+    blocks: tuple[tuple[NDArray[np.intp], NDArray[np.float64]], ...]
     damping: NDArray[np.float64]
+    engagement_modes: NDArray[np.float64]
+
+    def mode_shape(self, count: int) -> NDArray[np.float64]:
+        """The lowest ``count`` modes on every cargo DOF (5 n, count)."""
+        n = self.damping.shape[0]
+        phi = np.zeros((n, int(count)))
+        for b, (dofs, vectors) in enumerate(self.blocks):
+            mine = np.flatnonzero(self.block[:count] == b)
+            phi[dofs[:, None], mine[None, :]] = vectors[:, self.column[mine]]
+        return phi
 
 
 def cradle_modes(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> CradleModes:
@@ -83,18 +100,20 @@ def cradle_modes(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> Cradl
     """
     parts = dynamics.linear_parts(included)
     K, M, D = parts.bilateral_stiffness, dynamics.matrices[1], dynamics.matrices[2]
-    n = K.shape[0]
-    frequencies, shapes = [], []
-    for dofs, _ in parts.blocks:
-        w2, phi = eigh(K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)])
-        full = np.zeros((n, w2.size))
-        full[dofs] = phi
+    A = dynamics.problem.engagement_matrix[included]
+    frequencies, blocks, labels, columns, moved = [], [], [], [], []
+    for b, (dofs, _) in enumerate(parts.blocks):
+        w2, phi = eigh(K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)], driver="gvd", check_finite=False)
         frequencies.append(np.sqrt(np.maximum(w2, 0.0)))
-        shapes.append(full)
+        blocks.append((dofs, phi))
+        labels.append(np.full(w2.size, b))
+        columns.append(np.arange(w2.size))
+        moved.append(A[:, dofs] @ phi)
     w = np.concatenate(frequencies)
     order = np.argsort(w, kind="stable")
-    phi = np.ascontiguousarray(np.hstack(shapes)[:, order])
-    return CradleModes(w[order], phi, D)
+    return CradleModes(
+        w[order], np.concatenate(labels)[order], np.concatenate(columns)[order], tuple(blocks), D, np.hstack(moved)[:, order]
+    )
 
 
 def kept_modes(modes: CradleModes, cutoff_rad_s: float, minimum: int) -> int:
@@ -116,7 +135,7 @@ def cradle_correction_system(
     w = modes.natural_frequency_rad_s
     m = kept_modes(modes, cutoff_rad_s, A.shape[0])
     complete = m == w.size
-    phi, w = modes.mode_shape[:, :m], w[:m]
+    phi, w = modes.mode_shape(m), w[:m]
     engagement_modes = -(A @ phi)  # Phi_s = B^T Phi with B = -A^T
     static = np.asarray(ops.cargo_influence[0].real, dtype=float)  # K_I^-1 B
     residual = np.zeros_like(static) if complete else static - phi @ (engagement_modes.T / w[:, None] ** 2)
@@ -157,10 +176,22 @@ class _SetOrbit:
 
 
 def first_harmonic_time(harmonics: NDArray[np.complex128], samples: int) -> NDArray[np.float64]:
-    """``Re(X_0) + Re(X_1 e^{i w t_n})`` at ``t_n = n T / N`` (N, ...) from the harmonics k = 0, 1 (2, ...): what
-    :func:`~seafast.fourier.harmonics_to_time` gives for two harmonics, without a transform of N points per column."""
-    phase = np.exp(2j * np.pi * np.arange(int(samples)) / int(samples))
-    return np.real(harmonics[0])[None] + np.outer(phase.real, harmonics[1].real) - np.outer(phase.imag, harmonics[1].imag)
+    """``Re(X_0) + Re(X_1 e^{i w t_n})`` at ``t_n = n T / N`` (N, n) from the harmonics k = 0, 1 (2, n): what
+    :func:`~seafast.fourier.harmonics_to_time` gives for two harmonics, as one real product (no transform of N points
+    per column)."""
+    return _first_harmonic_basis(int(samples)) @ _first_harmonic_rows(harmonics)
+
+
+def _first_harmonic_basis(samples: int) -> NDArray[np.float64]:
+    """``[1, cos(w t_n), -sin(w t_n)]`` (N, 3)."""
+    angle = 2.0 * np.pi * np.arange(samples) / samples
+    return np.column_stack([np.ones(samples), np.cos(angle), -np.sin(angle)])
+
+
+def _first_harmonic_rows(harmonics: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """``[Re X_0; Re X_1; Im X_1]`` (3, n), the coefficients of :func:`_first_harmonic_basis`."""
+    X = np.asarray(harmonics, dtype=complex)
+    return np.vstack([X[0].real, X[1].real, X[1].imag])
 
 
 def _deck_time_m(excitation: CradleExcitation, samples: int) -> NDArray[np.float64]:
@@ -188,19 +219,19 @@ def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included:
     omega = float(excitation.omega_rad_s)
     ops = cradle_operators(dynamics, excitation, 1, included)
     D = real_to_complex_harmonics(ops.linear_compression_m)
-    modes = cradle_modes(dynamics, included)
-    A = dynamics.problem.engagement_matrix[included]
-    reference = reference_frequency_rad_s(modes, A @ modes.mode_shape, opts.reference_modes)
-    N = opts.time_samples or int(2 ** math.ceil(math.log2(max(opts.samples_per_mode * reference / omega, opts.minimum_samples))))
-    d_grid = first_harmonic_time(D, N)
-    if np.all(d_grid > 0.0):
+    if np.all(D[0].real - np.abs(D[1]) > 0.0):  # the least linear engagement of each element: every one engaged
+        N = opts.time_samples or opts.minimum_samples
         q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
-        s = _all_engagements(dynamics, excitation, q_lin, included, d_grid)
+        s = _all_engagements(dynamics, excitation, q_lin, included, first_harmonic_time(D, N))
         return _SetOrbit(s, q_lin, SolverOutcome.CONVERGED, 0.0, "every element engaged all period: the linear solution, exact", None)
+    modes = cradle_modes(dynamics, included)
+    reference = reference_frequency_rad_s(modes, modes.engagement_modes, opts.reference_modes)
+    N = opts.time_samples or int(2 ** math.ceil(math.log2(max(opts.samples_per_mode * reference / omega, opts.minimum_samples))))
     problem = dynamics.problem
     first_stopper = 2 * len(problem.pad_pairs)
     stiff = bool(np.any(included[first_stopper : first_stopper + len(problem.stoppers)]))
-    factor, changes = float(opts.cutoff_factor), []
+    factor = float(opts.cutoff_factor)
+    changes: list[float] = []
     solved = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N)
     while opts.cutoff_check and stiff and solved.outcome is SolverOutcome.CONVERGED and len(changes) < MAX_CUTOFF_DOUBLINGS:
         kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
@@ -251,9 +282,10 @@ def _orbit_at(
         return _SetOrbit(s, q_lin, SolverOutcome.NOT_CONVERGED, math.inf, f"exact-event shooting: {error}", None)
     assert orbit.flow.state_samples is not None
     N = orbit.samples
-    q = first_harmonic_time(ops.linear_cargo_displacement, N)
-    q += orbit.flow.state_samples[:, : system.mode_count] @ system.mode_shape.T
-    q += orbit.correction_N @ system.residual_displacement_m_per_N.T
+    # q = q_lin + Phi eta + R_q c, as one product of the samples' columns and their shapes
+    columns = np.hstack([_first_harmonic_basis(N), orbit.flow.state_samples[:, : system.mode_count], orbit.correction_N])
+    shapes = np.vstack([_first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
+    q = columns @ shapes
     s = _all_engagements(dynamics, excitation, q, included, orbit.compression_m)
     missed = float(np.max(orbit.missed, initial=0.0))
     kept = "every mode" if system.complete else f"{system.mode_count} modes up to {cutoff:.4g} rad/s"
