@@ -125,6 +125,69 @@ def test_where_shooting_fails_the_march_says_what_the_state_is_and_the_default_f
     assert failed.outcome is SolverOutcome.NOT_CONVERGED and failed.residual > 1e-15 and "not converged" in failed.message
     assert failed.march is not None and failed.periodicity is Periodicity.PERIODIC
     original = cradle_hbm.solve_cradle_shooting
-    monkeypatch.setattr(cradle_hbm, "solve_cradle_shooting", lambda d, e, march: original(d, e, weak, march=march))
+    monkeypatch.setattr(cradle_hbm, "solve_cradle_shooting", lambda d, e: original(d, e, weak))
     fallback = solve_cradle_hbm(dynamics, excitation)
     assert fallback.converged and "adaptive H" in fallback.message and "exact-event shooting did not converge" in fallback.message
+
+
+def base_case_cradles(alpha_deg: float, wave_factor: float):
+    """The base case in beam seas (90 deg) on pads of ``alpha_deg`` at its saddles, a side stopper each side (20 mm gap,
+    1e9 N/m), its lashing springs, an axial spring; the wave ``wave_factor`` times as high (benchmarks/bench_cradle.py's)."""
+    from dataclasses import replace
+
+    from seafast.config.loader import load_case
+    from seafast.excitation.cradle_loads import cradle_excitation_of
+    from seafast.excitation.vessel import vessel_excitation
+    from seafast.model.cargo3d import build_cargo3d, vertical_plane_restraint
+    from seafast.model.cradle import PadPair, Side, SideStopper
+    from seafast.model.from_case import build_model
+    from seafast.solvers.cradle_dynamics import cradle_dynamics_of
+    from seafast.solvers.transverse_statics import CradleProblem
+
+    case = load_case(overrides={"wave.heading_deg": 90.0})
+    model = build_model(case)
+    cargo = build_cargo3d(model.cargo)
+    springs, load = vertical_plane_restraint(model, cargo)
+    springs[cargo.node_dofs(int(model.saddle_node[0]))[0]] += 1e8
+    stiffness = model.saddle_unilateral_stiffness_N_per_m
+    pairs = tuple(PadPair(float(x), alpha_deg, 4.0, float(k)) for x, k in zip(model.saddle_x_m, stiffness, strict=True))
+    stoppers = tuple(SideStopper(float(x), side, 0.02, 1e9) for x in model.saddle_x_m for side in (Side.PORT, Side.STARBOARD))
+    dynamics = cradle_dynamics_of(model, CradleProblem(cargo, pairs, stoppers, spring_diagonal_N_per_m=springs, load_N=load))
+    excitation = cradle_excitation_of(vessel_excitation(case), model, cargo)
+    rows = np.array([[1.0], [wave_factor]])
+    return dynamics, replace(excitation, cargo_load_N=excitation.cargo_load_N * rows, deck_displacement=excitation.deck_displacement * rows)
+
+
+def test_the_base_case_strong_lift_off_repeats_every_two_wave_periods():
+    """20 deg pads at 1.3 times the base case's beam sea (the high-side pads lift a third of the period, every stopper
+    closes): the periodic orbit Newton finds (from ten marched periods) has a Floquet multiplier near -5, real and
+    negative: it is unstable and the period doubles. The exact-event flow settles on a response repeating every two wave
+    periods (to 1e-6; 4e-2 over one), the same at two successive cutoffs; the default cradle solve returns it as
+    NOT_PERIODIC with that verdict, no harmonic balance."""
+    from seafast.fourier import real_to_complex_harmonics
+    from seafast.solvers.cradle_dynamics import cradle_operators
+    from seafast.solvers.cradle_shooting import cradle_correction_system, cradle_modes, first_harmonic_time, reference_frequency_rad_s
+    from seafast.solvers.shooting.orbit import shoot_orbit
+    from seafast.solvers.shooting.states import ContactStates
+
+    dynamics, excitation = base_case_cradles(20.0, 1.3)
+    response = solve_cradle_hbm(dynamics, excitation)
+    assert response.outcome is SolverOutcome.NOT_PERIODIC and "harmonic balance" not in response.message
+    march = response.march
+    assert march is not None and march.periodicity is Periodicity.SUBHARMONIC and march.period_multiple == 2
+    assert march.lag_change[1] <= 1e-6 and march.lag_change[0] > 1e-2 and "still changed" not in response.message
+    assert np.all(np.mean(march.engagement_m[:, [0, 4]] <= 0.0, axis=0) > 0.3) and np.all(march.element_force_N[:, 6:12].max(axis=0) > 0.0)
+    included = np.ones(len(dynamics.problem.engagements), dtype=bool)
+    ops = cradle_operators(dynamics, excitation, 1, included)
+    modes = cradle_modes(dynamics, included)
+    cutoff = 16.0 * reference_frequency_rad_s(modes, modes.engagement_modes, 3)
+    system = cradle_correction_system(dynamics, ops, included, modes, cutoff)
+    D = real_to_complex_harmonics(ops.linear_compression_m)
+    states = ContactStates(system, D, excitation.omega_rad_s)
+    scale = float(np.max(np.abs(first_harmonic_time(D, 64))))
+    orbit = shoot_orbit(states, 2048, scale, ShootingOptions(march_periods=10, max_iterations=60), system.unilateral_stiffness_N_per_m)
+    assert orbit.residual <= 1e-8 and not orbit.converged  # a periodic orbit, unstable
+    assert orbit.flow.monodromy is not None
+    multipliers = np.linalg.eigvals(orbit.flow.monodromy)
+    flip = multipliers[np.argmax(np.abs(multipliers))]
+    assert abs(flip.imag) < 1e-9 and flip.real < -2.0

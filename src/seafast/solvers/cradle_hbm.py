@@ -283,8 +283,10 @@ def solve_cradle_hbm(
     With ``options.harmonics`` None, the exact law and the condensed formulation (the default) the answer asked for is
     the harmonic balance converged in H: the periodic solution of the piecewise-linear problem, which exact-event
     shooting finds in closed form (:func:`~seafast.solvers.cradle_shooting.solve_cradle_shooting`, ``shooting`` True).
-    Where it does not converge (its message says why) the adaptive harmonic balance below answers, its message saying
-    so; where every element stays engaged the linear solution is exact and the harmonic balance's first H gives it.
+    Where it does not converge (its message says why) the exact-event flow is marched: a subharmonic or no periodic
+    state is returned as such (``NOT_PERIODIC``, the verdict on ``march``: no harmonic balance at the wave's period
+    describes it); otherwise the adaptive harmonic balance below answers, its message saying so. Where every element
+    stays engaged the linear solution is exact and the harmonic balance's first H gives it.
 
     The side stoppers are left out of the linear part at first (taken open: they usually are); any that closes
     in the solution is brought in and the problem solved again (started from the solution before), until none
@@ -320,9 +322,9 @@ def solve_cradle_hbm(
     options = options if options is not None else HBMOptions()
     exact_limit = options.harmonics is None and options.contact_law is ContactLawKind.EXACT
     if shooting and exact_limit and options.formulation is Formulation.CONDENSED:
-        shot = solve_cradle_shooting(dynamics, excitation, march=False)
-        if shot.converged and shot.harmonics > 1:
-            return shot
+        shot = solve_cradle_shooting(dynamics, excitation)
+        if (shot.converged and shot.harmonics > 1) or shot.outcome is SolverOutcome.NOT_PERIODIC:
+            return shot  # the converged limit, or no periodic response at the wave's period for any harmonic balance
         if not shot.converged:
             response = _harmonic_balance(dynamics, excitation, options)
             note = f"; exact-event shooting did not converge ({shot.message}), so the adaptive harmonic balance answered"

@@ -33,15 +33,15 @@ from scipy.linalg import eigh
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.fourier import real_to_complex_harmonics
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
-from seafast.solvers.cradle_march import MARCH_SAMPLES, march_cradle
+from seafast.solvers.cradle_march import SUBHARMONIC_ORDERS, CradleMarch, Periodicity
 from seafast.solvers.cradle_response import CradleResponse, cradle_response
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.hbm.harmonics import force_scale_N
 from seafast.solvers.modal_correction import ModalCorrectionSystem
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.shooting.options import ShootingOptions
-from seafast.solvers.shooting.orbit import Orbit, shoot_orbit
-from seafast.solvers.shooting.period import TooManyEventsError
+from seafast.solvers.shooting.orbit import Orbit, sampled_contact, shoot_orbit, state_change
+from seafast.solvers.shooting.period import PeriodGrid, TooManyEventsError, flow_period
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
 from seafast.solvers.shooting.stiff import MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
 
@@ -52,6 +52,7 @@ __all__ = [
     "first_harmonic_time",
     "kept_modes",
     "reference_frequency_rad_s",
+    "flow_verdict",
     "solve_cradle_shooting",
 ]
 
@@ -257,6 +258,25 @@ def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included:
     return solved
 
 
+def _reassembled(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    ops: CondensedOperators,
+    system: ModalCorrectionSystem,
+    state_samples: NDArray[np.float64],
+    contact: tuple[NDArray[np.float64], NDArray[np.float64]],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Every element's engagement (N, m) and the cargo DOFs (N, 5 n) from a flow's states at the samples (N, 2 m_modes)
+    and the included elements' compressions and corrections ``contact`` (each (N, m_I)): ``q = q_lin + Phi eta + R_q c``,
+    as one product of the samples' columns and their shapes."""
+    N = state_samples.shape[0]
+    columns = np.hstack([_first_harmonic_basis(N), state_samples[:, : system.mode_count], contact[1]])
+    shapes = np.vstack([_first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
+    q = columns @ shapes
+    return _all_engagements(dynamics, excitation, q, included, contact[0]), q
+
+
 def _orbit_at(
     dynamics: CradleDynamics,
     excitation: CradleExcitation,
@@ -282,11 +302,7 @@ def _orbit_at(
         return _SetOrbit(s, q_lin, SolverOutcome.NOT_CONVERGED, math.inf, f"exact-event shooting: {error}", None)
     assert orbit.flow.state_samples is not None
     N = orbit.samples
-    # q = q_lin + Phi eta + R_q c, as one product of the samples' columns and their shapes
-    columns = np.hstack([_first_harmonic_basis(N), orbit.flow.state_samples[:, : system.mode_count], orbit.correction_N])
-    shapes = np.vstack([_first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
-    q = columns @ shapes
-    s = _all_engagements(dynamics, excitation, q, included, orbit.compression_m)
+    s, q = _reassembled(dynamics, excitation, included, ops, system, orbit.flow.state_samples, (orbit.compression_m, orbit.correction_N))
     missed = float(np.max(orbit.missed, initial=0.0))
     kept = "every mode" if system.complete else f"{system.mode_count} modes up to {cutoff:.4g} rad/s"
     note = (
@@ -324,9 +340,9 @@ def solve_cradle_shooting(
         ``CONVERGED``, or ``NOT_CONVERGED`` with its residual (relative to the largest linear engagement) where Newton
         did not close the period, the orbit is unstable, a contact state has no stiffness or the contact chatters.
         ``peak_force_change`` NaN (no H climbed). Where every element stays engaged all period, the linear solution
-        (exact) with ``harmonics`` 1. Not converged and ``march``: the correction system marched in time
-        (:func:`~seafast.solvers.cradle_march.march_cradle`, :data:`~seafast.solvers.cradle_march.MARCH_SAMPLES` steps a
-        period) says on ``march`` whether a periodic state exists (its ``periodicity``).
+        (exact) with ``harmonics`` 1. Not converged and ``march``: the exact-event flow marched (:func:`flow_verdict`)
+        says on ``march`` what the steady state is (its ``periodicity``); a subharmonic or no periodic state: the
+        outcome ``NOT_PERIODIC``.
     """
     opts = ShootingOptions() if options is None else options
     problem = dynamics.problem
@@ -347,8 +363,95 @@ def solve_cradle_shooting(
     message = f"3-D cradle {solved.note}; {int(np.count_nonzero(~included))} stopper(s) open all period, left out"
     outcome = (solved.outcome, solved.residual, message, N // 2 - 1 if solved.orbit is not None else 1)
     response = cradle_response(dynamics, solved.engagement_m, solved.cargo_displacement_m, excitation.omega_rad_s, outcome)
-    if solved.outcome is SolverOutcome.CONVERGED or not march:
+    if solved.outcome is SolverOutcome.CONVERGED or not march or solved.orbit is None:
         return response
-    marched = march_cradle(dynamics, excitation, MARCH_SAMPLES)
-    said = f"; a march of {marched.periods} wave periods ({MARCH_SAMPLES} steps each): {marched.periodicity.value}"
-    return replace(response, march=marched, message=response.message + said)
+    verdict, said = flow_verdict(dynamics, excitation, included, opts, solved.orbit.samples)
+    if verdict.periodicity is not Periodicity.PERIODIC:
+        response = replace(response, outcome=SolverOutcome.NOT_PERIODIC)
+    return replace(response, march=verdict, message=response.message + said)
+
+
+VERDICT_PERIODS = 200
+"""Periods of the exact-event flow marched at most for the verdict where Newton does not close the period."""
+
+VERDICT_TOLERANCE = 1e-6
+"""The flow repeats after a lag when the state moves by at most this share of the largest linear engagement."""
+
+VERDICT_DOUBLINGS = 3
+"""Doublings of the cutoff at most while the verdict changes with it."""
+
+
+def flow_verdict(
+    dynamics: CradleDynamics, excitation: CradleExcitation, included: NDArray[np.bool_], opts: ShootingOptions, samples: int
+) -> tuple[CradleMarch, str]:
+    """What the steady state of the exact-event flow is, where Newton does not close the period.
+
+    The flow is marched from the linear solution for up to :data:`VERDICT_PERIODS` periods, its state after each
+    compared with those 1 to 6 periods before (stopping once one repeats to :data:`VERDICT_TOLERANCE`): periodic,
+    a subharmonic (repeating every 2 to 6 periods, not every one) or neither. The cutoff is doubled from
+    ``opts.cutoff_factor`` until two cutoffs agree (at most :data:`VERDICT_DOUBLINGS` times: the reduction's own
+    convergence). Returns the verdict as a :class:`~seafast.solvers.cradle_march.CradleMarch` (the last period's
+    engagements and forces on the event grid) and it in words.
+    """
+    ops = cradle_operators(dynamics, excitation, 1, included)
+    D = real_to_complex_harmonics(ops.linear_compression_m)
+    modes = cradle_modes(dynamics, included)
+    reference = reference_frequency_rad_s(modes, modes.engagement_modes, opts.reference_modes)
+    scale = max(float(np.max(np.abs(first_harmonic_time(D, 64)))), 1e-9)
+    factor, verdicts = float(opts.cutoff_factor), []
+    while True:
+        system = cradle_correction_system(dynamics, ops, included, modes, factor * reference)
+        states = ContactStates(system, D, float(excitation.omega_rad_s))
+        verdicts.append(_marched_flow(dynamics, excitation, included, ops, states, PeriodGrid(states, samples), scale))
+        same = len(verdicts) > 1 and (verdicts[-1].periodicity, verdicts[-1].period_multiple) == (
+            verdicts[-2].periodicity,
+            verdicts[-2].period_multiple,
+        )
+        if same or system.complete or len(verdicts) > VERDICT_DOUBLINGS:
+            break
+        factor *= 2.0
+    last = verdicts[-1]
+    said = f"; the exact-event flow marched {last.periods} periods ({system.mode_count} modes): {last.periodicity.value}"
+    if last.periodicity is Periodicity.SUBHARMONIC:
+        said += f", repeating every {last.period_multiple} wave periods (change over one {last.lag_change[0]:.1e}"
+        said += " of the largest linear engagement)"
+    if not same:
+        said += " (the verdict still changed with the cutoff)"
+    return last, said
+
+
+def _marched_flow(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    ops: CondensedOperators,
+    states: ContactStates,
+    grid: PeriodGrid,
+    scale_m: float,
+) -> CradleMarch:
+    """The flow marched from ``x = 0`` (see :func:`flow_verdict`) and what it repeats as."""
+    xs = [np.zeros(states.state_size)]
+    history: list[float] = []
+    lags = np.full(max(SUBHARMONIC_ORDERS), np.nan)
+    for _ in range(VERDICT_PERIODS):
+        xs.append(flow_period(states, xs[-1], grid, monodromy=False).end_state)
+        xs = xs[-(max(SUBHARMONIC_ORDERS) + 1) :]
+        for lag in range(1, len(xs)):
+            lags[lag - 1] = state_change(states, xs[-1] - xs[-1 - lag], scale_m)
+        history.append(float(lags[0]))
+        if np.nanmin(lags) <= VERDICT_TOLERANCE:
+            break  # repeats after some lag: settled
+    periodicity, multiple = Periodicity.NOT_PERIODIC, 0
+    if lags[0] <= VERDICT_TOLERANCE:
+        periodicity, multiple = Periodicity.PERIODIC, 1
+    else:
+        for lag in SUBHARMONIC_ORDERS:
+            if lags[lag - 1] <= VERDICT_TOLERANCE:
+                periodicity, multiple = Periodicity.SUBHARMONIC, lag
+                break
+    flow = flow_period(states, xs[-1], grid, record=True, monodromy=False)
+    assert flow.state_samples is not None
+    s, _ = _reassembled(dynamics, excitation, included, ops, states.system, flow.state_samples, sampled_contact(states, grid, flow))
+    k = dynamics.problem.element_stiffness_N_per_m
+    change = float(lags[multiple - 1]) if multiple else float(lags[0])
+    return CradleMarch(s, k * np.maximum(s, 0.0), periodicity, multiple, len(history), change, lags, np.array(history))

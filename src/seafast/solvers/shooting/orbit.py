@@ -23,7 +23,16 @@ from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, flow_period, peak_compressions, state_runs
 from seafast.solvers.shooting.states import ContactStates
 
-__all__ = ["STABILITY_MARGIN", "Orbit", "missed_peak", "period_residual", "periodic_state", "sampled_contact", "shoot_orbit"]
+__all__ = [
+    "STABILITY_MARGIN",
+    "Orbit",
+    "missed_peak",
+    "period_residual",
+    "periodic_state",
+    "sampled_contact",
+    "shoot_orbit",
+    "state_change",
+]
 
 STABILITY_MARGIN = 1e-6
 """A Floquet multiplier above 1 + this: an unstable orbit."""
@@ -178,8 +187,13 @@ def periodic_state(
 
 def period_residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
     """How far the period's end is from its start, as the compression and its rate over a period could move [-]."""
+    return state_change(states, flow.end_state - x0, scale_m)
+
+
+def state_change(states: ContactStates, change: NDArray, scale_m: float) -> float:
+    """How far a change of the state ``[eta; eta']`` moves a contact's compression, with its rate over a modal period,
+    at most, over ``scale_m`` [-]."""
     s = states.system
     m = s.mode_count
-    change = flow.end_state - x0
     bound = np.abs(s.saddle_mode_shape) @ np.hypot(change[:m], change[m:] / np.maximum(s.natural_frequency_rad_s, 1e-12))
     return float(np.max(bound, initial=0.0) / scale_m)
