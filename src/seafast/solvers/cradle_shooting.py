@@ -28,16 +28,24 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import eigh
 
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.fourier import real_to_complex_harmonics
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
 from seafast.solvers.cradle_march import SUBHARMONIC_ORDERS, CradleMarch, Periodicity
 from seafast.solvers.cradle_response import CradleResponse, cradle_response
+from seafast.solvers.cradle_shooting_system import (
+    CradleModes,
+    all_engagements,
+    cradle_correction_system,
+    cradle_modes,
+    first_harmonic_time,
+    kept_modes,
+    reassembled,
+    reference_frequency_rad_s,
+)
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.hbm.harmonics import force_scale_N
-from seafast.solvers.modal_correction import ModalCorrectionSystem
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.orbit import Orbit, sampled_contact, shoot_orbit, state_change
@@ -45,123 +53,7 @@ from seafast.solvers.shooting.period import PeriodGrid, TooManyEventsError, flow
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
 from seafast.solvers.shooting.stiff import MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
 
-__all__ = [
-    "CradleModes",
-    "cradle_correction_system",
-    "cradle_modes",
-    "first_harmonic_time",
-    "kept_modes",
-    "reference_frequency_rad_s",
-    "flow_verdict",
-    "solve_cradle_shooting",
-]
-
-
-@dataclass(frozen=True)
-class CradleModes:
-    """Every undamped mode of the cargo with the elements ``included`` bilateral (deck fixed), mass-normalised, kept per
-    uncoupled block (a mode lives in one block) and assembled on the cargo's DOFs only for the modes asked for.
-
-    Attributes
-    ----------
-    natural_frequency_rad_s
-        (n,) ascending [rad/s].
-    block, column
-        (n,) each mode's block and its column in that block's eigenvectors.
-    blocks
-        Each block's DOFs (cargo block order) and eigenvectors (n_b, n_b) [m or rad per unit modal coordinate].
-    damping
-        ``D`` (5 n, 5 n) [N s/m, ...]: the modal damping of the modes kept is ``Phi^T D Phi`` (formed for those alone).
-    engagement_modes
-        ``A Phi`` (m, n): how each mode moves each element's engagement [m per unit modal coordinate].
-    """
-
-    natural_frequency_rad_s: NDArray[np.float64]
-    block: NDArray[np.intp]
-    column: NDArray[np.intp]
-    blocks: tuple[tuple[NDArray[np.intp], NDArray[np.float64]], ...]
-    damping: NDArray[np.float64]
-    engagement_modes: NDArray[np.float64]
-
-    def mode_shape(self, count: int) -> NDArray[np.float64]:
-        """The lowest ``count`` modes on every cargo DOF (5 n, count)."""
-        n = self.damping.shape[0]
-        phi = np.zeros((n, int(count)))
-        for b, (dofs, vectors) in enumerate(self.blocks):
-            mine = np.flatnonzero(self.block[:count] == b)
-            phi[dofs[:, None], mine[None, :]] = vectors[:, self.column[mine]]
-        return phi
-
-
-def cradle_modes(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> CradleModes:
-    """The modes of ``(K_I, M)``, solved per uncoupled block (:attr:`CradleLinearParts.blocks`) and merged.
-
-    Without lashings the axial, lateral and vertical motions are uncoupled: three dense eigensolves of a third of the
-    DOFs each, a ninth of the work of one.
-    """
-    parts = dynamics.linear_parts(included)
-    K, M, D = parts.bilateral_stiffness, dynamics.matrices[1], dynamics.matrices[2]
-    A = dynamics.problem.engagement_matrix[included]
-    frequencies, blocks, labels, columns, moved = [], [], [], [], []
-    for b, (dofs, _) in enumerate(parts.blocks):
-        w2, phi = eigh(K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)], driver="gvd", check_finite=False)
-        frequencies.append(np.sqrt(np.maximum(w2, 0.0)))
-        blocks.append((dofs, phi))
-        labels.append(np.full(w2.size, b))
-        columns.append(np.arange(w2.size))
-        moved.append(A[:, dofs] @ phi)
-    w = np.concatenate(frequencies)
-    order = np.argsort(w, kind="stable")
-    return CradleModes(
-        w[order], np.concatenate(labels)[order], np.concatenate(columns)[order], tuple(blocks), D, np.hstack(moved)[:, order]
-    )
-
-
-def kept_modes(modes: CradleModes, cutoff_rad_s: float, minimum: int) -> int:
-    """How many modes a reduction at ``cutoff_rad_s`` keeps: those at or below it, at least ``minimum``."""
-    w = modes.natural_frequency_rad_s
-    return max(int(np.searchsorted(w, float(cutoff_rad_s), side="right")), min(int(minimum), w.size))
-
-
-def cradle_correction_system(
-    dynamics: CradleDynamics, ops: CondensedOperators, included: NDArray[np.bool_], modes: CradleModes, cutoff_rad_s: float
-) -> ModalCorrectionSystem:
-    """The cradle's correction system on the modes up to ``cutoff_rad_s`` (at least one per element), the rest static.
-
-    ``ops``: the condensed operators of ``included`` (their ``cargo_influence`` at k = 0 is ``K_I^-1 (-A_I^T)``, the
-    static response to unit corrections). The rows of ``saddle_mode_shape`` are the engagements (see the module
-    docstring); ``saddle_dof`` is empty (an engagement is no single DOF).
-    """
-    A = dynamics.problem.engagement_matrix[included]
-    w = modes.natural_frequency_rad_s
-    m = kept_modes(modes, cutoff_rad_s, A.shape[0])
-    complete = m == w.size
-    phi, w = modes.mode_shape(m), w[:m]
-    engagement_modes = -(A @ phi)  # Phi_s = B^T Phi with B = -A^T
-    static = np.asarray(ops.cargo_influence[0].real, dtype=float)  # K_I^-1 B
-    residual = np.zeros_like(static) if complete else static - phi @ (engagement_modes.T / w[:, None] ** 2)
-    residual_s = -(A @ residual)  # B^T (K^-1 - Phi Omega^-2 Phi^T) B
-    flexibility = -(A @ static)
-    return ModalCorrectionSystem(
-        natural_frequency_rad_s=np.ascontiguousarray(w),
-        modal_damping=np.ascontiguousarray(phi.T @ (modes.damping @ phi)),
-        mode_shape=np.ascontiguousarray(phi),
-        saddle_mode_shape=np.ascontiguousarray(engagement_modes),
-        residual_displacement_m_per_N=np.ascontiguousarray(residual),
-        residual_flexibility_m_per_N=np.ascontiguousarray(0.5 * (residual_s + residual_s.T)),
-        static_flexibility_m_per_N=0.5 * (flexibility + flexibility.T),
-        unilateral_stiffness_N_per_m=np.asarray(ops.saddle_stiffness_N_per_m, dtype=float).copy(),
-        saddle_dof=np.zeros(0, dtype=np.intp),
-        cutoff_rad_s=float(cutoff_rad_s),
-        complete=bool(complete),
-    )
-
-
-def reference_frequency_rad_s(modes: CradleModes, engagement_modes: NDArray[np.float64], count: int) -> float:
-    """The highest of the ``count`` lowest modes the elements drive (a mode no engagement moves, e.g. the axial
-    one on a cargo without lashings, is not one) [rad/s]."""
-    driven = modes.natural_frequency_rad_s[np.any(np.abs(engagement_modes) > 1e-9 * np.max(np.abs(engagement_modes)), axis=0)]
-    return float(driven[min(max(int(count), 1), driven.size) - 1])
+__all__ = ["VERDICT_DOUBLINGS", "VERDICT_PERIODS", "VERDICT_TOLERANCE", "flow_verdict", "solve_cradle_shooting"]
 
 
 @dataclass(frozen=True)
@@ -174,40 +66,6 @@ class _SetOrbit:
     residual: float
     note: str
     orbit: Orbit | None
-
-
-def first_harmonic_time(harmonics: NDArray[np.complex128], samples: int) -> NDArray[np.float64]:
-    """``Re(X_0) + Re(X_1 e^{i w t_n})`` at ``t_n = n T / N`` (N, n) from the harmonics k = 0, 1 (2, n): what
-    :func:`~seafast.fourier.harmonics_to_time` gives for two harmonics, as one real product (no transform of N points
-    per column)."""
-    return _first_harmonic_basis(int(samples)) @ _first_harmonic_rows(harmonics)
-
-
-def _first_harmonic_basis(samples: int) -> NDArray[np.float64]:
-    """``[1, cos(w t_n), -sin(w t_n)]`` (N, 3)."""
-    angle = 2.0 * np.pi * np.arange(samples) / samples
-    return np.column_stack([np.ones(samples), np.cos(angle), -np.sin(angle)])
-
-
-def _first_harmonic_rows(harmonics: NDArray[np.complex128]) -> NDArray[np.float64]:
-    """``[Re X_0; Re X_1; Im X_1]`` (3, n), the coefficients of :func:`_first_harmonic_basis`."""
-    X = np.asarray(harmonics, dtype=complex)
-    return np.vstack([X[0].real, X[1].real, X[1].imag])
-
-
-def _deck_time_m(excitation: CradleExcitation, samples: int) -> NDArray[np.float64]:
-    """The deck DOFs over the period (N, n_o) [m, rad]."""
-    return first_harmonic_time(np.asarray(excitation.deck_displacement, dtype=complex), samples)
-
-
-def _all_engagements(
-    dynamics: CradleDynamics, excitation: CradleExcitation, q: NDArray[np.float64], included: NDArray[np.bool_], s_included: NDArray
-) -> NDArray[np.float64]:
-    """Every element's engagement (N, m): the included ones as solved, the others from the cargo's and the deck's motion."""
-    s = dynamics.initial_engagement_m + q @ dynamics.problem.engagement_matrix.T
-    s += _deck_time_m(excitation, q.shape[0]) @ dynamics.deck_engagement.T
-    s[:, included] = s_included
-    return s
 
 
 def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included: NDArray[np.bool_], opts: ShootingOptions) -> _SetOrbit:
@@ -223,7 +81,7 @@ def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included:
     if np.all(D[0].real - np.abs(D[1]) > 0.0):  # the least linear engagement of each element: every one engaged
         N = opts.time_samples or opts.minimum_samples
         q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
-        s = _all_engagements(dynamics, excitation, q_lin, included, first_harmonic_time(D, N))
+        s = all_engagements(dynamics, excitation, q_lin, included, first_harmonic_time(D, N))
         return _SetOrbit(s, q_lin, SolverOutcome.CONVERGED, 0.0, "every element engaged all period: the linear solution, exact", None)
     modes = cradle_modes(dynamics, included)
     reference = reference_frequency_rad_s(modes, modes.engagement_modes, opts.reference_modes)
@@ -258,25 +116,6 @@ def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included:
     return solved
 
 
-def _reassembled(
-    dynamics: CradleDynamics,
-    excitation: CradleExcitation,
-    included: NDArray[np.bool_],
-    ops: CondensedOperators,
-    system: ModalCorrectionSystem,
-    state_samples: NDArray[np.float64],
-    contact: tuple[NDArray[np.float64], NDArray[np.float64]],
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Every element's engagement (N, m) and the cargo DOFs (N, 5 n) from a flow's states at the samples (N, 2 m_modes)
-    and the included elements' compressions and corrections ``contact`` (each (N, m_I)): ``q = q_lin + Phi eta + R_q c``,
-    as one product of the samples' columns and their shapes."""
-    N = state_samples.shape[0]
-    columns = np.hstack([_first_harmonic_basis(N), state_samples[:, : system.mode_count], contact[1]])
-    shapes = np.vstack([_first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
-    q = columns @ shapes
-    return _all_engagements(dynamics, excitation, q, included, contact[0]), q
-
-
 def _orbit_at(
     dynamics: CradleDynamics,
     excitation: CradleExcitation,
@@ -298,11 +137,11 @@ def _orbit_at(
         orbit = shoot_orbit(states, N, scale, opts, system.unilateral_stiffness_N_per_m)
     except (SingularStateError, TooManyEventsError) as error:
         q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
-        s = _all_engagements(dynamics, excitation, q_lin, included, d_grid)  # the linear solution, not converged
+        s = all_engagements(dynamics, excitation, q_lin, included, d_grid)  # the linear solution, not converged
         return _SetOrbit(s, q_lin, SolverOutcome.NOT_CONVERGED, math.inf, f"exact-event shooting: {error}", None)
     assert orbit.flow.state_samples is not None
     N = orbit.samples
-    s, q = _reassembled(dynamics, excitation, included, ops, system, orbit.flow.state_samples, (orbit.compression_m, orbit.correction_N))
+    s, q = reassembled(dynamics, excitation, included, ops, system, orbit.flow.state_samples, (orbit.compression_m, orbit.correction_N))
     missed = float(np.max(orbit.missed, initial=0.0))
     kept = "every mode" if system.complete else f"{system.mode_count} modes up to {cutoff:.4g} rad/s"
     note = (
@@ -451,7 +290,7 @@ def _marched_flow(
                 break
     flow = flow_period(states, xs[-1], grid, record=True, monodromy=False)
     assert flow.state_samples is not None
-    s, _ = _reassembled(dynamics, excitation, included, ops, states.system, flow.state_samples, sampled_contact(states, grid, flow))
+    s, _ = reassembled(dynamics, excitation, included, ops, states.system, flow.state_samples, sampled_contact(states, grid, flow))
     k = dynamics.problem.element_stiffness_N_per_m
     change = float(lags[multiple - 1]) if multiple else float(lags[0])
     return CradleMarch(s, k * np.maximum(s, 0.0), periodicity, multiple, len(history), change, lags, np.array(history))
