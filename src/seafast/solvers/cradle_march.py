@@ -38,10 +38,9 @@ from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
 __all__ = ["MARCH_SAMPLES", "CradleMarch", "Periodicity", "march_cradle"]
 
 MARCH_SAMPLES = 2048
-"""Steps per wave period of the march that starts the cradle's adaptive harmonic balance where no H converges directly, or says
-what the steady state is where the shooting does not converge (about 17
-per period of the highest ringing harmonic, 120, of the base case's beam-sea wave; 1024 with a lower modal cutoff
-showed a spurious subharmonic there)."""
+"""Steps per wave period of the march that starts the cradle's adaptive harmonic balance where no H converges
+directly (about 17 per period of the highest ringing harmonic, 120, of the base case's beam-sea wave; 1024 with a lower
+modal cutoff showed a spurious subharmonic there, and the verdict still depends on the step: docs/transverse.md)."""
 
 SUBHARMONIC_ORDERS = (2, 3, 4, 5, 6)
 """The multiples of the wave period tried when the march does not repeat every period."""

@@ -16,7 +16,11 @@ A_I^T``. Piecewise linear in the contact states, it is solved by the vertical pl
 matrix), whatever harmonics the ringing after a re-contact needs.
 
 The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
-orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`).
+orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`); without them
+the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
+With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes).
+Where Newton does not close the period, the exact-event flow is marched and says what the state is
+(:func:`flow_verdict`). The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
 
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s]. Nothing here prints, reads or writes files.
 """
@@ -169,8 +173,9 @@ def solve_cradle_shooting(
         The static and first-harmonic loads and deck motion (:func:`~seafast.excitation.cradle_loads.cradle_excitation`).
     options
         :class:`~seafast.solvers.shooting.ShootingOptions` (None: the defaults). ``cutoff_factor`` times the reference
-        frequency (the ``reference_modes``-th lowest mode the elements drive) is the modal cutoff; ``basis`` and
-        ``cutoff_check`` are the vertical plane's stiff-saddle route, not taken here (the bilateral basis always).
+        frequency (the ``reference_modes``-th lowest mode the elements drive) is the modal cutoff; ``cutoff_check``:
+        with a stopper included, the cutoff doubled until the peaks settle; ``basis`` is not taken (the bilateral
+        modes always: the cargo without its pads is not held across).
 
     Returns
     -------
