@@ -315,9 +315,10 @@ def solve_cradle_hbm(
     Returns
     -------
     CradleResponse
-        On the AFT grid (N samples); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance.
-        Its message says how the solve went and how H was reached; ``peak_force_change`` the adaptive H's last
-        change of the peak forces.
+        On the AFT grid (N samples), or where the shooting answered on its event grid (``harmonics`` N / 2 - 1,
+        ``peak_force_change`` NaN); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance,
+        ``NOT_PERIODIC`` where the state does not repeat every wave period. Its message says how the solve went and how
+        H was reached; ``peak_force_change`` the adaptive H's last change of the peak forces.
     """
     options = options if options is not None else HBMOptions()
     exact_limit = options.harmonics is None and options.contact_law is ContactLawKind.EXACT
