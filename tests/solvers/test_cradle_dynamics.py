@@ -111,7 +111,7 @@ def test_the_adaptive_harmonic_balance_matches_the_time_domain_where_a_pad_lifts
     within 0.5 %, and within 1e-3 of the largest of the fixed H = 128 solve."""
     fixed, reference = beam_sea_pair
     dynamics = small_dynamics()
-    adaptive = solve_cradle_hbm(dynamics, small_excitation(dynamics.problem.cargo, BEAM_SEA))
+    adaptive = solve_cradle_hbm(dynamics, small_excitation(dynamics.problem.cargo, BEAM_SEA), shooting=False)
     assert adaptive.converged, adaptive.message
     assert adaptive.harmonics in ADAPTIVE_HARMONICS[1:] and "adaptive H" in adaptive.message
     assert 0.0 < adaptive.peak_force_change <= 1e-3  # the peaks settled to the truncation tolerance
@@ -263,7 +263,7 @@ def test_where_no_harmonic_balance_converges_directly_the_solve_marches_and_says
     continuations no H converges directly, so the solve marches: the state repeats every wave period."""
     dynamics = small_dynamics()
     excitation = small_excitation(dynamics.problem.cargo, 1.5 * BEAM_SEA)
-    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False))
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False), shooting=False)
     march = response.march
     assert march is not None and response.periodicity is Periodicity.PERIODIC and march.period_multiple == 1
     assert response.outcome is not SolverOutcome.NOT_PERIODIC
@@ -301,6 +301,6 @@ def test_a_march_that_does_not_repeat_is_reported_as_such_and_the_solve_says_not
     assert march.periodicity is Periodicity.NOT_PERIODIC and march.period_multiple == 0 and march.periods == 12
     assert march.period_change > 0.0 and march.change_history.size == 11 and np.all(np.isfinite(march.lag_change))
     monkeypatch.setattr(cradle_hbm, "march_cradle", lambda d, e, n: march_cradle(d, e, 256, max_periods=12, tolerance=1e-300))
-    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False))
+    response = solve_cradle_hbm(dynamics, excitation, HBMOptions(max_harmonics=32, continuation=False), shooting=False)
     assert response.outcome is SolverOutcome.NOT_PERIODIC and not response.converged
     assert response.periodicity is Periodicity.NOT_PERIODIC and response.march is not None and response.march.periods == 12

@@ -63,6 +63,7 @@ def _limits_text(limits: Any) -> str:
         parts.append(f"slip <= {limits.max_transverse_slip_m * 1e3:g} mm off head seas")
     return ", ".join(parts)
 
+
 OPERABILITY_EXAMPLES = """examples:
   seafast operability                                        # the base case, Tp 5-20 s every 0.5 s, limits 7 MN / 20 MPa
   seafast operability --tp 5:16:0.5                          # 23 peak periods
@@ -225,10 +226,7 @@ def _cmd_operability(args: argparse.Namespace) -> int:
     operation_paths, operation_text = _operation_outputs(plan, result, paths["operability_csv"], Path(args.output))
     paths |= operation_paths
     if not args.quiet:
-        print(
-            f"{case.name}: allowable Hs per peak period (MPM over {case.sea_state.duration_s / 3600:g} h; "
-            f"{_limits_text(case.limits)})"
-        )
+        print(f"{case.name}: allowable Hs per peak period (MPM over {case.sea_state.duration_s / 3600:g} h; {_limits_text(case.limits)})")
         print(format_operability_table(result))
         if operation_text:
             print(operation_text)

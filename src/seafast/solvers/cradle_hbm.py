@@ -22,17 +22,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.config.modes import ContactLawKind, Formulation
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.fourier import (
     harmonics_to_time,
-    period_fraction,
     real_harmonics_to_time,
     real_to_complex_harmonics,
     time_to_real_harmonics,
 )
-from seafast.model.cradle import Side
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
-from seafast.solvers.cradle_march import CradleMarch, Periodicity, march_cradle
+from seafast.solvers.cradle_march import MARCH_SAMPLES, CradleMarch, Periodicity, march_cradle
+from seafast.solvers.cradle_response import CradleResponse, cradle_response
+from seafast.solvers.cradle_shooting import solve_cradle_shooting
 from seafast.solvers.hbm import CondensedOperators, HBMOptions, solve_condensed
 from seafast.solvers.hbm.fixed import QUICK_ITERATIONS, CondensedSolution
 from seafast.solvers.hbm.harmonics import force_scale_N, pad_harmonics
@@ -60,136 +61,9 @@ PASSED_LIMIT = 3
 """The adaptive choice's first H that may fail to converge before it falls back on the ladder (where no H converges
 directly, climbing further costs seconds a solve: thousands of samples open)."""
 
-MARCH_SAMPLES = 2048
-"""Steps per wave period of the march that starts the adaptive choice where no H converges directly (about 17
-per period of the highest ringing harmonic, 120, of the base case's beam-sea wave; 1024 with a lower modal cutoff
-showed a spurious subharmonic there)."""
-
 PEAK_SAMPLES = 4096
 """Samples per period on which the adaptive choice reads the peak forces (the harmonic series evaluated there:
 the AFT grid's own samples miss a peak between them by up to 1e-3 near H = 128)."""
-
-
-@dataclass(frozen=True)
-class CradleResponse:
-    """One period of the steady state of the 3-D cargo on its cradles, sampled at ``t_n = n T / N``.
-
-    Attributes
-    ----------
-    outcome, residual, message
-        How the solve ended (:class:`~seafast.solvers.outcome.SolverOutcome`), its largest residual relative to
-        the largest linear engagement [-], and the account for people.
-    omega_rad_s, harmonics
-        Fundamental frequency [rad/s] and H (0 for a time-sampled reference).
-    time_s
-        Sample times (N,) [s].
-    engagement_m
-        Every element's engagement (pads port then starboard per pair, stoppers, lashings) (N, m) [m]: compression,
-        overclosure, stretch; open or slack where <= 0.
-    element_force_N
-        ``k max(s, 0)`` (N, m) [N]: exactly 0 where open or slack.
-    pad_count, stopper_count
-        Pads (two per pair) and stoppers, to split the elements.
-    cargo_displacement_m
-        Cargo DOFs over the period (N, 5 n) [m, rad] (:mod:`seafast.model.cargo3d`'s order), relative to the vessel's
-        rigid-body frame, static part included.
-    pad_normal
-        Unit (y, z) push of each pad on the cargo, (n_pairs, 2, 2).
-    peak_force_change
-        With H chosen adaptively, the largest change of an element's peak force from the H before, over its force
-        scale (:func:`~seafast.solvers.hbm.harmonics.force_scale_N`) [-]; 0 where the linear solution is exact
-        (every element engaged all period); NaN at a fixed H.
-    march
-        Where the adaptive choice needed it (no H converging directly), the march of the correction system in
-        time (:class:`~seafast.solvers.cradle_march.CradleMarch`): its ``periodicity`` says whether the steady state
-        repeats every wave period (the harmonic balance then started from it), after several
-        (``SUBHARMONIC``) or not at all (``NOT_PERIODIC``; ``outcome`` then ``NOT_PERIODIC``); None otherwise.
-    """
-
-    outcome: SolverOutcome
-    residual: float
-    message: str
-    omega_rad_s: float
-    harmonics: int
-    time_s: NDArray[np.float64]
-    engagement_m: NDArray[np.float64]
-    element_force_N: NDArray[np.float64]
-    pad_count: int
-    stopper_count: int
-    cargo_displacement_m: NDArray[np.float64]
-    pad_normal: NDArray[np.float64]
-    peak_force_change: float = float("nan")
-    march: CradleMarch | None = None
-
-    @property
-    def periodicity(self) -> Periodicity | None:
-        """What the march found the steady state to be (None where no march was needed)."""
-        return None if self.march is None else self.march.periodicity
-
-    @property
-    def converged(self) -> bool:
-        return self.outcome.converged
-
-    @property
-    def pad_force_N(self) -> NDArray[np.float64]:
-        """(N, n_pairs, 2): port, starboard pad of each pair [N]."""
-        return self.element_force_N[:, : self.pad_count].reshape(len(self.time_s), -1, 2)
-
-    @property
-    def stopper_force_N(self) -> NDArray[np.float64]:
-        return self.element_force_N[:, self.pad_count : self.pad_count + self.stopper_count]
-
-    @property
-    def lashing_tension_N(self) -> NDArray[np.float64]:
-        return self.element_force_N[:, self.pad_count + self.stopper_count :]
-
-    @property
-    def pair_force_N(self) -> NDArray[np.float64]:
-        """Each pair's resultant push on the cargo (N, n_pairs, 2): across (y, to port +) and up (z) [N]."""
-        return np.einsum("tps,psj->tpj", self.pad_force_N, self.pad_normal)
-
-    @property
-    def max_force_N(self) -> NDArray[np.float64]:
-        """Each element's largest force over the period (m,) [N]."""
-        return np.max(self.element_force_N, axis=0)
-
-    @property
-    def min_force_N(self) -> NDArray[np.float64]:
-        return np.min(self.element_force_N, axis=0)
-
-    @property
-    def open_fraction(self) -> NDArray[np.float64]:
-        """Fraction of the period each element is open (pad lifted, stopper clear) or slack (lashing) (m,) [-]."""
-        return np.mean(self.engagement_m <= 0.0, axis=0)
-
-
-def cradle_response(
-    dynamics: CradleDynamics,
-    engagement_m: NDArray[np.float64],
-    cargo_displacement_m: NDArray[np.float64],
-    omega_rad_s: float,
-    outcome: tuple[SolverOutcome, float, str, int],
-) -> CradleResponse:
-    """A :class:`CradleResponse` of sampled engagements (N, m) and displacements (N, 5 n); ``outcome``:
-    (outcome, relative residual, message, H)."""
-    problem = dynamics.problem
-    N = engagement_m.shape[0]
-    k = problem.element_stiffness_N_per_m
-    normals = np.array([[pair.pad_normal(side) for side in (Side.PORT, Side.STARBOARD)] for pair in problem.pad_pairs]).reshape(-1, 2, 2)
-    return CradleResponse(
-        outcome=outcome[0],
-        residual=float(outcome[1]),
-        message=outcome[2],
-        omega_rad_s=float(omega_rad_s),
-        harmonics=int(outcome[3]),
-        time_s=period_fraction(N) * 2.0 * np.pi / omega_rad_s,
-        engagement_m=engagement_m,
-        element_force_N=k * np.maximum(engagement_m, 0.0),
-        pad_count=2 * len(problem.pad_pairs),
-        stopper_count=len(problem.stoppers),
-        cargo_displacement_m=cargo_displacement_m,
-        pad_normal=normals,
-    )
 
 
 def truncated_operators(ops: CondensedOperators, harmonics: int) -> CondensedOperators:
@@ -401,8 +275,18 @@ def _samples(
     return s, q
 
 
-def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions | None = None) -> CradleResponse:
-    """The periodic response by the condensed harmonic balance, H chosen adaptively or fixed.
+def solve_cradle_hbm(
+    dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions | None = None, *, shooting: bool = True
+) -> CradleResponse:
+    """The periodic response: the harmonic balance's converged limit by exact-event shooting, or the harmonic balance.
+
+    With ``options.harmonics`` None, the exact law and the condensed formulation (the default) the answer asked for is
+    the harmonic balance converged in H: the periodic solution of the piecewise-linear problem, which exact-event
+    shooting finds in closed form (:func:`~seafast.solvers.cradle_shooting.solve_cradle_shooting`, ``shooting`` True).
+    Where it does not converge (its message says why) the exact-event flow is marched: a subharmonic or no periodic
+    state is returned as such (``NOT_PERIODIC``, the verdict on ``march``: no harmonic balance at the wave's period
+    describes it); otherwise the adaptive harmonic balance below answers, its message saying so. Where every element
+    stays engaged the linear solution is exact and the harmonic balance's first H gives it.
 
     The side stoppers are left out of the linear part at first (taken open: they usually are); any that closes
     in the solution is brought in and the problem solved again (started from the solution before), until none
@@ -425,14 +309,32 @@ def solve_cradle_hbm(dynamics: CradleDynamics, excitation: CradleExcitation, opt
         one, Newton or hybr, tolerance, fallbacks; ``harmonics`` None: adaptive, up to ``max_harmonics``, to
         ``truncation_tolerance``; a given ``time_samples`` is then a minimum).
 
+    shooting
+        False: the harmonic balance alone, whatever the options.
+
     Returns
     -------
     CradleResponse
-        On the AFT grid (N samples); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance.
-        Its message says how the solve went and how H was reached; ``peak_force_change`` the adaptive H's last
-        change of the peak forces.
+        On the AFT grid (N samples), or where the shooting answered on its event grid (``harmonics`` N / 2 - 1,
+        ``peak_force_change`` NaN); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance,
+        ``NOT_PERIODIC`` where the state does not repeat every wave period. Its message says how the solve went and how
+        H was reached; ``peak_force_change`` the adaptive H's last change of the peak forces.
     """
     options = options if options is not None else HBMOptions()
+    exact_limit = options.harmonics is None and options.contact_law is ContactLawKind.EXACT
+    if shooting and exact_limit and options.formulation is Formulation.CONDENSED:
+        shot = solve_cradle_shooting(dynamics, excitation)
+        if (shot.converged and shot.harmonics > 1) or shot.outcome is SolverOutcome.NOT_PERIODIC:
+            return shot  # the converged limit, or no periodic response at the wave's period for any harmonic balance
+        if not shot.converged:
+            response = _harmonic_balance(dynamics, excitation, options)
+            note = f"; exact-event shooting did not converge ({shot.message}), so the adaptive harmonic balance answered"
+            return replace(response, message=response.message + note)
+    return _harmonic_balance(dynamics, excitation, options)
+
+
+def _harmonic_balance(dynamics: CradleDynamics, excitation: CradleExcitation, options: HBMOptions) -> CradleResponse:
+    """The harmonic balance of :func:`solve_cradle_hbm` (``options.harmonics`` None: H chosen adaptively)."""
     problem = dynamics.problem
     stopper = np.zeros(len(problem.engagements), dtype=bool)
     stopper[2 * len(problem.pad_pairs) : 2 * len(problem.pad_pairs) + len(problem.stoppers)] = True

@@ -40,6 +40,7 @@ from seafast.fourier import real_harmonics_to_time
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
 
 __all__ = [
+    "MARCH_SAMPLES",
     "CradleMarch",
     "CradleStepper",
     "Periodicity",
@@ -49,6 +50,11 @@ __all__ = [
     "march_step",
     "pivoting_correction_N",
 ]
+
+MARCH_SAMPLES = 2048
+"""Steps per wave period of the march that starts the cradle's adaptive harmonic balance where no H converges
+directly (about 17 per period of the highest ringing harmonic, 120, of the base case's beam-sea wave; 1024 with a lower
+modal cutoff showed a spurious subharmonic there, and the verdict still depends on the step: docs/transverse.md)."""
 
 SUBHARMONIC_ORDERS = (2, 3, 4, 5, 6)
 """The multiples of the wave period tried when the march does not repeat every period."""

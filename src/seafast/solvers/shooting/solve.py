@@ -28,20 +28,18 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import harmonics_to_time, high_harmonic_energy_share, real_to_complex_harmonics, time_to_harmonics
 from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
-from seafast.solvers.hbm.harmonics import force_scale_N
 from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
 from seafast.solvers.shooting.options import ShootingOptions
-from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions, state_runs
+from seafast.solvers.shooting.orbit import shoot_orbit
+from seafast.solvers.shooting.period import PeriodFlow, TooManyEventsError
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
 from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, contact_samples, correction_system, settled_cutoff
 
 __all__ = ["event_samples", "solve_shooting"]
 
 logger = logging.getLogger(__name__)
-
-_STABILITY_MARGIN = 1e-6  # a Floquet multiplier above 1 + this: an unstable orbit
 
 
 def _reference_frequency_rad_s(model: StructuralModel, modes: int) -> float:
@@ -102,31 +100,14 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     states = ContactStates(system, D, omega, dynamics)
     record.update(modes=system.mode_count, cutoff_rad_s=cutoff, basis=system.basis.value, complete_basis=system.complete)
     scale = max(float(np.max(np.abs(d_grid))), 1e-6)
-    x_start = np.zeros(states.state_size)
-    periods = steps = 0
     try:
-        while True:
-            grid = PeriodGrid(states, N)
-            flow = flow_period(states, x_start, grid, record=True, max_events=opts.max_events) if periods else None
-            residual = _residual(states, flow, x_start, scale) if flow is not None else math.inf
-            if flow is None or residual > opts.tolerance:
-                # the events are exact whatever the grid, so a finer grid usually keeps the orbit: Newton only if not
-                flow, residual, marched, newton, x_start = _periodic_state(states, grid, scale, opts, x_start, fresh=periods == 0)
-                periods, steps = periods + marched, steps + newton
-            else:
-                periods += 1
-            samples = _contact_samples(states, grid, flow)
-            missed = _missed_peak(states, grid, flow, samples[0], ops.saddle_stiffness_N_per_m)
-            if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > opts.tolerance:
-                break
-            N *= 2  # the grid misses part of a peak: the same orbit on a finer grid
+        orbit = shoot_orbit(states, N, scale, opts, ops.saddle_stiffness_N_per_m)
     except (SingularStateError, TooManyEventsError) as error:
         note = f"shooting: {error}"
         return _response(model, ops, opts, None, None, N, SolverOutcome.NOT_CONVERGED, math.inf, 0, 0, note, record)
-    assert flow.monodromy is not None  # every period a solve reports forms it
-    multipliers = np.abs(np.linalg.eigvals(flow.monodromy))
-    largest = float(np.max(multipliers, initial=0.0))
-    converged = residual <= opts.tolerance and largest <= 1.0 + _STABILITY_MARGIN
+    flow, residual, periods, steps, N, missed = orbit.flow, orbit.residual, orbit.periods, orbit.newton_steps, orbit.samples, orbit.missed
+    samples = (orbit.compression_m, orbit.correction_N)
+    largest, converged = orbit.floquet_multiplier_max, orbit.converged
     record.update(
         time_samples=N,
         periods=periods,
@@ -150,90 +131,6 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         # stiff saddles: the modal reduction is checked by the same solve with the cutoff doubled until the peaks settle
         return settled_cutoff(solve_shooting, model, excitation, opts, response, states.cancellation)
     return response
-
-
-def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression: NDArray, stiffness_N_per_m: NDArray) -> NDArray:
-    """Per saddle, how much of its peak force the grid misses, over its force scale (:func:`force_scale_N`) [-].
-
-    ``compression``: the flow's sampled compressions (N, n_s) [m].
-    """
-    sampled = np.max(compression, axis=0)
-    continuous = peak_compressions(states, grid, flow, compression)
-    k = np.asarray(stiffness_N_per_m, dtype=float)
-    peak = k * np.maximum(continuous, 0.0)
-    return np.asarray(k * (np.maximum(continuous, 0.0) - np.maximum(sampled, 0.0)) / force_scale_N(peak), dtype=float)
-
-
-def _contact_samples(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> tuple[NDArray, NDArray]:
-    """The saddle compressions and correction forces at the recorded samples, each (N, n_s) [m], [N]."""
-    assert flow.state_samples is not None and flow.state_codes is not None
-    d = np.real(grid.phase[:-1] @ states.harmonics)  # the forcing d(t_n) (N, n_s) [m]
-    delta, correction = np.empty_like(d), np.empty_like(d)
-    x = flow.state_samples
-    for code, a, b in state_runs(flow.state_codes):
-        cs = states.get(states.lifted_of(code))
-        delta[a:b] = x[a:b] @ cs.compression_state.T + d[a:b] @ cs.compression_forcing.T
-        correction[a:b] = x[a:b] @ cs.force_state.T + d[a:b] @ cs.force_forcing.T
-    return delta, correction
-
-
-def _periodic_state(
-    states: ContactStates, grid: PeriodGrid, scale_m: float, opts: ShootingOptions, x_start: NDArray, *, fresh: bool
-) -> tuple[PeriodFlow, float, int, int, NDArray]:
-    """Newton on ``P(x0) = x0`` from ``x_start`` (``fresh``: from the linear solution, marching a few periods first).
-
-    Returns the recorded flow of the best state, its residual, the periods marched, the Newton steps and the state.
-    """
-    size = states.state_size
-
-    def flow_from(x: NDArray, record: bool = False, monodromy: bool = True) -> PeriodFlow:
-        return flow_period(states, x, grid, record=record, monodromy=monodromy, max_events=opts.max_events)
-
-    x0 = np.array(x_start, dtype=float)
-    periods = steps = 0
-    marches = opts.march_periods if fresh else 0
-    flow = flow_from(x0, monodromy=marches == 0)  # only the period Newton starts from needs its monodromy matrix
-    periods += 1
-    for i in range(marches):
-        x0 = flow.end_state
-        flow = flow_from(x0, monodromy=i == marches - 1)
-        periods += 1
-    residual = _residual(states, flow, x0, scale_m)
-    best = (flow, residual, x0)
-    while residual > opts.tolerance and steps < opts.max_iterations:
-        assert flow.monodromy is not None
-        try:
-            step = np.linalg.solve(flow.monodromy - np.eye(size), flow.end_state - x0)
-        except np.linalg.LinAlgError:
-            step = x0 - flow.end_state  # a multiplier at 1: march one period instead
-        trial = x0 - step
-        trial_flow = flow_from(trial, record=True)  # recorded: the step that converges is the period reported
-        periods += 1
-        steps += 1
-        trial_residual = _residual(states, trial_flow, trial, scale_m)
-        if trial_residual < best[1]:
-            x0, flow, residual = trial, trial_flow, trial_residual
-            best = (flow, residual, x0)
-        else:
-            # Newton did not improve: march on from the best state (towards the attractor), then try again
-            x0 = best[0].end_state
-            flow = flow_from(x0)
-            periods += 1
-            residual = _residual(states, flow, x0, scale_m)
-            if residual < best[1]:
-                best = (flow, residual, x0)
-    if best[0].state_samples is not None:
-        return best[0], best[1], periods, steps, best[2]
-    return flow_from(best[2], record=True), best[1], periods + 1, steps, best[2]
-
-
-def _residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
-    """How far the period's end is from its start, as the compression and its rate over a period could move [-]."""
-    s = states.system
-    m = s.mode_count
-    change = flow.end_state - x0
-    bound = np.abs(s.saddle_mode_shape) @ np.hypot(change[:m], change[m:] / np.maximum(s.natural_frequency_rad_s, 1e-12))
-    return float(np.max(bound, initial=0.0) / scale_m)
 
 
 def _response(
