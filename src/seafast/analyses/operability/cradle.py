@@ -13,8 +13,8 @@ Hs = 1 m); every MPM is proportional to Hs, so:
   water + MPM, the lashing maximum) and the lateral displacement at the saddles (``|static|`` + MPM);
 * **nonlinear**: the column's design-wave estimate at an Hs (:func:`cradle_design_wave_value`): the cradle design
   waves of that column alone (:func:`~seafast.analyses.seastate.cradle_design_wave.select_cradle_design_waves` on
-  the linear MPMs at that Hs), each solved by the cradles' harmonic balance with the H of
-  :data:`~seafast.analyses.seastate.cradle_design_wave.CRADLE_DESIGN_HARMONICS` in turn, the largest reading and
+  the linear MPMs at that Hs), each solved as ``seafast seastate`` solves it
+  (:func:`~seafast.analyses.seastate.cradle_design_wave.solve_cradle_design_wave`), the largest reading and
   at least the still water's: the column of ``seafast seastate``'s design-wave row. The unit waves' excitations
   do not change with Hs and are formed once per peak period.
 
@@ -24,17 +24,17 @@ Units: SI (N, m, s).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.analyses.operability.limits import CRADLE_LIMITS, cradle_limits, linear_limit_hs
 from seafast.analyses.seastate.cradle_design_wave import (
-    CRADLE_DESIGN_HARMONICS,
     CradleDesignWave,
     scaled_excitation,
     select_cradle_design_waves,
+    solve_cradle_design_wave,
 )
 from seafast.analyses.seastate.cradle_extremes import (
     CradleSeaTransfer,
@@ -57,8 +57,7 @@ from seafast.analyses.seastate.spectrum import WaveSpectrum
 from seafast.config.schema import Case
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.model.structure import StructuralModel
-from seafast.solvers.cradle_hbm import CradleResponse, solve_cradle_hbm
-from seafast.solvers.hbm import HBMOptions
+from seafast.solvers.cradle_hbm import CradleResponse
 
 __all__ = [
     "CradleFamily",
@@ -167,20 +166,12 @@ def cradle_linear_limits(at: CradlePeakPeriod) -> dict[str, float]:
 
 
 def _solve(at: CradlePeakPeriod, wave: CradleDesignWave) -> CradleResponse:
-    """A design wave's harmonic balance at the first H of CRADLE_DESIGN_HARMONICS that converges, else the least residual's."""
+    """A design wave's periodic response (:func:`~seafast.analyses.seastate.cradle_design_wave.solve_cradle_design_wave`)."""
     key = (wave.direction, wave.frequency_index)
     if key not in at.units:
         at.units[key] = cradle_unit_excitations(at.family.sea, at.vertical.per_direction[wave.direction], [wave.frequency_index])[0]
     excitation = scaled_excitation(at.units[key], wave.amplitude_m)
-    dynamics = at.family.sea.dynamics
-    best: CradleResponse | None = None
-    for harmonics in CRADLE_DESIGN_HARMONICS:
-        response = solve_cradle_hbm(dynamics, excitation, replace(HBMOptions(), continuation=False).with_harmonics(int(harmonics)))
-        if response.converged:
-            return response
-        best = response if best is None or response.residual < best.residual else best
-    assert best is not None
-    return best
+    return solve_cradle_design_wave(at.family.sea.dynamics, excitation)
 
 
 def _reading(at: CradlePeakPeriod, name: str, wave: CradleDesignWave, response: CradleResponse) -> float:

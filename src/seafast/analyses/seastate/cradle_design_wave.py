@@ -5,7 +5,7 @@ extreme, the peak of its response spectrum and the ends of the band where it is 
 :attr:`~seafast.analyses.seastate.design_wave_rule.DesignWaveSettings.band_fraction` of the peak, and at each such
 frequency the regular wave whose linear response there equals that element's linear MPM (from the quadrature
 direction whose transfer function is largest, as the vertical plane's rule); each wave is solved with still water by
-:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm` (pads lift, stoppers close, lashings slacken) and read for its
+:func:`solve_cradle_design_wave` (exact-event shooting; pads lift, stoppers close, lashings slacken) and read for its
 element over the period. The estimate is the largest reading (least for the lashing minimum), at least the still
 water's. Where nothing opens or closes the readings are the linear ones.
 
@@ -31,8 +31,11 @@ from seafast.analyses.seastate.cradle_transfer import CradleSeaModel, cradle_sea
 from seafast.analyses.seastate.directional_transfer import SeaStateTransfer
 from seafast.analyses.seastate.spectral import ResponseStatistics, SpectralAnalysis
 from seafast.excitation.cradle_loads import CradleExcitation
+from seafast.solvers.cradle_dynamics import CradleDynamics
 from seafast.solvers.cradle_hbm import CradleResponse, solve_cradle_hbm
+from seafast.solvers.cradle_shooting import solve_cradle_shooting
 from seafast.solvers.hbm import HBMOptions
+from seafast.solvers.outcome import SolverOutcome
 
 __all__ = [
     "CRADLE_DESIGN_HARMONICS",
@@ -40,16 +43,17 @@ __all__ = [
     "CradleDesignWaveExtremes",
     "CradleSeaState",
     "select_cradle_design_waves",
+    "solve_cradle_design_wave",
     "scaled_excitation",
     "cradle_design_waves",
     "cradle_sea_state",
 ]
 
 CRADLE_DESIGN_HARMONICS = (64, 96, 128, 48)
-"""The H a cradle design wave's harmonic balance tries in turn (Newton from its predictors, no continuation): with the
-exact law a truncation can have no solution near its start where pads lift, while another H converges in a few steps
-(at 135 deg on the base case H = 64 fails for 3 of 9 waves in 0.4 s each, H = 96 solves them; the continuations took
-26 s to fail)."""
+"""The H a cradle design wave's harmonic balance tries in turn where exact-event shooting does not converge (Newton from
+its predictors, no continuation): with the exact law a truncation can have no solution near its start where pads lift,
+while another H converges in a few steps (at 135 deg on the base case H = 64 fails for 3 of 9 waves in 0.4 s each, H =
+96 solves them; the continuations took 26 s to fail)."""
 
 
 @dataclass(frozen=True)
@@ -185,20 +189,35 @@ def select_cradle_design_waves(
     return tuple(waves)
 
 
-def _solve_wave(
-    sea: CradleSeaModel, excitation: CradleExcitation, options: HBMOptions | None, harmonics: tuple[int, ...]
+def solve_cradle_design_wave(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    options: HBMOptions | None = None,
+    harmonics: tuple[int, ...] = CRADLE_DESIGN_HARMONICS,
 ) -> CradleResponse:
-    """The wave's harmonic balance at the first H of ``harmonics`` that converges, else the least residual's."""
-    base = HBMOptions() if options is None else options
+    """A design wave's periodic response: exact-event shooting, else the harmonic balance at the first H that converges.
+
+    The shooting (:func:`~seafast.solvers.cradle_shooting.solve_cradle_shooting`) is the harmonic balance's converged
+    limit; a state it shows not to repeat every wave period is returned as such (``NOT_PERIODIC``). Where it does not
+    converge otherwise, the harmonic balance tries each H of ``harmonics`` in turn (``options``' settings, no
+    continuation), returning the first that converges, else the least residual's (flagged, never raised).
+    """
+    shot = solve_cradle_shooting(dynamics, excitation)
+    if shot.converged or shot.outcome is SolverOutcome.NOT_PERIODIC:
+        return shot
+    if not harmonics:
+        raise ValueError("harmonics: empty; allowed one H or more")
+    base = replace(HBMOptions() if options is None else options, continuation=False)
     best: CradleResponse | None = None
     for H in harmonics:
-        response = solve_cradle_hbm(sea.dynamics, excitation, replace(base, continuation=False).with_harmonics(int(H)))
+        response = solve_cradle_hbm(dynamics, excitation, base.with_harmonics(int(H)))
         if response.converged:
-            return response
+            best = response
+            break
         best = response if best is None or response.residual < best.residual else best
-    if best is None:
-        raise ValueError("harmonics: empty; allowed one H or more")
-    return best
+    assert best is not None
+    note = f"; exact-event shooting did not converge ({shot.message}), so the harmonic balance answered"
+    return replace(best, message=best.message + note)
 
 
 def scaled_excitation(unit: CradleExcitation, amplitude_m: float) -> CradleExcitation:
@@ -232,10 +251,10 @@ def cradle_design_waves(
     band_fraction
         The design band's share of the response spectrum's peak [-].
     options
-        The harmonic balance's (default: :class:`~seafast.solvers.hbm.HBMOptions`); its H and continuation are
-        ``harmonics``' and off.
+        The harmonic balance's where the shooting does not converge (default: :class:`~seafast.solvers.hbm.HBMOptions`);
+        its H and continuation are ``harmonics``' and off.
     harmonics
-        The H tried in turn until one converges (:data:`CRADLE_DESIGN_HARMONICS`).
+        The H then tried in turn until one converges (:data:`CRADLE_DESIGN_HARMONICS`).
 
     Returns
     -------
@@ -251,7 +270,7 @@ def cradle_design_waves(
         key = (wave.frequency_index, wave.direction, round(wave.amplitude_m, 12))
         if key not in solved:
             unit = cradle_unit_excitations(sea, transfer.per_direction[wave.direction], [wave.frequency_index])[0]
-            solved[key] = _solve_wave(sea, scaled_excitation(unit, wave.amplitude_m), options, harmonics)
+            solved[key] = solve_cradle_design_wave(sea.dynamics, scaled_excitation(unit, wave.amplitude_m), options, harmonics)
         responses.append(solved[key])
     readings = np.array([_reader(w.quantity, w.location)(r, lateral) for w, r in zip(waves, responses, strict=True)], dtype=float)
     totals = _static_totals(spectral)
