@@ -32,16 +32,21 @@ from seafast.solvers.hbm.harmonics import force_scale_N
 from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.shooting.failure import FAILURE_KEY, ShootingFailure
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, TooManyEventsError, flow_period, peak_compressions, state_runs
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
-from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, contact_samples, correction_system, settled_cutoff
+from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, correction_system, settled_cutoff
 
 __all__ = ["event_samples", "solve_shooting"]
 
 logger = logging.getLogger(__name__)
 
 _STABILITY_MARGIN = 1e-6  # a Floquet multiplier above 1 + this: an unstable orbit
+
+ROUND_OFF_FACTOR = 1e4
+"""How many times the double precision of the state's own size a period's march repeats a periodic state to
+(the eigenvector bases of the contact states, their conditioning and the events' times: :func:`_attainable`)."""
 
 
 def _reference_frequency_rad_s(model: StructuralModel, modes: int) -> float:
@@ -93,7 +98,6 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
     cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
     system = correction_system(model, cutoff, opts)
-    N = max(N, contact_samples(system, omega, opts))
     # the states' eigendecompositions depend on the model and the modes kept, not on the excitation: the model keeps them
     key = f"shooting_states {system.basis.value} {system.mode_count} {cutoff:.17g}"
     dynamics = model.derived_cache.get(key)
@@ -107,26 +111,34 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     try:
         while True:
             grid = PeriodGrid(states, N)
-            flow = flow_period(states, x_start, grid, record=True, max_events=opts.max_events) if periods else None
+            flow = flow_period(states, x_start, grid, record=True, max_events=opts.max_events, guard=_guarded(states)) if periods else None
             residual = _residual(states, flow, x_start, scale) if flow is not None else math.inf
-            if flow is None or residual > opts.tolerance:
+            if flow is None or residual > _attainable(states, x_start, scale, opts.tolerance):
                 # the events are exact whatever the grid, so a finer grid usually keeps the orbit: Newton only if not
                 flow, residual, marched, newton, x_start = _periodic_state(states, grid, scale, opts, x_start, fresh=periods == 0)
                 periods, steps = periods + marched, steps + newton
             else:
                 periods += 1
             samples = _contact_samples(states, grid, flow)
-            missed = _missed_peak(states, grid, flow, samples[0], ops.saddle_stiffness_N_per_m)
-            if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > opts.tolerance:
+            continuous, times = peak_compressions(states, grid, flow, samples[0]), None
+            if flow.peaks is not None:
+                # the guarded march's continuous peaks (impacts shorter than a sample) into the samples nearest them
+                continuous = np.maximum(continuous, flow.peaks.compression_m)
+                flow, times = _with_peaks(grid, flow)
+                samples = _contact_samples(states, grid, flow, times)
+            missed = _missed_peak(samples[0], continuous, ops.saddle_stiffness_N_per_m)
+            target = _attainable(states, x_start, scale, opts.tolerance)
+            if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > target:
                 break
             N *= 2  # the grid misses part of a peak: the same orbit on a finer grid
     except (SingularStateError, TooManyEventsError) as error:
         note = f"shooting: {error}"
+        record[FAILURE_KEY] = ShootingFailure.SINGULAR_STATE if isinstance(error, SingularStateError) else ShootingFailure.TOO_MANY_EVENTS
         return _response(model, ops, opts, None, None, N, SolverOutcome.NOT_CONVERGED, math.inf, 0, 0, note, record)
     assert flow.monodromy is not None  # every period a solve reports forms it
     multipliers = np.abs(np.linalg.eigvals(flow.monodromy))
     largest = float(np.max(multipliers, initial=0.0))
-    converged = residual <= opts.tolerance and largest <= 1.0 + _STABILITY_MARGIN
+    converged = residual <= target and largest <= 1.0 + _STABILITY_MARGIN
     record.update(
         time_samples=N,
         periods=periods,
@@ -135,16 +147,20 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         contact_states=states.visited,
         floquet_multiplier_max=largest,
         peak_missed_by_grid=float(np.max(missed, initial=0.0)),
+        residual_target=float(target),
     )
+    if flow.peaks is not None:
+        record.update(guard_sub_steps=flow.peaks.sub_steps)
     note = (
         f"exact-event shooting: {system.mode_count} modes up to {cutoff:.4g} rad/s, {N} samples per period, "
         f"{flow.events} events per period, {periods} period(s) marched, {steps} Newton step(s), residual {residual:.2g}, "
         f"largest Floquet multiplier {largest:.4f}, sampled peaks within {float(np.max(missed, initial=0.0)):.1g} of the continuous ones"
     )
     if not converged:
-        note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
+        note += "; not converged" if residual > target else "; the orbit found is unstable"
+        record[FAILURE_KEY] = ShootingFailure.NOT_PERIODIC if residual > target else ShootingFailure.UNSTABLE_ORBIT
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
-    response = _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
+    response = _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples, times)
     stiff = system.basis is CorrectionBasis.LIFTED or states.cancellation > STIFF_CANCELLATION
     if converged and opts.cutoff_check and stiff and not system.complete:
         # stiff saddles: the modal reduction is checked by the same solve with the cutoff doubled until the peaks settle
@@ -152,22 +168,56 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
     return response
 
 
-def _missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression: NDArray, stiffness_N_per_m: NDArray) -> NDArray:
-    """Per saddle, how much of its peak force the grid misses, over its force scale (:func:`force_scale_N`) [-].
+def _guarded(states: ContactStates) -> bool:
+    """Whether the period marches are guarded (stiff saddles, the lifted basis: impacts shorter than a sample)."""
+    return states.system.basis is CorrectionBasis.LIFTED
 
-    ``compression``: the flow's sampled compressions (N, n_s) [m].
+
+def _with_peaks(grid: PeriodGrid, flow: PeriodFlow) -> tuple[PeriodFlow, NDArray]:
+    """The flow with each saddle's continuous peak (a guarded march's) in place of the sample nearest it, and the times.
+
+    The samples are exact states of the orbit; each replaced one is at its peak's time instead of its own (at most
+    a sample's spacing away: where the nearest is taken by another saddle's peak, the next nearest). Returns the flow
+    and each sample's time (N,) [s].
+    """
+    assert flow.peaks is not None and flow.state_samples is not None and flow.state_codes is not None
+    peaks, N = flow.peaks, grid.samples
+    times = grid.times[:-1].copy()
+    samples, codes = flow.state_samples.copy(), flow.state_codes.copy()
+    taken: set[int] = set()
+    for i in np.argsort(-peaks.compression_m):
+        if not np.isfinite(peaks.compression_m[i]):
+            continue
+        position = peaks.time_s[i] / grid.times[1]
+        nearest = int(np.floor(position + 0.5))
+        for n in (nearest, nearest + 1 if position >= nearest else nearest - 1):
+            if n % N not in taken:
+                taken.add(n % N)
+                samples[n % N], codes[n % N], times[n % N] = peaks.state[i], peaks.code[i], peaks.time_s[i]
+                break
+    return PeriodFlow(flow.end_state, flow.monodromy, samples, codes, flow.events, flow.peaks), times
+
+
+def _missed_peak(compression: NDArray, continuous: NDArray, stiffness_N_per_m: NDArray) -> NDArray:
+    """Per saddle, how much of its peak force the samples miss, over its force scale (:func:`force_scale_N`) [-].
+
+    ``compression``: the sampled compressions (N, n_s) [m]; ``continuous``: each saddle's largest compression in
+    continuous time (:func:`~seafast.solvers.shooting.period.peak_compressions`) [m].
     """
     sampled = np.max(compression, axis=0)
-    continuous = peak_compressions(states, grid, flow, compression)
     k = np.asarray(stiffness_N_per_m, dtype=float)
     peak = k * np.maximum(continuous, 0.0)
     return np.asarray(k * (np.maximum(continuous, 0.0) - np.maximum(sampled, 0.0)) / force_scale_N(peak), dtype=float)
 
 
-def _contact_samples(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> tuple[NDArray, NDArray]:
-    """The saddle compressions and correction forces at the recorded samples, each (N, n_s) [m], [N]."""
+def _contact_samples(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, times: NDArray | None = None) -> tuple[NDArray, NDArray]:
+    """The saddle compressions and correction forces at the recorded samples, each (N, n_s) [m], [N].
+
+    ``times``: each sample's time (N,) [s] where some are not the grid's (:func:`_with_peaks`); None: the grid's.
+    """
     assert flow.state_samples is not None and flow.state_codes is not None
-    d = np.real(grid.phase[:-1] @ states.harmonics)  # the forcing d(t_n) (N, n_s) [m]
+    # the forcing d(t_n) (N, n_s) [m]
+    d = np.real(grid.phase[:-1] @ states.harmonics) if times is None else states.forcing(times)
     delta, correction = np.empty_like(d), np.empty_like(d)
     x = flow.state_samples
     for code, a, b in state_runs(flow.state_codes):
@@ -187,7 +237,7 @@ def _periodic_state(
     size = states.state_size
 
     def flow_from(x: NDArray, record: bool = False, monodromy: bool = True) -> PeriodFlow:
-        return flow_period(states, x, grid, record=record, monodromy=monodromy, max_events=opts.max_events)
+        return flow_period(states, x, grid, record=record, monodromy=monodromy, max_events=opts.max_events, guard=_guarded(states))
 
     x0 = np.array(x_start, dtype=float)
     periods = steps = 0
@@ -200,7 +250,7 @@ def _periodic_state(
         periods += 1
     residual = _residual(states, flow, x0, scale_m)
     best = (flow, residual, x0)
-    while residual > opts.tolerance and steps < opts.max_iterations:
+    while residual > _attainable(states, x0, scale_m, opts.tolerance) and steps < opts.max_iterations:
         assert flow.monodromy is not None
         try:
             step = np.linalg.solve(flow.monodromy - np.eye(size), flow.end_state - x0)
@@ -227,6 +277,22 @@ def _periodic_state(
     return flow_from(best[2], record=True), best[1], periods + 1, steps, best[2]
 
 
+def _attainable(states: ContactStates, x0: NDArray, scale_m: float, tolerance: float) -> float:
+    """The residual a periodic state is converged at: ``tolerance``, or the march's round-off floor if higher [-].
+
+    The residual measures the period's change of the state on the compressions' scale (:func:`_residual`); the
+    state itself, on the same measure, is the motion at the saddles (the lift-off, some 1e-2 m), while near-rigid
+    saddles' linear compressions (the scale) tend to zero with 1 / k: :data:`ROUND_OFF_FACTOR` times the double
+    precision of the state's size over the scale is as close as a period's march can repeat it (1e-11 on the base
+    case's 1.1e9 N/m saddles, 5e-8 on 1e14 N/m ones).
+    """
+    s = states.system
+    m = s.mode_count
+    size = np.abs(s.saddle_mode_shape) @ np.hypot(x0[:m], x0[m:] / np.maximum(s.natural_frequency_rad_s, 1e-12))
+    floor = ROUND_OFF_FACTOR * float(np.finfo(float).eps) * float(np.max(size, initial=0.0)) / scale_m
+    return max(float(tolerance), floor)
+
+
 def _residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
     """How far the period's end is from its start, as the compression and its rate over a period could move [-]."""
     s = states.system
@@ -251,17 +317,19 @@ def _response(
     record: dict,
     missed: NDArray | None = None,
     samples: tuple[NDArray, NDArray] | None = None,
+    times: NDArray | None = None,
 ) -> PeriodicResponse:
     """The :class:`PeriodicResponse` of the samples (the linear solution where no correction is needed).
 
     ``missed``: per saddle, how much of its peak force the grid misses (the response's ``truncation_error``: the
     error of the sampled peaks, the only discretisation the shooting has); None: nothing missed (zeros).
-    ``samples``: the flow's compressions and correction forces (:func:`_contact_samples`).
+    ``samples``: the flow's compressions and correction forces (:func:`_contact_samples`); ``times``: each sample's
+    time where some are not the grid's (:func:`_with_peaks`; None: the grid's).
     """
     omega = ops.omega_rad_s
     k_u = ops.saddle_stiffness_N_per_m
     H = N // 2 - 1
-    t = np.arange(N, dtype=float) * (2.0 * np.pi / omega / N)
+    t = np.arange(N, dtype=float) * (2.0 * np.pi / omega / N) if times is None else times
     X_lin = ops.linear_cargo_displacement[: H + 1]
     # q = basis @ coefficients: the linear solution's cos/sin columns, the modal coordinates and the correction forces
     columns = [np.ones((N, 1))] + [f(k * omega * t)[:, None] for k in range(1, X_lin.shape[0]) for f in (np.cos, np.sin)]
