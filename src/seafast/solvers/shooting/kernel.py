@@ -4,6 +4,14 @@
 grid and refines each event by safeguarded Newton iterations; it returns to its caller when the period ends, or
 when it enters a contact state not built yet (the caller builds it and calls again: the march resumes where it
 stopped), or after too many events. Compiled kernels are exempt from the house's function length (one loop each).
+
+Guarded (stiff saddles): between two samples it steps on by the longest step over which no compression can reach
+zero -- the positive root of ``g + g' h - a h^2 / 2``, ``a`` a bound on ``|g''|`` from the modes' amplitudes
+(:func:`_point`, :func:`_safe_step`) -- so an impact shorter than a sample is found, and it finds each saddle's
+largest compression where its rate turns from rising to falling (:func:`_track_peaks`).
+
+Size: over 400 lines because the guard's compiled helpers share the march's private exponential and state layout;
+apart, they would be a second module of the same loop's internals.
 """
 
 from __future__ import annotations
