@@ -92,7 +92,8 @@ def settled_cutoff(
     ``solve``: the shooting solve; ``coarse``: its converged answer at ``opts.cutoff_factor`` (on stiff saddles;
     ``cancellation``: its states' stiffness cancellation). Each doubling is solved in full; the finest solve is
     returned once its peaks are within :data:`MODAL_TOLERANCE` of the previous one's, or once it keeps every mode of
-    the model (no residual flexibility: the reduction is exact); if its grid still misses more than
+    the model (no residual flexibility: the reduction is exact; after :data:`MAX_CUTOFF_DOUBLINGS`, a model of at most
+    :data:`COMPLETE_BASIS_DOFS` DOFs is solved with every mode); if its grid still misses more than
     ``opts.peak_tolerance`` of a peak force, it is solved once more with up to :data:`STIFF_SAMPLES_FACTOR` times
     ``opts.max_samples`` samples a period. Otherwise -- a doubled solve does not converge, :data:`MAX_CUTOFF_DOUBLINGS`
     are spent, or the finest grid still misses a peak -- the last converged one is
