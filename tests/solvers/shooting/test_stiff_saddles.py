@@ -22,7 +22,7 @@ from seafast.model.sections import CargoGeometry, TubeSegment
 from seafast.model.structure import build_structural_model
 from seafast.solvers.modal_correction import CorrectionBasis, UnsupportedBasisError, lashings_hold, modal_basis
 from seafast.solvers.references import TimeDomainOptions, solve_time_domain
-from seafast.solvers.shooting import ShootingOptions, solve_shooting
+from seafast.solvers.shooting import ShootingFailure, ShootingOptions, shooting_failure, solve_shooting
 from seafast.solvers.shooting import stiff as shooting_stiff
 from seafast.solvers.shooting.stiff import correction_system
 from solver_cases import base_model, peak_moment, wave_excitation
@@ -101,17 +101,17 @@ def test_stiff_saddles_take_the_lifted_basis_and_lashless_cargo_keeps_the_bilate
 def test_a_stiff_solve_that_cannot_settle_says_why(stiff, monkeypatch):
     model, ex = stiff
     # the modal reduction: one doubling allowed, a tolerance no doubling meets
+    # the modal reduction: one doubling allowed, a tolerance no doubling meets, no last resort of every mode
     monkeypatch.setattr(shooting_stiff, "MAX_CUTOFF_DOUBLINGS", 1)
     monkeypatch.setattr(shooting_stiff, "MODAL_TOLERANCE", 1e-12)
+    monkeypatch.setattr(shooting_stiff, "COMPLETE_BASIS_DOFS", 0)
     r = solve_shooting(model, ex, ShootingOptions(basis=CorrectionBasis.LIFTED))
     assert not r.converged and "not converged in the modal reduction: the peak forces still move" in r.message
+    assert shooting_failure(r) is ShootingFailure.CUTOFF_NOT_SETTLED and r.options["failure"] == "cutoff_not_settled"
     assert r.options["cutoff_doublings"] == 1 and 1e-12 < float(r.options["cutoff_check_change"]) < 0.05
-    # the event grid: the cutoff settles at once, but a peak tolerance no grid up to twice the most allowed meets
-    monkeypatch.setattr(shooting_stiff, "MODAL_TOLERANCE", 1.0)
-    monkeypatch.setattr(shooting_stiff, "STIFF_SAMPLES_FACTOR", 2)
-    r = solve_shooting(model, ex, ShootingOptions(basis=CorrectionBasis.LIFTED, max_samples=16384, peak_tolerance=1e-9))
-    assert not r.converged and "not converged on the event grid" in r.message
-    assert r.time_samples == 2 * 16384 and float(r.options["peak_missed_by_grid"]) > 1e-9
+    # a chattering contact: more events than allowed
+    r = solve_shooting(model, ex, ShootingOptions(max_events=3))
+    assert not r.converged and shooting_failure(r) is ShootingFailure.TOO_MANY_EVENTS and "more than 3 contact events" in r.message
 
 
 @pytest.mark.slow

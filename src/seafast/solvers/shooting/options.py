@@ -28,7 +28,8 @@ class ShootingOptions:
         A fixed number of samples per period instead (None: from ``samples_per_mode``).
     tolerance
         The periodic state is converged when a period moves the saddle compressions (and their rates over a
-        modal period) by less than this share of the largest linear compression [-].
+        modal period) by less than this share of the largest linear compression [-] (or than the march's round-off
+        floor, where that is higher: near-rigid saddles' linear compressions are tiny).
     march_periods
         Periods marched from the linear solution before Newton's method takes over.
     max_iterations
@@ -42,9 +43,10 @@ class ShootingOptions:
         Samples per period at most.
     cutoff_check
         On stiff saddles (the lifted basis, or a lifted state cancelling most of the bilateral modes' stiffness),
-        repeat the solve with the cutoff doubled until the peak forces move by at most 0.1 % (or every mode is kept),
-        and refine the grid beyond ``max_samples`` (8 times) if the peaks need it; what does not settle is reported
-        not converged, with why (:func:`~seafast.solvers.shooting.stiff.settled_cutoff`).
+        repeat the solve with the cutoff doubled until the peak forces move by at most 0.1 % (or every mode is kept;
+        after the last doubling, every mode of a small model), and refine the grid beyond ``max_samples`` (8 times)
+        if the peaks need it; what does not settle is reported not converged, with why
+        (:func:`~seafast.solvers.shooting.stiff.settled_cutoff`, :class:`~seafast.solvers.shooting.ShootingFailure`).
     basis
         The :class:`~seafast.solvers.modal_correction.CorrectionBasis` of the modal reduction; None (the default):
         the bilateral saddles' modes unless a lifted state would cancel more than

@@ -19,23 +19,32 @@ import numpy as np
 from numpy.typing import NDArray
 
 from seafast.solvers.hbm.harmonics import force_scale_N
+from seafast.solvers.modal_correction import CorrectionBasis
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.period import PeriodFlow, PeriodGrid, flow_period, peak_compressions, state_runs
 from seafast.solvers.shooting.states import ContactStates
 
 __all__ = [
+    "ROUND_OFF_FACTOR",
     "STABILITY_MARGIN",
     "Orbit",
+    "attainable",
+    "guarded",
     "missed_peak",
     "period_residual",
     "periodic_state",
     "sampled_contact",
     "shoot_orbit",
     "state_change",
+    "with_peaks",
 ]
 
 STABILITY_MARGIN = 1e-6
 """A Floquet multiplier above 1 + this: an unstable orbit."""
+
+ROUND_OFF_FACTOR = 1e4
+"""How many times the double precision of the state's own size a period's march repeats a periodic state to
+(the eigenvector bases of the contact states, their conditioning and the events' times: :func:`attainable`)."""
 
 
 @dataclass(frozen=True)
@@ -59,7 +68,13 @@ class Orbit:
     floquet_multiplier_max
         The largest modulus of the monodromy matrix's eigenvalues [-].
     converged
-        The residual within the tolerance and the orbit stable (multipliers at most 1 + :data:`STABILITY_MARGIN`).
+        The residual within its target (:func:`attainable`) and the orbit stable (multipliers at most
+        1 + :data:`STABILITY_MARGIN`).
+    residual_target
+        The residual the orbit is converged at: the tolerance, or the march's round-off floor if higher [-].
+    times
+        Each sample's time where a guarded march put a continuous peak in place of a grid sample (:func:`with_peaks`)
+        (N,) [s]; None: the grid's ``t_n = n T / N``.
     """
 
     flow: PeriodFlow
@@ -72,6 +87,8 @@ class Orbit:
     missed: NDArray[np.float64]
     floquet_multiplier_max: float
     converged: bool
+    residual_target: float
+    times: NDArray[np.float64] | None = None
 
 
 def shoot_orbit(states: ContactStates, samples: int, scale_m: float, opts: ShootingOptions, stiffness_N_per_m: NDArray) -> Orbit:
@@ -90,42 +107,85 @@ def shoot_orbit(states: ContactStates, samples: int, scale_m: float, opts: Shoot
     N = int(samples)
     x_start = np.zeros(states.state_size)
     periods = steps = 0
+    guard = guarded(states)
     while True:
         grid = PeriodGrid(states, N)
-        flow = flow_period(states, x_start, grid, record=True, max_events=opts.max_events) if periods else None
+        flow = flow_period(states, x_start, grid, record=True, max_events=opts.max_events, guard=guard) if periods else None
         residual = period_residual(states, flow, x_start, scale_m) if flow is not None else math.inf
-        if flow is None or residual > opts.tolerance:
+        if flow is None or residual > attainable(states, x_start, scale_m, opts.tolerance):
+            # the events are exact whatever the grid, so a finer grid usually keeps the orbit: Newton only if not
             flow, residual, marched, newton, x_start = periodic_state(states, grid, scale_m, opts, x_start, fresh=periods == 0)
             periods, steps = periods + marched, steps + newton
         else:
             periods += 1
         compression, correction = sampled_contact(states, grid, flow)
-        missed = missed_peak(states, grid, flow, compression, stiffness_N_per_m)
-        if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > opts.tolerance:
+        continuous, times = peak_compressions(states, grid, flow, compression), None
+        if flow.peaks is not None:
+            # the guarded march's continuous peaks (impacts shorter than a sample) into the samples nearest them
+            continuous = np.maximum(continuous, flow.peaks.compression_m)
+            flow, times = with_peaks(grid, flow)
+            compression, correction = sampled_contact(states, grid, flow, times)
+        missed = missed_peak(compression, continuous, stiffness_N_per_m)
+        target = attainable(states, x_start, scale_m, opts.tolerance)
+        if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > target:
             break
         N *= 2  # the grid misses part of a peak: the same orbit on a finer grid
     assert flow.monodromy is not None  # every period a solve reports forms it
     largest = float(np.max(np.abs(np.linalg.eigvals(flow.monodromy)), initial=0.0))
-    converged = residual <= opts.tolerance and largest <= 1.0 + STABILITY_MARGIN
-    return Orbit(flow, float(residual), periods, steps, N, compression, correction, missed, largest, bool(converged))
+    converged = residual <= target and largest <= 1.0 + STABILITY_MARGIN
+    return Orbit(flow, float(residual), periods, steps, N, compression, correction, missed, largest, bool(converged), float(target), times)
 
 
-def missed_peak(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, compression: NDArray, stiffness_N_per_m: NDArray) -> NDArray:
-    """Per saddle, how much of its peak force the grid misses, over its force scale (:func:`force_scale_N`) [-].
+def guarded(states: ContactStates) -> bool:
+    """Whether the period marches are guarded (stiff saddles, the lifted basis: impacts shorter than a sample)."""
+    return states.system.basis is CorrectionBasis.LIFTED
 
-    ``compression``: the flow's sampled compressions (N, n_s) [m].
+
+def with_peaks(grid: PeriodGrid, flow: PeriodFlow) -> tuple[PeriodFlow, NDArray]:
+    """The flow with each contact's continuous peak (a guarded march's) in place of the sample nearest it, and the times.
+
+    The samples are exact states of the orbit; each replaced one is at its peak's time instead of its own (at most
+    a sample's spacing away: where the nearest is taken by another contact's peak, the next nearest). Returns the flow
+    and each sample's time (N,) [s].
+    """
+    assert flow.peaks is not None and flow.state_samples is not None and flow.state_codes is not None
+    peaks, N = flow.peaks, grid.samples
+    times = grid.times[:-1].copy()
+    samples, codes = flow.state_samples.copy(), flow.state_codes.copy()
+    taken: set[int] = set()
+    for i in np.argsort(-peaks.compression_m):
+        if not np.isfinite(peaks.compression_m[i]):
+            continue
+        position = peaks.time_s[i] / grid.times[1]
+        nearest = int(np.floor(position + 0.5))
+        for n in (nearest, nearest + 1 if position >= nearest else nearest - 1):
+            if n % N not in taken:
+                taken.add(n % N)
+                samples[n % N], codes[n % N], times[n % N] = peaks.state[i], peaks.code[i], peaks.time_s[i]
+                break
+    return PeriodFlow(flow.end_state, flow.monodromy, samples, codes, flow.events, flow.peaks), times
+
+
+def missed_peak(compression: NDArray, continuous: NDArray, stiffness_N_per_m: NDArray) -> NDArray:
+    """Per contact, how much of its peak force the samples miss, over its force scale (:func:`force_scale_N`) [-].
+
+    ``compression``: the sampled compressions (N, n_s) [m]; ``continuous``: each contact's largest compression in
+    continuous time (:func:`~seafast.solvers.shooting.period.peak_compressions`) [m].
     """
     sampled = np.max(compression, axis=0)
-    continuous = peak_compressions(states, grid, flow, compression)
     k = np.asarray(stiffness_N_per_m, dtype=float)
     peak = k * np.maximum(continuous, 0.0)
     return np.asarray(k * (np.maximum(continuous, 0.0) - np.maximum(sampled, 0.0)) / force_scale_N(peak), dtype=float)
 
 
-def sampled_contact(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow) -> tuple[NDArray, NDArray]:
-    """The saddle compressions and correction forces at the recorded samples, each (N, n_s) [m], [N]."""
+def sampled_contact(states: ContactStates, grid: PeriodGrid, flow: PeriodFlow, times: NDArray | None = None) -> tuple[NDArray, NDArray]:
+    """The contacts' compressions and correction forces at the recorded samples, each (N, n_s) [m], [N].
+
+    ``times``: each sample's time (N,) [s] where some are not the grid's (:func:`with_peaks`); None: the grid's.
+    """
     assert flow.state_samples is not None and flow.state_codes is not None
-    d = np.real(grid.phase[:-1] @ states.harmonics)  # the forcing d(t_n) (N, n_s) [m]
+    # the forcing d(t_n) (N, n_s) [m]
+    d = np.real(grid.phase[:-1] @ states.harmonics) if times is None else states.forcing(times)
     delta, correction = np.empty_like(d), np.empty_like(d)
     x = flow.state_samples
     for code, a, b in state_runs(flow.state_codes):
@@ -143,9 +203,10 @@ def periodic_state(
     Returns the recorded flow of the best state, its residual, the periods marched, the Newton steps and the state.
     """
     size = states.state_size
+    guard = guarded(states)
 
     def flow_from(x: NDArray, record: bool = False, monodromy: bool = True) -> PeriodFlow:
-        return flow_period(states, x, grid, record=record, monodromy=monodromy, max_events=opts.max_events)
+        return flow_period(states, x, grid, record=record, monodromy=monodromy, max_events=opts.max_events, guard=guard)
 
     x0 = np.array(x_start, dtype=float)
     periods = steps = 0
@@ -158,7 +219,7 @@ def periodic_state(
         periods += 1
     residual = period_residual(states, flow, x0, scale_m)
     best = (flow, residual, x0)
-    while residual > opts.tolerance and steps < opts.max_iterations:
+    while residual > attainable(states, x0, scale_m, opts.tolerance) and steps < opts.max_iterations:
         assert flow.monodromy is not None
         try:
             step = np.linalg.solve(flow.monodromy - np.eye(size), flow.end_state - x0)
@@ -183,6 +244,19 @@ def periodic_state(
     if best[0].state_samples is not None:
         return best[0], best[1], periods, steps, best[2]
     return flow_from(best[2], record=True), best[1], periods + 1, steps, best[2]
+
+
+def attainable(states: ContactStates, x0: NDArray, scale_m: float, tolerance: float) -> float:
+    """The residual a periodic state is converged at: ``tolerance``, or the march's round-off floor if higher [-].
+
+    The residual measures the period's change of the state on the compressions' scale (:func:`period_residual`); the
+    state itself, on the same measure, is the motion at the contacts (the lift-off, some 1e-2 m), while near-rigid
+    saddles' linear compressions (the scale) tend to zero with 1 / k: :data:`ROUND_OFF_FACTOR` times the double
+    precision of the state's size over the scale is as close as a period's march can repeat it (1e-11 on the base
+    case's 1.1e9 N/m saddles, 5e-8 on 1e14 N/m ones).
+    """
+    floor = ROUND_OFF_FACTOR * float(np.finfo(float).eps) * state_change(states, x0, 1.0) / scale_m
+    return max(float(tolerance), floor)
 
 
 def period_residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:

@@ -23,6 +23,8 @@ from seafast.solvers.shooting.states import ContactState, ContactStates, lifted_
 
 __all__ = [
     "EVENT_TIME_TOLERANCE",
+    "GUARD_MIN_STEP",
+    "ContinuousPeaks",
     "PeriodFlow",
     "PeriodGrid",
     "TooManyEventsError",
@@ -35,6 +37,9 @@ __all__ = [
 EVENT_TIME_TOLERANCE = 1e-12
 """Event times are found to this fraction of the period."""
 
+
+GUARD_MIN_STEP = 1e-9
+"""A guarded march's shortest sub-step, as a share of the period (an impact shorter than that could be missed)."""
 
 PEAK_REACH = 0.05
 """Local maxima of a sampled compression this share of its range below the largest one are refined."""
@@ -60,6 +65,9 @@ class PeriodFlow:
         The contact state at each sample (N,), bit i set when saddle i is lifted, when recorded, else None.
     events
         Contact events in the period (state changes of one saddle each).
+    peaks
+        Guarded marches only (else None): each saddle's largest compression in continuous time
+        (:class:`ContinuousPeaks`).
     """
 
     end_state: NDArray[np.float64]
@@ -67,6 +75,33 @@ class PeriodFlow:
     state_samples: NDArray[np.float64] | None
     state_codes: NDArray[np.int64] | None
     events: int
+    peaks: ContinuousPeaks | None = None
+
+
+@dataclass(frozen=True)
+class ContinuousPeaks:
+    """Each saddle's largest compression over a guarded period march, found in continuous time.
+
+    Attributes
+    ----------
+    compression_m
+        The largest compression of each saddle while in contact [m], (n_s,); ``-inf`` where none was found
+        between the march's points (the samples then carry the peak).
+    time_s
+        When [s], (n_s,).
+    state
+        The state ``x = [eta; eta']`` there, (n_s, 2m).
+    code
+        The contact state there (bit i set when saddle i is lifted), (n_s,).
+    sub_steps
+        The sub-steps between samples the guard took in the period.
+    """
+
+    compression_m: NDArray[np.float64]
+    time_s: NDArray[np.float64]
+    state: NDArray[np.float64]
+    code: NDArray[np.int64]
+    sub_steps: int
 
 
 class PeriodGrid:
@@ -113,12 +148,16 @@ def flow_period(
     record: bool = False,
     monodromy: bool = True,
     max_events: int = 100_000,
+    guard: bool = False,
 ) -> PeriodFlow:
     """March one period ``[0, T]`` from ``x(0) = x0`` with exact events (see the module docstring).
 
     ``record``: keep the state and the contact state at every sample (the period a solve reports).
     ``monodromy``: form the monodromy matrix (two (2m)^3 products an event); False for a period that only leads to
     the next one (the flow's ``monodromy`` is then None).
+    ``guard``: between samples, step on by steps over which no compression can reach zero (bounded by its rate and
+    curvature), so that an impact shorter than a sample is not missed, and find each saddle's largest compression in
+    continuous time (the flow's ``peaks``; :data:`GUARD_MIN_STEP` of the period at least a step).
 
     Raises
     ------
@@ -127,23 +166,28 @@ def flow_period(
     """
     N, size = grid.samples, states.state_size
     carry_t = np.zeros(1)
-    carry_i = np.array([0, lifted_code(initial_contact(states, x0, 0.0)), 0], dtype=np.int64)
+    carry_i = np.array([0, lifted_code(initial_contact(states, x0, 0.0)), 0, 0], dtype=np.int64)
     x = np.array(x0, dtype=float)
     jacobian = np.eye(size)
     out_e = np.zeros((N, size) if record else (1, size), dtype=np.complex128)
     out_code = np.zeros(N, dtype=np.int64)
+    n_s = states.system.saddle_count
+    peak_value, peak_time = np.full(n_s, -np.inf), np.zeros(n_s)
+    peak_state, peak_code = np.zeros((n_s, size)), np.zeros(n_s, dtype=np.int64)
     while True:
         arrays = states.arrays
         status = march_events(
             arrays.table, arrays.eigenvalues, arrays.eigenvectors, arrays.inverse_eigenvectors, arrays.modal_compression,
             arrays.particular_compression, arrays.particular, arrays.lifted, states.omega_rad_s, grid.times, grid.phase,
             EVENT_TIME_TOLERANCE, int(max_events), bool(record), bool(monodromy), carry_t, carry_i, x, jacobian, out_e, out_code,
+            bool(guard), GUARD_MIN_STEP * grid.period_s, peak_value, peak_time, peak_state, peak_code,
         )  # fmt: skip
         if status == DONE:
             kept = jacobian if monodromy else None
+            peaks = ContinuousPeaks(peak_value, peak_time, peak_state, peak_code, int(carry_i[3])) if guard else None
             if not record:
-                return PeriodFlow(x, kept, None, None, int(carry_i[2]))
-            return PeriodFlow(x, kept, _recorded_states(states, grid, out_e, out_code), out_code, int(carry_i[2]))
+                return PeriodFlow(x, kept, None, None, int(carry_i[2]), peaks)
+            return PeriodFlow(x, kept, _recorded_states(states, grid, out_e, out_code), out_code, int(carry_i[2]), peaks)
         if status == TOO_MANY_EVENTS:
             raise TooManyEventsError(f"more than {max_events} contact events in one period")
         states.get(states.lifted_of(int(status)))  # a new contact state: build it, then resume

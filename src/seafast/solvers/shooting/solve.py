@@ -31,11 +31,12 @@ from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operator
 from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.shooting.failure import FAILURE_KEY, ShootingFailure
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.orbit import shoot_orbit
 from seafast.solvers.shooting.period import PeriodFlow, TooManyEventsError
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
-from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, contact_samples, correction_system, settled_cutoff
+from seafast.solvers.shooting.stiff import STIFF_CANCELLATION, correction_system, settled_cutoff
 
 __all__ = ["event_samples", "solve_shooting"]
 
@@ -91,7 +92,6 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         return _response(model, ops, opts, None, None, N_linear, SolverOutcome.CONVERGED, 0.0, 0, 0, note, record)
     cutoff = opts.cutoff_factor * _reference_frequency_rad_s(model, opts.reference_modes)
     system = correction_system(model, cutoff, opts)
-    N = max(N, contact_samples(system, omega, opts))
     # the states' eigendecompositions depend on the model and the modes kept, not on the excitation: the model keeps them
     key = f"shooting_states {system.basis.value} {system.mode_count} {cutoff:.17g}"
     dynamics = model.derived_cache.get(key)
@@ -104,10 +104,12 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         orbit = shoot_orbit(states, N, scale, opts, ops.saddle_stiffness_N_per_m)
     except (SingularStateError, TooManyEventsError) as error:
         note = f"shooting: {error}"
+        record[FAILURE_KEY] = ShootingFailure.SINGULAR_STATE if isinstance(error, SingularStateError) else ShootingFailure.TOO_MANY_EVENTS
         return _response(model, ops, opts, None, None, N, SolverOutcome.NOT_CONVERGED, math.inf, 0, 0, note, record)
     flow, residual, periods, steps, N, missed = orbit.flow, orbit.residual, orbit.periods, orbit.newton_steps, orbit.samples, orbit.missed
     samples = (orbit.compression_m, orbit.correction_N)
     largest, converged = orbit.floquet_multiplier_max, orbit.converged
+    target, times = orbit.residual_target, orbit.times
     record.update(
         time_samples=N,
         periods=periods,
@@ -116,16 +118,20 @@ def solve_shooting(model: StructuralModel, excitation: HarmonicExcitation, optio
         contact_states=states.visited,
         floquet_multiplier_max=largest,
         peak_missed_by_grid=float(np.max(missed, initial=0.0)),
+        residual_target=float(target),
     )
+    if flow.peaks is not None:
+        record.update(guard_sub_steps=flow.peaks.sub_steps)
     note = (
         f"exact-event shooting: {system.mode_count} modes up to {cutoff:.4g} rad/s, {N} samples per period, "
         f"{flow.events} events per period, {periods} period(s) marched, {steps} Newton step(s), residual {residual:.2g}, "
         f"largest Floquet multiplier {largest:.4f}, sampled peaks within {float(np.max(missed, initial=0.0)):.1g} of the continuous ones"
     )
     if not converged:
-        note += "; not converged" if residual > opts.tolerance else "; the orbit found is unstable"
+        note += "; not converged" if residual > target else "; the orbit found is unstable"
+        record[FAILURE_KEY] = ShootingFailure.NOT_PERIODIC if residual > target else ShootingFailure.UNSTABLE_ORBIT
     outcome = SolverOutcome.CONVERGED if converged else SolverOutcome.NOT_CONVERGED
-    response = _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples)
+    response = _response(model, ops, opts, states, flow, N, outcome, residual, steps, periods, note, record, missed, samples, times)
     stiff = system.basis is CorrectionBasis.LIFTED or states.cancellation > STIFF_CANCELLATION
     if converged and opts.cutoff_check and stiff and not system.complete:
         # stiff saddles: the modal reduction is checked by the same solve with the cutoff doubled until the peaks settle
@@ -148,17 +154,19 @@ def _response(
     record: dict,
     missed: NDArray | None = None,
     samples: tuple[NDArray, NDArray] | None = None,
+    times: NDArray | None = None,
 ) -> PeriodicResponse:
     """The :class:`PeriodicResponse` of the samples (the linear solution where no correction is needed).
 
     ``missed``: per saddle, how much of its peak force the grid misses (the response's ``truncation_error``: the
     error of the sampled peaks, the only discretisation the shooting has); None: nothing missed (zeros).
-    ``samples``: the flow's compressions and correction forces (:func:`_contact_samples`).
+    ``samples``: the flow's compressions and correction forces (:func:`~seafast.solvers.shooting.orbit.sampled_contact`);
+    ``times``: each sample's time where some are not the grid's (:func:`~seafast.solvers.shooting.orbit.with_peaks`; None: the grid's).
     """
     omega = ops.omega_rad_s
     k_u = ops.saddle_stiffness_N_per_m
     H = N // 2 - 1
-    t = np.arange(N, dtype=float) * (2.0 * np.pi / omega / N)
+    t = np.arange(N, dtype=float) * (2.0 * np.pi / omega / N) if times is None else times
     X_lin = ops.linear_cargo_displacement[: H + 1]
     # q = basis @ coefficients: the linear solution's cos/sin columns, the modal coordinates and the correction forces
     columns = [np.ones((N, 1))] + [f(k * omega * t)[:, None] for k in range(1, X_lin.shape[0]) for f in (np.cos, np.sin)]

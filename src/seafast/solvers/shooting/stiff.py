@@ -3,8 +3,9 @@
 With stiff saddles a lifted state's stiffness on the bilateral modes is a difference of huge numbers
 (:attr:`~seafast.solvers.shooting.states.ContactStates.cancellation`). :func:`correction_system` then reduces the
 correction system on the lifted cargo's modes instead (:class:`~seafast.solvers.modal_correction.CorrectionBasis`),
-:func:`contact_samples` starts the event grid fine enough for a saddle's ringing in contact, and
-:func:`settled_cutoff` doubles the cutoff until the peak forces settle: docs/theory.md, section 5.8.
+the period marches are guarded (no impact between two samples is missed, and each peak is found in continuous
+time: :func:`~seafast.solvers.shooting.period.flow_period`), and :func:`settled_cutoff` doubles the cutoff until the
+peak forces settle (or keeps every mode): docs/theory.md, section 5.8.
 
 Units: SI (m, rad, N, s). Nothing here prints, reads or writes files.
 """
@@ -23,15 +24,16 @@ from seafast.solvers.hbm.harmonics import force_scale_N
 from seafast.solvers.modal_correction import CorrectionBasis, ModalCorrectionSystem, UnsupportedBasisError, modal_correction_system
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.shooting.failure import FAILURE_KEY, ShootingFailure, shooting_failure
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.states import stiffness_cancellation
 
 __all__ = [
+    "COMPLETE_BASIS_DOFS",
     "MAX_CUTOFF_DOUBLINGS",
     "MODAL_TOLERANCE",
     "STIFF_CANCELLATION",
     "STIFF_SAMPLES_FACTOR",
-    "contact_samples",
     "correction_system",
     "settled_cutoff",
 ]
@@ -48,24 +50,10 @@ STIFF_SAMPLES_FACTOR = 8
 """For stiff saddles' impacts, once the cutoff has settled: up to this multiple of ``max_samples`` (2^19 by default)."""
 
 MAX_CUTOFF_DOUBLINGS = 6
-"""Doublings of the cutoff at most (x 64; the model's every mode is usually reached before)."""
+"""Doublings of the cutoff at most (x 64); then every mode of a model of at most :data:`COMPLETE_BASIS_DOFS` DOFs."""
 
-
-def contact_samples(system: ModalCorrectionSystem, omega_rad_s: float, opts: ShootingOptions) -> int:
-    """Samples per period for the impacts of stiff saddles on the lifted basis (1 on the bilateral one), a power of 2.
-
-    A saddle in contact rings at about ``sqrt(W_ii / m_i)``: ``W_ii`` its contact stiffness as the reduction sees it
-    (``(I + K_u R)^-1 K_u``, at most ``1 / R_ii``) on the modal mass ``1 / (Phi_s Phi_s^T)_ii`` the kept modes give
-    it. ``samples_per_mode`` samples per period of the fastest, at most ``max_samples``: a grid coarser than the
-    impacts would miss a bounce between two samples.
-    """
-    if system.basis is not CorrectionBasis.LIFTED or opts.time_samples is not None:
-        return 1
-    k_u, R, Phi = system.unilateral_stiffness_N_per_m, system.residual_flexibility_m_per_N, system.saddle_mode_shape
-    W = np.linalg.solve(np.eye(k_u.size) + k_u[:, None] * R, np.diag(k_u))
-    ringing = math.sqrt(max(float(np.max(np.diag(W) * np.sum(Phi**2, axis=1))), 0.0))
-    need = opts.samples_per_mode * ringing / float(omega_rad_s)
-    return int(min(2 ** math.ceil(math.log2(max(need, 1.0))), opts.max_samples))
+COMPLETE_BASIS_DOFS = 400
+"""Cargo DOFs at most for the last resort of the cutoff check: every mode kept (no reduction left), the march guarded."""
 
 
 def correction_system(model: StructuralModel, cutoff_rad_s: float, opts: ShootingOptions) -> ModalCorrectionSystem:
@@ -104,7 +92,8 @@ def settled_cutoff(
     ``solve``: the shooting solve; ``coarse``: its converged answer at ``opts.cutoff_factor`` (on stiff saddles;
     ``cancellation``: its states' stiffness cancellation). Each doubling is solved in full; the finest solve is
     returned once its peaks are within :data:`MODAL_TOLERANCE` of the previous one's, or once it keeps every mode of
-    the model (no residual flexibility: the reduction is exact); if its grid still misses more than
+    the model (no residual flexibility: the reduction is exact; after :data:`MAX_CUTOFF_DOUBLINGS`, a model of at most
+    :data:`COMPLETE_BASIS_DOFS` DOFs is solved with every mode); if its grid still misses more than
     ``opts.peak_tolerance`` of a peak force, it is solved once more with up to :data:`STIFF_SAMPLES_FACTOR` times
     ``opts.max_samples`` samples a period. Otherwise -- a doubled solve does not converge, :data:`MAX_CUTOFF_DOUBLINGS`
     are spent, or the finest grid still misses a peak -- the last converged one is
@@ -113,15 +102,23 @@ def settled_cutoff(
     """
     current, factor = coarse, float(opts.cutoff_factor)
     changes: list[float] = []
-    why = ""
+    why, reason = "", ShootingFailure.CUTOFF_NOT_SETTLED
     while True:
-        if len(changes) >= MAX_CUTOFF_DOUBLINGS:
+        if len(changes) >= MAX_CUTOFF_DOUBLINGS and math.isfinite(factor) and model.cargo_dof_count <= COMPLETE_BASIS_DOFS:
+            factor = math.inf / 2.0  # doubled below: every mode of the model, the reduction exact
+        elif len(changes) >= MAX_CUTOFF_DOUBLINGS:
             why = f"the peak forces still move {changes[-1]:.2g} after {len(changes)} doublings of the cutoff"
+            unresolved = current.options.get("peak_missed_by_grid", 0.0)
+            if isinstance(unresolved, float) and unresolved > opts.peak_tolerance:
+                # the changes measured on a grid that misses part of the impacts: the grid, not the modes, is why
+                why += f", on an event grid of {current.time_samples} samples per period missing {unresolved:.2g} of a peak force"
+                reason = ShootingFailure.IMPACTS_UNRESOLVED
             break
         factor *= 2.0
         finer = solve(model, excitation, replace(opts, cutoff_factor=factor, cutoff_check=False))
         if not finer.converged:
             why = f"the solve with the cutoff factor {factor:g} is not converged ({finer.message})"
+            reason = shooting_failure(finer) or ShootingFailure.NOT_PERIODIC
             break
         changes.append(_peak_change(current, finer))
         current = finer
@@ -137,6 +134,7 @@ def settled_cutoff(
         why += f" (bilateral modes, a lifted state cancelling {cancellation:.1e} of their stiffness: no lashing holds the lifted cargo)"
     if why:
         note += f"; not converged in the modal reduction: {why}"
+        record[FAILURE_KEY] = reason
         return replace(current, outcome=SolverOutcome.NOT_CONVERGED, message=note, options=record)
     missed = current.options.get("peak_missed_by_grid", 0.0)
     assert isinstance(missed, float)
@@ -161,7 +159,9 @@ def _finer_grids(
     for factor in (STIFF_SAMPLES_FACTOR // 2, STIFF_SAMPLES_FACTOR):
         finer = solve(model, excitation, replace(opts, max_samples=factor * opts.max_samples))
         if not finer.converged:
-            return replace(current, outcome=SolverOutcome.NOT_CONVERGED), f"; not converged on a finer event grid ({finer.message})"
+            failed = dict(current.options, **{FAILURE_KEY: shooting_failure(finer) or ShootingFailure.NOT_PERIODIC})
+            note = f"; not converged on a finer event grid ({finer.message})"
+            return replace(current, outcome=SolverOutcome.NOT_CONVERGED, options=failed), note
         missed = finer.options.get("peak_missed_by_grid", 0.0)
         assert isinstance(missed, float)
         if missed <= opts.peak_tolerance:
@@ -174,7 +174,8 @@ def _finer_grids(
         f"; not converged on the event grid: {finer.time_samples} samples per period (the most allowed) miss {missed:.2g} of a peak "
         f"force (impacts shorter than the grid resolves)"
     )
-    return replace(finer, outcome=SolverOutcome.NOT_CONVERGED), why
+    failed = dict(finer.options, **{FAILURE_KEY: ShootingFailure.IMPACTS_UNRESOLVED})
+    return replace(finer, outcome=SolverOutcome.NOT_CONVERGED, options=failed), why
 
 
 def _peak_change(coarse: PeriodicResponse, finer: PeriodicResponse) -> float:
