@@ -39,6 +39,7 @@ from seafast.model.cradle_case import build_cradle_case
 from seafast.model.from_case import build_model
 from seafast.solvers.cradle_dynamics import cradle_operators
 from seafast.solvers.cradle_hbm import solve_cradle_hbm
+from seafast.solvers.cradle_shooting import solve_cradle_shooting
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.references.cradle_quasi_static import solve_cradle_quasi_static
 from seafast.solvers.transverse_statics import StaticsOutcome, solve_transverse_statics
@@ -182,10 +183,20 @@ def test_design_waves_give_the_linear_columns_where_nothing_opens(beam):
     assert d.totals["F_stopper_N"] == 0.0 == e.totals["F_stopper_N"]  # 20 mm gap: the stoppers stay open in 3 m
 
 
+def _shooting_that_fails(outcome: SolverOutcome):
+    """A stand-in for the exact-event shooting: its own answer, reported with ``outcome`` (residual 1)."""
+
+    def shoot(dynamics, excitation):
+        response = solve_cradle_shooting(dynamics, excitation)
+        return dataclasses.replace(response, outcome=outcome, residual=1.0)
+
+    return shoot
+
+
 def test_a_design_wave_that_does_not_converge_is_flagged_with_its_residual(beam, monkeypatch):
-    """Every H tried reports no convergence (the solver stood in for by one that says so, with a residual per H): each
-    wave keeps the response of the least residual, and the estimates are flagged not converged with the largest of
-    those residuals (never raised, never taken as converged)."""
+    """The shooting and every H tried report no convergence (the solvers stood in for by ones that say so, with a
+    residual per H): each wave keeps the harmonic balance's response of the least residual, and the estimates are
+    flagged not converged with the largest of those residuals (never raised, never taken as converged)."""
     analysis, state = beam
     residual = {64: 3e-4, 96: 1e-4, 128: 2e-4, 48: 5e-4}
 
@@ -195,10 +206,37 @@ def test_a_design_wave_that_does_not_converge_is_flagged_with_its_residual(beam,
             response, outcome=SolverOutcome.NOT_CONVERGED, residual=residual[options.harmonics], harmonics=options.harmonics
         )
 
+    monkeypatch.setattr(cradle_design_wave, "solve_cradle_shooting", _shooting_that_fails(SolverOutcome.NOT_CONVERGED))
     monkeypatch.setattr(cradle_design_wave, "solve_cradle_hbm", failing)
     d = cradle_design_waves(state.sea, analysis.directional, state.transfer, state.spectral)
     assert not d.converged and d.residual == 1e-4
     assert all(not r.converged and r.harmonics == 96 for r in d.responses)
+    assert all("exact-event shooting did not converge" in r.message for r in d.responses)
+
+
+def test_a_design_wave_is_solved_by_shooting_and_its_harmonic_balance_only_where_that_fails(beam, monkeypatch):
+    """Where the shooting converges the harmonic balance is never called; a state the shooting shows not to repeat
+    every wave period (``NOT_PERIODIC``) is returned as such, flagged, without a harmonic balance at the wave's period
+    (which could converge on an unstable orbit); where the shooting fails otherwise, the ladder's first converged H
+    answers, and its peaks agree with the shooting's (the same periodic solution, its converged limit)."""
+    analysis, state = beam
+    calls: list[int] = []
+
+    def counted(dynamics, excitation, options):
+        calls.append(int(options.harmonics))
+        return solve_cradle_hbm(dynamics, excitation, options)
+
+    monkeypatch.setattr(cradle_design_wave, "solve_cradle_hbm", counted)
+    shot = cradle_design_waves(state.sea, analysis.directional, state.transfer, state.spectral)
+    assert shot.converged and not calls
+    monkeypatch.setattr(cradle_design_wave, "solve_cradle_shooting", _shooting_that_fails(SolverOutcome.NOT_PERIODIC))
+    d = cradle_design_waves(state.sea, analysis.directional, state.transfer, state.spectral)
+    assert not d.converged and not calls and all(r.outcome is SolverOutcome.NOT_PERIODIC for r in d.responses)
+    monkeypatch.setattr(cradle_design_wave, "solve_cradle_shooting", _shooting_that_fails(SolverOutcome.NOT_CONVERGED))
+    ladder = cradle_design_waves(state.sea, analysis.directional, state.transfer, state.spectral)
+    assert ladder.converged and calls and set(calls) <= {64, 96, 128, 48}
+    for column, value in shot.totals.items():  # each within the ladder's 0.1 % truncation
+        assert ladder.totals[column] == pytest.approx(value, rel=1e-3, abs=1e-9)
 
 
 def test_seastate_csv_off_head_seas_has_the_cradle_columns_after_converged(beam, tmp_path):
