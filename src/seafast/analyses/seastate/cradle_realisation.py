@@ -46,7 +46,7 @@ from scipy.linalg import eigh
 
 from seafast.analyses.seastate.cradle_extremes import element_groups
 from seafast.analyses.seastate.cradle_transfer import CradleStillWater, CradleTransfer
-from seafast.analyses.seastate.realisation import drawn_transfer, spectral_density
+from seafast.analyses.seastate.realisation import drawn_transfer, spectral_density, variance_frequency_rad_s
 from seafast.analyses.seastate.spectrum import WaveSpectrum
 from seafast.analyses.seastate.synthesis import (
     SynthesisGrid,
@@ -166,19 +166,6 @@ class CradleRealisationPlan:
         }
 
 
-def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, channels: NDArray, share: float = 1e-5) -> float:
-    """The largest, over the channels, of the frequency below which ``1 - share`` of a channel's variance lies [rad/s]."""
-    cum = np.cumsum(np.abs(channels) ** 2 * amplitude[:, None] ** 2, axis=0)
-    top = max(
-        (
-            float(omega[min(int(np.searchsorted(cum[:, j], (1.0 - share) * cum[-1, j])), omega.size - 1)])
-            for j in np.flatnonzero(cum[-1] > 0)
-        ),
-        default=0.0,
-    )
-    return top if top > 0 else float(omega[-1])
-
-
 def _reference_frequency_rad_s(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> float:
     """The highest of the six lowest natural frequencies of the cargo on its linear restraints [rad/s]."""
     K = dynamics.linear_parts(included).bilateral_stiffness
@@ -222,7 +209,7 @@ def cradle_realisation_plan(
         raise ValueError(f"cradle_realisation_plan: {len(tfs)} directions' transfer functions for {np.size(direction_weights)} weights")
     channels = [np.hstack([t.engagement_m, t.lateral_displacement_m]) for t in tfs]
     amplitude_i = np.sqrt(np.maximum(density(omega_i), 0.0))
-    omega_s = max(_sampling_frequency_rad_s(omega_i, amplitude_i, ch) for ch in channels)
+    omega_s = max(variance_frequency_rad_s(omega_i, np.abs(ch) ** 2 * amplitude_i[:, None] ** 2, 1e-5) for ch in channels)
     included = dynamics.damping_set
     reference = _reference_frequency_rad_s(dynamics, included)
     dt_f_max = 2.0 * np.pi / reference / int(settings.steps_per_period)

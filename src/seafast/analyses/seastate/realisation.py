@@ -83,6 +83,7 @@ __all__ = [
     "evaluate_realisation",
     "spectral_density",
     "drawn_transfer",
+    "variance_frequency_rad_s",
 ]
 
 QUANTITIES: tuple[str, ...] = ("F_N", "M_b_Nm", "sigma_b_Pa", "u_s_m", "u_d_m")
@@ -257,13 +258,9 @@ def drawn_transfer(transfer: NDArray[np.complex128], weights: NDArray[np.float64
     return np.ascontiguousarray(transfer[drawn, np.arange(transfer.shape[1])])
 
 
-def _sampling_frequency_rad_s(omega: NDArray, amplitude: NDArray, compressions: NDArray, moments: NDArray, share: float) -> float:
-    """Highest frequency that matters for sampling [rad/s].
-
-    The largest, over the saddle compressions and the moment field (its power summed over x),
-    of the frequency below which ``1 - share`` of the response's variance lies.
-    """
-    power = np.column_stack([np.abs(compressions) ** 2, np.sum(np.abs(moments) ** 2, axis=1)]) * amplitude[:, None] ** 2
+def variance_frequency_rad_s(omega: NDArray, power: NDArray, share: float) -> float:
+    """Highest frequency that matters for sampling [rad/s]: the largest, over the channels of ``power`` (n_f, n_c),
+    each channel's power per component, of the frequency below which ``1 - share`` of its variance lies."""
     cum = np.cumsum(power, axis=0)
     top = 0.0
     for j in np.flatnonzero(cum[-1] > 0):
@@ -291,9 +288,10 @@ def _channels(
     channels_per = [np.hstack([t.saddle_compression_m, c]) for t, c in zip(tfs, coords_per, strict=True)]
     # coarse step from the highest frequency the responses need (1 - 1e-5 of their variance below it), every direction
     amplitude_i = np.sqrt(np.maximum(density(omega_i), 0.0))
-    omega_s = max(
-        _sampling_frequency_rad_s(omega_i, amplitude_i, t.saddle_compression_m, c, 1e-5) for t, c in zip(tfs, coords_per, strict=True)
-    )
+    power = [
+        np.column_stack([np.abs(t.saddle_compression_m) ** 2, np.sum(np.abs(c) ** 2, axis=1)]) for t, c in zip(tfs, coords_per, strict=True)
+    ]
+    omega_s = max(variance_frequency_rad_s(omega_i, p * amplitude_i[:, None] ** 2, 1e-5) for p in power)  # compressions, moment field
     return tfs[0], basis, channels_per, omega_s
 
 
