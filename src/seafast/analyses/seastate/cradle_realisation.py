@@ -53,7 +53,7 @@ from seafast.analyses.seastate.synthesis import (
     amplitude_factors,
     interpolate_transfer,
     realisation_phases,
-    synthesis_grid,
+    record_grids,
     synthesise,
 )
 from seafast.config.schema import Case
@@ -213,9 +213,7 @@ def cradle_realisation_plan(
     included = dynamics.damping_set
     reference = _reference_frequency_rad_s(dynamics, included)
     dt_f_max = 2.0 * np.pi / reference / int(settings.steps_per_period)
-    dt_c_max = settings.coarse_step_factor / omega_s
-    ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
-    grid = synthesis_grid((lo, hi), density, ss.duration_s, dt_c_max)
+    grid, ratio = record_grids((lo, hi), density, ss.duration_s, omega_s, settings.coarse_step_factor, dt_f_max)
     per = [interpolate_transfer(omega_i, ch, grid.omega_rad_s) for ch in channels]
     cargo = dynamics.problem.cargo
     lateral = np.array([cargo.node_dofs(cargo.node_at(pair.x_m))[1] for pair in dynamics.problem.pad_pairs], dtype=np.intp)

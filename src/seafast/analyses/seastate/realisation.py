@@ -54,7 +54,7 @@ from seafast.analyses.seastate.synthesis import (
     interpolate_transfer,
     low_rank,
     realisation_phases,
-    synthesis_grid,
+    record_grids,
     synthesise,
 )
 from seafast.analyses.seastate.transfer import MOMENT_POINTS_PER_ELEMENT, StillWater, TransferFunctions
@@ -345,9 +345,7 @@ def realisation_plan(
     spread = direction_weights is not None
     tf, basis, channels_per, omega_s = _channels(transfer_at(omega_i), direction_weights, omega_i, density, settings)
     dt_f_max = time_step_s(model, settings.steps_per_period)
-    dt_c_max = settings.coarse_step_factor / omega_s
-    ratio = max(int(np.ceil(dt_c_max / dt_f_max - 1e-9)), 1)
-    grid = synthesis_grid((lo, hi), density, ss.duration_s, dt_c_max)
+    grid, ratio = record_grids((lo, hi), density, ss.duration_s, omega_s, settings.coarse_step_factor, dt_f_max)
     per = [interpolate_transfer(omega_i, ch, grid.omega_rad_s) for ch in channels_per]
     transfer = np.stack(per) if spread else per[0]
     system = newmark_step(model, grid.time_step_s / ratio, settings.cutoff_factor * reference_frequency_rad_s(model))

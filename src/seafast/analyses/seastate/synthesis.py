@@ -41,6 +41,7 @@ from scipy.interpolate import CubicSpline
 __all__ = [
     "SynthesisGrid",
     "synthesis_grid",
+    "record_grids",
     "realisation_phases",
     "amplitude_factors",
     "synthesise",
@@ -124,6 +125,24 @@ def synthesis_grid(
     while n % 2:
         n = next_fast_len(n + 1, real=True)
     return SynthesisGrid(T, j0, omega, amplitude, n)
+
+
+def record_grids(
+    band_rad_s: tuple[float, float],
+    density_m2_s_per_rad: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    duration_s: float,
+    sampling_frequency_rad_s: float,
+    coarse_step_factor: float,
+    max_fine_step_s: float,
+) -> tuple[SynthesisGrid, int]:
+    """A Monte Carlo record's coarse synthesis grid and its fine (integrator) steps per coarse sample.
+
+    The coarse step is at most ``coarse_step_factor / sampling_frequency_rad_s`` [s] (:func:`synthesis_grid`), the fine
+    step at most ``max_fine_step_s`` [s]: ``ratio`` is the least whole number of fine steps per coarse step.
+    """
+    max_coarse_step_s = coarse_step_factor / sampling_frequency_rad_s
+    ratio = max(int(np.ceil(max_coarse_step_s / max_fine_step_s - 1e-9)), 1)
+    return synthesis_grid(band_rad_s, density_m2_s_per_rad, duration_s, max_coarse_step_s), ratio
 
 
 def realisation_phases(seed: int, index: int, count: int) -> NDArray[np.float64]:
