@@ -1,4 +1,4 @@
-"""`seafast run` off head seas where the cargo's response repeats every two wave periods (docs/transverse.md#10):
+"""`seafast run` off head seas where the cargo's response repeats every two wave periods (docs/transverse.md#9-in-seafast-run):
 the rows, the summary, the warning and results.nc over the two periods. The subharmonic solve itself is checked in
 tests/solvers/test_cradle_subharmonic.py; here the dynamic row is the base case's beam-sea answer repeated over two
 periods and marked a subharmonic, to check the wiring alone."""

@@ -27,6 +27,9 @@ A linear row keeps the pads and lashing wires bilateral and the side stoppers op
 stopper with a gap would pull the cargo across its gap): its pad force ``k s`` goes negative where the pad would
 pull (tension in a pad, flagged by the validity lines, :mod:`seafast.results.validity`), its wire tension negative
 where a wire would push. Units: SI.
+
+Size: over 400 lines because the rows' summary fields, their ``results.nc`` variables with and without friction and
+their grid over one or several wave periods (a subharmonic) are one schema, read together.
 """
 
 from __future__ import annotations
