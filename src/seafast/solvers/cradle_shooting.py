@@ -20,7 +20,9 @@ orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_
 the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
 With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes).
 Where Newton does not close the period, the exact-event flow is marched and says what the state is
-(:func:`flow_verdict`). The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
+(:func:`flow_verdict`); a subharmonic of P wave periods is then found by the same Newton on the P-period map (the
+excitation's period taken as P T: :func:`~seafast.solvers.cradle_shooting_system.subharmonic_harmonics`).
+The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
 
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s]. Nothing here prints, reads or writes files.
 """
@@ -218,8 +220,10 @@ def solve_cradle_shooting(
         did not close the period, the orbit is unstable, a contact state has no stiffness or the contact chatters.
         ``peak_force_change`` NaN (no H climbed). Where every element stays engaged all period, the linear solution
         (exact) with ``harmonics`` 1. Not converged and ``march``: the exact-event flow marched (:func:`flow_verdict`)
-        says on ``march`` what the steady state is (its ``periodicity``); a subharmonic or no periodic state: the
-        outcome ``NOT_PERIODIC``.
+        says on ``march`` what the steady state is (its ``periodicity``); a subharmonic of P wave periods is then
+        solved by Newton on the P-period map (:func:`_subharmonic`) and returned over the P periods: outcome
+        ``CONVERGED_SUBHARMONIC``, ``period_multiple`` P (its ``harmonics`` those of ``omega / P``); not periodic, or
+        the subharmonic not found: the outcome ``NOT_PERIODIC``.
     """
     opts = ShootingOptions() if options is None else options
     problem = dynamics.problem
