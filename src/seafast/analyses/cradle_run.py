@@ -11,7 +11,9 @@ the vertical model's Rayleigh damping and deck points, loaded by the same vessel
 * ``static linear``, ``dynamic linear``: the same model with the pads and lashing wires bilateral and the side
   stoppers open, solved directly (every harmonic of the excitation, k = 0, 1).
 
-All four on the dynamic row's time grid. With ``seafastening.friction_coefficient`` set, the pads carry Coulomb
+All four on the dynamic row's time grid: where the dynamic nonlinear row repeats only every P wave periods (a
+subharmonic of the exact-event shooting, ``period_multiple`` P), over those P periods (the other rows repeated).
+With ``seafastening.friction_coefficient`` set, the pads carry Coulomb
 friction (:class:`~seafast.model.pad_friction.PadFriction`, tangential stiffness equal to the normal one) in the two
 nonlinear rows (docs/transverse.md#9-in-seafast-run):
 
@@ -151,21 +153,24 @@ def friction_options(case: Case) -> FrictionHBMOptions:
     return FrictionHBMOptions(harmonics=H, time_samples=N)
 
 
-def _linear_row(dynamics: CradleDynamics, excitation: CradleExcitation, time_samples: int) -> CradleResponse:
-    """The pads and lashing wires bilateral, the stoppers open: ``k s`` of each, exact at k = 0, 1 (module docstring)."""
+def _linear_row(dynamics: CradleDynamics, excitation: CradleExcitation, time_samples: int, multiple: int = 1) -> CradleResponse:
+    """The pads and lashing wires bilateral, the stoppers open: ``k s`` of each, exact at k = 0, 1 (module docstring);
+    the N samples over ``multiple`` wave periods (the wave period's response repeated)."""
     included = dynamics.damping_set
     ops = cradle_operators(dynamics, excitation, 1, included)
-    q = harmonics_to_time(ops.linear_cargo_displacement, time_samples)
+    per_period = time_samples // multiple
+    q = np.tile(harmonics_to_time(ops.linear_cargo_displacement, per_period), (multiple, 1))
     deck = np.array(excitation.deck_displacement, dtype=complex)
     deck[0] = deck[0].real
     s = (
         dynamics.initial_engagement_m
         + q @ dynamics.problem.engagement_matrix.T
-        + harmonics_to_time(deck, time_samples) @ dynamics.deck_engagement.T
+        + np.tile(harmonics_to_time(deck, per_period), (multiple, 1)) @ dynamics.deck_engagement.T
     )
     force = np.where(included, dynamics.problem.element_stiffness_N_per_m * s, 0.0)
     message = "3-D cradle linear model (pads and lashing wires bilateral, side stoppers open), solved directly"
-    response = cradle_response(dynamics, s, q, excitation.omega_rad_s, (SolverOutcome.CONVERGED, 0.0, message, 1))
+    outcome = (SolverOutcome.CONVERGED, 0.0, message, 1)
+    response = cradle_response(dynamics, s, q, excitation.omega_rad_s, outcome, multiple)
     return replace(response, element_force_N=force)
 
 
@@ -196,12 +201,13 @@ def cradle_rows(
         return _frictional_rows(case, cradle, dynamics, excitation, friction)
     options = hbm_options(case)
     dynamic = solve_cradle_hbm(dynamics, excitation, options)
-    N = dynamic.time_s.size
+    N, P = dynamic.time_s.size, dynamic.period_multiple
     still = excitation.still_water()
+    static = solve_cradle_quasi_static(dynamics, still, N)
     rows = {
-        ("static", "linear"): CradleRow(_linear_row(dynamics, still, N), linear=True),
-        ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N), linear=True),
-        ("static", "nonlinear"): CradleRow(solve_cradle_quasi_static(dynamics, still, N), linear=False),
+        ("static", "linear"): CradleRow(_linear_row(dynamics, still, N, P), linear=True),
+        ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N, P), linear=True),
+        ("static", "nonlinear"): CradleRow(replace(static, time_s=dynamic.time_s, period_multiple=P), linear=False),
         ("dynamic", "nonlinear"): CradleRow(dynamic, linear=False),
     }
     return CradleRows(rows, _layout(cradle))

@@ -80,6 +80,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
     if result.axial is not None:
         for line in result.axial.warning_lines():
             print(f"seafast: warning: {line}", file=sys.stderr)
+    if result.cradle is not None:
+        for line in result.cradle.warning_lines():
+            print(f"seafast: warning: {line}", file=sys.stderr)
     orbit = result.rows.nonlinear_dynamic.orbit
     if orbit is not None and orbit.same_as_start is False:
         print(

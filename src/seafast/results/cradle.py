@@ -27,6 +27,9 @@ A linear row keeps the pads and lashing wires bilateral and the side stoppers op
 stopper with a gap would pull the cargo across its gap): its pad force ``k s`` goes negative where the pad would
 pull (tension in a pad, flagged by the validity lines, :mod:`seafast.results.validity`), its wire tension negative
 where a wire would push. Units: SI.
+
+Size: over 400 lines because the rows' summary fields, their ``results.nc`` variables with and without friction and
+their grid over one or several wave periods (a subharmonic) are one schema, read together.
 """
 
 from __future__ import annotations
@@ -44,6 +47,7 @@ from seafast.model.pad_friction import TANGENTIAL_DIRECTIONS
 from seafast.results.dataset import LOAD_CASES, MODELS
 from seafast.results.labelled import labelled_variable
 from seafast.solvers.cradle_hbm import CradleResponse
+from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.pad_tangential import FrictionalCradleResponse
 
 __all__ = [
@@ -154,7 +158,8 @@ class CradleRow:
 
         Beside the five columns: ``pad_force_min_N`` (the least pad force [N]; negative in a linear row where a pad
         would pull), ``stopper_overclosure_m`` (how far a linear row's cargo passes a stopper it leaves open [m];
-        0 in a nonlinear row), ``cradle_converged``, ``cradle_outcome`` and ``cradle_residual``; on frictional pads
+        0 in a nonlinear row), ``cradle_converged``, ``cradle_outcome``, ``cradle_residual`` and ``cradle_period_multiple``
+        (the wave periods the row's response repeats after: 1, or 2 to 6 for a subharmonic); on frictional pads
         also ``pad_friction_utilisation`` and ``cradle_message`` (the solver's account, with why it did not converge).
         """
         r = self.response
@@ -171,6 +176,7 @@ class CradleRow:
             "cradle_converged": self.converged,
             "cradle_outcome": r.outcome.value,
             "cradle_residual": float(r.residual),
+            "cradle_period_multiple": int(r.period_multiple),
         } | ({} if self.friction is None else {"pad_friction_utilisation": self.friction_utilisation(), "cradle_message": self._message()})
 
     def _message(self) -> str:
@@ -193,6 +199,22 @@ class CradleRows:
     @property
     def converged(self) -> bool:
         return all(row.converged for row in self.rows.values())
+
+    @property
+    def period_multiple(self) -> int:
+        """The wave periods the rows' grid spans (1; 2 to 6 where the dynamic nonlinear row is a subharmonic)."""
+        return max(int(row.response.period_multiple) for row in self.rows.values())
+
+    def warning_lines(self) -> list[str]:
+        """One line per row whose solve converged on a response repeating only every several wave periods (a
+        subharmonic: ``CONVERGED_SUBHARMONIC``), for the CLI."""
+        return [
+            f"{lc} {m}: the cargo on its cradles repeats every {row.response.period_multiple} wave periods, not every one "
+            f"(a subharmonic: the response at the wave's period is unstable); its maxima are over the "
+            f"{row.response.period_multiple} periods (results.nc: cradle_period_fraction is t over them)"
+            for (lc, m), row in self.rows.items()
+            if row.response.outcome is SolverOutcome.CONVERGED_SUBHARMONIC
+        ]
 
     @property
     def has_friction(self) -> bool:
@@ -306,16 +328,17 @@ class CradleRows:
         if self.has_friction:
             data |= self._friction_variables(N)
         coords = self._coordinates(N)
-        attrs = {"saddle_contact_angle_deg": lay.contact_angle_deg}
+        attrs = {"saddle_contact_angle_deg": lay.contact_angle_deg, "cradle_period_multiple": self.period_multiple}
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def _coordinates(self, N: int) -> dict[str, xr.Variable]:
-        """The cradle variables' coordinates on ``N`` samples of the period."""
+        """The cradle variables' coordinates on ``N`` samples of the rows' period (P wave periods, P the
+        :attr:`period_multiple`)."""
         lay = self.layout
+        P = self.period_multiple
+        over = "time over the wave period t/T" if P == 1 else f"time over {P} wave periods t/({P} T) (a subharmonic)"
         return {
-            "cradle_period_fraction": labelled_variable(
-                ("cradle_period_fraction",), period_fraction(N), "time over the wave period t/T", "1"
-            ),
+            "cradle_period_fraction": labelled_variable(("cradle_period_fraction",), period_fraction(N), over, "1"),
             "pad_side": labelled_variable(("pad_side",), np.array(SIDES), "the pad's side of bottom dead centre", "1"),
             **(
                 {

@@ -283,9 +283,11 @@ def solve_cradle_hbm(
     With ``options.harmonics`` None, the exact law and the condensed formulation (the default) the answer asked for is
     the harmonic balance converged in H: the periodic solution of the piecewise-linear problem, which exact-event
     shooting finds in closed form (:func:`~seafast.solvers.cradle_shooting.solve_cradle_shooting`, ``shooting`` True).
-    Where it does not converge (its message says why) the exact-event flow is marched: a subharmonic or no periodic
-    state is returned as such (``NOT_PERIODIC``, the verdict on ``march``: no harmonic balance at the wave's period
-    describes it); otherwise the adaptive harmonic balance below answers, its message saying so. Where every element
+    Where it does not converge (its message says why) the exact-event flow is marched: a subharmonic is solved on its
+    P-period map and returned over those P wave periods (``CONVERGED_SUBHARMONIC``, ``period_multiple`` P), a state
+    that is not periodic (or a subharmonic not found) as such (``NOT_PERIODIC``); the verdict on ``march`` (no harmonic
+    balance at the wave's period describes either);
+    otherwise the adaptive harmonic balance below answers, its message saying so. Where every element
     stays engaged the linear solution is exact and the harmonic balance's first H gives it.
 
     The side stoppers are left out of the linear part at first (taken open: they usually are); any that closes
@@ -317,7 +319,8 @@ def solve_cradle_hbm(
     CradleResponse
         On the AFT grid (N samples), or where the shooting answered on its event grid (``harmonics`` N / 2 - 1,
         ``peak_force_change`` NaN); ``outcome`` ``NOT_CONVERGED`` with its residual when no route met the tolerance,
-        ``NOT_PERIODIC`` where the state does not repeat every wave period. Its message says how the solve went and how
+        ``CONVERGED_SUBHARMONIC`` over P wave periods where the state repeats only every P, ``NOT_PERIODIC`` where it
+        does not repeat at all. Its message says how the solve went and how
         H was reached; ``peak_force_change`` the adaptive H's last change of the peak forces.
     """
     options = options if options is not None else HBMOptions()

@@ -24,7 +24,8 @@ __all__ = ["CradleResponse", "cradle_response"]
 
 @dataclass(frozen=True)
 class CradleResponse:
-    """One period of the steady state of the 3-D cargo on its cradles, sampled at ``t_n = n T / N``.
+    """One period of the steady state of the 3-D cargo on its cradles, sampled at ``t_n = n P T / N`` (P the
+    ``period_multiple``: 1 but where the steady state repeats only every P wave periods).
 
     Attributes
     ----------
@@ -32,9 +33,10 @@ class CradleResponse:
         How the solve ended (:class:`~seafast.solvers.outcome.SolverOutcome`), its largest residual relative to
         the largest linear engagement [-], and the account for people.
     omega_rad_s, harmonics
-        Fundamental frequency [rad/s] and H (0 for a time-sampled reference).
+        The wave's frequency [rad/s] and H (0 for a time-sampled reference; of the base frequency
+        ``omega_rad_s / period_multiple`` for a subharmonic).
     time_s
-        Sample times (N,) [s].
+        Sample times (N,) [s], over ``period_multiple`` wave periods.
     engagement_m
         Every element's engagement (pads port then starboard per pair, stoppers, lashings) (N, m) [m]: compression,
         overclosure, stretch; open or slack where <= 0.
@@ -55,7 +57,10 @@ class CradleResponse:
         Where the adaptive choice needed it (no H converging directly), the march of the correction system in
         time (:class:`~seafast.solvers.cradle_march.CradleMarch`): its ``periodicity`` says whether the steady state
         repeats every wave period (the harmonic balance then started from it), after several
-        (``SUBHARMONIC``) or not at all (``NOT_PERIODIC``; ``outcome`` then ``NOT_PERIODIC``); None otherwise.
+        (``SUBHARMONIC``) or not at all (``NOT_PERIODIC``; ``outcome`` then ``NOT_PERIODIC``, or
+        ``CONVERGED_SUBHARMONIC`` where the exact-event shooting found the subharmonic orbit); None otherwise.
+    period_multiple
+        The wave periods the response spans and repeats after (1; 2 to 6 for a subharmonic) [-].
     """
 
     outcome: SolverOutcome
@@ -72,6 +77,7 @@ class CradleResponse:
     pad_normal: NDArray[np.float64]
     peak_force_change: float = float("nan")
     march: CradleMarch | None = None
+    period_multiple: int = 1
 
     @property
     def periodicity(self) -> Periodicity | None:
@@ -121,9 +127,10 @@ def cradle_response(
     cargo_displacement_m: NDArray[np.float64],
     omega_rad_s: float,
     outcome: tuple[SolverOutcome, float, str, int],
+    period_multiple: int = 1,
 ) -> CradleResponse:
-    """A :class:`CradleResponse` of sampled engagements (N, m) and displacements (N, 5 n); ``outcome``:
-    (outcome, relative residual, message, H)."""
+    """A :class:`CradleResponse` of sampled engagements (N, m) and displacements (N, 5 n) over ``period_multiple``
+    wave periods; ``outcome``: (outcome, relative residual, message, H)."""
     problem = dynamics.problem
     N = engagement_m.shape[0]
     k = problem.element_stiffness_N_per_m
@@ -134,11 +141,12 @@ def cradle_response(
         message=outcome[2],
         omega_rad_s=float(omega_rad_s),
         harmonics=int(outcome[3]),
-        time_s=period_fraction(N) * 2.0 * np.pi / omega_rad_s,
+        time_s=period_fraction(N) * 2.0 * np.pi * int(period_multiple) / omega_rad_s,
         engagement_m=engagement_m,
         element_force_N=k * np.maximum(engagement_m, 0.0),
         pad_count=2 * len(problem.pad_pairs),
         stopper_count=len(problem.stoppers),
         cargo_displacement_m=cargo_displacement_m,
         pad_normal=normals,
+        period_multiple=int(period_multiple),
     )

@@ -20,7 +20,9 @@ orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_
 the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
 With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes).
 Where Newton does not close the period, the exact-event flow is marched and says what the state is
-(:func:`flow_verdict`). The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
+(:func:`flow_verdict`); a subharmonic of P wave periods is then found by the same Newton on the P-period map (the
+excitation's period taken as P T: :func:`~seafast.solvers.cradle_shooting_system.subharmonic_harmonics`).
+The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
 
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s]. Nothing here prints, reads or writes files.
 """
@@ -47,6 +49,7 @@ from seafast.solvers.cradle_shooting_system import (
     kept_modes,
     reassembled,
     reference_frequency_rad_s,
+    subharmonic_harmonics,
 )
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.hbm.harmonics import force_scale_N
@@ -72,8 +75,16 @@ class _SetOrbit:
     orbit: Orbit | None
 
 
-def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included: NDArray[np.bool_], opts: ShootingOptions) -> _SetOrbit:
-    """The orbit with the elements ``included`` in the linear part (the others open).
+def _solve_set(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    opts: ShootingOptions,
+    multiple: int = 1,
+    start: NDArray[np.float64] | None = None,
+) -> _SetOrbit:
+    """The orbit with the elements ``included`` in the linear part (the others open), of ``multiple`` wave periods
+    (its Newton started from ``start``, a correction state, where given: :func:`_orbit_at`).
 
     With a side stopper included (a stiff element open most of the period: the bilateral modes' reduction of its
     impacts converges slowly) and ``opts.cutoff_check``, the cutoff is doubled until no element's peak force moves by
@@ -82,7 +93,7 @@ def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included:
     omega = float(excitation.omega_rad_s)
     ops = cradle_operators(dynamics, excitation, 1, included)
     D = real_to_complex_harmonics(ops.linear_compression_m)
-    if np.all(D[0].real - np.abs(D[1]) > 0.0):  # the least linear engagement of each element: every one engaged
+    if multiple == 1 and np.all(D[0].real - np.abs(D[1]) > 0.0):  # the least linear engagement of each element: every one engaged
         N = opts.time_samples or opts.minimum_samples
         q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
         s = all_engagements(dynamics, excitation, q_lin, included, first_harmonic_time(D, N))
@@ -90,18 +101,19 @@ def _solve_set(dynamics: CradleDynamics, excitation: CradleExcitation, included:
     modes = cradle_modes(dynamics, included)
     reference = reference_frequency_rad_s(modes, modes.engagement_modes, opts.reference_modes)
     N = opts.time_samples or int(2 ** math.ceil(math.log2(max(opts.samples_per_mode * reference / omega, opts.minimum_samples))))
+    N *= multiple
     problem = dynamics.problem
     first_stopper = 2 * len(problem.pad_pairs)
     stiff = bool(np.any(included[first_stopper : first_stopper + len(problem.stoppers)]))
     factor = float(opts.cutoff_factor)
     changes: list[float] = []
-    solved = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N)
+    solved = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N, multiple, start)
     while opts.cutoff_check and stiff and solved.outcome is SolverOutcome.CONVERGED and len(changes) < MAX_CUTOFF_DOUBLINGS:
         kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
         while kept < modes.natural_frequency_rad_s.size and kept_modes(modes, 2.0 * factor * reference, kept) == kept:
             factor *= 2.0  # no mode between: the same reduction
         factor *= 2.0
-        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N)
+        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N, multiple, _solved_start(solved))
         if finer.outcome is not SolverOutcome.CONVERGED:
             break
         k = problem.element_stiffness_N_per_m
@@ -129,27 +141,36 @@ def _orbit_at(
     cutoff: float,
     opts: ShootingOptions,
     samples: int,
+    multiple: int = 1,
+    start: NDArray[np.float64] | None = None,
 ) -> _SetOrbit:
-    """The orbit of the correction system reduced at ``cutoff`` [rad/s], from the event grid of ``samples``."""
-    N = samples
+    """The orbit of the correction system reduced at ``cutoff`` [rad/s], from the event grid of ``samples``.
+
+    ``multiple`` (P): the orbit of P wave periods, a fixed point of the P-period map: the excitation's period taken as
+    P T (base frequency ``w / P``, the wave's first harmonic at P: :func:`subharmonic_harmonics`), ``samples`` over
+    it. ``start``: the correction state Newton starts from (its modes beyond this cutoff's dropped, missing ones 0).
+    """
+    N, P = samples, int(multiple)
     D = real_to_complex_harmonics(ops.linear_compression_m)
     system = cradle_correction_system(dynamics, ops, included, modes, cutoff)
-    states = ContactStates(system, D, float(excitation.omega_rad_s))
-    d_grid = first_harmonic_time(D, N)
+    states = ContactStates(system, subharmonic_harmonics(D, P) if P > 1 else D, float(excitation.omega_rad_s) / P)
+    d_grid = first_harmonic_time(D, N, P)
     scale = max(float(np.max(np.abs(d_grid))), 1e-9)
     try:
-        orbit = shoot_orbit(states, N, scale, opts, system.unilateral_stiffness_N_per_m)
+        x0 = None if start is None else _state_on(start, system.mode_count)
+        orbit = shoot_orbit(states, N, scale, opts, system.unilateral_stiffness_N_per_m, x0)
     except (SingularStateError, TooManyEventsError) as error:
-        q_lin = first_harmonic_time(ops.linear_cargo_displacement, N)
-        s = all_engagements(dynamics, excitation, q_lin, included, d_grid)  # the linear solution, not converged
+        q_lin = first_harmonic_time(ops.linear_cargo_displacement, N, P)
+        s = all_engagements(dynamics, excitation, q_lin, included, d_grid, P)  # the linear solution, not converged
         return _SetOrbit(s, q_lin, SolverOutcome.NOT_CONVERGED, math.inf, f"exact-event shooting: {error}", None)
     assert orbit.flow.state_samples is not None
     N = orbit.samples
-    s, q = reassembled(dynamics, excitation, included, ops, system, orbit.flow.state_samples, (orbit.compression_m, orbit.correction_N))
+    contact = (orbit.compression_m, orbit.correction_N)
+    s, q = reassembled(dynamics, excitation, included, ops, system, orbit.flow.state_samples, contact, P)
     missed = float(np.max(orbit.missed, initial=0.0))
     kept = "every mode" if system.complete else f"{system.mode_count} modes up to {cutoff:.4g} rad/s"
     note = (
-        f"exact-event shooting: {kept}, {N} samples per period, "
+        f"exact-event shooting: {kept}, {N} samples per period{'' if P == 1 else f' of {P} wave periods'}, "
         f"{orbit.flow.events} events per period, {states.visited} contact states, {orbit.periods} period(s) marched, "
         f"{orbit.newton_steps} Newton step(s), residual {orbit.residual:.2g}, largest Floquet multiplier "
         f"{orbit.floquet_multiplier_max:.4f}, sampled peaks within {missed:.1g} of the continuous ones"
@@ -158,6 +179,20 @@ def _orbit_at(
         note += "; not converged" if orbit.residual > opts.tolerance else "; the orbit found is unstable"
     outcome = SolverOutcome.CONVERGED if orbit.converged else SolverOutcome.NOT_CONVERGED
     return _SetOrbit(s, q, outcome, orbit.residual, note, orbit)
+
+
+def _solved_start(solved: _SetOrbit) -> NDArray[np.float64] | None:
+    """The correction state an orbit starts from (None where none was shot)."""
+    return None if solved.orbit is None or solved.orbit.flow.state_samples is None else solved.orbit.flow.state_samples[0]
+
+
+def _state_on(state: NDArray[np.float64], modes: int) -> NDArray[np.float64]:
+    """A correction state ``[eta; eta']`` (2 m',) on ``modes`` modes (2 m,): the modes beyond m dropped, missing ones 0."""
+    half = state.size // 2
+    kept = min(half, int(modes))
+    out = np.zeros(2 * int(modes))
+    out[:kept], out[modes : modes + kept] = state[:kept], state[half : half + kept]
+    return out
 
 
 def solve_cradle_shooting(
@@ -185,8 +220,10 @@ def solve_cradle_shooting(
         did not close the period, the orbit is unstable, a contact state has no stiffness or the contact chatters.
         ``peak_force_change`` NaN (no H climbed). Where every element stays engaged all period, the linear solution
         (exact) with ``harmonics`` 1. Not converged and ``march``: the exact-event flow marched (:func:`flow_verdict`)
-        says on ``march`` what the steady state is (its ``periodicity``); a subharmonic or no periodic state: the
-        outcome ``NOT_PERIODIC``.
+        says on ``march`` what the steady state is (its ``periodicity``); a subharmonic of P wave periods is then
+        solved by Newton on the P-period map (:func:`_subharmonic`) and returned over the P periods: outcome
+        ``CONVERGED_SUBHARMONIC``, ``period_multiple`` P (its ``harmonics`` those of ``omega / P``); not periodic, or
+        the subharmonic not found: the outcome ``NOT_PERIODIC``.
     """
     opts = ShootingOptions() if options is None else options
     problem = dynamics.problem
@@ -209,10 +246,42 @@ def solve_cradle_shooting(
     response = cradle_response(dynamics, solved.engagement_m, solved.cargo_displacement_m, excitation.omega_rad_s, outcome)
     if solved.outcome is SolverOutcome.CONVERGED or not march or solved.orbit is None:
         return response
-    verdict, said = flow_verdict(dynamics, excitation, included, opts, solved.orbit.samples)
+    verdict, said, settled, factor = _verdict(dynamics, excitation, included, opts, solved.orbit.samples)
+    if verdict.periodicity is Periodicity.SUBHARMONIC:
+        at = replace(opts, cutoff_factor=factor)  # the cutoff the verdict settled at: its state starts Newton
+        subharmonic = _subharmonic(dynamics, excitation, included, at, verdict.period_multiple, settled)
+        if subharmonic is not None:
+            return replace(subharmonic, march=verdict, message=subharmonic.message + said)
     if verdict.periodicity is not Periodicity.PERIODIC:
         response = replace(response, outcome=SolverOutcome.NOT_PERIODIC)
     return replace(response, march=verdict, message=response.message + said)
+
+
+def _subharmonic(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    opts: ShootingOptions,
+    multiple: int,
+    settled: NDArray[np.float64],
+) -> CradleResponse | None:
+    """The orbit of ``multiple`` wave periods the flow settled on, by the same Newton shooting on the P-period map
+    (started from the flow's ``settled`` state), stable (every Floquet multiplier of its monodromy over P T within the
+    unit circle); None where it does not converge. An element left out that closes on it is brought in once."""
+    solved = _solve_set(dynamics, excitation, included, opts, multiple, settled)
+    closing = ~included & np.any(solved.engagement_m > 0.0, axis=0)
+    if solved.outcome is SolverOutcome.CONVERGED and np.any(closing):
+        included = included | closing
+        solved = _solve_set(dynamics, excitation, included, opts, multiple, settled)
+    if solved.outcome is not SolverOutcome.CONVERGED or solved.orbit is None:
+        return None
+    N = solved.engagement_m.shape[0]
+    message = (
+        f"3-D cradle subharmonic orbit repeating every {multiple} wave periods (the wave-period orbit does not hold), "
+        f"{solved.note}; {int(np.count_nonzero(~included))} stopper(s) open all period, left out"
+    )
+    outcome = (SolverOutcome.CONVERGED_SUBHARMONIC, solved.residual, message, N // 2 - 1)
+    return cradle_response(dynamics, solved.engagement_m, solved.cargo_displacement_m, excitation.omega_rad_s, outcome, multiple)
 
 
 VERDICT_PERIODS = 200
@@ -237,6 +306,15 @@ def flow_verdict(
     convergence). Returns the verdict as a :class:`~seafast.solvers.cradle_march.CradleMarch` (the last period's
     engagements and forces on the event grid) and it in words.
     """
+    verdict, said, _, _ = _verdict(dynamics, excitation, included, opts, samples)
+    return verdict, said
+
+
+def _verdict(
+    dynamics: CradleDynamics, excitation: CradleExcitation, included: NDArray[np.bool_], opts: ShootingOptions, samples: int
+) -> tuple[CradleMarch, str, NDArray[np.float64], float]:
+    """:func:`flow_verdict`, the correction state the flow settled on (at the start of its last period) and the cutoff
+    factor of the verdict (of the reference frequency)."""
     ops = cradle_operators(dynamics, excitation, 1, included)
     D = real_to_complex_harmonics(ops.linear_compression_m)
     modes = cradle_modes(dynamics, included)
@@ -247,21 +325,22 @@ def flow_verdict(
         system = cradle_correction_system(dynamics, ops, included, modes, factor * reference)
         states = ContactStates(system, D, float(excitation.omega_rad_s))
         verdicts.append(_marched_flow(dynamics, excitation, included, ops, states, PeriodGrid(states, samples), scale))
-        same = len(verdicts) > 1 and (verdicts[-1].periodicity, verdicts[-1].period_multiple) == (
-            verdicts[-2].periodicity,
-            verdicts[-2].period_multiple,
+        settled = verdicts[-1][1]
+        same = len(verdicts) > 1 and (verdicts[-1][0].periodicity, verdicts[-1][0].period_multiple) == (
+            verdicts[-2][0].periodicity,
+            verdicts[-2][0].period_multiple,
         )
         if same or system.complete or len(verdicts) > VERDICT_DOUBLINGS:
             break
         factor *= 2.0
-    last = verdicts[-1]
+    last = verdicts[-1][0]
     said = f"; the exact-event flow marched {last.periods} periods ({system.mode_count} modes): {last.periodicity.value}"
     if last.periodicity is Periodicity.SUBHARMONIC:
         said += f", repeating every {last.period_multiple} wave periods (change over one {last.lag_change[0]:.1e}"
         said += " of the largest linear engagement)"
     if not same:
         said += " (the verdict still changed with the cutoff)"
-    return last, said
+    return last, said, settled, factor
 
 
 def _marched_flow(
@@ -272,8 +351,8 @@ def _marched_flow(
     states: ContactStates,
     grid: PeriodGrid,
     scale_m: float,
-) -> CradleMarch:
-    """The flow marched from ``x = 0`` (see :func:`flow_verdict`) and what it repeats as."""
+) -> tuple[CradleMarch, NDArray[np.float64]]:
+    """The flow marched from ``x = 0`` (see :func:`flow_verdict`), what it repeats as, and its last period's start."""
     xs = [np.zeros(states.state_size)]
     history: list[float] = []
     lags = np.full(max(SUBHARMONIC_ORDERS), np.nan)
@@ -298,4 +377,5 @@ def _marched_flow(
     s, _ = reassembled(dynamics, excitation, included, ops, states.system, flow.state_samples, sampled_contact(states, grid, flow))
     k = dynamics.problem.element_stiffness_N_per_m
     change = float(lags[multiple - 1]) if multiple else float(lags[0])
-    return CradleMarch(s, k * np.maximum(s, 0.0), periodicity, multiple, len(history), change, lags, np.array(history))
+    march = CradleMarch(s, k * np.maximum(s, 0.0), periodicity, multiple, len(history), change, lags, np.array(history))
+    return march, xs[-1]

@@ -34,6 +34,7 @@ __all__ = [
     "kept_modes",
     "reassembled",
     "reference_frequency_rad_s",
+    "subharmonic_harmonics",
 ]
 
 
@@ -144,16 +145,16 @@ def reference_frequency_rad_s(modes: CradleModes, engagement_modes: NDArray[np.f
     return float(driven[min(max(int(count), 1), driven.size) - 1])
 
 
-def first_harmonic_time(harmonics: NDArray[np.complex128], samples: int) -> NDArray[np.float64]:
-    """``Re(X_0) + Re(X_1 e^{i w t_n})`` at ``t_n = n T / N`` (N, n) from the harmonics k = 0, 1 (2, n): what
-    :func:`~seafast.fourier.harmonics_to_time` gives for two harmonics, as one real product (no transform of N points
-    per column)."""
-    return first_harmonic_basis(int(samples)) @ first_harmonic_rows(harmonics)
+def first_harmonic_time(harmonics: NDArray[np.complex128], samples: int, multiple: int = 1) -> NDArray[np.float64]:
+    """``Re(X_0) + Re(X_1 e^{i w t_n})`` at ``t_n = n P T / N`` (N, n) from the harmonics k = 0, 1 (2, n), over
+    ``multiple`` (P) wave periods: what :func:`~seafast.fourier.harmonics_to_time` gives for two harmonics, as one
+    real product (no transform of N points per column)."""
+    return first_harmonic_basis(int(samples), multiple) @ first_harmonic_rows(harmonics)
 
 
-def first_harmonic_basis(samples: int) -> NDArray[np.float64]:
-    """``[1, cos(w t_n), -sin(w t_n)]`` (N, 3)."""
-    angle = 2.0 * np.pi * np.arange(samples) / samples
+def first_harmonic_basis(samples: int, multiple: int = 1) -> NDArray[np.float64]:
+    """``[1, cos(w t_n), -sin(w t_n)]`` (N, 3) at ``t_n = n P T / N`` (P = ``multiple`` wave periods)."""
+    angle = 2.0 * np.pi * int(multiple) * np.arange(samples) / samples
     return np.column_stack([np.ones(samples), np.cos(angle), -np.sin(angle)])
 
 
@@ -163,17 +164,23 @@ def first_harmonic_rows(harmonics: NDArray[np.complex128]) -> NDArray[np.float64
     return np.vstack([X[0].real, X[1].real, X[1].imag])
 
 
-def deck_time_m(excitation: CradleExcitation, samples: int) -> NDArray[np.float64]:
-    """The deck DOFs over the period (N, n_o) [m, rad]."""
-    return first_harmonic_time(np.asarray(excitation.deck_displacement, dtype=complex), samples)
+def deck_time_m(excitation: CradleExcitation, samples: int, multiple: int = 1) -> NDArray[np.float64]:
+    """The deck DOFs over ``multiple`` wave periods (N, n_o) [m, rad]."""
+    return first_harmonic_time(np.asarray(excitation.deck_displacement, dtype=complex), samples, multiple)
 
 
 def all_engagements(
-    dynamics: CradleDynamics, excitation: CradleExcitation, q: NDArray[np.float64], included: NDArray[np.bool_], s_included: NDArray
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    q: NDArray[np.float64],
+    included: NDArray[np.bool_],
+    s_included: NDArray,
+    multiple: int = 1,
 ) -> NDArray[np.float64]:
-    """Every element's engagement (N, m): the included ones as solved, the others from the cargo's and the deck's motion."""
+    """Every element's engagement (N, m): the included ones as solved, the others from the cargo's and the deck's motion
+    (the samples over ``multiple`` wave periods)."""
     s = dynamics.initial_engagement_m + q @ dynamics.problem.engagement_matrix.T
-    s += deck_time_m(excitation, q.shape[0]) @ dynamics.deck_engagement.T
+    s += deck_time_m(excitation, q.shape[0], multiple) @ dynamics.deck_engagement.T
     s[:, included] = s_included
     return s
 
@@ -186,12 +193,24 @@ def reassembled(
     system: ModalCorrectionSystem,
     state_samples: NDArray[np.float64],
     contact: tuple[NDArray[np.float64], NDArray[np.float64]],
+    multiple: int = 1,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Every element's engagement (N, m) and the cargo DOFs (N, 5 n) from a flow's states at the samples (N, 2 m_modes)
     and the included elements' compressions and corrections ``contact`` (each (N, m_I)): ``q = q_lin + Phi eta + R_q c``,
-    as one product of the samples' columns and their shapes."""
+    as one product of the samples' columns and their shapes. The samples span ``multiple`` wave periods."""
     N = state_samples.shape[0]
-    columns = np.hstack([first_harmonic_basis(N), state_samples[:, : system.mode_count], contact[1]])
+    columns = np.hstack([first_harmonic_basis(N, multiple), state_samples[:, : system.mode_count], contact[1]])
     shapes = np.vstack([first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
     q = columns @ shapes
-    return all_engagements(dynamics, excitation, q, included, contact[0]), q
+    return all_engagements(dynamics, excitation, q, included, contact[0], multiple), q
+
+
+def subharmonic_harmonics(harmonics: NDArray[np.complex128], multiple: int) -> NDArray[np.complex128]:
+    """The harmonics k = 0, 1 of the wave (2, n) as those of a period ``multiple`` (P) times the wave's
+    (P + 1, n): the wave's first harmonic placed at P, the others zero. At the base frequency ``w / P`` they are the
+    same function of time: ``Re sum_j X'_j e^{i j (w / P) t} = Re(X_0) + Re(X_1 e^{i w t})``."""
+    X = np.asarray(harmonics, dtype=complex)
+    P = int(multiple)
+    out = np.zeros((P + 1, X.shape[1]), dtype=complex)
+    out[0], out[P] = X[0], X[1]
+    return out

@@ -36,6 +36,10 @@ class SolverOutcome(Enum):
         wanders, is chaotic, or repeats only after several periods). The 3-D cradle harmonic
         balance: no H converged and the march of its correction system in time settled on no state
         repeating every wave period (its ``march.periodicity`` says which: a subharmonic or none).
+    ``CONVERGED_SUBHARMONIC``
+        The 3-D cradle's exact-event shooting: no stable orbit repeats every wave period, and the flow settles on
+        one repeating every ``period_multiple`` (2 to 6) wave periods, found to the tolerance and stable; the
+        response is that orbit over its whole period (``period_multiple`` wave periods), its maxima over it.
     ``OTHER_ORBIT``
         Time-domain reference started on a given periodic solution (e.g. the harmonic balance's):
         it reached a periodic steady state, but not the start's (the start's orbit is unstable,
@@ -48,15 +52,22 @@ class SolverOutcome(Enum):
     NOT_CONVERGED = "not_converged"
     NOT_PERIODIC = "not_periodic"
     OTHER_ORBIT = "other_orbit"
+    CONVERGED_SUBHARMONIC = "converged_subharmonic"
 
     @property
     def converged(self) -> bool:
         """Whether the result meets its solver's tolerance (its numbers can be used).
 
         ``OTHER_ORBIT`` counts: the periodic state reached is a solution; that it is not the
-        start's is reported by the outcome itself (the CLI and the report warn).
+        start's is reported by the outcome itself (the CLI and the report warn); so does ``CONVERGED_SUBHARMONIC``
+        (the response repeats every ``period_multiple`` wave periods: the CLI warns).
         """
-        return self in (SolverOutcome.CONVERGED, SolverOutcome.CONVERGED_BY_CONTINUATION, SolverOutcome.OTHER_ORBIT)
+        return self in (
+            SolverOutcome.CONVERGED,
+            SolverOutcome.CONVERGED_BY_CONTINUATION,
+            SolverOutcome.OTHER_ORBIT,
+            SolverOutcome.CONVERGED_SUBHARMONIC,
+        )
 
 
 class SolverWarning(Enum):

@@ -91,11 +91,19 @@ class Orbit:
     times: NDArray[np.float64] | None = None
 
 
-def shoot_orbit(states: ContactStates, samples: int, scale_m: float, opts: ShootingOptions, stiffness_N_per_m: NDArray) -> Orbit:
-    """The periodic orbit from the linear solution (``x0 = 0``): Newton on ``P(x0) = x0``, the grid refined.
+def shoot_orbit(
+    states: ContactStates,
+    samples: int,
+    scale_m: float,
+    opts: ShootingOptions,
+    stiffness_N_per_m: NDArray,
+    start: NDArray | None = None,
+) -> Orbit:
+    """The periodic orbit from the linear solution (``x0 = 0``) or ``start``: Newton on ``P(x0) = x0``, the grid refined.
 
     ``samples``: the event grid's first N; ``scale_m``: the largest linear compression (the residual's scale);
-    ``stiffness_N_per_m``: each contact's ``k`` (the peak forces the grid must resolve).
+    ``stiffness_N_per_m``: each contact's ``k`` (the peak forces the grid must resolve); ``start``: the state
+    (2m,) the march and Newton start from (None: ``x0 = 0``, the linear solution).
     The grid is doubled (up to ``opts.max_samples``) while it misses more than ``opts.peak_tolerance`` of a peak
     force; the events are exact whatever the grid, so a finer grid usually keeps the orbit and Newton runs only if not.
 
@@ -105,7 +113,7 @@ def shoot_orbit(states: ContactStates, samples: int, scale_m: float, opts: Shoot
         A contact state without stiffness against a rigid-body motion; a chattering contact.
     """
     N = int(samples)
-    x_start = np.zeros(states.state_size)
+    x_start = np.zeros(states.state_size) if start is None else np.array(start, dtype=float)
     periods = steps = 0
     guard = guarded(states)
     while True:
