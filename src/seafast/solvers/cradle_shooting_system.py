@@ -205,12 +205,15 @@ def reassembled(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Every element's engagement (N, m) and the cargo DOFs (N, 5 n) from a flow's states at the samples (N, 2 m_modes)
     and the included elements' compressions and corrections ``contact`` (each (N, m_I)): ``q = q_lin + Phi eta + R_q c``,
-    as one product of the samples' columns and their shapes. The samples span ``multiple`` wave periods."""
+    as one product of the samples' columns and their shapes, and the engagements ``s0 + A q + E x_o`` (those left out)
+    from the columns and the shapes' engagements ``A shapes``. The samples span ``multiple`` wave periods."""
     N = state_samples.shape[0]
     columns = np.hstack([first_harmonic_basis(N, multiple), state_samples[:, : system.mode_count], contact[1]])
     shapes = np.vstack([first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
-    q = columns @ shapes
-    return all_engagements(dynamics, excitation, q, included, contact[0], multiple), q
+    s = dynamics.initial_engagement_m + columns @ (shapes @ dynamics.problem.engagement_matrix.T)
+    s += deck_time_m(excitation, N, multiple) @ dynamics.deck_engagement.T
+    s[:, included] = contact[0]
+    return s, columns @ shapes
 
 
 def subharmonic_harmonics(harmonics: NDArray[np.complex128], multiple: int) -> NDArray[np.complex128]:
