@@ -32,14 +32,13 @@ from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import sparse
-from scipy.sparse.csgraph import connected_components
+from scipy.linalg import eigh
 
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.fourier import complex_to_real_harmonics
 from seafast.model.cargo3d import Cargo3D
 from seafast.model.structure import StructuralModel
-from seafast.solvers.banded import to_band
+from seafast.solvers.cradle_blocks import CradleBlocks, NodeBand, band_blocks, coupling_pattern, node_band, pattern_blocks
 from seafast.solvers.dynamic_stiffness import QuadraticMatrices, solve_dynamic_stack
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
@@ -117,9 +116,28 @@ class CradleDynamics:
         coupling = self.spring_deck_coupling
         return np.zeros((self.problem.cargo.dof_count, self.deck_engagement.shape[1])) if coupling is None else coupling
 
+    @cached_property
+    def node_band(self) -> NodeBand | None:
+        """``K0``, M and D at their entries within half bandwidth 9 of the node-by-node order (the beam's elements join
+        neighbouring nodes, an engagement acts at one node); None where another entry is not zero
+        (:func:`~seafast.solvers.cradle_blocks.node_band`)."""
+        problem, cargo = self.problem, self.problem.cargo
+        width = 2 * (cargo.dof_count // cargo.node_count) - 1
+        rayleigh = (self.rayleigh_alpha_per_s, self.rayleigh_beta_s)
+        return node_band(
+            self.order, (cargo.stiffness, cargo.mass), problem.spring_diagonal_N_per_m, rayleigh, problem.engagement_matrix, width
+        )
+
+    @cached_property
+    def static_load(self) -> NDArray[np.float64]:
+        """:meth:`static_load_N`, formed once (read-only)."""
+        load = self.problem.load(0.0, 0.0, self.gravity_m_per_s2)
+        load.setflags(write=False)
+        return load
+
     def static_load_N(self) -> NDArray[np.float64]:
         """The weight at zero heel and trim plus the given loads [N, N m]."""
-        return self.problem.load(0.0, 0.0, self.gravity_m_per_s2)
+        return self.static_load.copy()
 
     @property
     def damping_set(self) -> NDArray[np.bool_]:
@@ -225,10 +243,25 @@ class CradleLinearParts:
         K_co = d.spring_coupling + A.T @ (k[:, None] * d.deck_engagement[self.included])
         if np.array_equal(self.included, d.damping_set):
             S = -self.solve_stack(np.zeros(1), K_co[None].astype(complex))[0].real
-            return K_co, -d.matrices[2] @ S
+            DS = np.zeros_like(S)
+            for (dofs, _), (_, _, D) in zip(self.blocks, self.block_parts.dense, strict=True):
+                DS[dofs] = D @ S[dofs]  # D has no entry between blocks
+            return K_co, -DS
         return K_co, d.support_damping_coupling
 
     @cached_property
+    def block_parts(self) -> CradleBlocks:
+        """The uncoupled blocks of ``K_lin``, M, D, banded and dense (:mod:`seafast.solvers.cradle_blocks`): from the
+        entries near the diagonal in the node-by-node order (the dense matrices never formed), or where the matrices
+        have other entries from the scan of the dense ones."""
+        d = self.dynamics
+        band = d.node_band
+        if band is None:
+            return pattern_blocks(self.bilateral_stiffness, d.matrices[1], d.matrices[2], d.order)
+        stiffness = band.stiffness + band.engagement_stiffness(self.engagement_matrix, self.element_stiffness_N_per_m)
+        return band_blocks(band, stiffness, d.order)
+
+    @property
     def blocks(self) -> tuple[tuple[NDArray[np.intp], QuadraticMatrices], ...]:
         """The uncoupled blocks of ``K_lin``, M, D: each one's DOFs (node by node) and its banded matrices.
 
@@ -238,18 +271,14 @@ class CradleLinearParts:
         the lateral and vertical motions by ``k cos(alpha) sin(alpha)`` each, with opposite signs: their sum is
         zero but for round-off, which is not a coupling (:func:`coupling_pattern`).
         """
-        K, M, D = self.bilateral_stiffness, self.dynamics.matrices[1], self.dynamics.matrices[2]
-        pattern = coupling_pattern(K) | coupling_pattern(M) | coupling_pattern(D)
-        count, label = connected_components(sparse.csr_matrix(pattern.astype(np.int8)), directed=False)
-        out = []
-        for c in range(count):
-            dofs = self.dynamics.order[label[self.dynamics.order] == c]
-            rows, cols = np.nonzero(pattern[np.ix_(dofs, dofs)])
-            bw = int(np.max(np.abs(rows - cols), initial=0))
-            K_c, M_c, D_c = (np.ascontiguousarray(X[np.ix_(dofs, dofs)]) for X in (K, M, D))
-            empty = np.zeros((dofs.size, 0))
-            out.append((dofs, QuadraticMatrices(empty, empty, empty, bw, to_band(K_c, bw), to_band(M_c, bw), to_band(D_c, bw))))
-        return tuple(out)
+        return self.block_parts.banded
+
+    @cached_property
+    def block_modes(self) -> tuple[tuple[NDArray[np.float64], NDArray[np.float64]], ...]:
+        """Every undamped mode of each block (:attr:`blocks`, deck fixed): its ``w^2`` ascending [rad^2/s^2] and
+        mass-normalised eigenvectors (n_b, n_b), solved once for this set of elements (the correction systems of every
+        cutoff, and every solve of the same dynamics, take them from here)."""
+        return tuple(eigh(K, M, driver="gvd", check_finite=False) for K, M, _ in self.block_parts.dense)
 
     def solve_stack(self, omegas: NDArray[np.float64], rhs: NDArray[np.complex128]) -> NDArray[np.complex128]:
         """``K_d(w_k)^-1 rhs_k`` with every element bilateral, (n_k, 5 n, r) in the block order [m, rad per N].
@@ -275,15 +304,6 @@ class CradleLinearParts:
             else:
                 out[:, dofs[:, None], columns[None, :]] = solve_dynamic_stack(q, omegas, np.ascontiguousarray(part[:, :, columns]))
         return out
-
-
-def coupling_pattern(X: NDArray[np.float64], round_off: float = 1e-14) -> NDArray[np.bool_]:
-    """Where the symmetric matrix ``X`` couples two DOFs: ``|X_ij| > round_off sqrt(|X_ii X_jj|)`` (the diagonal
-    always); an entry below it is the round-off of terms that cancel (a pad pair's lateral-vertical stiffness)."""
-    d = np.sqrt(np.abs(np.diag(X)))
-    pattern = np.abs(X) > round_off * np.outer(d, d)
-    pattern[np.diag_indices_from(pattern)] = True
-    return pattern
 
 
 def cradle_operators(
@@ -318,7 +338,7 @@ def cradle_operators(
     f = np.zeros((H + 1, n), dtype=complex)
     rows = min(2, H + 1)
     xo[:rows], f[:rows] = excitation.deck_displacement[:rows], excitation.cargo_load_N[:rows]
-    xo[0], f[0] = xo[0].real, (f[0] + dynamics.static_load_N()).real
+    xo[0], f[0] = xo[0].real, (f[0] + dynamics.static_load).real
     wk = w * np.arange(H + 1, dtype=np.float64)
     K_co, D_co = parts.deck_coupling
     load = f - xo @ K_co.T - 1j * wk[:, None] * (xo @ D_co.T)

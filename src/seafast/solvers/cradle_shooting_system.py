@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import eigh
 
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.solvers.cradle_dynamics import CradleDynamics
@@ -52,7 +51,8 @@ class CradleModes:
     blocks
         Each block's DOFs (cargo block order) and eigenvectors (n_b, n_b) [m or rad per unit modal coordinate].
     damping
-        ``D`` (5 n, 5 n) [N s/m, ...]: the modal damping of the modes kept is ``Phi^T D Phi`` (formed for those alone).
+        Each block's ``D`` (n_b, n_b) [N s/m, ...] (``D`` has no entry between blocks): the modal damping of the modes
+        kept is ``Phi^T D Phi`` (:meth:`modal_damping`, formed for those alone).
     engagement_modes
         ``A Phi`` (m, n): how each mode moves each element's engagement [m per unit modal coordinate].
     """
@@ -61,31 +61,38 @@ class CradleModes:
     block: NDArray[np.intp]
     column: NDArray[np.intp]
     blocks: tuple[tuple[NDArray[np.intp], NDArray[np.float64]], ...]
-    damping: NDArray[np.float64]
+    damping: tuple[NDArray[np.float64], ...]
     engagement_modes: NDArray[np.float64]
 
     def mode_shape(self, count: int) -> NDArray[np.float64]:
         """The lowest ``count`` modes on every cargo DOF (5 n, count)."""
-        n = self.damping.shape[0]
-        phi = np.zeros((n, int(count)))
+        phi = np.zeros((sum(dofs.size for dofs, _ in self.blocks), int(count)))
         for b, (dofs, vectors) in enumerate(self.blocks):
             mine = np.flatnonzero(self.block[:count] == b)
             phi[dofs[:, None], mine[None, :]] = vectors[:, self.column[mine]]
         return phi
+
+    def modal_damping(self, count: int) -> NDArray[np.float64]:
+        """``Phi^T D Phi`` of the lowest ``count`` modes (count, count) [N s/m per unit modal coordinate], block by block."""
+        out = np.zeros((int(count), int(count)))
+        for b, (_, vectors) in enumerate(self.blocks):
+            mine = np.flatnonzero(self.block[:count] == b)
+            phi = vectors[:, self.column[mine]]
+            out[np.ix_(mine, mine)] = phi.T @ (self.damping[b] @ phi)
+        return out
 
 
 def cradle_modes(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> CradleModes:
     """The modes of ``(K_I, M)``, solved per uncoupled block (:attr:`CradleLinearParts.blocks`) and merged.
 
     Without lashings the axial, lateral and vertical motions are uncoupled: three dense eigensolves of a third of the
-    DOFs each, a ninth of the work of one.
+    DOFs each, a ninth of the work of one. The eigensolves are kept with the dynamics' linear parts of ``included``
+    (:attr:`~seafast.solvers.cradle_dynamics.CradleLinearParts.block_modes`): solved once per set of elements.
     """
     parts = dynamics.linear_parts(included)
-    K, M, D = parts.bilateral_stiffness, dynamics.matrices[1], dynamics.matrices[2]
-    A = dynamics.problem.engagement_matrix[included]
+    A = parts.engagement_matrix
     frequencies, blocks, labels, columns, moved = [], [], [], [], []
-    for b, (dofs, _) in enumerate(parts.blocks):
-        w2, phi = eigh(K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)], driver="gvd", check_finite=False)
+    for b, ((dofs, _), (w2, phi)) in enumerate(zip(parts.blocks, parts.block_modes, strict=True)):
         frequencies.append(np.sqrt(np.maximum(w2, 0.0)))
         blocks.append((dofs, phi))
         labels.append(np.full(w2.size, b))
@@ -93,8 +100,9 @@ def cradle_modes(dynamics: CradleDynamics, included: NDArray[np.bool_]) -> Cradl
         moved.append(A[:, dofs] @ phi)
     w = np.concatenate(frequencies)
     order = np.argsort(w, kind="stable")
+    damping = tuple(D for _, _, D in parts.block_parts.dense)
     return CradleModes(
-        w[order], np.concatenate(labels)[order], np.concatenate(columns)[order], tuple(blocks), D, np.hstack(moved)[:, order]
+        w[order], np.concatenate(labels)[order], np.concatenate(columns)[order], tuple(blocks), damping, np.hstack(moved)[:, order]
     )
 
 
@@ -125,7 +133,7 @@ def cradle_correction_system(
     flexibility = -(A @ static)
     return ModalCorrectionSystem(
         natural_frequency_rad_s=np.ascontiguousarray(w),
-        modal_damping=np.ascontiguousarray(phi.T @ (modes.damping @ phi)),
+        modal_damping=modes.modal_damping(m),
         mode_shape=np.ascontiguousarray(phi),
         saddle_mode_shape=np.ascontiguousarray(engagement_modes),
         residual_displacement_m_per_N=np.ascontiguousarray(residual),
@@ -197,12 +205,15 @@ def reassembled(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Every element's engagement (N, m) and the cargo DOFs (N, 5 n) from a flow's states at the samples (N, 2 m_modes)
     and the included elements' compressions and corrections ``contact`` (each (N, m_I)): ``q = q_lin + Phi eta + R_q c``,
-    as one product of the samples' columns and their shapes. The samples span ``multiple`` wave periods."""
+    as one product of the samples' columns and their shapes, and the engagements ``s0 + A q + E x_o`` (those left out)
+    from the columns and the shapes' engagements ``A shapes``. The samples span ``multiple`` wave periods."""
     N = state_samples.shape[0]
     columns = np.hstack([first_harmonic_basis(N, multiple), state_samples[:, : system.mode_count], contact[1]])
     shapes = np.vstack([first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
-    q = columns @ shapes
-    return all_engagements(dynamics, excitation, q, included, contact[0], multiple), q
+    s = dynamics.initial_engagement_m + columns @ (shapes @ dynamics.problem.engagement_matrix.T)
+    s += deck_time_m(excitation, N, multiple) @ dynamics.deck_engagement.T
+    s[:, included] = contact[0]
+    return s, columns @ shapes
 
 
 def subharmonic_harmonics(harmonics: NDArray[np.complex128], multiple: int) -> NDArray[np.complex128]:
