@@ -58,7 +58,7 @@ from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.orbit import Orbit, sampled_contact, shoot_orbit, state_change
 from seafast.solvers.shooting.period import PeriodGrid, TooManyEventsError, flow_period
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
-from seafast.solvers.shooting.stiff import MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
+from seafast.solvers.shooting.stiff import COMPLETE_BASIS_DOFS, MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
 
 __all__ = ["VERDICT_DOUBLINGS", "VERDICT_PERIODS", "VERDICT_TOLERANCE", "flow_verdict", "solve_cradle_shooting"]
 
@@ -105,31 +105,70 @@ def _solve_set(
     problem = dynamics.problem
     first_stopper = 2 * len(problem.pad_pairs)
     stiff = bool(np.any(included[first_stopper : first_stopper + len(problem.stoppers)]))
-    factor = float(opts.cutoff_factor)
-    changes: list[float] = []
-    solved = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N, multiple, start)
-    while opts.cutoff_check and stiff and solved.outcome is SolverOutcome.CONVERGED and len(changes) < MAX_CUTOFF_DOUBLINGS:
-        kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
-        while kept < modes.natural_frequency_rad_s.size and kept_modes(modes, 2.0 * factor * reference, kept) == kept:
-            factor *= 2.0  # no mode between: the same reduction
-        factor *= 2.0
-        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N, multiple, _solved_start(solved))
-        if finer.outcome is not SolverOutcome.CONVERGED:
-            break
-        k = problem.element_stiffness_N_per_m
+    solved = _orbit_at(dynamics, excitation, included, ops, modes, opts.cutoff_factor * reference, opts, N, multiple, start)
+    if not (opts.cutoff_check and stiff and _closed(solved, opts)):
+        return solved
+    return _settled_cutoff(dynamics, excitation, included, ops, modes, reference, opts, N, multiple, solved)
+
+
+def _closed(solved: _SetOrbit, opts: ShootingOptions) -> bool:
+    """Newton closed the period (the orbit may be unstable)."""
+    return solved.orbit is not None and solved.residual <= opts.tolerance
+
+
+def _settled_cutoff(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    ops: CondensedOperators,
+    modes: CradleModes,
+    reference: float,
+    opts: ShootingOptions,
+    samples: int,
+    multiple: int,
+    solved: _SetOrbit,
+) -> _SetOrbit:
+    """The orbit ``solved`` (its period closed at ``opts.cutoff_factor`` times ``reference`` [rad/s]) with the cutoff
+    doubled until no element's peak force moves by more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE`
+    of its force scale and the orbit is stable (its stability, like its peaks, a property of the reduction: a stopper's
+    impacts in too few modes can make a stable orbit look unstable, or the reverse). After
+    :data:`~seafast.solvers.shooting.stiff.MAX_CUTOFF_DOUBLINGS` with the peaks still moving, a cargo of at most
+    :data:`~seafast.solvers.shooting.stiff.COMPLETE_BASIS_DOFS` DOFs is solved with every mode (no reduction: exact).
+    Not settled: the last orbit, ``NOT_CONVERGED``, with the changes."""
+    k = dynamics.problem.element_stiffness_N_per_m
+    factor, changes, doublings = float(opts.cutoff_factor), list[float](), 0
+    while math.isfinite(factor):
+        if doublings >= MAX_CUTOFF_DOUBLINGS:
+            if (changes and changes[-1] <= MODAL_TOLERANCE) or dynamics.problem.cargo.dof_count > COMPLETE_BASIS_DOFS:
+                break
+            factor = math.inf  # every mode: the reduction exact
+        else:
+            kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
+            if kept == modes.natural_frequency_rad_s.size:
+                break  # every mode kept already: nothing finer
+            while kept < modes.natural_frequency_rad_s.size and kept_modes(modes, 2.0 * factor * reference, kept) == kept:
+                factor *= 2.0  # no mode between: the same reduction
+            factor, doublings = 2.0 * factor, doublings + 1
+        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, samples, multiple, _solved_start(solved))
+        if not _closed(finer, opts):
+            if solved.outcome is SolverOutcome.CONVERGED:
+                break
+            continue  # an unstable orbit's Newton may not close at the next cutoff: the one after
         peaks, before = k * np.max(np.maximum(finer.engagement_m, 0.0), axis=0), k * np.max(np.maximum(solved.engagement_m, 0.0), axis=0)
         changes.append(float(np.max(np.abs(peaks - before) / force_scale_N(np.maximum(peaks, before)))))
         solved = finer
-        if changes[-1] <= MODAL_TOLERANCE or "every mode" in finer.note:
+        if "every mode" in finer.note or (changes[-1] <= MODAL_TOLERANCE and finer.outcome is SolverOutcome.CONVERGED):
             break
-    if changes:
-        steps = ", ".join(f"{c:.2g}" for c in changes)
-        settled = changes[-1] <= MODAL_TOLERANCE or "every mode" in solved.note
-        words = f"; cutoff doubled {len(changes)} time(s) for the stoppers' impacts (peak force changes {steps})"
-        if not settled:
-            words += "; not converged in the modal reduction"
-        solved = replace(solved, note=solved.note + words, outcome=solved.outcome if settled else SolverOutcome.NOT_CONVERGED)
-    return solved
+    if not changes:
+        return solved
+    settled = (changes[-1] <= MODAL_TOLERANCE or "every mode" in solved.note) and solved.outcome is SolverOutcome.CONVERGED
+    steps = ", ".join(f"{c:.2g}" for c in changes)
+    words = f"; cutoff doubled {len(changes)} time(s) for the stoppers' impacts (peak force changes {steps})"
+    if "every mode" in solved.note and changes[-1] > MODAL_TOLERANCE:
+        words += "; every mode of the cargo kept: the reduction is exact"
+    if not settled:
+        words += "; not converged in the modal reduction"
+    return replace(solved, note=solved.note + words, outcome=SolverOutcome.CONVERGED if settled else SolverOutcome.NOT_CONVERGED)
 
 
 def _orbit_at(
