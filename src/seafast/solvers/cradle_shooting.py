@@ -18,7 +18,8 @@ matrix), whatever harmonics the ringing after a re-contact needs.
 The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
 orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`); without them
 the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
-With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes).
+With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes),
+a subharmonic's also until its orbit is stable; after the doublings a small cargo is solved with every mode.
 Where Newton does not close the period, the exact-event flow is marched and says what the state is
 (:func:`flow_verdict`); a subharmonic of P wave periods is then found by the same Newton on the P-period map (the
 excitation's period taken as P T: :func:`~seafast.solvers.cradle_shooting_system.subharmonic_harmonics`).
@@ -88,7 +89,8 @@ def _solve_set(
 
     With a side stopper included (a stiff element open most of the period: the bilateral modes' reduction of its
     impacts converges slowly) and ``opts.cutoff_check``, the cutoff is doubled until no element's peak force moves by
-    more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE` of its force scale (or every mode is kept).
+    more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE` of its force scale (or every mode is kept):
+    :func:`_settled_cutoff`.
     """
     omega = float(excitation.omega_rad_s)
     ops = cradle_operators(dynamics, excitation, 1, included)
@@ -106,14 +108,18 @@ def _solve_set(
     first_stopper = 2 * len(problem.pad_pairs)
     stiff = bool(np.any(included[first_stopper : first_stopper + len(problem.stoppers)]))
     solved = _orbit_at(dynamics, excitation, included, ops, modes, opts.cutoff_factor * reference, opts, N, multiple, start)
-    if not (opts.cutoff_check and stiff and _closed(solved, opts)):
+    if not (opts.cutoff_check and stiff and _usable(solved, opts, multiple)):
         return solved
     return _settled_cutoff(dynamics, excitation, included, ops, modes, reference, opts, N, multiple, solved)
 
 
-def _closed(solved: _SetOrbit, opts: ShootingOptions) -> bool:
-    """Newton closed the period (the orbit may be unstable)."""
-    return solved.orbit is not None and solved.residual <= opts.tolerance
+def _usable(solved: _SetOrbit, opts: ShootingOptions, multiple: int) -> bool:
+    """An orbit the cutoff check goes on from: converged; of ``multiple`` > 1 wave periods, its period closed by Newton
+    even if unstable (Newton on the P-period map from the flow's state can land, in too few modes, on the unstable
+    wave-period orbit, a fixed point of that map too: the finer cutoffs say which orbit holds)."""
+    if multiple > 1:
+        return solved.orbit is not None and solved.residual <= opts.tolerance
+    return solved.outcome is SolverOutcome.CONVERGED
 
 
 def _settled_cutoff(
@@ -130,8 +136,8 @@ def _settled_cutoff(
 ) -> _SetOrbit:
     """The orbit ``solved`` (its period closed at ``opts.cutoff_factor`` times ``reference`` [rad/s]) with the cutoff
     doubled until no element's peak force moves by more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE`
-    of its force scale and the orbit is stable (its stability, like its peaks, a property of the reduction: a stopper's
-    impacts in too few modes can make a stable orbit look unstable, or the reverse). After
+    of its force scale and the orbit is stable (a subharmonic's stability, like its peaks, a property of the reduction:
+    :func:`_usable`). After
     :data:`~seafast.solvers.shooting.stiff.MAX_CUTOFF_DOUBLINGS` with the peaks still moving, a cargo of at most
     :data:`~seafast.solvers.shooting.stiff.COMPLETE_BASIS_DOFS` DOFs is solved with every mode (no reduction: exact).
     Not settled: the last orbit, ``NOT_CONVERGED``, with the changes."""
@@ -150,7 +156,7 @@ def _settled_cutoff(
                 factor *= 2.0  # no mode between: the same reduction
             factor, doublings = 2.0 * factor, doublings + 1
         finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, samples, multiple, _solved_start(solved))
-        if not _closed(finer, opts):
+        if not _usable(finer, opts, multiple):
             if solved.outcome is SolverOutcome.CONVERGED:
                 break
             continue  # an unstable orbit's Newton may not close at the next cutoff: the one after
