@@ -25,6 +25,9 @@ Where Newton does not close the period, the exact-event flow is marched and says
 excitation's period taken as P T: :func:`~seafast.solvers.cradle_shooting_system.subharmonic_harmonics`).
 The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
 
+Size: over 400 lines because the included set's solve, its cutoff check (peaks and stability) and the flow's verdict
+with the subharmonic it leads to are one algorithm on the same reduced system.
+
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s]. Nothing here prints, reads or writes files.
 """
 
