@@ -18,11 +18,15 @@ matrix), whatever harmonics the ringing after a re-contact needs.
 The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
 orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`); without them
 the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
-With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes).
+With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes),
+a subharmonic's also until its orbit is stable; after the doublings a small cargo is solved with every mode.
 Where Newton does not close the period, the exact-event flow is marched and says what the state is
 (:func:`flow_verdict`); a subharmonic of P wave periods is then found by the same Newton on the P-period map (the
 excitation's period taken as P T: :func:`~seafast.solvers.cradle_shooting_system.subharmonic_harmonics`).
 The reduced system itself: :mod:`seafast.solvers.cradle_shooting_system`.
+
+Size: over 400 lines because the included set's solve, its cutoff check (peaks and stability) and the flow's verdict
+with the subharmonic it leads to are one algorithm on the same reduced system.
 
 Units: engagements [m]; forces [N]; displacements [m, rad]; time [s]. Nothing here prints, reads or writes files.
 """
@@ -58,7 +62,7 @@ from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.orbit import Orbit, sampled_contact, shoot_orbit, state_change
 from seafast.solvers.shooting.period import PeriodGrid, TooManyEventsError, flow_period
 from seafast.solvers.shooting.states import ContactStates, SingularStateError
-from seafast.solvers.shooting.stiff import MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
+from seafast.solvers.shooting.stiff import COMPLETE_BASIS_DOFS, MAX_CUTOFF_DOUBLINGS, MODAL_TOLERANCE
 
 __all__ = ["VERDICT_DOUBLINGS", "VERDICT_PERIODS", "VERDICT_TOLERANCE", "flow_verdict", "solve_cradle_shooting"]
 
@@ -88,7 +92,8 @@ def _solve_set(
 
     With a side stopper included (a stiff element open most of the period: the bilateral modes' reduction of its
     impacts converges slowly) and ``opts.cutoff_check``, the cutoff is doubled until no element's peak force moves by
-    more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE` of its force scale (or every mode is kept).
+    more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE` of its force scale (or every mode is kept):
+    :func:`_settled_cutoff`.
     """
     omega = float(excitation.omega_rad_s)
     ops = cradle_operators(dynamics, excitation, 1, included)
@@ -105,31 +110,74 @@ def _solve_set(
     problem = dynamics.problem
     first_stopper = 2 * len(problem.pad_pairs)
     stiff = bool(np.any(included[first_stopper : first_stopper + len(problem.stoppers)]))
-    factor = float(opts.cutoff_factor)
-    changes: list[float] = []
-    solved = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N, multiple, start)
-    while opts.cutoff_check and stiff and solved.outcome is SolverOutcome.CONVERGED and len(changes) < MAX_CUTOFF_DOUBLINGS:
-        kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
-        while kept < modes.natural_frequency_rad_s.size and kept_modes(modes, 2.0 * factor * reference, kept) == kept:
-            factor *= 2.0  # no mode between: the same reduction
-        factor *= 2.0
-        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, N, multiple, _solved_start(solved))
-        if finer.outcome is not SolverOutcome.CONVERGED:
-            break
-        k = problem.element_stiffness_N_per_m
+    solved = _orbit_at(dynamics, excitation, included, ops, modes, opts.cutoff_factor * reference, opts, N, multiple, start)
+    if not (opts.cutoff_check and stiff and _usable(solved, opts, multiple)):
+        return solved
+    return _settled_cutoff(dynamics, excitation, included, ops, modes, reference, opts, N, multiple, solved)
+
+
+def _usable(solved: _SetOrbit, opts: ShootingOptions, multiple: int) -> bool:
+    """An orbit the cutoff check goes on from: converged; of ``multiple`` > 1 wave periods, its period closed by Newton
+    even if unstable (Newton on the P-period map from the flow's state can land, in too few modes, on the unstable
+    wave-period orbit, a fixed point of that map too: the finer cutoffs say which orbit holds)."""
+    if multiple > 1:
+        return solved.orbit is not None and solved.residual <= opts.tolerance
+    return solved.outcome is SolverOutcome.CONVERGED
+
+
+def _settled_cutoff(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    included: NDArray[np.bool_],
+    ops: CondensedOperators,
+    modes: CradleModes,
+    reference: float,
+    opts: ShootingOptions,
+    samples: int,
+    multiple: int,
+    solved: _SetOrbit,
+) -> _SetOrbit:
+    """The orbit ``solved`` (its period closed at ``opts.cutoff_factor`` times ``reference`` [rad/s]) with the cutoff
+    doubled until no element's peak force moves by more than :data:`~seafast.solvers.shooting.stiff.MODAL_TOLERANCE`
+    of its force scale and the orbit is stable (a subharmonic's stability, like its peaks, a property of the reduction:
+    :func:`_usable`). After
+    :data:`~seafast.solvers.shooting.stiff.MAX_CUTOFF_DOUBLINGS` with the peaks still moving, a cargo of at most
+    :data:`~seafast.solvers.shooting.stiff.COMPLETE_BASIS_DOFS` DOFs is solved with every mode (no reduction: exact).
+    Not settled: the last orbit, ``NOT_CONVERGED``, with the changes."""
+    k = dynamics.problem.element_stiffness_N_per_m
+    factor, changes, doublings = float(opts.cutoff_factor), list[float](), 0
+    while math.isfinite(factor):
+        if doublings >= MAX_CUTOFF_DOUBLINGS:
+            if (changes and changes[-1] <= MODAL_TOLERANCE) or dynamics.problem.cargo.dof_count > COMPLETE_BASIS_DOFS:
+                break
+            factor = math.inf  # every mode: the reduction exact
+        else:
+            kept = kept_modes(modes, factor * reference, int(np.count_nonzero(included)))
+            if kept == modes.natural_frequency_rad_s.size:
+                break  # every mode kept already: nothing finer
+            while kept < modes.natural_frequency_rad_s.size and kept_modes(modes, 2.0 * factor * reference, kept) == kept:
+                factor *= 2.0  # no mode between: the same reduction
+            factor, doublings = 2.0 * factor, doublings + 1
+        finer = _orbit_at(dynamics, excitation, included, ops, modes, factor * reference, opts, samples, multiple, _solved_start(solved))
+        if not _usable(finer, opts, multiple):
+            if solved.outcome is SolverOutcome.CONVERGED:
+                break
+            continue  # an unstable orbit's Newton may not close at the next cutoff: the one after
         peaks, before = k * np.max(np.maximum(finer.engagement_m, 0.0), axis=0), k * np.max(np.maximum(solved.engagement_m, 0.0), axis=0)
         changes.append(float(np.max(np.abs(peaks - before) / force_scale_N(np.maximum(peaks, before)))))
         solved = finer
-        if changes[-1] <= MODAL_TOLERANCE or "every mode" in finer.note:
+        if "every mode" in finer.note or (changes[-1] <= MODAL_TOLERANCE and finer.outcome is SolverOutcome.CONVERGED):
             break
-    if changes:
-        steps = ", ".join(f"{c:.2g}" for c in changes)
-        settled = changes[-1] <= MODAL_TOLERANCE or "every mode" in solved.note
-        words = f"; cutoff doubled {len(changes)} time(s) for the stoppers' impacts (peak force changes {steps})"
-        if not settled:
-            words += "; not converged in the modal reduction"
-        solved = replace(solved, note=solved.note + words, outcome=solved.outcome if settled else SolverOutcome.NOT_CONVERGED)
-    return solved
+    if not changes:
+        return solved
+    settled = (changes[-1] <= MODAL_TOLERANCE or "every mode" in solved.note) and solved.outcome is SolverOutcome.CONVERGED
+    steps = ", ".join(f"{c:.2g}" for c in changes)
+    words = f"; cutoff doubled {len(changes)} time(s) for the stoppers' impacts (peak force changes {steps})"
+    if "every mode" in solved.note and changes[-1] > MODAL_TOLERANCE:
+        words += "; every mode of the cargo kept: the reduction is exact"
+    if not settled:
+        words += "; not converged in the modal reduction"
+    return replace(solved, note=solved.note + words, outcome=SolverOutcome.CONVERGED if settled else SolverOutcome.NOT_CONVERGED)
 
 
 def _orbit_at(
