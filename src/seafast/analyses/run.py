@@ -7,6 +7,9 @@ from the harmonics of the solution where every row has them (the harmonic balanc
 records, in a few milliseconds), else from the period time series, which its
 :attr:`~CaseResult.dataset` (what ``results.nc`` holds) always reads. The two readings agree to
 round-off (``tests/analyses/test_run.py``). Nothing here prints or writes files.
+
+Size: just over 400 lines because :class:`CaseResult` is the one reader of a run's rows (summary, validity,
+elastic impacts, dataset), each a few lines calling :mod:`seafast.results`.
 """
 
 from __future__ import annotations
@@ -36,7 +39,6 @@ from seafast.hull.still_water import HullGirderResponse
 from seafast.hull.wave import WaveHullResponse
 from seafast.model.from_case import build_model
 from seafast.model.structure import StructuralModel
-from seafast.model.warning import ModelWarning
 from seafast.results.axial import AxialCaseArrays
 from seafast.results.coupling import coupling_dataset, coupling_summary_fields
 from seafast.results.cradle import CradleRows, failed_cradle_summary
@@ -49,7 +51,7 @@ from seafast.results.dataset import (
     case_arrays,
     summary_rows_from_arrays,
 )
-from seafast.results.impact import ImpactCheck, impact_check
+from seafast.results.impact import ImpactCheck, case_impact, impact_flags, with_impact
 from seafast.results.summary import RowSolution, summary_rows
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.results.validity import ValidityIssue, cargo_diameter_m, validity_issues, with_validity, within_validity
@@ -259,17 +261,12 @@ class CaseResult:
         else:  # a reference's solution is a time series: read the arrays
             rows = summary_rows_from_arrays(self.arrays, self.model.cargo.node_x_m, self.model.warnings)
         rows = rows if self.cradle is None else self.cradle.extend_summary(rows)
-        return with_validity(_with_impact(rows, self.impact), cargo_diameter_m(self.model))
+        return with_validity(with_impact(rows, self.impact), cargo_diameter_m(self.model))
 
     @functools.cached_property
     def impact(self) -> ImpactCheck:
-        """The dynamic nonlinear row's re-contacts and whether its saddle forces are elastic impacts
-        (:mod:`seafast.results.impact`; empty where the row did not converge)."""
-        response = self.rows.nonlinear_dynamic
-        if not response.converged:
-            return ImpactCheck(())
-        kept = np.max(harmonics_to_time(self.rows.linear_dynamic.saddle_force_N, self.rows.time_samples), axis=0)
-        return impact_check(self.model, response, kept)
+        """Whether the dynamic nonlinear row's saddle forces are elastic impacts (:func:`~seafast.results.impact.case_impact`)."""
+        return case_impact(self.model, self.rows.nonlinear_dynamic, self.rows.linear_dynamic.saddle_force_N, self.rows.time_samples)
 
     @property
     def summary(self) -> list[dict[str, Any]]:
@@ -319,19 +316,7 @@ class CaseResult:
             },
         )
         ds.attrs["validity_issues"] = "\n".join(issue.message for issue in self.validity)
-        ds["F_within_validity"] = xr.DataArray(
-            np.array(
-                [
-                    [next(r["F_within_validity"] for r in summary if (r["load_case"], r["model"]) == (lc, m)) for m in MODELS]
-                    for lc in LOAD_CASES
-                ]
-            ),
-            dims=("load_case", "model"),
-            attrs={
-                "long_name": "the row's peak saddle force is not an elastic impact at a re-contact (docs/limitations.md)",
-                "units": "1",
-            },
-        )
+        ds["F_within_validity"] = impact_flags(summary)
         ds.attrs["saddle_force_impacts"] = "\n".join(self.impact.warning_lines())
         if self.vessel is not None:
             vds = self.vessel.to_dataset()
@@ -343,17 +328,6 @@ class CaseResult:
             )
         ds = ds if self.cradle is None else self.cradle.merged_into(ds)
         return ds if self.axial is None else self.axial.merged_into(ds)
-
-
-def _with_impact(rows: list[dict[str, Any]], impact: ImpactCheck) -> list[dict[str, Any]]:
-    """The rows with ``F_within_validity`` (False where the row's peak saddle force is an elastic impact) and, there,
-    ``ModelWarning.SADDLE_FORCE_ELASTIC_IMPACT`` after the row's solver and model warnings."""
-    out = []
-    for row in rows:
-        flagged = bool(impact.flagged) and (row["load_case"], row["model"]) == ("dynamic", "nonlinear")
-        warnings = (*row.get("warnings", ()), ModelWarning.SADDLE_FORCE_ELASTIC_IMPACT) if flagged else row.get("warnings", ())
-        out.append({**row, "F_within_validity": not flagged, "warnings": warnings})
-    return out
 
 
 def _case_attrs(case: Case, model: StructuralModel, excitation: HarmonicExcitation, rows: CaseRows) -> dict[str, Any]:

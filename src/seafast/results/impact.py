@@ -27,12 +27,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.linalg
+import xarray as xr
 from numpy.typing import NDArray
 
+from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
+from seafast.model.warning import ModelWarning
+from seafast.results.dataset import LOAD_CASES, MODELS
 from seafast.solvers.periodic import PeriodicResponse
 
 __all__ = [
@@ -43,6 +48,9 @@ __all__ = [
     "impact_force_per_velocity_N_s_per_m",
     "pulse_peak_per_velocity",
     "impact_check",
+    "case_impact",
+    "with_impact",
+    "impact_flags",
 ]
 
 IMPACT_RATIO_LIMIT = 1.0
@@ -160,7 +168,8 @@ def _closing_rate(gap_m: NDArray, dt_s: float) -> float:
     """The rate of the polynomial through the gap samples (the last at t = 0) where it reaches zero in (0, dt]."""
     t = dt_s * np.arange(1 - gap_m.size, 1, dtype=float)
     poly = np.polynomial.Polynomial.fit(t, gap_m, gap_m.size - 1).convert()
-    roots = [float(r.real) for r in poly.roots() if abs(r.imag) <= 1e-12 * dt_s and 0.0 <= r.real <= dt_s]
+    found = np.asarray(poly.roots(), dtype=complex)
+    roots = [float(r) for r in found.real[(np.abs(found.imag) <= 1e-12 * dt_s) & (found.real >= 0.0) & (found.real <= dt_s)]]
     return float(poly.deriv()(min(roots) if roots else 0.0))
 
 
@@ -252,3 +261,41 @@ def impact_check(model: StructuralModel, response: PeriodicResponse, contact_kep
             G = impact_force_per_velocity_N_s_per_m(model, i, float(stiffness[i]))
             saddles.append(SaddleImpact(i, float(stiffness[i]), G, float(np.max(r)), float(peaks[i]), float(kept[i])))
     return ImpactCheck(tuple(saddles))
+
+
+def case_impact(model: StructuralModel, nonlinear: PeriodicResponse, linear_force_N: NDArray, time_samples: int) -> ImpactCheck:
+    """:func:`impact_check` of a run's dynamic nonlinear row, the contact kept being the dynamic linear row's saddle
+    forces (``linear_force_N``, harmonics (H+1, n_s), sampled on ``time_samples``); empty where the row did not converge."""
+    if not nonlinear.converged:
+        return ImpactCheck(())
+    return impact_check(model, nonlinear, np.max(harmonics_to_time(linear_force_N, int(time_samples)), axis=0))
+
+
+def with_impact(rows: list[dict[str, Any]], check: ImpactCheck) -> list[dict[str, Any]]:
+    """The summary rows with ``F_within_validity`` (False where the row's peak saddle force is an elastic impact:
+    the dynamic nonlinear row, when a saddle is flagged) and there ``ModelWarning.SADDLE_FORCE_ELASTIC_IMPACT``
+    after the row's solver and model warnings."""
+    out = []
+    for row in rows:
+        flagged = bool(check.flagged) and (row["load_case"], row["model"]) == ("dynamic", "nonlinear")
+        warnings = tuple(row.get("warnings", ()))
+        out.append(
+            {
+                **row,
+                "F_within_validity": not flagged,
+                "warnings": (*warnings, ModelWarning.SADDLE_FORCE_ELASTIC_IMPACT) if flagged else warnings,
+            }
+        )
+    return out
+
+
+def impact_flags(rows: list[dict[str, Any]]) -> xr.DataArray:
+    """The rows' ``F_within_validity`` as a (load_case, model) variable of ``results.nc``."""
+    values = [
+        [next(bool(r["F_within_validity"]) for r in rows if (r["load_case"], r["model"]) == (lc, m)) for m in MODELS] for lc in LOAD_CASES
+    ]
+    return xr.DataArray(
+        np.array(values),
+        dims=("load_case", "model"),
+        attrs={"long_name": "the row's peak saddle force is not an elastic impact at a re-contact (docs/limitations.md)", "units": "1"},
+    )
