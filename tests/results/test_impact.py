@@ -9,6 +9,7 @@ raised on a near-rigid case, absent on the base case and on the saddle study's s
 
 from __future__ import annotations
 
+import csv
 import math
 
 import numpy as np
@@ -16,11 +17,14 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from seafast.analyses.run import run_case
+from seafast.cli import EXIT_OUTSIDE_VALIDITY, main
 from seafast.config import load_case
 from seafast.model.from_case import build_model
 from seafast.model.warning import ModelWarning
+from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.results.impact import (
     IMPACT_RATIO_LIMIT,
+    fixed_harmonics_reason,
     impact_force_per_velocity_N_s_per_m,
     pulse_peak_per_velocity,
     recontact_velocities_m_s,
@@ -124,3 +128,29 @@ def test_the_base_case_and_the_stiff_end_of_the_saddle_study_are_not_flagged():
         assert check.saddles and check.flagged == ()
         assert 0.05 < check.largest_ratio < largest * IMPACT_RATIO_LIMIT
         assert all(r["F_within_validity"] for r in result.summary)
+
+
+def test_a_fixed_harmonic_count_below_the_re_contacts_ringing_is_named_as_the_reason():
+    stiff = load_case(overrides={"seafastening.saddle_stiffness_N_per_m": 1e12, "solver.harmonics": 40})
+    model = build_model(stiff)
+    reason = fixed_harmonics_reason(stiff, model, 0.6)
+    ringing = 1e12 / impact_force_per_velocity_N_s_per_m(model, 0, 1e12)
+    assert 2e3 < ringing < 6e3  # a mass-like contact on a few metres of the tube (sqrt(1e12 / 9e4 kg) = 3.3e3 rad/s)
+    assert reason is not None and "solver.harmonics = 40" in reason and "24 rad/s" in reason and f"{ringing:.3g} rad/s" in reason
+    assert "leave solver.harmonics unset" in reason
+    # the default (converged) solver, or harmonics that reach the ringing: no such reason
+    assert fixed_harmonics_reason(load_case(overrides={"seafastening.saddle_stiffness_N_per_m": 1e12}), model, 0.6) is None
+    assert fixed_harmonics_reason(stiff, model, 0.6 * ringing / 24.0 * 1.01) is None
+
+
+def test_seafast_run_warns_of_the_elastic_impact_and_keeps_summary_csv(tmp_path, capsys):
+    out = tmp_path / "out"
+    code = main(
+        ["run", "-o", str(out), "--no-plots", "--set", "seafastening.saddle_stiffness_N_per_m=1e13", "--set", "model.element_length_m=2.0"]
+    )
+    err = capsys.readouterr().err
+    assert code == EXIT_OUTSIDE_VALIDITY
+    line = next(x for x in err.splitlines() if "elastic impact" in x)
+    assert "saddle 3" in line and "MN" in line and "measured saddle stiffness" in line and "bending moment" in line
+    with open(out / "summary.csv", newline="") as f:
+        assert tuple(next(csv.reader(f))) == SUMMARY_COLUMNS

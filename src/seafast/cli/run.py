@@ -108,9 +108,12 @@ def _cmd_run(args: argparse.Namespace) -> int:
             )
         else:
             from seafast.results.dataset import LOAD_CASES, MODELS
+            from seafast.results.impact import fixed_harmonics_reason
 
             outcome = result.arrays.solver_outcome[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])]
             why = f"{outcome.replace('_', ' ')}, residual {r['residual_norm']:.3e}"
+            reason = fixed_harmonics_reason(result.case, result.model, result.excitation.omega_rad_s)
+            why += f"; {reason}" if reason is not None and r["load_case"] == "dynamic" else ""
         print(
             f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge ({why}); "
             "its numbers are flagged converged=false in summary.csv and must not be trusted",

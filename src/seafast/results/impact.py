@@ -34,6 +34,8 @@ import scipy.linalg
 import xarray as xr
 from numpy.typing import NDArray
 
+from seafast.config.modes import SolverMethod
+from seafast.config.schema import Case
 from seafast.fourier import harmonics_to_time
 from seafast.model.structure import StructuralModel
 from seafast.model.warning import ModelWarning
@@ -51,6 +53,7 @@ __all__ = [
     "case_impact",
     "with_impact",
     "impact_flags",
+    "fixed_harmonics_reason",
 ]
 
 IMPACT_RATIO_LIMIT = 1.0
@@ -298,4 +301,27 @@ def impact_flags(rows: list[dict[str, Any]]) -> xr.DataArray:
         np.array(values),
         dims=("load_case", "model"),
         attrs={"long_name": "the row's peak saddle force is not an elastic impact at a re-contact (docs/limitations.md)", "units": "1"},
+    )
+
+
+def fixed_harmonics_reason(case: Case, model: StructuralModel, omega_rad_s: float) -> str | None:
+    """Why a harmonic balance at a fixed ``solver.harmonics`` likely failed on the case's saddles (None: no such reason).
+
+    A re-contact rings at the contact's frequency, ``k / G(k)`` on the stiffest saddle (``sqrt(k / m)`` for a mass
+    ``m``; :func:`impact_force_per_velocity_N_s_per_m`); harmonics up to ``H omega`` below it cannot carry the impact.
+    None unless ``solver.method`` is ``hbm`` with ``solver.harmonics`` set and ``H omega`` below that frequency.
+    """
+    H = case.solver.harmonics
+    stiffness = np.asarray(model.saddle_unilateral_stiffness_N_per_m, dtype=float)
+    if case.solver.method != SolverMethod.HBM or H is None or not np.any(stiffness > 0.0):
+        return None
+    i = int(np.argmax(stiffness))
+    ringing = float(stiffness[i]) / impact_force_per_velocity_N_s_per_m(model, i, float(stiffness[i]))
+    reach = int(H) * float(omega_rad_s)
+    if reach >= ringing:
+        return None
+    return (
+        f"the fixed solver.harmonics = {int(H)} reaches {reach:.3g} rad/s while a re-contact on the stiffest saddle "
+        f"(k = {stiffness[i]:.3g} N/m) rings at about {ringing:.3g} rad/s: the harmonics likely cannot resolve the impacts; "
+        "leave solver.harmonics unset: the default solver (exact-event shooting) solves the contact's events exactly"
     )
