@@ -106,6 +106,7 @@ def test_a_near_rigid_saddle_is_flagged_with_its_impact_estimate(near_rigid):
     check = near_rigid.impact
     assert [s.saddle for s in check.flagged] == [2]
     s = check.flagged[0]
+    assert not s.bounded  # the pulse computed
     # the peak is the impact's pulse: the estimate is most of it (the pulse rides on the cargo's ringing from the
     # earlier impacts, which it leaves out) and far above the force the saddle carries with its contact kept
     assert 0.6 < s.impact_force_N / s.peak_force_N <= 1.0
@@ -121,13 +122,20 @@ def test_a_near_rigid_saddle_is_flagged_with_its_impact_estimate(near_rigid):
 
 
 def test_the_base_case_and_the_stiff_end_of_the_saddle_study_are_not_flagged():
-    # both lift off and re-contact; the impact estimate stays well under the force the saddle carries anyway
-    for stiffness, largest in ((1.1e9, 0.3), (1.1e10, 0.5)):
+    # both lift off and re-contact; the impact's pulse stays well under the force the saddle carries anyway (the
+    # energy bound sqrt(k m) already says so, so the pulse is not computed: here it is, to show the margin)
+    for stiffness, largest in ((1.1e9, 0.2), (1.1e10, 0.4)):
         result = run_case(load_case(overrides={"seafastening.saddle_stiffness_N_per_m": stiffness}))
         check = result.impact
-        assert check.saddles and check.flagged == ()
-        assert 0.05 < check.largest_ratio < largest * IMPACT_RATIO_LIMIT
+        assert check.saddles and check.flagged == () and all(s.bounded for s in check.saddles)
         assert all(r["F_within_validity"] for r in result.summary)
+        pulse = [
+            s.approach_velocity_m_s * impact_force_per_velocity_N_s_per_m(result.model, s.saddle, s.stiffness_N_per_m)
+            for s in check.saddles
+        ]
+        ratios = [p / s.contact_kept_force_N for p, s in zip(pulse, check.saddles, strict=True)]
+        assert 0.05 < max(ratios) < largest * IMPACT_RATIO_LIMIT
+        assert all(p < s.impact_force_N for p, s in zip(pulse, check.saddles, strict=True))  # under the bound
 
 
 def test_a_fixed_harmonic_count_below_the_re_contacts_ringing_is_named_as_the_reason():
