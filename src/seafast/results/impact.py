@@ -11,10 +11,10 @@ saddle's compression-only spring ``k``; :func:`impact_force_per_velocity_N_s_per
 cargo of effective mass ``m``, about ``k^(1/3)`` for a flexible one on stiff saddles, where the pulse is short and
 only the cargo near the saddle takes part. Where ``F_imp`` exceeds the force the saddle carries with its contact
 kept (the linear row's peak at that saddle), the saddle's peak is the impact: it grows with ``k``
-(docs/limitations.md measures it: as ``k^0.4`` from 1e12 N/m, four times the peak between 1.1e11 and 1e14 N/m)
-and is no answer about the monopile, whose saddle has a finite, measured stiffness and a local shell
-flexibility the beam model does not hold; the bending moment and the displacements converge as ``k`` grows and
-remain valid.
+(docs/theory.md, section 5.8, measures it on the base case: as ``k^0.4`` from 1.1e12 N/m, 18.9 to 117 MN at
+1e14 N/m, the same on a mesh of half the element length) and is no answer about the monopile, whose saddle
+has a finite, measured stiffness and a local shell flexibility the beam model does not hold; the bending moment
+and the displacements converge as ``k`` grows and remain valid.
 
 :func:`impact_check` reads this from a converged nonlinear response (no second solve): each saddle's
 re-contacts (:func:`recontact_velocities_m_s`), the largest impact estimate against the contact-kept peak,
@@ -141,7 +141,8 @@ def recontact_velocities_m_s(compression_m: NDArray, period_s: float) -> list[ND
     """Per saddle, the approach velocity of each re-contact over one period [m/s] (> 0; empty: none).
 
     A re-contact is a sample in contact (compression > 0) after one in the gap (<= 0), cyclically on the uniform
-    grid ``t_n = n T / N``. The gap closes smoothly (the free flight of the lifted cargo), so the rate is read from
+    grid ``t_n = n T / N`` (a sample the shooting moves onto a peak is in contact, never on the gap side read here).
+    The gap closes smoothly (the free flight of the lifted cargo), so the rate is read from
     the gap side alone: the parabola through the last three gap samples (two: the line), its rate where it crosses
     zero in the sample interval (else at the last gap sample). A gap one sample long (a rebound the grid does not
     resolve) has no rate and is left out.
