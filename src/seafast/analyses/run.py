@@ -7,6 +7,9 @@ from the harmonics of the solution where every row has them (the harmonic balanc
 records, in a few milliseconds), else from the period time series, which its
 :attr:`~CaseResult.dataset` (what ``results.nc`` holds) always reads. The two readings agree to
 round-off (``tests/analyses/test_run.py``). Nothing here prints or writes files.
+
+Size: just over 400 lines because :class:`CaseResult` is the one reader of a run's rows (summary, validity,
+elastic impacts, dataset), each a few lines calling :mod:`seafast.results`.
 """
 
 from __future__ import annotations
@@ -48,6 +51,7 @@ from seafast.results.dataset import (
     case_arrays,
     summary_rows_from_arrays,
 )
+from seafast.results.impact import ImpactCheck, case_impact, impact_flags, with_impact
 from seafast.results.summary import RowSolution, summary_rows
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.results.validity import ValidityIssue, cargo_diameter_m, validity_issues, with_validity, within_validity
@@ -257,7 +261,12 @@ class CaseResult:
         else:  # a reference's solution is a time series: read the arrays
             rows = summary_rows_from_arrays(self.arrays, self.model.cargo.node_x_m, self.model.warnings)
         rows = rows if self.cradle is None else self.cradle.extend_summary(rows)
-        return with_validity(rows, cargo_diameter_m(self.model))
+        return with_validity(with_impact(rows, self.impact), cargo_diameter_m(self.model))
+
+    @functools.cached_property
+    def impact(self) -> ImpactCheck:
+        """Whether the dynamic nonlinear row's saddle forces are elastic impacts (:func:`~seafast.results.impact.case_impact`)."""
+        return case_impact(self.model, self.rows.nonlinear_dynamic, self.rows.linear_dynamic.saddle_force_N, self.rows.time_samples)
 
     @property
     def summary(self) -> list[dict[str, Any]]:
@@ -307,6 +316,8 @@ class CaseResult:
             },
         )
         ds.attrs["validity_issues"] = "\n".join(issue.message for issue in self.validity)
+        ds["F_within_validity"] = impact_flags(summary)
+        ds.attrs["saddle_force_impacts"] = "\n".join(self.impact.warning_lines())
         if self.vessel is not None:
             vds = self.vessel.to_dataset()
             ds = xr.merge([ds, vds], compat="no_conflicts", join="outer", combine_attrs="override")

@@ -3,7 +3,8 @@
 Exit codes: 0 success; 2 invalid input (one clear message on stderr, no traceback); 3 the case
 ran but a nonlinear solve did not converge (results are still written, flagged); 4 the case ran
 and converged, but a result lies outside the model's small-displacement validity (results
-written, flagged ``within_validity = false`` in results.nc; :mod:`seafast.results.validity`);
+written, flagged ``within_validity = false`` in results.nc; :mod:`seafast.results.validity`), or its peak
+saddle force is an elastic impact (``F_within_validity = false``; :mod:`seafast.results.impact`);
 130 a study interrupted (its finished points kept).
 """
 

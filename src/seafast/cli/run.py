@@ -91,6 +91,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
             f"{orbit.orbit_tolerance:g}): that orbit is unstable or not unique; the numbers are the orbit reached",
             file=sys.stderr,
         )
+    for line in result.impact.warning_lines():
+        print(f"seafast: warning: dynamic nonlinear: {line}", file=sys.stderr)
     bad = [r for r in rows if not r["converged"]]
     for r in bad:
         coupling = result.coupling.get((r["load_case"], r["model"]))
@@ -106,9 +108,12 @@ def _cmd_run(args: argparse.Namespace) -> int:
             )
         else:
             from seafast.results.dataset import LOAD_CASES, MODELS
+            from seafast.results.impact import fixed_harmonics_reason
 
             outcome = result.arrays.solver_outcome[LOAD_CASES.index(r["load_case"]), MODELS.index(r["model"])]
             why = f"{outcome.replace('_', ' ')}, residual {r['residual_norm']:.3e}"
+            reason = fixed_harmonics_reason(result.case, result.model, result.excitation.omega_rad_s)
+            why += f"; {reason}" if reason is not None and r["load_case"] == "dynamic" else ""
         print(
             f"seafast: warning: {r['load_case']} {r['model']} solution did NOT converge ({why}); "
             "its numbers are flagged converged=false in summary.csv and must not be trusted",
@@ -116,7 +121,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         )
     if bad:
         return EXIT_NOT_CONVERGED
-    return EXIT_OUTSIDE_VALIDITY if _warn_validity(result) else EXIT_OK
+    beyond = _warn_validity(result)
+    # a peak saddle force that is an elastic impact (warned above) is a result beyond the model's validity too
+    return EXIT_OUTSIDE_VALIDITY if beyond or result.impact.flagged else EXIT_OK
 
 
 def _print_tables(result: CaseResult, rows: list[dict[str, Any]]) -> None:
