@@ -26,8 +26,9 @@ class ModelWarning(Enum):
         one of them. It changes the dynamic rows only (still water has no velocity).
     ``SADDLE_FORCE_ELASTIC_IMPACT``
         The dynamic nonlinear row's peak saddle force is an elastic impact at a re-contact (near-rigid saddles):
-        its impact estimate ``v sqrt(k m_node)`` exceeds :data:`seafast.results.impact.IMPACT_SHARE_LIMIT` of the
-        saddle's peak, which then grows as ``sqrt(k)`` and depends on the mesh (the force is no answer; the
+        its impact estimate ``v G(k)`` (the re-contact's approach velocity times the beam's impact force per unit
+        velocity) exceeds :data:`seafast.results.impact.IMPACT_RATIO_LIMIT` times the force the saddle carries with
+        its contact kept, and the peak then grows with the saddle stiffness ``k`` (the force is no answer; the
         bending moment and the displacements remain valid). Raised from the solution
         (:func:`seafast.results.impact.impact_check`), not by the model.
     """
@@ -50,6 +51,6 @@ _DESCRIPTIONS = {
     ModelWarning.RAYLEIGH_FALLBACK: "Rayleigh damping cannot give the first two modes model.damping_ratio; the fallback "
     "realises a ratio more than 10 % off in one of them (dynamic rows)",
     ModelWarning.SADDLE_FORCE_ELASTIC_IMPACT: "the peak saddle force is an elastic impact at a re-contact (near-rigid "
-    "saddles): it grows as sqrt(k) and depends on the mesh, not an answer (use a measured saddle stiffness, a mesh study); "
+    "saddles): it grows with the saddle stiffness, not an answer (use a measured saddle stiffness, a mesh study); "
     "the bending moment and the displacements remain valid",
 }

@@ -38,7 +38,7 @@ from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.fourier import complex_to_real_harmonics
 from seafast.model.cargo3d import Cargo3D
 from seafast.model.structure import StructuralModel
-from seafast.solvers.cradle_blocks import CradleBlocks, NodeBand, band_blocks, coupling_pattern, node_band, pattern_blocks
+from seafast.solvers.cradle_blocks import CradleBlocks, NodeBand, band_blocks, node_band, pattern_blocks
 from seafast.solvers.dynamic_stiffness import QuadraticMatrices, solve_dynamic_stack
 from seafast.solvers.hbm.condensed import CondensedOperators
 from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, solve_transverse_statics
@@ -46,7 +46,6 @@ from seafast.solvers.transverse_statics import CradleProblem, StaticsOutcome, so
 __all__ = [
     "CradleDynamics",
     "CradleLinearParts",
-    "coupling_pattern",
     "cradle_dynamics_of",
     "cradle_operators",
     "rest_initial_engagement_m",
@@ -269,7 +268,7 @@ class CradleLinearParts:
         are uncoupled even with the pads bilateral, and each block is banded in its own order (half bandwidth 3 or 1,
         against 9 for the five DOFs together): the solves per harmonic cost a ninth. A pair's two pads couple
         the lateral and vertical motions by ``k cos(alpha) sin(alpha)`` each, with opposite signs: their sum is
-        zero but for round-off, which is not a coupling (:func:`coupling_pattern`).
+        zero but for round-off, which is not a coupling (:func:`~seafast.solvers.cradle_blocks.coupling_pattern`).
         """
         return self.block_parts.banded
 

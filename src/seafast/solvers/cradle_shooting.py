@@ -69,7 +69,8 @@ __all__ = ["VERDICT_DOUBLINGS", "VERDICT_PERIODS", "VERDICT_TOLERANCE", "flow_ve
 
 @dataclass(frozen=True)
 class _SetOrbit:
-    """One included set solved: its engagements of every element (N, m) and cargo DOFs (N, 5 n), how it ended."""
+    """One included set solved: its engagements of every element (N, m) and cargo DOFs (N, 5 n), how it ended, and
+    whether its orbit was shot on every mode of the cargo (``complete``: no modal reduction, nothing finer to try)."""
 
     engagement_m: NDArray[np.float64]
     cargo_displacement_m: NDArray[np.float64]
@@ -77,6 +78,7 @@ class _SetOrbit:
     residual: float
     note: str
     orbit: Orbit | None
+    complete: bool = False
 
 
 def _solve_set(
@@ -166,14 +168,14 @@ def _settled_cutoff(
         peaks, before = k * np.max(np.maximum(finer.engagement_m, 0.0), axis=0), k * np.max(np.maximum(solved.engagement_m, 0.0), axis=0)
         changes.append(float(np.max(np.abs(peaks - before) / force_scale_N(np.maximum(peaks, before)))))
         solved = finer
-        if "every mode" in finer.note or (changes[-1] <= MODAL_TOLERANCE and finer.outcome is SolverOutcome.CONVERGED):
+        if finer.complete or (changes[-1] <= MODAL_TOLERANCE and finer.outcome is SolverOutcome.CONVERGED):
             break
     if not changes:
         return solved
-    settled = (changes[-1] <= MODAL_TOLERANCE or "every mode" in solved.note) and solved.outcome is SolverOutcome.CONVERGED
+    settled = (changes[-1] <= MODAL_TOLERANCE or solved.complete) and solved.outcome is SolverOutcome.CONVERGED
     steps = ", ".join(f"{c:.2g}" for c in changes)
     words = f"; cutoff doubled {len(changes)} time(s) for the stoppers' impacts (peak force changes {steps})"
-    if "every mode" in solved.note and changes[-1] > MODAL_TOLERANCE:
+    if solved.complete and changes[-1] > MODAL_TOLERANCE:
         words += "; every mode of the cargo kept: the reduction is exact"
     if not settled:
         words += "; not converged in the modal reduction"
@@ -226,7 +228,7 @@ def _orbit_at(
     if not orbit.converged:
         note += "; not converged" if orbit.residual > opts.tolerance else "; the orbit found is unstable"
     outcome = SolverOutcome.CONVERGED if orbit.converged else SolverOutcome.NOT_CONVERGED
-    return _SetOrbit(s, q, outcome, orbit.residual, note, orbit)
+    return _SetOrbit(s, q, outcome, orbit.residual, note, orbit, system.complete)
 
 
 def _solved_start(solved: _SetOrbit) -> NDArray[np.float64] | None:

@@ -27,6 +27,7 @@ __all__ = [
     "cradle_correction_system",
     "cradle_modes",
     "deck_time_m",
+    "engagements_of",
     "first_harmonic_basis",
     "first_harmonic_rows",
     "first_harmonic_time",
@@ -187,8 +188,21 @@ def all_engagements(
 ) -> NDArray[np.float64]:
     """Every element's engagement (N, m): the included ones as solved, the others from the cargo's and the deck's motion
     (the samples over ``multiple`` wave periods)."""
-    s = dynamics.initial_engagement_m + q @ dynamics.problem.engagement_matrix.T
-    s += deck_time_m(excitation, q.shape[0], multiple) @ dynamics.deck_engagement.T
+    return engagements_of(dynamics, excitation, q @ dynamics.problem.engagement_matrix.T, included, s_included, multiple)
+
+
+def engagements_of(
+    dynamics: CradleDynamics,
+    excitation: CradleExcitation,
+    cargo_engagement_m: NDArray[np.float64],
+    included: NDArray[np.bool_],
+    s_included: NDArray,
+    multiple: int = 1,
+) -> NDArray[np.float64]:
+    """Every element's engagement ``s0 + A q + E x_o`` (N, m) from the cargo's part ``A q`` (N, m) [m]: the included
+    ones replaced by ``s_included`` as solved (the samples over ``multiple`` wave periods)."""
+    s = dynamics.initial_engagement_m + cargo_engagement_m
+    s += deck_time_m(excitation, cargo_engagement_m.shape[0], multiple) @ dynamics.deck_engagement.T
     s[:, included] = s_included
     return s
 
@@ -210,10 +224,8 @@ def reassembled(
     N = state_samples.shape[0]
     columns = np.hstack([first_harmonic_basis(N, multiple), state_samples[:, : system.mode_count], contact[1]])
     shapes = np.vstack([first_harmonic_rows(ops.linear_cargo_displacement), system.mode_shape.T, system.residual_displacement_m_per_N.T])
-    s = dynamics.initial_engagement_m + columns @ (shapes @ dynamics.problem.engagement_matrix.T)
-    s += deck_time_m(excitation, N, multiple) @ dynamics.deck_engagement.T
-    s[:, included] = contact[0]
-    return s, columns @ shapes
+    cargo_engagement = columns @ (shapes @ dynamics.problem.engagement_matrix.T)
+    return engagements_of(dynamics, excitation, cargo_engagement, included, contact[0], multiple), columns @ shapes
 
 
 def subharmonic_harmonics(harmonics: NDArray[np.complex128], multiple: int) -> NDArray[np.complex128]:
