@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from seafast.fourier import (
+    channel_samples,
     complex_to_real_harmonics,
     harmonics_above,
     harmonics_to_time,
@@ -39,6 +40,29 @@ def test_time_to_harmonics_inverts_harmonics_to_time_and_knows_the_signs():
     np.testing.assert_allclose(X, [2.0, 3.0, -4.0j, 0.0], atol=1e-13)
     np.testing.assert_allclose(harmonics_to_time(X, 64), x, atol=1e-13)
     np.testing.assert_allclose(complex_to_real_harmonics(X), [2.0, 3.0, 0.0, 0.0, 4.0, 0.0, 0.0], atol=1e-13)
+
+
+@pytest.mark.parametrize("shape", [(16,), (64, 3), (256, 5, 7), (8192, 40)])
+def test_the_transforms_of_many_channels_are_each_channels_own(shape):
+    """Each channel transformed with its samples contiguous: the same numbers, to the last bit, as the FFT along the
+    first axis, in the same layout; ``channel_samples`` the same samples with time the last axis."""
+    rng = np.random.default_rng(20261204)
+    x = rng.standard_normal(shape)
+    N, H = shape[0], shape[0] // 2 - 1
+    X_axis0 = np.fft.rfft(x, axis=0)[: H + 1] * (2.0 / N)
+    X_axis0[0] *= 0.5
+    X = time_to_harmonics(x, H)
+    assert X.flags.c_contiguous and np.array_equal(X, X_axis0)
+    spectrum = np.zeros((N // 2 + 1,) + shape[1:], dtype=complex)
+    spectrum[0], spectrum[1 : H + 1] = X[0].real * N, X[1:] * (0.5 * N)
+    for harmonics in (3, H):
+        below = spectrum.copy()
+        below[harmonics + 1 :] = 0.0
+        samples = harmonics_to_time(X[: harmonics + 1], N)
+        assert samples.flags.c_contiguous and np.array_equal(samples, np.fft.irfft(below, n=N, axis=0))
+        assert np.array_equal(channel_samples(X[: harmonics + 1], N), np.moveaxis(samples, 0, -1))
+    # at or above Nyquist the dense sums, the same either way
+    np.testing.assert_array_equal(channel_samples(X[:5], 8), np.moveaxis(harmonics_to_time(X[:5], 8), 0, -1))
 
 
 def test_too_few_samples_for_the_harmonics_is_refused_by_name():

@@ -11,6 +11,7 @@ from seafast.model.sections import CargoGeometry, TubeSegment, tube_area_m2, tub
 from seafast.model.structure import build_structural_model
 from seafast.results.summary import RowSolution, summary_row
 from seafast.solvers.linear import solve_linear
+from seafast.solvers.periodic import CargoHistory
 
 L, D, T, RHO, G = 74.0, 8.0, 0.08, 7850.0, 9.81
 K_SADDLE = 1e14  # rigid supports for the closed forms
@@ -80,3 +81,41 @@ def test_rigid_deck_motion_is_not_cargo_deflection():
     still = summary_row(model, "dynamic", "linear", _linear_row(model, HarmonicExcitation(1e-3, np.zeros_like(deck), zeros_c, zeros_e)), 64)
     assert moving["u_c_m"] == pytest.approx(still["u_c_m"], rel=1e-6)  # 50 mm of heave removed by the frame
     assert moving["M_b_Nm"] == pytest.approx(still["M_b_Nm"], rel=1e-6)
+
+
+def test_a_factored_history_gives_the_summary_of_its_harmonics_and_of_its_time_series():
+    """Stiff saddles (8192 samples a period): the moments from the shooting's few time functions equal those of the
+    cargo's harmonics (round-off) and those of the sampled history's moment lines (the results' Dataset route)."""
+    from seafast.analyses.run import run_case
+    from seafast.config import load_case
+    from seafast.results.dataset import summary_rows_from_arrays
+    from seafast.results.summary import FACTORED_SAMPLES, summary_rows
+
+    result = run_case(load_case(overrides={"seafastening.saddle_stiffness_N_per_m": 1.1e10}), cradles=False)
+    response = result.rows.nonlinear("dynamic")
+    history, N = response.cargo_history, result.rows.time_samples
+    assert history.factored and N == response.time_samples >= FACTORED_SAMPLES and response.max_gap_m > 0.0
+    excitation = result.rows.excitations[("dynamic", "nonlinear")]
+    forces = (response.saddle_compression_time_m, response.saddle_force_time_N, excitation, True)
+    factored = RowSolution(None, *forces, cargo_factors=history)
+    dense = RowSolution(response.cargo_displacement_harmonics, *forces)
+    got, expected = summary_rows(result.model, [("dynamic", "nonlinear", factored), ("dynamic", "nonlinear", dense)], N)
+    from_arrays = next(
+        r
+        for r in summary_rows_from_arrays(result.arrays, result.model.cargo.node_x_m)
+        if r["load_case"] == "dynamic" and r["model"] == "nonlinear"
+    )
+    for key in ("u_c_m", "M_b_Nm", "sigma_b_Pa", "cargo_slope_rad", "u_d_m", "F_N"):
+        assert got[key] == pytest.approx(expected[key], rel=1e-10), key
+        assert got[key] == pytest.approx(from_arrays[key], rel=1e-9), key
+    assert got["M_b_Nm"] > 5e7  # a bending moment of the base case's size, not a zero read from an empty channel
+    assert result.summary[3]["M_b_Nm"] == got["M_b_Nm"]  # what the run and a study report
+
+
+def test_a_row_is_given_by_its_harmonics_or_its_factors_not_both():
+    history = CargoHistory(np.ones((4, 2)), np.ones((3, 2), complex), np.ones((2, 6)))
+    exc = HarmonicExcitation(0.6, np.zeros((1, 4), complex), np.zeros((1, 6), complex), np.zeros((1, 2), complex))
+    with pytest.raises(ValueError, match="either cargo_harmonics or factored cargo_factors"):
+        RowSolution(np.ones((3, 6), complex), np.ones((4, 1)), np.ones((4, 1)), exc, True, cargo_factors=history)
+    with pytest.raises(ValueError, match="either cargo_harmonics or factored cargo_factors"):
+        RowSolution(None, np.ones((4, 1)), np.ones((4, 1)), exc, True)

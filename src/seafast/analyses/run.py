@@ -52,7 +52,7 @@ from seafast.results.dataset import (
     summary_rows_from_arrays,
 )
 from seafast.results.impact import ImpactCheck, case_impact, impact_flags, with_impact
-from seafast.results.summary import RowSolution, summary_rows
+from seafast.results.summary import FACTORED_SAMPLES, RowSolution, summary_rows
 from seafast.results.timeseries import PeriodTimeSeries, from_periodic_response, linear_time_series
 from seafast.results.validity import ValidityIssue, cargo_diameter_m, validity_issues, with_validity, within_validity
 from seafast.solvers.from_case import solve_nonlinear
@@ -158,10 +158,12 @@ def _row_solution(rows: CaseRows, load_case: str, model: str, time_samples: int)
             nonlinear=False,
         )
     r = rows.nonlinear(load_case)
-    if r.cargo_displacement_harmonics is None:
+    history = r.cargo_history
+    factored = history.factored and history.time_functions.shape[0] == time_samples >= FACTORED_SAMPLES
+    if not factored and history.harmonic_functions is None:
         return None
     return RowSolution(
-        r.cargo_displacement_harmonics,
+        None if factored else r.cargo_displacement_harmonics,
         r.saddle_compression_time_m,
         r.saddle_force_time_N,
         exc,
@@ -170,6 +172,7 @@ def _row_solution(rows: CaseRows, load_case: str, model: str, time_samples: int)
         r.residual_norm,
         r.iterations,
         r.warnings,
+        history if factored else None,
     )
 
 

@@ -17,6 +17,7 @@ Sign conventions (docs/conventions.md#3-signs)
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,13 +27,63 @@ from seafast.config.modes import SolverMethod
 from seafast.fourier import period_fraction
 from seafast.solvers.outcome import HBMPath, OrbitRecord, SolverOutcome, SolverWarning
 
-__all__ = ["PeriodicResponse", "SettingValue", "Settings"]
+__all__ = ["CargoHistory", "PeriodicResponse", "SettingValue", "Settings"]
 
 SettingValue = int | float | str | bool | list[int] | None
 """One value of a solver's record of its settings (plain, JSON-serialisable; the modes by their values)."""
 
 Settings = dict[str, SettingValue]
 """A solver's record of the settings it used (``options`` of its result)."""
+
+
+@dataclass(frozen=True, eq=False)
+class CargoHistory:
+    """The cargo's DOFs over one period: sampled, or factored into a few time functions and their DOF shapes.
+
+    Factored (``shapes`` given): ``x(t_n) = time_functions[n] @ shapes`` and ``X_k = harmonic_functions[k] @ shapes``.
+    The shooting's response is one: the linear solution's cosines and sines, the modal coordinates and the
+    correction forces over the period, times their shapes. A linear output ``L x`` (bending moments, a few DOFs) is
+    then ``time_functions @ (shapes @ L^T)``: r products a sample instead of n_c, without the (N, n_c) samples a
+    stiff saddle's 8192 samples a period make costly. :attr:`time_m` and :attr:`harmonics` form them on first use
+    and keep them (a cache owned by this object).
+
+    Sampled (``shapes`` None): ``time_functions`` are the samples (N, n_c) and ``harmonic_functions`` the harmonics
+    (H+1, n_c), or None for a time-sampled reference.
+
+    Attributes
+    ----------
+    time_functions
+        (N, r) factored, (N, n_c) sampled [m, rad when sampled; the shapes carry the units when factored].
+    harmonic_functions
+        The time functions' complex amplitudes k = 0 .. H (H+1, r), or the cargo's (H+1, n_c); None: no harmonics.
+    shapes
+        (r, n_c), or None (sampled).
+    """
+
+    time_functions: NDArray[np.float64]
+    harmonic_functions: NDArray[np.complex128] | None
+    shapes: NDArray[np.float64] | None = None
+
+    @property
+    def factored(self) -> bool:
+        """Whether the history is kept as time functions times shapes."""
+        return self.shapes is not None
+
+    @functools.cached_property
+    def time_m(self) -> NDArray[np.float64]:
+        """The samples (N, n_c) [m, rad]."""
+        if self.shapes is None:
+            return self.time_functions
+        return np.asarray(self.time_functions @ self.shapes, dtype=float)
+
+    @functools.cached_property
+    def harmonics(self) -> NDArray[np.complex128] | None:
+        """The complex amplitudes X_k, k = 0 .. H (H+1, n_c) [m, rad]; None for a time-sampled reference."""
+        if self.shapes is None or self.harmonic_functions is None:
+            return self.harmonic_functions
+        # one real product on the interleaved real and imaginary parts of the time functions' amplitudes
+        parts = np.ascontiguousarray(self.harmonic_functions.T).view(np.float64)
+        return np.asarray((self.shapes.T @ parts).view(np.complex128).T)
 
 
 @dataclass(frozen=True)
@@ -46,12 +97,11 @@ class PeriodicResponse:
         ``"time_domain"``).
     omega_rad_s
         Fundamental frequency [rad/s] (period T = 2 pi / omega).
-    cargo_displacement_time_m
-        Cargo DOFs over the period (z [m], theta [rad]), shape (N, n_c), relative to the
-        vessel's rigid-body frame; static part included.
-    cargo_displacement_harmonics
-        Complex amplitudes X_k of the cargo DOFs, k = 0 .. H, shape (H+1, n_c), with
-        ``x(t) = Re(sum_k X_k exp(i k omega t))``; ``None`` for the time-sampled references.
+    cargo_history
+        Cargo DOFs over the period (z [m], theta [rad]) relative to the vessel's rigid-body frame, static part
+        included (:class:`CargoHistory`: sampled, or factored by the shooting); read as
+        :attr:`cargo_displacement_time_m` (N, n_c) and :attr:`cargo_displacement_harmonics` (H+1, n_c), with
+        ``x(t) = Re(sum_k X_k exp(i k omega t))`` (``None`` for the time-sampled references).
     saddle_compression_time_m
         ``delta = z_deck - z_cargo`` at each saddle [m], shape (N, n_s); negative = gap.
     saddle_force_time_N
@@ -90,8 +140,7 @@ class PeriodicResponse:
 
     method: SolverMethod
     omega_rad_s: float
-    cargo_displacement_time_m: NDArray[np.float64]
-    cargo_displacement_harmonics: NDArray[np.complex128] | None
+    cargo_history: CargoHistory
     saddle_compression_time_m: NDArray[np.float64]
     saddle_force_time_N: NDArray[np.float64]
     outcome: SolverOutcome
@@ -110,6 +159,16 @@ class PeriodicResponse:
     def converged(self) -> bool:
         """Whether the solver met its tolerance (from :attr:`outcome`)."""
         return self.outcome.converged
+
+    @property
+    def cargo_displacement_time_m(self) -> NDArray[np.float64]:
+        """Cargo DOFs over the period (z [m], theta [rad]), (N, n_c) (:attr:`CargoHistory.time_m`)."""
+        return self.cargo_history.time_m
+
+    @property
+    def cargo_displacement_harmonics(self) -> NDArray[np.complex128] | None:
+        """Their complex amplitudes X_k, k = 0 .. H, (H+1, n_c); None for the time-sampled references."""
+        return self.cargo_history.harmonics
 
     # ------------------------------------------------- derived from the samples
     @property

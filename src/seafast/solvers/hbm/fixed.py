@@ -32,7 +32,7 @@ from seafast.solvers.hbm.harmonics import select_harmonics
 from seafast.solvers.hbm.nonlinear import solve_with_fallback
 from seafast.solvers.hbm.options import HBMOptions
 from seafast.solvers.outcome import HBMPath, HBMStart, SolverOutcome, SolverWarning
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import CargoHistory, PeriodicResponse
 
 __all__ = [
     "QUICK_ITERATIONS",
@@ -187,8 +187,7 @@ def solve_at_harmonics(
     return PeriodicResponse(
         method=SolverMethod.HBM,
         omega_rad_s=float(excitation.omega_rad_s),
-        cargo_displacement_time_m=harmonics_to_time(X, N),
-        cargo_displacement_harmonics=X,
+        cargo_history=CargoHistory(harmonics_to_time(X, N), X),
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
         outcome=outcome,

@@ -10,7 +10,7 @@ from seafast.excitation.harmonic import HarmonicExcitation
 from seafast.fourier import high_harmonic_energy_share
 from seafast.model.structure import StructuralModel
 from seafast.solvers.outcome import OrbitRecord, SolverOutcome, SolverWarning
-from seafast.solvers.periodic import PeriodicResponse, Settings
+from seafast.solvers.periodic import CargoHistory, PeriodicResponse, Settings
 
 __all__ = ["exact_law_response"]
 
@@ -42,8 +42,7 @@ def exact_law_response(
     return PeriodicResponse(
         method=method,
         omega_rad_s=float(excitation.omega_rad_s),
-        cargo_displacement_time_m=cargo_time,
-        cargo_displacement_harmonics=None,
+        cargo_history=CargoHistory(cargo_time, None),
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
         outcome=outcome,

@@ -30,7 +30,7 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.hbm.condensed import CondensedOperators, condensed_operators
 from seafast.solvers.modal_correction import CorrectionBasis, modal_basis
 from seafast.solvers.outcome import SolverOutcome
-from seafast.solvers.periodic import PeriodicResponse
+from seafast.solvers.periodic import CargoHistory, PeriodicResponse
 from seafast.solvers.shooting.failure import FAILURE_KEY, ShootingFailure
 from seafast.solvers.shooting.options import ShootingOptions
 from seafast.solvers.shooting.orbit import shoot_orbit
@@ -181,13 +181,12 @@ def _response(
         delta = harmonics_to_time(real_to_complex_harmonics(ops.linear_compression_m), N)  # the linear solution
     basis, coefficients = np.hstack(columns), np.vstack(rows)
     # the cargo's displacements on harmonics 0 .. N/2 - 1 (the samples then exactly those harmonics): the few
-    # channels' harmonics and their samples without the Nyquist term, then through the coefficients
+    # channels' harmonics and their samples without the Nyquist term, kept factored (the (N, n_c) samples and
+    # harmonics formed only where they are read: a study's moments come from the few channels)
     spectrum = time_to_harmonics(basis, H)
     alternating = np.where(np.arange(N) % 2 == 0, 1.0, -1.0)
     basis -= np.outer(alternating, alternating @ basis / N)  # the Nyquist term of each channel (as the inverse FFT would drop it)
-    q = basis @ coefficients
-    # X = spectrum @ coefficients as one real product on the interleaved real and imaginary parts of the channels
-    X = (coefficients.T @ np.ascontiguousarray(spectrum.T).view(np.float64)).view(np.complex128).T
+    history = CargoHistory(basis, spectrum, coefficients)
     force = k_u * np.maximum(delta, 0.0)
     record = dict(
         record, harmonics=H, harmonics_selection="shooting", tolerance=float(opts.tolerance), cutoff_factor=float(opts.cutoff_factor)
@@ -195,8 +194,7 @@ def _response(
     return PeriodicResponse(
         method=SolverMethod.SHOOTING,
         omega_rad_s=float(omega),
-        cargo_displacement_time_m=q,
-        cargo_displacement_harmonics=X,
+        cargo_history=history,
         saddle_compression_time_m=delta,
         saddle_force_time_N=force,
         outcome=outcome,
