@@ -9,6 +9,7 @@ so the ratios hold while the machine is shared). It prints:
    balance's converged limit by exact-event shooting) and its H = 16 solve, the slowest point and its ratio to the
    base case's H = 16 solve (``worst_point_scan_vs_h16``); the five slowest timed again in CPU time, each in rounds
    interleaved with the base case's H = 16 solve so that both see the same load (``worst_point_vs_h16``, target <= 10);
+   the slowest again as a study evaluates it, its vessel, four rows and summary (``worst_point_study_ms``);
 3. a sample of points (the most lifted-off, the stiffest saddles, and evenly spread: at least 10) against the
    full-DOF time-domain integration at 32768 steps per period read on 8192 samples (the impacts on stiff saddles are
    spikes: at 8192 steps the reference itself is 0.5 % off): the error of the largest saddle force and of each
@@ -110,6 +111,20 @@ def _retime_slowest(rows, base, count: int = 5, rounds: int = 11):
     return sorted(out, key=lambda row: -row[3])
 
 
+def _study_point(case, model, ex, base16, rounds: int = 5) -> tuple[float, float]:
+    """A point's whole evaluation as a study runs it (``evaluate_summary``: vessel, four rows, summary), CPU time in
+    rounds interleaved with the unit; returns (point ms, unit ms), medians."""
+    from seafast.analyses.run import evaluate_summary
+    from seafast.solvers.from_case import solve_nonlinear
+
+    evaluate_summary(case)
+    t_point, t_base = [], []
+    for _ in range(rounds):
+        t_point.append(timed(lambda: evaluate_summary(case), 1, time.process_time)[1])
+        t_base.append(timed(lambda: solve_nonlinear(model, ex, base16, static=False), 3, time.process_time)[1])
+    return float(np.median(t_point)), float(np.median(t_base))
+
+
 def _check_sample(rows):
     """The sample's errors against the transient reference: (label, error of F, worst own peak, outcome)."""
     from seafast.solvers.references import TimeDomainOptions, solve_time_domain
@@ -193,6 +208,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  timed again, interleaved with the unit (CPU): {label:14s} {point_ms:6.1f} ms / {unit_ms:5.2f} ms = {ratio:.1f}x")
         worst_label, worst_ms, _, worst_ratio = retimed[0]
         print(f"worst point: {worst_label}, {worst_ratio:.1f}x the base case's H = 16 solve (target <= 10)")
+        point_ms, point_unit_ms = _study_point({label: case for label, case, *_ in rows}[worst_label], model, ex, base16)
+        print(
+            f"  the same point as a study evaluates it (vessel, the four rows, the summary; CPU): {point_ms:.1f} ms, "
+            f"{point_ms / point_unit_ms:.1f}x the unit"
+        )
         sample = _check_sample(rows)
     print(f"\nsample against the full-DOF transient analysis ({REFERENCE_STEPS} steps per period):")
     print(f"{'point':14s} {'gap [mm]':>9s} {'F error':>9s} {'own peak':>9s}  reference")
@@ -210,6 +230,7 @@ def main(argv: list[str] | None = None) -> int:
         )
     print(
         f"worst_point_vs_h16={worst_ratio:.3g} worst_point_ms={worst_ms:.3g} worst_point_scan_vs_h16={scan_ratio:.3g} "
+        f"worst_point_study_ms={point_ms:.3g} "
         f"base_h16_ms={base_h16_ms:.3g} "
         f"sample_points={len(sample)} sample_worst_own_peak_error={worst_error:.2e} converged_studies_vs_h16={converged_ratio:.3g}"
     )
