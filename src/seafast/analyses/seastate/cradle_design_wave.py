@@ -20,7 +20,7 @@ The columns and their linear spectral MPMs: :mod:`seafast.analyses.seastate.crad
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -51,6 +51,7 @@ from seafast.solvers.cradle_shooting import solve_cradle_shooting
 from seafast.solvers.hbm import HBMOptions
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.pad_tangential import FrictionalCradleResponse
+from seafast.solvers.transverse_statics import CradleProblem
 
 __all__ = [
     "CRADLE_DESIGN_HARMONICS",
@@ -58,6 +59,7 @@ __all__ = [
     "CradleDesignWaveExtremes",
     "CradleSeaState",
     "select_cradle_design_waves",
+    "cradle_design_wave_readings",
     "solve_cradle_design_wave",
     "scaled_excitation",
     "cradle_design_waves",
@@ -147,6 +149,15 @@ def _reader(quantity: str, location: int) -> Callable[[CradleResponse, NDArray[n
     if quantity == "lashing_tension_min_N":
         return lambda r, lateral: float(np.min(r.element_force_N[:, location]))
     return lambda r, lateral: float(np.max(r.element_force_N[:, location]))
+
+
+def cradle_design_wave_readings(
+    problem: CradleProblem, waves: Sequence[CradleDesignWave], responses: Sequence[CradleResponse]
+) -> NDArray[np.float64]:
+    """Per wave, its element's nonlinear maximum (least for ``lashing_tension_min_N``; for ``transverse_slip_m`` the
+    largest ``|v|`` of the cargo axis at its saddle) over its response's period [N or m]."""
+    lateral = np.array([problem.cargo.node_dofs(problem.cargo.node_at(p.x_m))[1] for p in problem.pad_pairs], dtype=np.intp)
+    return np.array([_reader(w.quantity, w.location)(r, lateral) for w, r in zip(waves, responses, strict=True)], dtype=float)
 
 
 def _targets(spectral: CradleSpectralExtremes) -> list[tuple[str, int, ResponseStatistics, str]]:
@@ -292,8 +303,6 @@ def cradle_design_waves(
         A solve that does not converge flags ``converged`` with its residual (never raised).
     """
     waves = select_cradle_design_waves(cradle_transfer, spectral, band_fraction)
-    problem = sea.dynamics.problem
-    lateral = np.array([problem.cargo.node_dofs(problem.cargo.node_at(p.x_m))[1] for p in problem.pad_pairs], dtype=np.intp)
     plain: dict[tuple[int, int, float], CradleResponse] = {}
     frictional: dict[tuple[int, int, float], FrictionalCradleResponse] = {}
     keys = []
@@ -309,7 +318,7 @@ def cradle_design_waves(
             frictional[key] = solve_frictional_design_wave(sea.dynamics, excitation, friction)
     read = {k: r.cradle for k, r in frictional.items()} if friction is not None else plain
     responses = tuple(read[k] for k in keys)
-    readings = np.array([_reader(w.quantity, w.location)(r, lateral) for w, r in zip(waves, responses, strict=True)], dtype=float)
+    readings = cradle_design_wave_readings(sea.dynamics.problem, waves, responses)
     totals = _static_totals(spectral)
     for wave, value in zip(waves, readings, strict=True):
         q = wave.quantity
