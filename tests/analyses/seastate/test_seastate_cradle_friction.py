@@ -60,9 +60,9 @@ def _excitation(analysis, state, wave):
     return scaled_excitation(unit, wave.amplitude_m)
 
 
-def _pad_force_bound(responses, mu: float) -> float:
-    """``mu`` times the pads' summed peak normal forces over responses: the most friction that can act on the cargo [N]."""
-    return mu * max(float(np.sum(np.max(r.pad_force_N.reshape(r.time_s.size, -1), axis=0))) for r in responses)
+def _pad_peak_force_N(response) -> float:
+    """The pads' peak normal force over the pads and the period [N]."""
+    return float(np.max(response.pad_force_N, initial=0.0))
 
 
 def test_the_key_is_read_as_the_run_reads_it():
@@ -158,22 +158,25 @@ def test_zero_friction_through_the_frictional_path_gives_the_frictionless_column
 
 
 def test_a_small_friction_moves_each_force_by_no_more_than_the_friction_available(frictionless):
-    """mu = 1e-3 against mu = 0 on the same grid: every element force moves over the period by no more than mu times
-    the pads' summed peak normal forces (the most friction the cargo can feel), and it does move (friction acts)."""
+    """mu = 1e-3 against mu = 0 on the same grid (one wave per column): every element force moves over the period by
+    no more than mu times the pads' peak force (the most friction a pad can carry), and the pads' by a good share of it
+    (friction acts at the scale of mu F_n: measured 0.82-0.90 of the bound)."""
     analysis, state = frictionless
     assert state.design is not None
     options = FrictionHBMOptions(H, 8 * H)
     seen = set()
     for wave in state.design.waves:
-        if wave.quantity in seen or wave.quantity == "lashing_tension_min_N":
+        if wave.quantity in seen:
             continue
         seen.add(wave.quantity)
         excitation = _excitation(analysis, state, wave)
         r0 = solve_frictional_design_wave(state.sea.dynamics, excitation, DesignWaveFriction(PadFriction(0.0), options))
         r1 = solve_frictional_design_wave(state.sea.dynamics, excitation, DesignWaveFriction(PadFriction(1e-3), options))
         assert r1.converged
-        change = np.max(np.abs(r1.cradle.element_force_N - r0.cradle.element_force_N))
-        assert 0.0 < change <= _pad_force_bound([r0.cradle], 1e-3), wave.quantity
+        change = np.max(np.abs(r1.cradle.element_force_N - r0.cradle.element_force_N), axis=0)
+        bound = 1e-3 * _pad_peak_force_N(r0.cradle)
+        assert np.all(change <= bound), wave.quantity
+        assert np.max(change[: r0.cradle.pad_count]) > 0.5 * bound, wave.quantity
 
 
 def _not_converging(residual: float):
