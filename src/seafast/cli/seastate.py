@@ -79,7 +79,12 @@ def _cradle_rows(analysis: Any, rows: list[dict[str, Any]], say: Any) -> Any:
     cradle = cradle_sea_state(analysis)
     assert cradle.design is not None
     rows[0].update(cradle_columns(cradle.spectral.totals))
-    pads = "" if not cradle.design.frictional else f", on frictional pads (mu = {cradle.design.frictional[0].friction_coefficient:g})"
+    pads = (
+        ""
+        if not cradle.design.frictional
+        else f", on frictional pads (mu = {cradle.design.frictional[0].friction_coefficient:g}; the linear spectral and Monte "
+        "Carlo cradle rows stay frictionless)"
+    )
     say(
         f"cradles, stoppers and lashings across the ship: linear spectral and {len(cradle.design.waves)} design waves by "
         f"harmonic balance{pads} ({(time.perf_counter() - t0) * 1e3:.0f} ms)"
