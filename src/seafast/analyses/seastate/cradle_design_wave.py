@@ -112,11 +112,13 @@ class CradleDesignWaveExtremes:
     waves
         The design waves.
     responses
-        One :class:`~seafast.solvers.cradle_hbm.CradleResponse` per wave, same order (waves that coincide share one).
+        One :class:`~seafast.solvers.cradle_hbm.CradleResponse` per wave, same order (waves that coincide share one);
+        on frictional pads the frictional solves' (the ones read).
     readings
         Per wave, its element's nonlinear maximum (least for ``lashing_tension_min_N``) over the period [N or m].
     totals
-        The five :data:`CRADLE_COLUMNS` [N, N, N, N, m].
+        The five :data:`CRADLE_COLUMNS` [N, N, N, N, m]; on frictional pads also
+        :data:`~seafast.analyses.seastate.cradle_friction_wave.CRADLE_FRICTION_COLUMNS` [-, m].
     converged
         Every harmonic balance converged (on frictional pads, every frictional one: those are read).
     residual
