@@ -29,7 +29,8 @@ SEASTATE_EXAMPLES = """examples:
 Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,uplift_per_hour,converged;
 rows linear/spectral, linear/monte_carlo, nonlinear/monte_carlo, nonlinear/design_wave; maxima are most
 probable maxima over sea_state.duration_s, still water included; empty cells = not computed; off head seas
-also F_pad_N,F_stopper_N,lashing_tension_max_N,lashing_tension_min_N,transverse_slip_m after converged),
+also F_pad_N,F_stopper_N,lashing_tension_max_N,lashing_tension_min_N,transverse_slip_m after converged, and with
+seafastening.friction_coefficient > 0 the design-wave row on frictional pads with pad_friction_utilisation,pad_slip_m),
 seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
 """
 
@@ -78,9 +79,15 @@ def _cradle_rows(analysis: Any, rows: list[dict[str, Any]], say: Any) -> Any:
     cradle = cradle_sea_state(analysis)
     assert cradle.design is not None
     rows[0].update(cradle_columns(cradle.spectral.totals))
+    pads = (
+        ""
+        if not cradle.design.frictional
+        else f", on frictional pads (mu = {cradle.design.frictional[0].friction_coefficient:g}; the linear spectral and Monte "
+        "Carlo cradle rows stay frictionless)"
+    )
     say(
         f"cradles, stoppers and lashings across the ship: linear spectral and {len(cradle.design.waves)} design waves by "
-        f"harmonic balance ({(time.perf_counter() - t0) * 1e3:.0f} ms)"
+        f"harmonic balance{pads} ({(time.perf_counter() - t0) * 1e3:.0f} ms)"
     )
     return cradle
 
@@ -89,7 +96,6 @@ def _add_cradle_columns(cradle: Any, monte_carlo: Any, rows: list[dict[str, Any]
     """The cradle columns of the Monte Carlo rows (each model's most probable extremes; empty cells where the Monte
     Carlo was not run) and the design-wave row (last), whose ``converged`` then covers the cradle waves too (warned of
     with the largest residual)."""
-    from seafast.analyses.seastate.cradle_extremes import cradle_columns
     from seafast.output.seastate_cradle import monte_carlo_cradle_columns
 
     if cradle is None or cradle.design is None:
@@ -97,11 +103,12 @@ def _add_cradle_columns(cradle: Any, monte_carlo: Any, rows: list[dict[str, Any]
     statistics = (None, None) if monte_carlo is None or monte_carlo.cradle is None else monte_carlo.cradle
     for r, model_statistics in zip(rows[1:-1], statistics, strict=True):
         r.update(monte_carlo_cradle_columns(model_statistics))
-    rows[-1].update(cradle_columns(cradle.design.totals))
+    rows[-1].update(cradle.design.columns())
     rows[-1]["converged"] = bool(rows[-1]["converged"]) and cradle.design.converged
     if not cradle.design.converged:
+        which = "frictional harmonic balance (pad friction)" if cradle.design.frictional is not None else "harmonic balance"
         print(
-            f"seafast: warning: a cradle design wave's harmonic balance did not converge (largest residual "
+            f"seafast: warning: a cradle design wave's {which} did not converge (largest residual "
             f"{cradle.design.residual:.3g}); the design_wave row is flagged converged=false",
             file=sys.stderr,
         )

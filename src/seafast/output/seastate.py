@@ -33,6 +33,7 @@ from seafast.output.seastate_cradle import (
     CRADLE_TABLE_HEAD,
     cradle_coords,
     cradle_table_cells,
+    cradle_table_head,
     cradle_table_variables,
     cradle_variables,
     seastate_columns,
@@ -116,14 +117,15 @@ def format_seastate_table(rows: Sequence[Mapping[str, Any]], title: str = "") ->
     head: tuple[str, ...] = ("model", "method", "F [MN]", "M_b [MNm]", "sigma_b [MPa]", "u_s [mm]", "u_d [mm]", "uplift [1/h]", "converged")
     scale = {"F_N": 1e-6, "M_b_Nm": 1e-6, "sigma_b_Pa": 1e-6, "u_s_m": 1e3, "u_d_m": 1e3, "uplift_per_hour": 1.0}
     cradle = len(seastate_columns(rows)) > len(SEASTATE_COLUMNS)
-    head += CRADLE_TABLE_HEAD if cradle else ()
+    head += cradle_table_head(rows) if cradle else ()
+    friction = len(cradle_table_head(rows)) > len(CRADLE_TABLE_HEAD)
     lines = []
     for r in rows:
         cells = [str(r["model"]), str(r["method"])]
         for q, s in scale.items():
             cells.append("not computed" if r[q] is None else f"{r[q] * s:.{2 if q != 'F_N' else 3}f}")
         cells.append("-" if r["converged"] is None else ("yes" if r["converged"] else "NO"))
-        cells += cradle_table_cells(r) if cradle else []
+        cells += cradle_table_cells(r, friction) if cradle else []
         lines.append(cells)
     return text_table(head, lines, title)
 

@@ -2,7 +2,9 @@
 
 Per element (dimension ``cradle_element``: the pads port and starboard per saddle, the side stoppers, the lashing
 wires) and per saddle the still water and the linear dynamic MPMs, and the cradle design waves (dimension
-``cradle_design_wave``) with what each is read for; ``units`` and ``long_name`` on every variable.
+``cradle_design_wave``) with what each is read for; ``units`` and ``long_name`` on every variable. On frictional pads
+(``seafastening.friction_coefficient`` above 0) the design waves' readings are the frictional solves', and seastate.csv
+and the design waves gain the pads' friction utilisation and slip (:data:`CRADLE_FRICTION_QUANTITIES`).
 """
 
 from __future__ import annotations
@@ -13,15 +15,19 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from seafast.analyses.seastate.cradle_design_wave import CradleSeaState
+from seafast.analyses.seastate.cradle_design_wave import CradleSeaState, cradle_design_wave_readings
 from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, cradle_columns
+from seafast.analyses.seastate.cradle_friction_wave import CRADLE_FRICTION_COLUMNS
 from seafast.analyses.seastate.cradle_statistics import CradleStatistics
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS
 from seafast.results.labelled import labelled_variable as _var
 
 __all__ = [
     "CRADLE_QUANTITIES",
+    "CRADLE_FRICTION_QUANTITIES",
     "CRADLE_TABLE_HEAD",
+    "CRADLE_FRICTION_TABLE_HEAD",
+    "cradle_table_head",
     "seastate_columns",
     "cradle_table_cells",
     "cradle_table_variables",
@@ -33,6 +39,9 @@ __all__ = [
 CRADLE_TABLE_HEAD = ("F_pad [MN]", "F_stopper [MN]", "T_max [kN]", "T_min [kN]", "slip [mm]")
 """The cradle columns' heads in the terminal table (off head seas)."""
 
+CRADLE_FRICTION_TABLE_HEAD = ("mu use [-]", "pad slip [mm]")
+"""The heads of :data:`CRADLE_FRICTION_QUANTITIES` in the terminal table (on frictional pads)."""
+
 _TABLE_SCALE = {
     "F_pad_N": 1e-6,
     "F_stopper_N": 1e-6,
@@ -40,6 +49,7 @@ _TABLE_SCALE = {
     "lashing_tension_min_N": 1e-3,
     "transverse_slip_m": 1e3,
 }
+_FRICTION_TABLE_SCALE = {"pad_friction_utilisation": (1.0, 3), "pad_slip_m": (1e3, 2)}
 
 CRADLE_QUANTITIES = {
     "F_pad_N": ("most probable maximum pad force over the saddles and sides, still water included", "N"),
@@ -56,11 +66,33 @@ CRADLE_QUANTITIES = {
 }
 """The cradle columns (off head seas): long name and unit."""
 
+CRADLE_FRICTION_QUANTITIES = {
+    "pad_friction_utilisation": (
+        "largest pad friction utilisation |f| / (mu F_n) over the cradle design waves (frictional pads; 1 where a pad slips)",
+        "1",
+    ),
+    "pad_slip_m": (
+        "largest slip of a pad, its slider's displacement from rest |w - w_rest|, over the cradle design waves (frictional pads)",
+        "m",
+    ),
+}
+"""The columns after the cradle columns on frictional pads (the design-wave row's alone): long name and unit."""
+
+
+def _has_friction(rows: Sequence[Mapping[str, Any]]) -> bool:
+    return any(c in r for r in rows for c in CRADLE_FRICTION_COLUMNS)
+
 
 def seastate_columns(rows: Sequence[Mapping[str, Any]]) -> tuple[str, ...]:
-    """seastate.csv's columns: today's, and the cradle columns after ``converged`` when a row carries them (off head seas)."""
+    """seastate.csv's columns: today's, and the cradle columns after ``converged`` when a row carries them (off head seas),
+    then the friction's (:data:`CRADLE_FRICTION_QUANTITIES`) when a row carries them (frictional pads)."""
     cradle = any(c in r for r in rows for c in CRADLE_COLUMNS)
-    return SEASTATE_COLUMNS + (CRADLE_COLUMNS if cradle else ())
+    return SEASTATE_COLUMNS + (CRADLE_COLUMNS if cradle else ()) + (CRADLE_FRICTION_COLUMNS if _has_friction(rows) else ())
+
+
+def cradle_table_head(rows: Sequence[Mapping[str, Any]]) -> tuple[str, ...]:
+    """The cradle heads of the terminal table: :data:`CRADLE_TABLE_HEAD`, then the friction's on frictional pads."""
+    return CRADLE_TABLE_HEAD + (CRADLE_FRICTION_TABLE_HEAD if _has_friction(rows) else ())
 
 
 def cradle_table_variables(rows: Sequence[Mapping[str, Any]], models: list[str], methods: list[str]) -> dict[str, xr.Variable]:
@@ -68,7 +100,8 @@ def cradle_table_variables(rows: Sequence[Mapping[str, Any]], models: list[str],
     v: dict[str, xr.Variable] = {}
     if len(seastate_columns(rows)) == len(SEASTATE_COLUMNS):
         return v
-    for q, (long_name, unit) in CRADLE_QUANTITIES.items():
+    quantities = CRADLE_QUANTITIES | (CRADLE_FRICTION_QUANTITIES if _has_friction(rows) else {})
+    for q, (long_name, unit) in quantities.items():
         table = np.full((len(models), len(methods)), np.nan)
         for r in rows:
             if r.get(q) is not None:
@@ -133,12 +166,48 @@ def cradle_variables(cradle: CradleSeaState) -> dict[str, xr.Variable]:
     v["cradle_design_wave_converged"] = _var(
         d, np.array([r.converged for r in design.responses], dtype=np.int8), "harmonic balance converged (1) or not (0)", "1"
     )
-    return v
+    return v | _design_wave_friction_variables(cradle)
 
 
-def cradle_table_cells(row: Mapping[str, Any]) -> list[str]:
-    """A row's cradle cells in the terminal table (MN, kN, mm; "not computed" where empty)."""
-    return ["not computed" if row.get(q) is None else f"{row[q] * s:.{3 if s == 1e-6 else 2}f}" for q, s in _TABLE_SCALE.items()]
+def _design_wave_friction_variables(cradle: CradleSeaState) -> dict[str, xr.Variable]:
+    """On frictional pads, per design wave its friction utilisation and pad slip and its frictionless reading."""
+    design = cradle.design
+    if design is None or design.frictional is None or design.frictionless is None:
+        return {}
+    d = ("cradle_design_wave",)
+    frictional, frictionless = design.frictional, design.frictionless
+    return {
+        "cradle_design_wave_pad_friction_utilisation": _var(
+            d,
+            [float(np.max(f.friction_utilisation, initial=0.0)) for f in frictional],
+            "largest pad friction utilisation |f| / (mu F_n) over the wave's period",
+            "1",
+        ),
+        "cradle_design_wave_pad_slip_m": _var(
+            d,
+            [float(np.max(f.max_slip_m, initial=0.0)) for f in frictional],
+            "largest slip of a pad |w - w_rest| over the wave's period",
+            "m",
+        ),
+        "cradle_design_wave_reading_frictionless": _var(
+            d,
+            cradle_design_wave_readings(cradle.sea.dynamics.problem, design.waves, frictionless),
+            "the reading of the same wave on frictionless pads (nonlinear)",
+            "N or m",
+        ),
+        "cradle_design_wave_frictionless_converged": _var(
+            d, np.array([r.converged for r in frictionless], dtype=np.int8), "the frictionless solve converged (1) or not (0)", "1"
+        ),
+    }
+
+
+def cradle_table_cells(row: Mapping[str, Any], friction: bool = False) -> list[str]:
+    """A row's cradle cells in the terminal table (MN, kN, mm; "not computed" where empty); with ``friction`` also the
+    pads' friction utilisation [-] and slip [mm]."""
+    cells = ["not computed" if row.get(q) is None else f"{row[q] * s:.{3 if s == 1e-6 else 2}f}" for q, s in _TABLE_SCALE.items()]
+    if friction:
+        cells += ["not computed" if row.get(q) is None else f"{row[q] * s:.{n}f}" for q, (s, n) in _FRICTION_TABLE_SCALE.items()]
+    return cells
 
 
 def cradle_coords(cradle: CradleSeaState) -> dict[str, xr.Variable]:

@@ -18,11 +18,16 @@ Hs = 1 m); every MPM is proportional to Hs, so:
   at least the still water's: the column of ``seafast seastate``'s design-wave row. The unit waves' excitations
   do not change with Hs and are formed once per peak period.
 
+The design waves here are solved on frictionless pads even with ``seafastening.friction_coefficient`` set (which
+``seafast seastate`` follows, :mod:`seafast.analyses.seastate.cradle_friction_wave`): the frictional harmonic balance
+costs about 12 times the search (docs/operability.md#operability-on-the-cradles); :func:`cradle_family` warns of it.
+
 Units: SI (N, m, s).
 """
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
@@ -43,6 +48,7 @@ from seafast.analyses.seastate.cradle_extremes import (
     element_groups,
     is_off_head_seas,
 )
+from seafast.analyses.seastate.cradle_friction_wave import design_wave_friction
 from seafast.analyses.seastate.cradle_transfer import (
     CradleSeaModel,
     CradleStillWater,
@@ -70,6 +76,8 @@ __all__ = [
 ]
 
 _COLUMN = {name: column for name, _, column in CRADLE_LIMITS}
+
+logger = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -102,6 +110,13 @@ def cradle_family(case: Case, model: StructuralModel) -> CradleFamily | None:
     limits = cradle_limits(case)
     if not limits or not is_off_head_seas(case):
         return None
+    friction = design_wave_friction(case)
+    if friction is not None:
+        logger.warning(
+            "operability: seafastening.friction_coefficient = %g is not applied to the cradle limits: their design waves "
+            "are solved on frictionless pads (the frictional ones of seafast seastate cost about 12 times the search)",
+            float(friction.friction.friction_coefficient),
+        )
     sea = cradle_sea_model(case, model)
     return CradleFamily(sea, cradle_still_water(sea), limits)
 

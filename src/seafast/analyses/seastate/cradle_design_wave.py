@@ -9,23 +9,37 @@ direction whose transfer function is largest, as the vertical plane's rule); eac
 element over the period. The estimate is the largest reading (least for the lashing minimum), at least the still
 water's. Where nothing opens or closes the readings are the linear ones.
 
+**Pad friction.** With ``seafastening.friction_coefficient`` set above 0, each design wave, selected and solved
+frictionless as above, is solved again on frictional pads as ``seafast run`` solves its dynamic row and the columns
+read that response; the estimates then gain the largest pad friction utilisation and pad slip over every design wave
+(:mod:`seafast.analyses.seastate.cradle_friction_wave`). The linear spectral MPMs stay frictionless (the linear model
+has bilateral pads, free tangentially).
+
 The columns and their linear spectral MPMs: :mod:`seafast.analyses.seastate.cradle_extremes`. Units: SI.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from seafast.analyses.seastate.cradle_extremes import (
+    CRADLE_COLUMNS,
     CradleSeaTransfer,
     CradleSpectralExtremes,
     cradle_sea_transfer,
     cradle_spectral_extremes,
     element_groups,
+)
+from seafast.analyses.seastate.cradle_friction_wave import (
+    CRADLE_FRICTION_COLUMNS,
+    DesignWaveFriction,
+    design_wave_friction,
+    friction_totals,
+    solve_frictional_design_wave,
 )
 from seafast.analyses.seastate.cradle_transfer import CradleSeaModel, cradle_sea_model, cradle_still_water, cradle_unit_excitations
 from seafast.analyses.seastate.directional_transfer import SeaStateTransfer
@@ -36,6 +50,8 @@ from seafast.solvers.cradle_hbm import CradleResponse, solve_cradle_hbm
 from seafast.solvers.cradle_shooting import solve_cradle_shooting
 from seafast.solvers.hbm import HBMOptions
 from seafast.solvers.outcome import SolverOutcome
+from seafast.solvers.pad_tangential import FrictionalCradleResponse
+from seafast.solvers.transverse_statics import CradleProblem
 
 __all__ = [
     "CRADLE_DESIGN_HARMONICS",
@@ -43,6 +59,7 @@ __all__ = [
     "CradleDesignWaveExtremes",
     "CradleSeaState",
     "select_cradle_design_waves",
+    "cradle_design_wave_readings",
     "solve_cradle_design_wave",
     "scaled_excitation",
     "cradle_design_waves",
@@ -95,15 +112,21 @@ class CradleDesignWaveExtremes:
     waves
         The design waves.
     responses
-        One :class:`~seafast.solvers.cradle_hbm.CradleResponse` per wave, same order (waves that coincide share one).
+        One :class:`~seafast.solvers.cradle_hbm.CradleResponse` per wave, same order (waves that coincide share one);
+        on frictional pads the frictional solves' (the ones read).
     readings
         Per wave, its element's nonlinear maximum (least for ``lashing_tension_min_N``) over the period [N or m].
     totals
-        The five :data:`CRADLE_COLUMNS` [N, N, N, N, m].
+        The five :data:`CRADLE_COLUMNS` [N, N, N, N, m]; on frictional pads also
+        :data:`~seafast.analyses.seastate.cradle_friction_wave.CRADLE_FRICTION_COLUMNS` [-, m].
     converged
-        Every harmonic balance converged.
+        Every harmonic balance converged (on frictional pads, every frictional one: those are read).
     residual
-        The largest relative residual of the solves [-].
+        The largest relative residual of the solves read [-].
+    frictional
+        On frictional pads, per wave its frictional solve (``responses`` are their ``cradle``); None frictionless.
+    frictionless
+        On frictional pads, per wave its frictionless solve (the design wave as without friction); None frictionless.
     """
 
     waves: tuple[CradleDesignWave, ...]
@@ -112,6 +135,13 @@ class CradleDesignWaveExtremes:
     totals: Mapping[str, float]
     converged: bool
     residual: float
+    frictional: tuple[FrictionalCradleResponse, ...] | None = None
+    frictionless: tuple[CradleResponse, ...] | None = None
+
+    def columns(self) -> dict[str, float]:
+        """The design-wave row's cradle columns: the five, then on frictional pads :data:`CRADLE_FRICTION_COLUMNS`."""
+        names = CRADLE_COLUMNS + (CRADLE_FRICTION_COLUMNS if self.frictional is not None else ())
+        return {c: float(self.totals[c]) for c in names}
 
 
 def _reader(quantity: str, location: int) -> Callable[[CradleResponse, NDArray[np.intp]], float]:
@@ -121,6 +151,15 @@ def _reader(quantity: str, location: int) -> Callable[[CradleResponse, NDArray[n
     if quantity == "lashing_tension_min_N":
         return lambda r, lateral: float(np.min(r.element_force_N[:, location]))
     return lambda r, lateral: float(np.max(r.element_force_N[:, location]))
+
+
+def cradle_design_wave_readings(
+    problem: CradleProblem, waves: Sequence[CradleDesignWave], responses: Sequence[CradleResponse]
+) -> NDArray[np.float64]:
+    """Per wave, its element's nonlinear maximum (least for ``lashing_tension_min_N``; for ``transverse_slip_m`` the
+    largest ``|v|`` of the cargo axis at its saddle) over its response's period [N or m]."""
+    lateral = np.array([problem.cargo.node_dofs(problem.cargo.node_at(p.x_m))[1] for p in problem.pad_pairs], dtype=np.intp)
+    return np.array([_reader(w.quantity, w.location)(r, lateral) for w, r in zip(waves, responses, strict=True)], dtype=float)
 
 
 def _targets(spectral: CradleSpectralExtremes) -> list[tuple[str, int, ResponseStatistics, str]]:
@@ -237,6 +276,7 @@ def cradle_design_waves(
     band_fraction: float = 0.5,
     options: HBMOptions | None = None,
     harmonics: tuple[int, ...] = CRADLE_DESIGN_HARMONICS,
+    friction: DesignWaveFriction | None = None,
 ) -> CradleDesignWaveExtremes:
     """The nonlinear design-wave MPMs of the cradle columns (module docstring).
 
@@ -255,6 +295,9 @@ def cradle_design_waves(
         its H and continuation are ``harmonics``' and off.
     harmonics
         The H then tried in turn until one converges (:data:`CRADLE_DESIGN_HARMONICS`).
+    friction
+        The pads' friction (:func:`design_wave_friction`): each wave then also solved on frictional pads
+        (:func:`solve_frictional_design_wave`) and read there; None: frictionless pads.
 
     Returns
     -------
@@ -262,24 +305,33 @@ def cradle_design_waves(
         A solve that does not converge flags ``converged`` with its residual (never raised).
     """
     waves = select_cradle_design_waves(cradle_transfer, spectral, band_fraction)
-    problem = sea.dynamics.problem
-    lateral = np.array([problem.cargo.node_dofs(problem.cargo.node_at(p.x_m))[1] for p in problem.pad_pairs], dtype=np.intp)
-    solved: dict[tuple[int, int, float], CradleResponse] = {}
-    responses = []
+    plain: dict[tuple[int, int, float], CradleResponse] = {}
+    frictional: dict[tuple[int, int, float], FrictionalCradleResponse] = {}
+    keys = []
     for wave in waves:
         key = (wave.frequency_index, wave.direction, round(wave.amplitude_m, 12))
-        if key not in solved:
-            unit = cradle_unit_excitations(sea, transfer.per_direction[wave.direction], [wave.frequency_index])[0]
-            solved[key] = solve_cradle_design_wave(sea.dynamics, scaled_excitation(unit, wave.amplitude_m), options, harmonics)
-        responses.append(solved[key])
-    readings = np.array([_reader(w.quantity, w.location)(r, lateral) for w, r in zip(waves, responses, strict=True)], dtype=float)
+        keys.append(key)
+        if key in plain:
+            continue
+        unit = cradle_unit_excitations(sea, transfer.per_direction[wave.direction], [wave.frequency_index])[0]
+        excitation = scaled_excitation(unit, wave.amplitude_m)
+        plain[key] = solve_cradle_design_wave(sea.dynamics, excitation, options, harmonics)
+        if friction is not None:
+            frictional[key] = solve_frictional_design_wave(sea.dynamics, excitation, friction)
+    read = {k: r.cradle for k, r in frictional.items()} if friction is not None else plain
+    responses = tuple(read[k] for k in keys)
+    readings = cradle_design_wave_readings(sea.dynamics.problem, waves, responses)
     totals = _static_totals(spectral)
     for wave, value in zip(waves, readings, strict=True):
         q = wave.quantity
         totals[q] = min(totals[q], value) if q == "lashing_tension_min_N" else max(totals[q], value)
-    converged = all(r.converged for r in solved.values())
-    residual = max((float(r.residual) for r in solved.values()), default=0.0)
-    return CradleDesignWaveExtremes(waves, tuple(responses), readings, totals, converged, residual)
+    converged = all(r.converged for r in read.values())
+    residual = max((float(r.residual) for r in read.values()), default=0.0)
+    if friction is None:
+        return CradleDesignWaveExtremes(waves, responses, readings, totals, converged, residual)
+    totals |= friction_totals(frictional.values())
+    per_wave = tuple(frictional[k] for k in keys)
+    return CradleDesignWaveExtremes(waves, responses, readings, totals, converged, residual, per_wave, tuple(plain[k] for k in keys))
 
 
 def _static_totals(spectral: CradleSpectralExtremes) -> dict[str, float]:
@@ -319,19 +371,21 @@ class CradleSeaState:
 
 
 def cradle_sea_state(analysis: SpectralAnalysis, *, design_waves: bool = True, options: HBMOptions | None = None) -> CradleSeaState:
-    """The cradle columns of a spectral analysis's sea state: linear spectral and (``design_waves``) design-wave MPMs.
+    """The cradle columns of a spectral analysis's sea state: linear spectral and (``design_waves``) design-wave MPMs,
+    the design waves on frictional pads when ``seafastening.friction_coefficient`` is above 0 (:func:`design_wave_friction`).
 
     Raises
     ------
     ValueError
-        If the case's cradles cannot be built (naming the key).
+        If the case's cradles cannot be built (naming the key), or the friction coefficient differs between saddles.
     """
     directional = analysis.directional
     if directional is None:
         raise ValueError("cradle_sea_state: the analysis has no per-direction transfer functions (spectral_analysis gives them)")
+    friction = design_wave_friction(analysis.case)
     sea = cradle_sea_model(analysis.case, analysis.model)
     transfer = cradle_sea_transfer(sea, directional)
     stiffness = sea.dynamics.problem.element_stiffness_N_per_m
     spectral = cradle_spectral_extremes(transfer, analysis.spectrum, cradle_still_water(sea), stiffness, analysis.case.sea_state.duration_s)
-    design = cradle_design_waves(sea, directional, transfer, spectral, options=options) if design_waves else None
+    design = cradle_design_waves(sea, directional, transfer, spectral, options=options, friction=friction) if design_waves else None
     return CradleSeaState(sea, transfer, spectral, design)
