@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import csv
+import json
 import math
 from dataclasses import replace
 from pathlib import Path
@@ -132,3 +133,40 @@ def test_a_design_wave_that_did_not_converge_flags_the_nonlinear_row(monkeypatch
     assert nonlinear["converged"] is False and nonlinear["cradle_converged"] is False
     assert nonlinear["cradle_residual"] == 3.5e-4 and "did not converge (largest residual 0.00035)" in nonlinear["cradle_message"]
     assert math.isfinite(nonlinear["F_pad_N"])  # the estimate kept, flagged
+
+
+def test_frictional_pads_add_seafast_seastates_friction_columns(tmp_path):
+    base = {**BEAM, "seafastening.friction_coefficient": 0.8}
+    grid = _study("friction", [{"key": ANGLE_KEY, "values": [35.0]}], base)
+    run_study(grid, tmp_path / "study", execution=SERIAL)
+    rows = _csv(tmp_path / "study" / "study.csv")
+    header = list(rows[0])
+    at = header.index("contact_preserved") + 1
+    assert header[at : at + 7] == [*CRADLE_SUMMARY_COLUMNS, "pad_friction_utilisation", "pad_slip_m"]  # as seastate.csv
+    reference = _seastate_csv(tmp_path, {**base, ANGLE_KEY: 35.0})
+    linear, nonlinear = (next(r for r in rows if r["model"] == m) for m in ("linear", "nonlinear"))
+    for column in (*CRADLE_SUMMARY_COLUMNS, "pad_friction_utilisation", "pad_slip_m"):
+        assert linear[column] == reference["spectral"][column]  # the linear pads frictionless: no friction columns
+        assert float(nonlinear[column]) == pytest.approx(float(reference["design_wave"][column]), rel=1e-9, abs=1e-15), column
+    assert linear["pad_friction_utilisation"] == "" and 0.0 < float(nonlinear["pad_friction_utilisation"]) <= 1.0 + 1e-9
+    assert nonlinear["converged"] == reference["design_wave"]["converged"]
+
+
+def test_a_point_stored_without_its_cradles_is_recomputed(tmp_path):
+    grid = _study("resume", [{"key": ANGLE_KEY, "values": [40.0]}], BEAM)
+    first = run_study(grid, tmp_path, execution=SERIAL)
+    store = tmp_path / "points.jsonl"
+    lines = store.read_text(encoding="utf-8").splitlines()
+    cradle_keys = {*CRADLE_SUMMARY_COLUMNS, "cradle_converged", "cradle_residual", "cradle_message"}
+    stripped = []
+    for line in lines:
+        data = json.loads(line)
+        if "rows" in data:
+            data["rows"] = [{k: v for k, v in row.items() if k not in cradle_keys} for row in data["rows"]]
+        stripped.append(json.dumps(data))
+    store.write_text("\n".join(stripped) + "\n", encoding="utf-8")
+    again = run_study(grid, tmp_path, execution=SERIAL)
+    assert (first.computed, again.reused, again.computed) == (1, 0, 1)
+    assert float(again.dataset["F_pad_N"].sel(model="nonlinear").squeeze()) == float(
+        first.dataset["F_pad_N"].sel(model="nonlinear").squeeze()
+    )

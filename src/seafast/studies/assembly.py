@@ -29,6 +29,7 @@ from seafast.studies.store import PointRecord
 
 __all__ = [
     "CORE_COLUMNS",
+    "SEA_STATE_FRICTION_COLUMNS",
     "WARNINGS_COLUMN",
     "LOAD_CASES",
     "MODELS",
