@@ -29,6 +29,7 @@ from seafast.studies.store import PointRecord
 
 __all__ = [
     "CORE_COLUMNS",
+    "SEA_STATE_FRICTION_COLUMNS",
     "WARNINGS_COLUMN",
     "LOAD_CASES",
     "MODELS",
@@ -71,6 +72,7 @@ _LONG_NAMES: dict[str, str] = {
     "eval_seconds": "wall time to evaluate the point",
     "warning_flag": "typed warning raised by the row's solution or model (one per warning kind, coordinate warning)",
     **CRADLE_FIELD_LONG_NAMES,
+    "pad_slip_m": "largest slip of a pad |w - w_rest| over the cradle design waves (sea-state study, frictional pads)",
 }
 WARNINGS_COLUMN = "warnings"
 """The column of ``study.csv`` (and the row key) holding a row's typed warnings."""
@@ -95,16 +97,22 @@ def _labels(records: Iterable[PointRecord], key: str, canonical: tuple[str, ...]
     return [c for c in canonical if c in found] + [v for v in found if v not in canonical]
 
 
+SEA_STATE_FRICTION_COLUMNS: tuple[str, ...] = ("pad_slip_m",)
+"""The friction column a sea-state study's rows add after :data:`FRICTION_SUMMARY_COLUMNS` (as ``seastate.csv``)."""
+_FRICTION_COLUMNS = FRICTION_SUMMARY_COLUMNS + SEA_STATE_FRICTION_COLUMNS
+
+
 def _cradle_columns(records: Iterable[PointRecord]) -> tuple[str, ...]:
     """The cargo-on-its-cradles columns when some row has them (a point off head seas), else none (head seas); with
-    frictional pads the friction's after them, as in ``summary.csv``."""
+    frictional pads the friction's after them, as in ``summary.csv`` (and a sea-state study's pad slip, as in
+    ``seastate.csv``)."""
     rows = [row for r in records for row in r.rows]
     cradle = CRADLE_SUMMARY_COLUMNS if any(k in row for row in rows for k in CRADLE_SUMMARY_COLUMNS) else ()
-    return cradle + (FRICTION_SUMMARY_COLUMNS if any(k in row for row in rows for k in FRICTION_SUMMARY_COLUMNS) else ())
+    return cradle + tuple(k for k in _FRICTION_COLUMNS if any(k in row for row in rows))
 
 
 def _extra_keys(records: Iterable[PointRecord]) -> list[str]:
-    core = {*CORE_COLUMNS, *CRADLE_SUMMARY_COLUMNS, *FRICTION_SUMMARY_COLUMNS, WARNINGS_COLUMN}
+    core = {*CORE_COLUMNS, *CRADLE_SUMMARY_COLUMNS, *_FRICTION_COLUMNS, WARNINGS_COLUMN}
     extras: list[str] = []
     for r in records:
         for row in r.rows:

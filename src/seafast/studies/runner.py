@@ -104,20 +104,34 @@ class StudyRun:
 
 
 HEADING_KEY = "wave.heading_deg"
+SEA_STATE_HEADING_KEY = "sea_state.heading_deg"
 
 
 @dataclass(frozen=True)
 class _OffHeadSeas:
-    """Whether a point of ``grid`` lies off head seas: the default evaluator records its cargo on its cradles."""
+    """Whether a point of ``grid`` lies off head seas (its ``key``, the regular wave's or the sea state's heading):
+    the default and the sea-state evaluators record its cargo on its cradles there."""
 
     grid: StudyGrid
+    key: str = HEADING_KEY
 
     def __call__(self, index: int) -> bool:
         try:
-            heading = self.grid.point_overrides(index).get(HEADING_KEY, self.grid.base_value(HEADING_KEY))
+            heading = self.grid.point_overrides(index).get(self.key, self.grid.base_value(self.key))
             return float(heading) != HEAD_SEAS_DEG
         except Exception:  # noqa: BLE001 - an invalid point: its record holds its error
             return False
+
+
+def _cradle_points(grid: StudyGrid, evaluator: Evaluator | str | None) -> _OffHeadSeas | None:
+    """Which points the evaluator records with the cargo on its cradles (a stored point of them without: recomputed);
+    None for a plug-in evaluator (no cradles)."""
+    resolved = resolve_evaluator(evaluator)
+    if resolved is default_evaluator:
+        return _OffHeadSeas(grid)
+    if resolved is resolve_evaluator(SEA_STATE_EVALUATOR):
+        return _OffHeadSeas(grid, SEA_STATE_HEADING_KEY)
+    return None
 
 
 def _replay(grid: StudyGrid, records: list[PointRecord]) -> None:
@@ -168,9 +182,8 @@ def run_study(
         evaluator = SEA_STATE_EVALUATOR
     if isinstance(evaluator, str):
         resolve_evaluator(evaluator)  # fail early on a bad reference
-    records_cradles = resolve_evaluator(evaluator) is default_evaluator  # the sea-state and plug-in evaluators: no cradles
     try:
-        with point_store(out, grid, cradle_points=_OffHeadSeas(grid) if records_cradles else None) as store:
+        with point_store(out, grid, cradle_points=_cradle_points(grid, evaluator)) as store:
             reused = len(store.completed)
             pending = store.pending(grid.size)
             mode = execution.mode()

@@ -161,8 +161,8 @@ def point_store(
         0 syncs every append.
     cradle_points : callable, optional
         Whether point ``index`` records the cargo on its cradles (its heading is not head seas and the
-        evaluator is the default); a stored point for which it is true but whose rows lack them is recomputed.
-        None: no such check (another evaluator).
+        evaluator is the default or the sea-state one); a stored point for which it is true but whose rows lack
+        them is recomputed. None: no such check (a plug-in evaluator).
 
     Raises
     ------
