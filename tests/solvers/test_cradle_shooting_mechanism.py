@@ -103,7 +103,7 @@ CASE_HS5 = {
 @pytest.mark.slow
 def test_the_hs5_wave_through_a_one_pad_state_converges_and_matches_the_newmark_march():
     """The band's high end of the lashing maximum's waves (0.655 rad/s, 6.60 m): all but one pad lift and every
-    stopper is open at once, a lateral rigid-body motion the lashings (acting vertically) do not hold. Converged,
+    stopper is open at once, a lateral rigid-body motion the lashings (holding only the vertical ones) do not hold. Converged,
     stable, the cutoff settled; every element's peak within 0.5 % of the Newmark march's at T / 8192 (measured 2.0e-3
     on a stopper, 1.7e-3 on a pad, 2e-6 on the lashings: the march's own step error, at T / 32768 1.5e-4); the
     lashings' range over the period (115 N of 74 kN) within 1 % (measured 1.3e-3; 1.4e-4 at T / 32768)."""

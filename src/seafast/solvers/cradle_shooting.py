@@ -16,9 +16,11 @@ A_I^T``. Piecewise linear in the contact states, it is solved by the vertical pl
 matrix), whatever harmonics the ringing after a re-contact needs.
 
 A contact state with a rigid-body motion (a mechanism: the cargo on one pad with its stoppers open slides across,
-the lashings pulling only downwards) is marched exactly, the constant load along it drifting the cargo at a constant
-rate (:class:`~seafast.solvers.shooting.states.ContactStates` ``mechanisms``); the other pads or the stoppers take it
-back. The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
+the lashings holding only its vertical rigid-body motions) is marched exactly, the constant load along it drifting
+the cargo at a constant rate (:class:`~seafast.solvers.shooting.states.ContactStates` ``mechanisms``); the other
+pads or the stoppers take it back.
+
+The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
 orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`); without them
 the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
 With a stopper in, the cutoff is doubled until the peaks settle (its impacts converge slowly in the bilateral modes),
