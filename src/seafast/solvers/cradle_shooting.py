@@ -15,6 +15,11 @@ A_I^T``. Piecewise linear in the contact states, it is solved by the vertical pl
 (:func:`~seafast.solvers.shooting.orbit.shoot_orbit`: closed-form segments, exact events, Newton on the monodromy
 matrix), whatever harmonics the ringing after a re-contact needs.
 
+A contact state with a rigid-body motion (a mechanism: the cargo on one pad with its stoppers open slides across,
+the lashings holding only its vertical rigid-body motions) is marched exactly, the constant load along it drifting
+the cargo at a constant rate (:class:`~seafast.solvers.shooting.states.ContactStates` ``mechanisms``); the other
+pads or the stoppers take it back.
+
 The side stoppers are left out of I at first (open, as they usually are); any that closes is brought in and the
 orbit found again, as the harmonic balance does (:func:`~seafast.solvers.cradle_hbm.solve_cradle_hbm`); without them
 the cargo may have no orbit (lifted off its pads, nothing holds it across), and then every element is brought in.
@@ -203,7 +208,7 @@ def _orbit_at(
     N, P = samples, int(multiple)
     D = real_to_complex_harmonics(ops.linear_compression_m)
     system = cradle_correction_system(dynamics, ops, included, modes, cutoff)
-    states = ContactStates(system, subharmonic_harmonics(D, P) if P > 1 else D, float(excitation.omega_rad_s) / P)
+    states = ContactStates(system, subharmonic_harmonics(D, P) if P > 1 else D, float(excitation.omega_rad_s) / P, mechanisms=True)
     d_grid = first_harmonic_time(D, N, P)
     scale = max(float(np.max(np.abs(d_grid))), 1e-9)
     try:
@@ -373,7 +378,7 @@ def _verdict(
     factor, verdicts = float(opts.cutoff_factor), []
     while True:
         system = cradle_correction_system(dynamics, ops, included, modes, factor * reference)
-        states = ContactStates(system, D, float(excitation.omega_rad_s))
+        states = ContactStates(system, D, float(excitation.omega_rad_s), mechanisms=True)
         verdicts.append(_marched_flow(dynamics, excitation, included, ops, states, PeriodGrid(states, samples), scale))
         settled = verdicts[-1][1]
         same = len(verdicts) > 1 and (verdicts[-1][0].periodicity, verdicts[-1][0].period_multiple) == (

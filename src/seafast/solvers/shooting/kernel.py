@@ -39,10 +39,20 @@ def _exp(z: complex) -> complex:  # pragma: no cover - compiled
 
 @numba.njit(cache=True)
 def _signed(  # pragma: no cover - compiled
-    i: int, tau: float, t0: float, lam: NDArray, mc: NDArray, zz: NDArray, pc: NDArray, omega: float, lifted: NDArray, rate: bool
+    i: int,
+    tau: float,
+    t0: float,
+    lam: NDArray,
+    mc: NDArray,
+    zz: NDArray,
+    pc: NDArray,
+    pd: NDArray,
+    omega: float,
+    lifted: NDArray,
+    rate: bool,
 ) -> float:
-    """Signed compression of saddle i at time tau (or its rate) in the current state."""
-    acc = 0.0 + 0.0j
+    """Signed compression of saddle i at time tau (or its rate) in the current state (``pd``: its drift rate)."""
+    acc = complex(pd[i] if rate else pd[i] * tau)
     for j in range(lam.size):
         e = _exp(lam[j] * (tau - t0)) * zz[j]
         acc += mc[i, j] * (e * lam[j] if rate else e)
@@ -54,16 +64,26 @@ def _signed(  # pragma: no cover - compiled
 
 @numba.njit(cache=True)
 def _point(  # pragma: no cover - compiled
-    e: NDArray, lam: NDArray, mc: NDArray, pc: NDArray, phase_row: NDArray, omega: float, lifted: NDArray, out: NDArray
+    e: NDArray,
+    lam: NDArray,
+    mc: NDArray,
+    pc: NDArray,
+    pd: NDArray,
+    t: float,
+    phase_row: NDArray,
+    omega: float,
+    lifted: NDArray,
+    out: NDArray,
 ) -> None:
     """Each saddle's signed compression, its rate and a bound on |its second derivative| from here on, into out (n_s, 3).
 
-    ``e`` the homogeneous part's modal coordinates here, ``phase_row`` the harmonics' phases here. The bound holds
-    for every later time of the segment: no mode grows (``Re lambda <= 0``), so ``|e_j|`` only decays.
+    ``e`` the homogeneous part's modal coordinates here, ``phase_row`` the harmonics' phases here (``t`` [s], for the
+    drift ``pd t``). The bound holds for every later time of the segment: no mode grows (``Re lambda <= 0``), so
+    ``|e_j|`` only decays, and the drift has no curvature.
     """
     for i in range(mc.shape[0]):
-        g = 0.0 + 0.0j
-        r = 0.0 + 0.0j
+        g = complex(pd[i] * t)
+        r = complex(pd[i])
         a = 0.0
         for j in range(lam.size):
             term = mc[i, j] * e[j]
@@ -103,10 +123,10 @@ def _safe_step(values: NDArray) -> float:  # pragma: no cover - compiled
 
 @numba.njit(cache=True)
 def _derivative(  # pragma: no cover - compiled
-    i: int, tau: float, t0: float, lam: NDArray, mc: NDArray, zz: NDArray, pc: NDArray, omega: float, order: int
+    i: int, tau: float, t0: float, lam: NDArray, mc: NDArray, zz: NDArray, pc: NDArray, pd: NDArray, omega: float, order: int
 ) -> float:
     """The ``order``-th time derivative (0, 1, 2) of saddle i's compression at time tau in the current state."""
-    acc = 0.0 + 0.0j
+    acc = complex(pd[i] * tau if order == 0 else (pd[i] if order == 1 else 0.0))
     for j in range(lam.size):
         acc += mc[i, j] * _exp(lam[j] * (tau - t0)) * zz[j] * lam[j] ** order
     for k in range(pc.shape[0]):
@@ -127,6 +147,8 @@ def _track_peaks(  # pragma: no cover - compiled
     zz: NDArray,
     pc: NDArray,
     ps: NDArray,
+    pd: NDArray,
+    xd: NDArray,
     omega: float,
     lifted: NDArray,
     code: int,
@@ -144,17 +166,17 @@ def _track_peaks(  # pragma: no cover - compiled
         a, b = lo, hi
         tau = 0.5 * (a + b)
         for _ in range(100):
-            r = _derivative(i, tau, t0, lam, mc, zz, pc, omega, 1)
+            r = _derivative(i, tau, t0, lam, mc, zz, pc, pd, omega, 1)
             if r > 0.0:
                 a = tau
             else:
                 b = tau
-            c = _derivative(i, tau, t0, lam, mc, zz, pc, omega, 2)
+            c = _derivative(i, tau, t0, lam, mc, zz, pc, pd, omega, 2)
             newton = tau - r / c if c < 0.0 else np.inf
             if b - a <= tol:
                 break
             tau = newton if a < newton < b else 0.5 * (a + b)
-        value = _derivative(i, tau, t0, lam, mc, zz, pc, omega, 0)
+        value = _derivative(i, tau, t0, lam, mc, zz, pc, pd, omega, 0)
         if value > peak_value[i]:
             peak_value[i] = value
             peak_time[i] = tau
@@ -162,7 +184,7 @@ def _track_peaks(  # pragma: no cover - compiled
             E = np.empty(lam.size, dtype=np.complex128)
             for j in range(lam.size):
                 E[j] = _exp(lam[j] * (tau - t0)) * zz[j]
-            xs = np.real(V @ E)
+            xs = np.real(V @ E) + xd * tau
             for k in range(ps.shape[0]):
                 ph = np.exp(1j * omega * k * tau)
                 for j in range(xs.size):
@@ -179,6 +201,8 @@ def march_events(  # pragma: no cover - compiled
     mc_all: NDArray,
     pc_all: NDArray,
     ps_all: NDArray,
+    pd_all: NDArray,
+    xd_all: NDArray,
     lifted_all: NDArray,
     omega: float,
     times: NDArray,
@@ -204,8 +228,10 @@ def march_events(  # pragma: no cover - compiled
 
     Carried (updated in place): ``carry_t[0]`` the time, ``carry_i = [next sample, state code, events, sub-steps]``,
     ``x`` the state, ``monodromy`` (when ``track_monodromy``). Recorded: ``out_e`` (N, 2m), the homogeneous part's
-    modal coordinates at each sample (the state is ``Re(V e) + Re(phase ps)``, formed by the caller with one
-    matrix product per contact state), and ``out_code`` (N,). Returns :data:`DONE`, :data:`TOO_MANY_EVENTS`, or
+    modal coordinates at each sample (the state is ``Re(V e) + Re(phase ps) + xd t``, formed by the caller with one
+    matrix product per contact state), and ``out_code`` (N,). ``pd_all``, ``xd_all``: each state's drift rates of
+    the compressions and the state (zero but in a state with a rigid-body motion the constant load drives:
+    :class:`~seafast.solvers.shooting.states.ContactState`). Returns :data:`DONE`, :data:`TOO_MANY_EVENTS`, or
     the code (bit i: saddle i lifted) of a state to build before calling again.
 
     ``guard``: between two samples, step on by the longest step over which no compression can reach zero
@@ -234,9 +260,11 @@ def march_events(  # pragma: no cover - compiled
         mc = mc_all[s]
         pc = pc_all[s]
         ps = ps_all[s]
+        pd = pd_all[s]
+        xd = xd_all[s]
         lifted = lifted_all[s]
         # modal coordinates of the homogeneous part at t
-        xp = np.zeros(size)
+        xp = xd * t
         for k in range(ps.shape[0]):
             ph = np.exp(1j * omega * k * t)
             for j in range(size):
@@ -249,7 +277,7 @@ def march_events(  # pragma: no cover - compiled
         if guard:
             for k in range(phase_sub.size):
                 phase_sub[k] = np.exp(1j * omega * k * t)
-            _point(zz, lam, mc, pc, phase_sub, omega, lifted, here)
+            _point(zz, lam, mc, pc, pd, t, phase_sub, omega, lifted, here)
             for i in range(n_s):
                 rate_lo[i] = here[i, 1]
         e = np.empty(size, dtype=np.complex128)
@@ -277,7 +305,7 @@ def march_events(  # pragma: no cover - compiled
                         e_sub[j] = _exp(lam[j] * (tau - t)) * zz[j]
                     for k in range(phase_sub.size):
                         phase_sub[k] = np.exp(1j * omega * k * tau)
-                    _point(e_sub, lam, mc, pc, phase_sub, omega, lifted, there)
+                    _point(e_sub, lam, mc, pc, pd, tau, phase_sub, omega, lifted, there)
                     carry_i[3] += 1
                     for i in range(n_s):
                         rate_hi[i] = there[i, 1]
@@ -291,7 +319,7 @@ def march_events(  # pragma: no cover - compiled
                         bracket_lo, bracket_hi = lo_t, tau
                         break
                     _track_peaks(
-                        lo_t, tau, rate_lo, rate_hi, t, lam, V, mc, zz, pc, ps, omega, lifted, code, tol * T,
+                        lo_t, tau, rate_lo, rate_hi, t, lam, V, mc, zz, pc, ps, pd, xd, omega, lifted, code, tol * T,
                         peak_value, peak_time, peak_state, peak_code,
                     )  # fmt: skip
                     lo_t = tau
@@ -301,7 +329,7 @@ def march_events(  # pragma: no cover - compiled
                     break
             if times[n] - t > tol * T:
                 for i in range(n_s):
-                    acc = 0.0 + 0.0j
+                    acc = complex(pd[i] * times[n])
                     for j in range(size):
                         acc += mc[i, j] * e[j]
                     for k in range(pc.shape[0]):
@@ -317,12 +345,12 @@ def march_events(  # pragma: no cover - compiled
             if event_sample >= 0:
                 break
             if guard:
-                _point(e, lam, mc, pc, phase[n], omega, lifted, there)
+                _point(e, lam, mc, pc, pd, times[n], phase[n], omega, lifted, there)
                 for i in range(n_s):
                     rate_hi[i] = there[i, 1]
                 if times[n] > lo_t:
                     _track_peaks(
-                        lo_t, times[n], rate_lo, rate_hi, t, lam, V, mc, zz, pc, ps, omega, lifted, code, tol * T,
+                        lo_t, times[n], rate_lo, rate_hi, t, lam, V, mc, zz, pc, ps, pd, xd, omega, lifted, code, tol * T,
                         peak_value, peak_time, peak_state, peak_code,
                     )  # fmt: skip
                     lo_t = times[n]
@@ -346,18 +374,18 @@ def march_events(  # pragma: no cover - compiled
             flips = np.zeros(n_s, dtype=np.bool_)
             roots = np.full(n_s, np.inf)
             for i in range(n_s):
-                if _signed(i, b, t, lam, mc, zz, pc, omega, lifted, False) >= 0.0:
+                if _signed(i, b, t, lam, mc, zz, pc, pd, omega, lifted, False) >= 0.0:
                     continue
                 lo, hi = a, b
-                f_lo = _signed(i, lo, t, lam, mc, zz, pc, omega, lifted, False)
+                f_lo = _signed(i, lo, t, lam, mc, zz, pc, pd, omega, lifted, False)
                 if f_lo < 0.0:
                     roots[i] = lo
                     continue
-                f_hi = _signed(i, hi, t, lam, mc, zz, pc, omega, lifted, False)
+                f_hi = _signed(i, hi, t, lam, mc, zz, pc, pd, omega, lifted, False)
                 tau = lo - f_lo * (hi - lo) / (f_hi - f_lo)
                 for _ in range(80):
-                    f = _signed(i, tau, t, lam, mc, zz, pc, omega, lifted, False)
-                    r = _signed(i, tau, t, lam, mc, zz, pc, omega, lifted, True)
+                    f = _signed(i, tau, t, lam, mc, zz, pc, pd, omega, lifted, False)
+                    r = _signed(i, tau, t, lam, mc, zz, pc, pd, omega, lifted, True)
                     if f >= 0.0:
                         lo = tau
                     else:
@@ -377,9 +405,9 @@ def march_events(  # pragma: no cover - compiled
         if guard and tau_end > lo_t:
             # a maximum between the last point and the segment's end (an impact's peak before its lift-off)
             for i in range(n_s):
-                rate_hi[i] = _derivative(i, tau_end, t, lam, mc, zz, pc, omega, 1)
+                rate_hi[i] = _derivative(i, tau_end, t, lam, mc, zz, pc, pd, omega, 1)
             _track_peaks(
-                lo_t, tau_end, rate_lo, rate_hi, t, lam, V, mc, zz, pc, ps, omega, lifted, code, tol * T,
+                lo_t, tau_end, rate_lo, rate_hi, t, lam, V, mc, zz, pc, ps, pd, xd, omega, lifted, code, tol * T,
                 peak_value, peak_time, peak_state, peak_code,
             )  # fmt: skip
         # the segment's propagator and the state at its end
@@ -389,7 +417,7 @@ def march_events(  # pragma: no cover - compiled
         if track_monodromy:
             P = np.ascontiguousarray(np.real((V * E) @ Vinv))
             monodromy[:, :] = P @ monodromy
-        xe = np.real(V @ (E * zz))
+        xe = np.real(V @ (E * zz)) + xd * tau_end
         for k in range(ps.shape[0]):
             ph = np.exp(1j * omega * k * tau_end)
             for j in range(size):

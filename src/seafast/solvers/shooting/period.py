@@ -118,7 +118,7 @@ class PeriodGrid:
     def particular_state(self, s: ContactState, t_s: float) -> NDArray[np.float64]:
         """The particular solution's state at one time, (1, 2m)."""
         k = np.arange(s.particular.shape[0])
-        return np.real(np.exp(1j * self.omega_rad_s * k * t_s) @ s.particular)[None, :]
+        return (np.real(np.exp(1j * self.omega_rad_s * k * t_s) @ s.particular) + s.drift * t_s)[None, :]
 
 
 def initial_contact(states: ContactStates, x: NDArray[np.float64], t_s: float) -> NDArray[np.bool_]:
@@ -178,7 +178,8 @@ def flow_period(
         arrays = states.arrays
         status = march_events(
             arrays.table, arrays.eigenvalues, arrays.eigenvectors, arrays.inverse_eigenvectors, arrays.modal_compression,
-            arrays.particular_compression, arrays.particular, arrays.lifted, states.omega_rad_s, grid.times, grid.phase,
+            arrays.particular_compression, arrays.particular, arrays.drift_compression, arrays.drift, arrays.lifted,
+            states.omega_rad_s, grid.times, grid.phase,
             EVENT_TIME_TOLERANCE, int(max_events), bool(record), bool(monodromy), carry_t, carry_i, x, jacobian, out_e, out_code,
             bool(guard), GUARD_MIN_STEP * grid.period_s, peak_value, peak_time, peak_state, peak_code,
         )  # fmt: skip
@@ -194,7 +195,8 @@ def flow_period(
 
 
 def _recorded_states(states: ContactStates, grid: PeriodGrid, modal: NDArray[np.complex128], codes: NDArray[np.int64]) -> NDArray:
-    """The states ``x(t_n) = Re(V e_n) + Re(phase_n ps)`` (N, 2m) from the march's modal coordinates ``e_n`` (N, 2m).
+    """The states ``x(t_n) = Re(V e_n) + Re(phase_n ps) + xd t_n`` (N, 2m) from the march's modal coordinates ``e_n``
+    (N, 2m).
 
     A real matrix product per run of samples in one contact state, on the interleaved real and imaginary parts
     (``Re(V e) = [Re e, Im e] [Re V; -Im V]^T``): forming each sample in the compiled loop cost (2m)^2 scalar
@@ -210,6 +212,9 @@ def _recorded_states(states: ContactStates, grid: PeriodGrid, modal: NDArray[np.
             maps[code] = (_real_part_map(arrays.eigenvectors[s].T), _real_part_map(arrays.particular[s]))
         modal_map, particular_map = maps[code]
         out[a:b] = modal_parts[a:b] @ modal_map + phase_parts[a:b] @ particular_map
+        drift = arrays.drift[arrays.table[code]]
+        if np.any(drift):  # a mechanism's state: the drift of the constant load along it
+            out[a:b] += grid.times[a:b, None] * drift[None, :]
     return out
 
 
@@ -266,5 +271,6 @@ def peak_compressions(
             homogeneous = np.real((modal_exponential(np.outer(tau, s.eigenvalues)) * z[None, :]) @ s.modal_compression[i])
             k = np.arange(s.particular_compression.shape[0])
             particular = np.real(np.exp(1j * states.omega_rad_s * np.outer(t_0 + tau, k)) @ s.particular_compression[:, i])
+            particular += s.drift_compression[i] * (t_0 + tau)
             peaks[i] = max(peaks[i], float(np.max(homogeneous + particular)))
     return peaks

@@ -14,6 +14,11 @@ On the lifted basis (:class:`~seafast.solvers.modal_correction.CorrectionBasis`,
 the saddles in contact C adding their stiffness instead, ``Omega^2 + Phi_C^T W_C Phi_C`` with
 ``W_C = (I + K_C R_CC)^-1 K_C``, and the input ``g = f - K_u d`` in place of ``c`` (:func:`_lifted_state`).
 
+A state with no stiffness against a rigid-body motion raises :class:`SingularStateError`, unless the states are
+built with ``mechanisms`` (the 3-D cargo's cradles): then its vanishing roots are 0 and the constant load's part along
+the motion is the particular solution's drift, ``x_p(t) = Re sum_k X_k e^{i k w t} + x_d t`` (``X_0`` without that
+part), exact for a root 0 and, for a root within the vanishing bound, the same motion to ``|lambda| t``.
+
 The vector field is continuous where a saddle changes state (``c_i = 0`` and ``delta_i = 0`` there from both
 sides), so the flow's Jacobian is continuous too: the monodromy matrix of a period is the product of the
 segments' ``e^{A_L tau}``, with no saltation terms.
@@ -33,6 +38,7 @@ from seafast.solvers.modal_correction import CorrectionBasis, ModalCorrectionSys
 __all__ = [
     "ContactState",
     "ContactStates",
+    "MECHANISM_CONDITION",
     "SingularStateError",
     "StateArrays",
     "lifted_code",
@@ -78,7 +84,11 @@ class ContactState:
         ``compression_state @ V`` (n_s, 2m): the compressions of the modal coordinates ``y = V^-1 x``.
     particular_compression
         The particular solution's compressions, complex harmonics (n_k, n_s) [m]: with ``z = V^-1 (x(t0) - x_p(t0))``,
-        ``delta(t) = Re(modal_compression (e^{Lambda (t - t0)} z)) + Re sum_k P_k e^{i k w t}``.
+        ``delta(t) = Re(modal_compression (e^{Lambda (t - t0)} z)) + Re sum_k P_k e^{i k w t} + drift_compression t``.
+    drift, drift_compression
+        The particular solution's drift (2m,) [state per s] and its compressions' (n_s,) [m/s]: zero but in a state
+        with a rigid-body motion (a mechanism, root 0: :class:`ContactStates` ``mechanisms``), where the constant
+        load's part along it moves the cargo at a constant rate, ``x_p(t) = Re sum_k X_k e^{i k w t} + drift t``.
     """
 
     lifted: NDArray[np.bool_]
@@ -92,6 +102,8 @@ class ContactState:
     force_forcing: NDArray[np.float64]
     modal_compression: NDArray[np.complex128]
     particular_compression: NDArray[np.complex128]
+    drift: NDArray[np.float64]
+    drift_compression: NDArray[np.float64]
 
     def propagator(self, tau_s: float) -> NDArray[np.float64]:
         """``e^{A_L tau}`` (2m, 2m)."""
@@ -105,8 +117,8 @@ class StateArrays:
 
     ``table`` (2^n_s,): the index of the state with code c (bit i set when saddle i is lifted); the stacks
     (capacity, ...), their rows beyond the states built unused (zeros): eigenvalues, eigenvectors and their
-    inverse, the modal and the particular compressions, the particular solution's harmonics and the lifted sets,
-    as in :class:`ContactState`.
+    inverse, the modal and the particular compressions, the particular solution's harmonics, its drifts and the lifted
+    sets, as in :class:`ContactState`.
     """
 
     table: NDArray[np.int64]
@@ -116,6 +128,8 @@ class StateArrays:
     modal_compression: NDArray[np.complex128]
     particular_compression: NDArray[np.complex128]
     particular: NDArray[np.complex128]
+    drift_compression: NDArray[np.float64]
+    drift: NDArray[np.float64]
     lifted: NDArray[np.bool_]
 
 
@@ -126,6 +140,8 @@ _STACKED_FIELDS = (
     "modal_compression",
     "particular_compression",
     "particular",
+    "drift_compression",
+    "drift",
     "lifted",
 )
 """The :class:`ContactState` arrays that :class:`StateArrays` stacks."""
@@ -148,6 +164,12 @@ class ContactStates:
     dynamics
         A cache of the states' excitation-independent parts (eigendecompositions) for this ``system``, kept by its
         owner (the model's ``derived_cache``) so that another excitation of the same model reuses them; None: none.
+    mechanisms
+        False (the default): a state with no stiffness against a rigid-body motion raises :class:`SingularStateError`.
+        True: such a state (a mechanism: its vanishing roots, round-off of 0, taken as 0; a defective one, no
+        damping along it, still raises) is marched exactly, the constant load's part along the motion drifting the
+        cargo at a constant rate (:attr:`ContactState.drift`) -- the 3-D cargo on one pad, its stoppers open, slides
+        across until another pad or a stopper takes it.
     """
 
     def __init__(
@@ -156,8 +178,11 @@ class ContactStates:
         compression_harmonics: NDArray[np.complex128],
         omega_rad_s: float,
         dynamics: dict[bytes, StateDynamics] | None = None,
+        *,
+        mechanisms: bool = False,
     ):
         self.system = system
+        self.mechanisms = bool(mechanisms)
         self.harmonics = np.asarray(compression_harmonics, dtype=complex)
         self.omega_rad_s = float(omega_rad_s)
         if system.saddle_count > MAX_SADDLES:
@@ -230,14 +255,20 @@ class ContactStates:
         key = np.asarray(lifted, dtype=bool).tobytes()
         dynamics = self._dynamics.get(key) if self._dynamics is not None else None
         if dynamics is None:
-            dynamics = _state_dynamics(self.system, lifted)
+            dynamics = _state_dynamics(self.system, lifted, self.mechanisms)
             if self._dynamics is not None:
                 self._dynamics[key] = dynamics
         lam, V, V_inv, input_matrix, force_state, force_forcing, compression_state, compression_forcing, cancellation = dynamics
         self.cancellation = max(self.cancellation, cancellation)
         w_k = 1j * self.omega_rad_s * np.arange(self.harmonics.shape[0])
         modal_input = V_inv @ (input_matrix @ self.harmonics.T)  # (2m, n_k)
-        particular = (V @ (modal_input / (w_k[None, :] - lam[:, None]))).T  # (n_k, 2m)
+        drift = np.zeros(V.shape[0])
+        resonant = (w_k[None, :] == lam[:, None]) & (lam[:, None] == 0.0)  # a mechanism's root 0 and the constant load
+        if np.any(resonant):  # x' = 0 x + u_0 along the mechanism: x_p = u_0 t, the drift
+            zero = resonant[:, 0]
+            drift = np.real(V[:, zero] @ modal_input[zero, 0])
+            modal_input = np.where(resonant, 0.0, modal_input)
+        particular = (V @ (modal_input / np.where(resonant, 1.0, w_k[None, :] - lam[:, None]))).T  # (n_k, 2m)
         return ContactState(
             lifted=lifted,
             eigenvalues=lam,
@@ -250,6 +281,8 @@ class ContactStates:
             force_forcing=force_forcing,
             modal_compression=np.asarray(compression_state @ V, dtype=complex),
             particular_compression=np.asarray(particular @ compression_state.T + self.harmonics @ compression_forcing.T, dtype=complex),
+            drift=drift,
+            drift_compression=np.asarray(compression_state @ drift, dtype=float),
         )
 
 
@@ -310,8 +343,20 @@ def _lifted_state(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> tuple[
     return stiffness, modal_input, force_state, force_forcing, 0.0
 
 
-def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> StateDynamics:
-    """The closed form of one contact state, whatever the excitation (see the module docstring)."""
+MECHANISM_CONDITION = 1e10
+"""Largest condition number of a mechanism state's eigenvectors: above it the root 0 is defective (nothing damps the
+rigid-body motion: ``x'' = u_0``, a Jordan block the closed form cannot take) and the state raises."""
+
+
+def _mechanism_roots(lam: NDArray, V: NDArray, small: NDArray[np.bool_]) -> bool:
+    """Whether the vanishing roots ``small`` of a state are a rigid-body motion's root 0 it can march: real (round-off
+    of 0, within the vanishing bound), the other roots stable, and the eigenvectors independent (not defective)."""
+    return bool(np.all(lam[~small].real <= 0.0) and np.linalg.cond(V) <= MECHANISM_CONDITION)
+
+
+def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_], mechanisms: bool = False) -> StateDynamics:
+    """The closed form of one contact state, whatever the excitation (see the module docstring); ``mechanisms``: a
+    rigid-body motion's vanishing roots taken as 0 instead of raising (:class:`ContactStates`)."""
     m, n_s = s.mode_count, s.saddle_count
     Phi, R = s.saddle_mode_shape, s.residual_flexibility_m_per_N
     L = np.nonzero(lifted)[0]
@@ -331,8 +376,10 @@ def _state_dynamics(s: ModalCorrectionSystem, lifted: NDArray[np.bool_]) -> Stat
     # against the highest natural frequency kept, not the largest root, which the stiffness-proportional damping of a
     # stiff mode inflates to beta w^2 (7.5e8 1/s with every mode of a 3-D cargo, against a held mode's 2.5e-3 1/s)
     highest = float(np.max(s.natural_frequency_rad_s, initial=1.0))
-    vanishing = s.basis is CorrectionBasis.BILATERAL and np.any(np.abs(lam) <= 1e-9 * max(highest, 1.0))
-    if vanishing or np.any(lam.real > 0.0):
+    small = (np.abs(lam) <= 1e-9 * max(highest, 1.0)) if s.basis is CorrectionBasis.BILATERAL else np.zeros(lam.size, dtype=bool)
+    if mechanisms and np.any(small) and _mechanism_roots(lam, V, small):
+        lam = np.where(small, 0.0, lam)  # round-off of the rigid-body motion's root 0
+    elif np.any(small) or np.any(lam.real > 0.0):
         raise SingularStateError(f"contact state with saddles {L.tolist()} lifted has no stiffness against a rigid-body motion")
     V = np.asarray(V, dtype=complex)
     return (
