@@ -16,13 +16,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import seafast
-from seafast.analyses.seastate.cradle_design_wave import (
-    cradle_sea_transfer,
-    cradle_spectral_extremes,
-    scaled_excitation,
-    select_cradle_design_waves,
-)
-from seafast.analyses.seastate.cradle_transfer import cradle_sea_model, cradle_still_water, cradle_unit_excitations
+from seafast.analyses.seastate.cradle_design_wave import cradle_sea_state, design_wave_excitation, select_cradle_design_waves
 from seafast.analyses.seastate.spectral import spectral_analysis
 from seafast.solvers.cradle_march import march_cradle
 from seafast.solvers.cradle_shooting import solve_cradle_shooting
@@ -108,14 +102,15 @@ def test_the_hs5_wave_through_a_one_pad_state_converges_and_matches_the_newmark_
     on a stopper, 1.7e-3 on a pad, 2e-6 on the lashings: the march's own step error, at T / 32768 1.5e-4); the
     lashings' range over the period (115 N of 74 kN) within 1 % (measured 1.3e-3; 1.4e-4 at T / 32768)."""
     analysis = spectral_analysis(seafast.load_case(None, CASE_HS5))
-    sea = cradle_sea_model(analysis.case, analysis.model)
-    transfer = cradle_sea_transfer(sea, analysis.directional)
-    stiffness = sea.dynamics.problem.element_stiffness_N_per_m
-    spectral = cradle_spectral_extremes(transfer, analysis.spectrum, cradle_still_water(sea), stiffness, analysis.case.sea_state.duration_s)
-    (wave,) = [w for w in select_cradle_design_waves(transfer, spectral) if (w.quantity, w.role) == ("lashing_tension_max_N", "band_high")]
+    state = cradle_sea_state(analysis, design_waves=False)  # the cradles, their transfer functions, the spectral MPMs
+    sea = state.sea
+    (wave,) = [
+        w
+        for w in select_cradle_design_waves(state.transfer, state.spectral)
+        if (w.quantity, w.role) == ("lashing_tension_max_N", "band_high")
+    ]
     assert abs(wave.omega_rad_s - 0.65520777) < 1e-7 and abs(wave.amplitude_m - 6.60033865) < 1e-6
-    unit = cradle_unit_excitations(sea, analysis.directional.per_direction[wave.direction], [wave.frequency_index])[0]
-    excitation = scaled_excitation(unit, wave.amplitude_m)
+    excitation = design_wave_excitation(sea, analysis.directional, wave)
     response = solve_cradle_shooting(sea.dynamics, excitation)
     assert response.outcome is SolverOutcome.CONVERGED, response.message
     assert "cutoff doubled" in response.message and "not converged" not in response.message

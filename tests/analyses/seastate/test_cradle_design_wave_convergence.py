@@ -11,13 +11,12 @@ import scipy.linalg
 
 import seafast
 from seafast.analyses.seastate.cradle_design_wave import (
-    cradle_sea_transfer,
-    cradle_spectral_extremes,
-    scaled_excitation,
+    cradle_sea_state,
+    design_wave_excitation,
     select_cradle_design_waves,
     solve_cradle_design_wave,
 )
-from seafast.analyses.seastate.cradle_transfer import cradle_sea_model, cradle_still_water, cradle_unit_excitations
+from seafast.analyses.seastate.cradle_transfer import cradle_sea_model
 from seafast.analyses.seastate.spectral import spectral_analysis
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.fourier import real_to_complex_harmonics
@@ -87,13 +86,14 @@ def test_the_stoppers_near_miss_wave_converges_and_matches_the_newmark_march():
     0.5 % of its force scale of the Newmark march's at T / 32768 (measured 3.4e-3 on a stopper, 2e-4 on the pads and
     lashings)."""
     analysis = spectral_analysis(seafast.load_case(None, PADS_20_STOPPERS))
-    sea = cradle_sea_model(analysis.case, analysis.model)
-    transfer = cradle_sea_transfer(sea, analysis.directional)
-    stiffness = sea.dynamics.problem.element_stiffness_N_per_m
-    spectral = cradle_spectral_extremes(transfer, analysis.spectrum, cradle_still_water(sea), stiffness, analysis.case.sea_state.duration_s)
-    (wave,) = [w for w in select_cradle_design_waves(transfer, spectral) if (w.quantity, w.role) == ("lashing_tension_max_N", "band_high")]
-    unit = cradle_unit_excitations(sea, analysis.directional.per_direction[wave.direction], [wave.frequency_index])[0]
-    excitation = scaled_excitation(unit, wave.amplitude_m)
+    state = cradle_sea_state(analysis, design_waves=False)  # the cradles, their transfer functions, the spectral MPMs
+    sea = state.sea
+    (wave,) = [
+        w
+        for w in select_cradle_design_waves(state.transfer, state.spectral)
+        if (w.quantity, w.role) == ("lashing_tension_max_N", "band_high")
+    ]
+    excitation = design_wave_excitation(sea, analysis.directional, wave)
     response = solve_cradle_design_wave(sea.dynamics, excitation)
     assert response.outcome is SolverOutcome.CONVERGED, response.message
     assert "cutoff doubled 6 time(s)" in response.message and "harmonic balance" not in response.message

@@ -18,7 +18,7 @@ import xarray as xr
 
 import seafast
 from seafast.analyses.seastate import cradle_friction_wave
-from seafast.analyses.seastate.cradle_design_wave import cradle_design_waves, cradle_sea_state, scaled_excitation
+from seafast.analyses.seastate.cradle_design_wave import cradle_design_waves, cradle_sea_state, design_wave_excitation
 from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, element_groups
 from seafast.analyses.seastate.cradle_friction_wave import (
     CRADLE_FRICTION_COLUMNS,
@@ -26,7 +26,6 @@ from seafast.analyses.seastate.cradle_friction_wave import (
     design_wave_friction,
     solve_frictional_design_wave,
 )
-from seafast.analyses.seastate.cradle_transfer import cradle_unit_excitations
 from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, spectral_analysis
 from seafast.cli import main
 from seafast.model.pad_friction import PadFriction
@@ -56,8 +55,7 @@ def frictional():
 
 def _excitation(analysis, state, wave):
     """A design wave's excitation, formed from the sea's transfer functions (its still water at k = 0)."""
-    unit = cradle_unit_excitations(state.sea, analysis.directional.per_direction[wave.direction], [wave.frequency_index])[0]
-    return scaled_excitation(unit, wave.amplitude_m)
+    return design_wave_excitation(state.sea, analysis.directional, wave)
 
 
 def _pad_peak_force_N(response) -> float:

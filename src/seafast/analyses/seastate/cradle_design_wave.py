@@ -62,6 +62,7 @@ __all__ = [
     "cradle_design_wave_readings",
     "solve_cradle_design_wave",
     "scaled_excitation",
+    "design_wave_excitation",
     "cradle_design_waves",
     "cradle_sea_state",
 ]
@@ -267,6 +268,13 @@ def scaled_excitation(unit: CradleExcitation, amplitude_m: float) -> CradleExcit
     return CradleExcitation(unit.omega_rad_s, load, deck, unit.deck_x_m, f"{unit.source}, amplitude {amplitude_m:.4g} m")
 
 
+def design_wave_excitation(sea: CradleSeaModel, transfer: SeaStateTransfer, wave: CradleDesignWave) -> CradleExcitation:
+    """A design wave's excitation of the cradles: its direction's unit wave at its frequency (still water at k = 0),
+    scaled to its amplitude (:func:`scaled_excitation`)."""
+    unit = cradle_unit_excitations(sea, transfer.per_direction[wave.direction], [wave.frequency_index])[0]
+    return scaled_excitation(unit, wave.amplitude_m)
+
+
 def cradle_design_waves(
     sea: CradleSeaModel,
     transfer: SeaStateTransfer,
@@ -313,8 +321,7 @@ def cradle_design_waves(
         keys.append(key)
         if key in plain:
             continue
-        unit = cradle_unit_excitations(sea, transfer.per_direction[wave.direction], [wave.frequency_index])[0]
-        excitation = scaled_excitation(unit, wave.amplitude_m)
+        excitation = design_wave_excitation(sea, transfer, wave)
         plain[key] = solve_cradle_design_wave(sea.dynamics, excitation, options, harmonics)
         if friction is not None:
             frictional[key] = solve_frictional_design_wave(sea.dynamics, excitation, friction)
