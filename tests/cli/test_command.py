@@ -175,6 +175,8 @@ def test_sweep_writes_the_frequency_response(tmp_path):
     rows = _summary(out / "frequency_response.csv")
     omega = [float(r["omega_rad_s"]) for r in rows]
     assert omega[0] == pytest.approx(0.4) and omega[-1] == pytest.approx(0.8)
+    # the 1 % cap on the step in omega, not a step control stalled by a noisy tangent (2000 points then)
+    assert len(rows) <= 110
     assert all(r["converged"] == "true" for r in rows)
     # far below the first natural frequency (44 rad/s) the response is quasi-static: flat in omega
     forces = [float(r["max_saddle_force_N"]) for r in rows]
