@@ -161,9 +161,10 @@ def base_case_cradles(alpha_deg: float, wave_factor: float):
 
 def test_the_base_case_strong_lift_off_repeats_every_two_wave_periods():
     """20 deg pads at 1.3 times the base case's beam sea (the high-side pads lift a third of the period, every stopper
-    closes): the periodic orbit Newton finds (from ten marched periods) has a Floquet multiplier near -5, real and
-    negative: it is unstable and the period doubles. The exact-event flow settles on a response repeating every two wave
-    periods (to 1e-6; 4e-2 over one), the same at two successive cutoffs; the default cradle solve returns that
+    closes): the periodic orbit Newton finds (from halfway between the two states the flow alternates between) has a
+    Floquet multiplier near -5, real and negative: it is unstable and the period doubles. The exact-event flow
+    settles on a response repeating every two wave periods (to 1e-6; 4e-2 over one), the same at two successive
+    cutoffs; the default cradle solve returns that
     orbit of two wave periods (CONVERGED_SUBHARMONIC, Newton on the two-period map, stable) with the verdict, no
     harmonic balance; its peaks, over both periods, at least the flow's over its last one (to 0.1 % of the force
     scale: the flow's grid is coarser)."""
@@ -175,7 +176,8 @@ def test_the_base_case_strong_lift_off_repeats_every_two_wave_periods():
         first_harmonic_time,
         reference_frequency_rad_s,
     )
-    from seafast.solvers.shooting.orbit import shoot_orbit
+    from seafast.solvers.shooting.orbit import guarded, shoot_orbit
+    from seafast.solvers.shooting.period import PeriodGrid, flow_period
     from seafast.solvers.shooting.states import ContactStates
 
     dynamics, excitation = base_case_cradles(20.0, 1.3)
@@ -196,7 +198,14 @@ def test_the_base_case_strong_lift_off_repeats_every_two_wave_periods():
     D = real_to_complex_harmonics(ops.linear_compression_m)
     states = ContactStates(system, D, excitation.omega_rad_s)
     scale = float(np.max(np.abs(first_harmonic_time(D, 64))))
-    orbit = shoot_orbit(states, 2048, scale, ShootingOptions(march_periods=10, max_iterations=60), system.unilateral_stiffness_N_per_m)
+    # Newton started halfway between the two states the flow alternates between (a flip's unstable orbit lies between
+    # them); from ten marched periods it found it on one machine's BLAS and wandered off on another's
+    grid, x = PeriodGrid(states, 2048), np.zeros(states.state_size)
+    for _ in range(40):
+        x = flow_period(states, x, grid, monodromy=False, guard=guarded(states)).end_state
+    other = flow_period(states, x, grid, monodromy=False, guard=guarded(states)).end_state
+    options = ShootingOptions(march_periods=0, max_iterations=60)
+    orbit = shoot_orbit(states, 2048, scale, options, system.unilateral_stiffness_N_per_m, start=0.5 * (x + other))
     assert orbit.residual <= 1e-8 and not orbit.converged  # a periodic orbit, unstable
     assert orbit.flow.monodromy is not None
     multipliers = np.linalg.eigvals(orbit.flow.monodromy)

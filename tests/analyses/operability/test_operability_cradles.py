@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from round_off import assert_same_table
 from seafast.analyses.operability.allowable import CRADLE_OPERABILITY_COLUMNS, OperabilitySettings, allowable_sea_states
 from seafast.analyses.operability.limits import GOVERNING, cradle_limits, linear_limit_hs
 from seafast.cli import main
@@ -74,12 +75,15 @@ def test_linear_limit_hs_closed_form():
     assert linear_limit_hs(np.array([]), np.array([]), 10.0) == math.inf  # no location (no lashing wires)
 
 
-def test_head_seas_operability_csv_is_main_s_byte_for_byte(tmp_path):
-    # head seas (the default) and, over headings, beam seas without a cradle limit: the files main writes
+def test_head_seas_operability_csv_is_main_s(tmp_path):
+    # head seas (the default) and, over headings, beam seas without a cradle limit: the files main writes, to the
+    # solvers' round-off across machines (tests/round_off.py; on the machine that wrote them, byte for byte)
     assert main(["operability", "--tp", "6:14:2", "-o", str(tmp_path / "h"), "--no-plots", "-q"]) == 0
-    assert (tmp_path / "h" / "operability.csv").read_bytes() == (DATA / "operability_head_seas_tp6-14.csv").read_bytes()
+    got = (tmp_path / "h" / "operability.csv").read_text()
+    assert_same_table(got, (DATA / "operability_head_seas_tp6-14.csv").read_text())
     assert main(["operability", "--headings", "90:180:90", "--tp", "8:12:2", "-o", str(tmp_path / "b"), "--no-plots", "-q"]) == 0
-    assert (tmp_path / "b" / "operability.csv").read_bytes() == (DATA / "operability_headings_90_180_tp8-12.csv").read_bytes()
+    got = (tmp_path / "b" / "operability.csv").read_text()
+    assert_same_table(got, (DATA / "operability_headings_90_180_tp8-12.csv").read_text())
 
 
 def test_head_seas_with_a_cradle_limit_set_are_judged_as_before():

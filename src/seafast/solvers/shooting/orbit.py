@@ -30,6 +30,7 @@ __all__ = [
     "Orbit",
     "attainable",
     "guarded",
+    "measured_floor",
     "missed_peak",
     "period_residual",
     "periodic_state",
@@ -45,6 +46,13 @@ STABILITY_MARGIN = 1e-6
 ROUND_OFF_FACTOR = 1e4
 """How many times the double precision of the state's own size a period's march repeats a periodic state to
 (the eigenvector bases of the contact states, their conditioning and the events' times: :func:`attainable`)."""
+
+NOISE_FACTOR = 10.0
+"""A Newton that stalls above :func:`attainable` is converged within this multiple of the period map's round-off
+noise measured at its best state (:func:`measured_floor`)."""
+NOISE_CAP = 1e-7
+"""... and never above this residual [-] (1e-4 of the peak tolerance: what the noise may leave on a peak force)."""
+_NOISE_SHIFTS = (4.0, -4.0, 16.0, -16.0)  # the start moved by these multiples of the double precision
 
 
 @dataclass(frozen=True)
@@ -135,6 +143,8 @@ def shoot_orbit(
             compression, correction = sampled_contact(states, grid, flow, times)
         missed = missed_peak(compression, continuous, stiffness_N_per_m)
         target = attainable(states, x_start, scale_m, opts.tolerance)
+        if residual > target:  # stalled: is it the period map's own round-off?
+            target = max(target, min(NOISE_FACTOR * measured_floor(states, grid, x_start, scale_m, opts, flow), NOISE_CAP))
         if float(np.max(missed, initial=0.0)) <= opts.peak_tolerance or N >= opts.max_samples or residual > target:
             break
         N *= 2  # the grid misses part of a peak: the same orbit on a finer grid
@@ -265,6 +275,24 @@ def attainable(states: ContactStates, x0: NDArray, scale_m: float, tolerance: fl
     """
     floor = ROUND_OFF_FACTOR * float(np.finfo(float).eps) * state_change(states, x0, 1.0) / scale_m
     return max(float(tolerance), floor)
+
+
+def measured_floor(states: ContactStates, grid: PeriodGrid, x0: NDArray, scale_m: float, opts: ShootingOptions, flow: PeriodFlow) -> float:
+    """The period map's round-off noise at ``x0`` [-]: the largest change of the period's end when the start moves by
+    a few units of the double precision, less what the monodromy matrix carries of that move.
+
+    :func:`attainable`'s floor is an estimate calibrated on one machine; the march's actual round-off depends on the
+    BLAS (the contact states' eigenvector bases and the events' times), so a Newton that stalls is asked this of its
+    own state, as the frequency continuation asks its corrector.
+    """
+    eps = float(np.finfo(float).eps)
+    noise = 0.0
+    for shift in _NOISE_SHIFTS:
+        moved = x0 * (1.0 + shift * eps)
+        end = flow_period(states, moved, grid, monodromy=False, max_events=opts.max_events, guard=guarded(states)).end_state
+        carried = flow.monodromy @ (moved - x0) if flow.monodromy is not None else 0.0
+        noise = max(noise, state_change(states, end - flow.end_state - carried, scale_m))
+    return noise
 
 
 def period_residual(states: ContactStates, flow: PeriodFlow, x0: NDArray, scale_m: float) -> float:
