@@ -302,7 +302,8 @@ class _Proxy:
 
 def _secant_hs(value: Value, limit: float, start_hs: float, cap: float, still: float, tolerance: float) -> tuple[float, bool]:
     """Secant steps on ``value`` from the still water (Hs = 0) and ``start_hs``: (hs, converged) with ``value(hs)``
-    within half the Hs tolerance's worth of the limit; NaN when it does not get there in 8 steps, a slope is not
+    within half the Hs tolerance's worth of the limit, or the next step when it moves less than the tolerance (after
+    two evaluations: the secant's root, not evaluated); NaN when it does not get there in 8 steps, a slope is not
     positive, or a step is held at the cap or the floor (the bracketing search then decides)."""
     last = (0.0, still)
     hs = min(max(start_hs, 1e-3), cap)
@@ -318,6 +319,8 @@ def _secant_hs(value: Value, limit: float, start_hs: float, cap: float, still: f
         step = min(max(hs + (limit - v) / slope, 0.5 * hs, 1e-3), 2.0 * hs, cap)
         if step == hs:
             return math.nan, True
+        if last[0] > 0.0 and abs(step - hs) <= tolerance:
+            return step, True
         last, hs = (hs, v), step
     return math.nan, True
 
