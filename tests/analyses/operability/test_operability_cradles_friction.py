@@ -5,6 +5,7 @@ converge flagged, and without the key, with mu = 0 or in head seas ``operability
 
 from __future__ import annotations
 
+import csv
 import dataclasses
 import logging
 import math
@@ -96,6 +97,21 @@ def test_the_proxy_led_search_lands_where_the_case_s_h_alone_does(rough):
     )
     assert ok and abs(root - p.hs_pad_force_nonlinear_m) <= 2 * TOLERANCE_M
     assert len(calls) >= 5  # the plain search: bracketing and Brent on the H = 32 waves
+
+
+@pytest.mark.slow
+def test_seafast_seastate_at_the_reported_hs_reads_the_pad_limit_in_its_frictional_row(rough, tmp_path):
+    """Command to command: `seafast seastate` with the same keys at the reported Hs and Tp has the pad limit in its
+    frictional design-wave row, within what the search's tolerance moves it (and the operability family's interpolated
+    transfer functions, 1e-6 of the direct ones, move it less); the row converged and frictional."""
+    _, p, _, _ = rough
+    args = [a for k, v in ROUGH.items() for a in ("--set", f"{k}={v}")]
+    args += ["--set", f"sea_state.significant_height_m={p.hs_pad_force_nonlinear_m!r}", "--set", "sea_state.peak_period_s=10"]
+    assert main(["seastate", "-o", str(tmp_path), "--no-monte-carlo", "--no-plots", "-q", *args]) == 0
+    with open(tmp_path / "seastate.csv", newline="") as f:
+        row = next(r for r in csv.DictReader(f) if r["method"] == "design_wave")
+    assert row["converged"] == "true" and float(row["pad_friction_utilisation"]) > 0.0
+    assert abs(float(row["F_pad_N"]) - PAD_LIMIT_N) <= SLOPE_N_PER_M * TOLERANCE_M + 1e-6 * PAD_LIMIT_N
 
 
 def test_the_proxy_is_the_same_friction_at_h_16():
