@@ -129,7 +129,8 @@ def _led(value, proxy, limit=5.0, start=1.0, cap=10.0):
 def test_the_led_search_answers_with_the_value_s_root_whatever_the_proxy():
     """On a smooth stand-in (value = 3 + 0.5 Hs + 0.02 Hs^2, limit 5: root 3.6148 m) the answer is within the tolerance
     of value's root with the proxy 1e-4 off (one reading of value), 5 % off (the secant on value corrects it) and
-    not converging (value's own search); value reaching the limit only beyond the cap gives inf."""
+    not converging (value's own search); value reaching the limit only beyond the cap gives inf from one reading at
+    the cap; a reading of value that does not converge gives NaN, not converged."""
     exact = (-0.5 + math.sqrt(0.25 + 4 * 0.02 * 2.0)) / (2 * 0.02)
     reads: list[float] = []
 
@@ -144,8 +145,11 @@ def test_the_led_search_answers_with_the_value_s_root_whatever_the_proxy():
         assert root in reads  # the answer is a reading of value
         if converged and factor < 1.01:
             assert len(reads) == 1
+    reads.clear()
     root, ok, _ = _led(value, lambda hs: (3.0 + 0.5 * hs + 0.02 * hs**2, True), limit=50.0)
-    assert ok and root == math.inf
+    assert ok and root == math.inf and reads == [10.0]  # one reading, at the cap
+    root, ok, _ = _led(lambda hs: (3.0 + 0.5 * hs, False), lambda hs: (3.0 + 0.5 * hs, True))
+    assert not ok and math.isnan(root)  # a reading that does not converge: flagged, never an answer
 
 
 def _not_converging(residual: float):

@@ -334,8 +334,10 @@ def _led_limit_hs(
     by ``value`` itself; it is the answer when every solve converged and the reading is within the search's tolerance
     of the limit, ``|value - limit| <= slope hs_tolerance_m`` (the slope the proxy's evaluations nearest it show: the
     root of ``value`` within ``hs_tolerance_m`` of it), else the secant step with that slope is read, up to three
-    readings. Otherwise (or when the proxy's solves do not converge, or give no root below the cap) ``value``'s own
-    search from there answers, with steps of 1 % in Hs. An answer is always a reading of ``value``, never of the proxy.
+    readings, and then ``value``'s own search from there answers, with steps of 1 % in Hs. A reading that does not
+    converge answers NaN, not converged. Where the proxy reaches no root below the cap, ``value``'s search starts at
+    the cap (one reading when it is not reached there either); where the proxy's solves do not converge, it starts
+    where the proxy's did. An answer is always a reading of ``value``, never of the proxy.
     """
     points: list[tuple[float, float]] = []
 
@@ -348,17 +350,18 @@ def _led_limit_hs(
     if ok and math.isnan(hs):
         hs, ok, _ = _nonlinear_limit_hs(recorded, limit, start_hs, cap, settings)
     count, slope = len(points), _slope_near(points, hs)
-    for _ in range(3 if ok and 0.0 < hs < cap and slope > 0.0 else 0):
+    near = ok and 0.0 < hs < cap and slope > 0.0
+    for _ in range(3 if near else 0):
         v, conv = value(hs)
         count += 1
         if not conv:
-            break
+            return math.nan, False, count  # flagged, as value's own search would be from here on
         if abs(v - limit) <= slope * settings.hs_tolerance_m:
             return hs, True, count
         hs = min(max(hs - (v - limit) / slope, 1e-3), cap)  # the secant's estimate of value's root
-    start = hs if ok and math.isfinite(hs) else start_hs
-    polish = replace(settings, expansion=min(settings.expansion, 1.01))
-    root, converged, more = _nonlinear_limit_hs(value, limit, start, cap, polish)
+    start = (cap if hs == math.inf else hs) if ok else start_hs  # no root below the cap: value at the cap decides
+    steps = replace(settings, expansion=min(settings.expansion, 1.01)) if near else settings
+    root, converged, more = _nonlinear_limit_hs(value, limit, start, cap, steps)
     return root, converged, count + more
 
 
