@@ -205,3 +205,13 @@ def test_the_still_value_is_the_column_in_still_water(rough):
     assert still == pytest.approx(4.46e6, rel=5e-3)
     value, ok = cradle_design_wave_value(at, "pad_force", lambda h: rescaled(ref, h).spectrum, 0.5, at.family.friction)(1e-9)
     assert ok and value == pytest.approx(still, rel=1e-6)
+
+
+def test_worker_processes_over_the_peak_periods_give_the_serial_answer(tmp_path, capsys):
+    """``--workers 2`` (one Tp per task on local processes): operability.csv byte for byte the serial one, here the
+    file written before friction was applied (beam seas, pad limit, no key); ``--workers 0`` refused naming it."""
+    args = ["operability", "--tp", "8:12:2", "--no-plots", "-q"] + [a for k, v in BEAM.items() for a in ("--set", f"{k}={v}")]
+    assert main([*args, "-o", str(tmp_path / "w2"), "--workers", "2"]) == 0
+    assert (tmp_path / "w2" / "operability.csv").read_bytes() == (DATA / "operability_beam_pad_limit_tp8-12.csv").read_bytes()
+    assert main([*args, "-o", str(tmp_path / "w0"), "--workers", "0"]) == 2
+    assert "--workers 0: allowed: 1" in capsys.readouterr().err

@@ -55,6 +55,7 @@ from seafast.analyses.seastate.design_wave import DesignWaveSettings, design_wav
 from seafast.analyses.seastate.spectral import SpectralAnalysis
 from seafast.analyses.seastate.wave_response import WaveOperators, WaveSolution
 from seafast.config.schema import Case, max_significant_height_m
+from seafast.parallel.executor import ExecutionOptions, map_batches, plan_batches
 
 __all__ = [
     "GOVERNING",
@@ -463,6 +464,7 @@ def allowable_sea_states(
     *,
     family: SeaStateFamily | None = None,
     progress: Callable[[int, int], None] | None = None,
+    execution: ExecutionOptions | None = None,
 ) -> OperabilityResult:
     """Allowable Hs per peak period, linear and nonlinear, and the uplift onset (module docstring).
 
@@ -480,6 +482,10 @@ def allowable_sea_states(
         The shared part (:func:`~seafast.analyses.operability.family.sea_state_family`) when already computed for these Tp.
     progress
         Called with (done, total) after each peak period.
+    execution
+        Local worker processes (or a Dask scheduler) over the peak periods, one Tp per task
+        (:func:`~seafast.parallel.executor.map_batches`; each Tp's answer is the serial one); None or serial: the peak
+        periods one after the other in this process.
 
     Returns
     -------
@@ -493,9 +499,23 @@ def allowable_sea_states(
     """
     tps = [float(t) for t in peak_periods_s]
     fam = sea_state_family(case, tps, settings.master_step_rad_s) if family is None else family
+    if execution is not None and execution.mode() != "serial" and len(tps) > 1:
+        done: dict[int, OperabilityPoint] = {}
+        batches = plan_batches(list(range(len(tps))), execution.worker_count(), batch_size=1)
+        for out in map_batches(_points_task, (fam, settings, tps), batches, execution):
+            done |= dict(out)
+            if progress is not None:
+                progress(len(done), len(tps))
+        return OperabilityResult(case, tuple(done[i] for i in range(len(tps))), settings)
     points = []
     for i, tp in enumerate(tps):
         points.append(_point(fam, tp, settings))
         if progress is not None:
             progress(i + 1, len(tps))
     return OperabilityResult(case, tuple(points), settings)
+
+
+def _points_task(shared: tuple[SeaStateFamily, OperabilitySettings, list[float]], batch: list[int]) -> list[tuple[int, OperabilityPoint]]:
+    """The points of a batch of peak-period indices (a task of :func:`allowable_sea_states` on worker processes)."""
+    family, settings, tps = shared
+    return [(i, _point(family, tps[i], settings)) for i in batch]
