@@ -1,6 +1,9 @@
 """The ``seafast operability`` subcommand: allowable Hs per peak period, linear and nonlinear.
 
-``seafast operability [CASE] [--tp START:STOP:STEP] [--headings START:STOP:STEP] [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]``
+``seafast operability [CASE] [--tp START:STOP:STEP] [--headings START:STOP:STEP] [-o DIR] [--set KEY=VALUE ...] [--scatter FILE]
+[--workers N]``
+
+``--workers N`` (above 1): each heading's peak periods on N local processes, each Tp's answer the serial one.
 
 With ``--headings`` (one heading or a range, degrees in [0, 360]; 180 = head seas, 90 = beam seas)
 the analysis runs once per heading (:func:`seafast.analyses.operability.headings.allowable_per_heading`),
@@ -22,7 +25,7 @@ import argparse
 import math
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -33,6 +36,7 @@ if TYPE_CHECKING:
     from seafast.analyses.operability.allowable import OperabilityResult
     from seafast.analyses.operability.headings import HeadingOperabilityResult
     from seafast.config import Case
+    from seafast.parallel.executor import ExecutionOptions
 
 __all__ = [
     "add_operability_subcommand",
@@ -168,6 +172,9 @@ def _cmd_operability(args: argparse.Namespace) -> int:
         headings = parse_headings(args.headings) if args.headings is not None else None
     except ValueError as exc:
         return error(str(exc))
+    if args.workers < 1:
+        return error(f"--workers {args.workers}: allowed: 1 (serial, the default) or more local processes")
+    execution = _workers_execution(args.workers)
     if headings is not None and args.scatter:
         return error(
             f"--scatter {args.scatter} with --headings {args.headings}: a scatter diagram is assessed in one heading; allowed: "
@@ -212,7 +219,7 @@ def _cmd_operability(args: argparse.Namespace) -> int:
         if not args.quiet and sys.stderr.isatty():
             print(f"\r  peak period {done}/{total}", end="" if done < total else "\n", file=sys.stderr)
 
-    result = allowable_sea_states(case, tps, family=family, progress=progress)
+    result = allowable_sea_states(case, tps, family=family, progress=progress, execution=execution)
     assessment = None
     if scatter is not None:
         at = allowable_sea_states(case, scatter_tps, family=family)
@@ -291,10 +298,18 @@ def _operation_outputs(
     return {"route_csv": path}, operation_summary(plan) + "\n" + format_route_table(checks)
 
 
+def _workers_execution(workers: int) -> ExecutionOptions | None:
+    """``--workers``: the peak periods on local worker processes, one Tp per task (None: 1, serial, the default)."""
+    from seafast.parallel.executor import ExecutionOptions
+
+    return ExecutionOptions(workers=workers, progress=False) if workers > 1 else None
+
+
 def _run_headings(
     args: argparse.Namespace, case: Case, headings: list[float], tps: list[float], default: bool, t0: float, plan: OperationPlan | None
 ) -> int:
     """``seafast operability --headings``: the analysis per heading, its files and printed table, the exit code."""
+    from seafast.analyses.operability.allowable import OperabilitySettings, allowable_sea_states
     from seafast.analyses.operability.headings import AllowableModel, allowable_per_heading
     from seafast.config import CaseError
     from seafast.output.operability_headings import format_heading_table, governing_heading_text, write_heading_operability_outputs
@@ -310,8 +325,11 @@ def _run_headings(
         if not args.quiet and sys.stderr.isatty():
             print(f"\r  heading {done}/{total}", end="" if done < total else "\n", file=sys.stderr)
 
+    def analyse(case_h: Case, tps_h: Sequence[float], settings: OperabilitySettings) -> OperabilityResult:
+        return allowable_sea_states(case_h, tps_h, settings, execution=_workers_execution(args.workers))
+
     try:
-        result = allowable_per_heading(case, headings, tps, progress=progress)
+        result = allowable_per_heading(case, headings, tps, analyse=analyse, progress=progress)
     except CaseError as exc:
         message = str(exc)
         if "sea_state.peak_period_s" in message:
@@ -376,6 +394,7 @@ def add_operability_subcommand(subparsers: Any) -> argparse.ArgumentParser:
         "--scatter", default=None, metavar="FILE", help="wave scatter diagram, CSV significant_height_m,peak_period_s,occurrence"
     )
     p.add_argument("--no-plots", action="store_true", help="skip the PNG chart")
+    p.add_argument("--workers", type=int, default=1, metavar="N", help="local processes over the peak periods (default: 1, serial)")
     p.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     p.set_defaults(handler=_cmd_operability)
     return p

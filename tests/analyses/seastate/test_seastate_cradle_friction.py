@@ -233,19 +233,3 @@ def test_without_the_key_with_zero_friction_and_in_head_seas_the_outputs_are_unc
     head, head_mu = run("head"), run("head_mu", f"seafastening.friction_coefficient={MU}")
     assert head[0] == head_mu[0] and "F_pad_N" not in head[0]
     assert not calls
-
-
-def test_operability_on_the_cradles_warns_that_it_keeps_frictionless_pads(caplog):
-    """Operability's cradle design waves stay frictionless (their frictional search costs about 12 times): with the key
-    and a cradle limit set it says so, naming the key and its value; without the key it says nothing."""
-    from seafast.analyses.operability.cradle import cradle_family
-    from seafast.model.from_case import build_model
-
-    limit = {**BEAM, "limits.max_pad_force_N": 5e6}
-    for mu, warned in ((None, False), (MU, True)):
-        case = seafast.load_case(None, limit if mu is None else {**limit, "seafastening.friction_coefficient": mu})
-        caplog.clear()
-        with caplog.at_level("WARNING", logger="seafast"):
-            assert cradle_family(case, build_model(case)) is not None
-        said = [r.getMessage() for r in caplog.records if "friction_coefficient" in r.getMessage()]
-        assert bool(said) == warned and (not warned or "= 0.2 is not applied" in said[0])

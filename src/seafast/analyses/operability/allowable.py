@@ -19,8 +19,15 @@ proportional to Hs (``MPM = sigma sqrt(2 ln(D / Tz))``, sigma proportional to Hs
 Off head seas, each cradle limit set (``limits.max_pad_force_N``, ``limits.max_lashing_tension_N``,
 ``limits.max_transverse_slip_m``) is one more limit of both models, in closed form and by the cradle design waves
 (:mod:`seafast.analyses.operability.cradle`); the limits are searched in the order the linear model reaches them.
+On frictional pads (``seafastening.friction_coefficient`` above 0) the cradle design waves are the frictional ones of
+``seafast seastate``; their search is led by the same waves at H = 16 (:func:`_led_limit_hs`: secant steps from the
+still water), whose answer is then read by the case's waves and kept when that reading is within the Hs tolerance of
+the limit (else corrected by secant steps on the case's waves, else their own search).
 
 The sea states share their transfer functions (:mod:`seafast.analyses.operability.family`).
+
+Size: over 400 lines because the search's three parts (the bracketing and Brent search, the proxy-led search of the
+frictional cradle limits, the order of the limits) and the point they answer read best together.
 """
 
 from __future__ import annotations
@@ -28,20 +35,27 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from seafast.analyses.operability.cradle import cradle_at_peak_period, cradle_design_wave_value, cradle_linear_limits
+from seafast.analyses.operability.cradle import (
+    cradle_at_peak_period,
+    cradle_design_wave_value,
+    cradle_linear_limits,
+    cradle_still_value,
+    proxy_friction,
+)
 from seafast.analyses.operability.family import MASTER_STEP_RAD_S, SeaStateFamily, analysis_at, rescaled, sea_state_family
 from seafast.analyses.operability.limits import GOVERNING, VERTICAL_LIMITS, linear_limit_hs, vertical_limits
 from seafast.analyses.seastate.design_wave import DesignWaveSettings, design_wave_extremes
 from seafast.analyses.seastate.spectral import SpectralAnalysis
 from seafast.analyses.seastate.wave_response import WaveOperators, WaveSolution
 from seafast.config.schema import Case, max_significant_height_m
+from seafast.parallel.executor import ExecutionOptions, map_batches, plan_batches
 
 __all__ = [
     "GOVERNING",
@@ -264,14 +278,109 @@ def _vertical_values(family: SeaStateFamily, ref: SpectralAnalysis, settings: Op
     return {name: value_of(quantity) for name, quantity in _LIMIT_QUANTITY.items()}
 
 
+def _slope_near(points: Sequence[tuple[float, float]], hs: float) -> float:
+    """The secant slope of ``value(Hs)`` [per m] between the evaluations nearest ``hs`` on each side (or the two
+    nearest when all lie on one side); NaN with fewer than two."""
+    below = [p for p in points if p[0] < hs]
+    above = [p for p in points if p[0] > hs]
+    if below and above:
+        a, b = max(below), min(above)
+    else:
+        near = sorted(points, key=lambda p: abs(p[0] - hs))[:2]
+        if len(near) < 2 or near[0][0] == near[1][0]:
+            return math.nan
+        a, b = sorted(near)
+    return (b[1] - a[1]) / (b[0] - a[0])
+
+
+@dataclass(frozen=True)
+class _Proxy:
+    """A cheaper estimate of a limit's value (the frictional cradle design waves at a smaller H) and its still water."""
+
+    value: Value
+    still: float
+
+
+def _secant_hs(value: Value, limit: float, start_hs: float, cap: float, still: float, tolerance: float) -> tuple[float, bool]:
+    """Secant steps on ``value`` from the still water (Hs = 0) and ``start_hs``: (hs, converged) with ``value(hs)``
+    within half the Hs tolerance's worth of the limit, or the next step when it moves less than the tolerance (after
+    two evaluations: the secant's root, not evaluated); NaN when it does not get there in 8 steps, a slope is not
+    positive, or a step is held at the cap or the floor (the bracketing search then decides)."""
+    last = (0.0, still)
+    hs = min(max(start_hs, 1e-3), cap)
+    for _ in range(8):
+        v, ok = value(hs)
+        if not ok:
+            return math.nan, False
+        slope = (v - last[1]) / (hs - last[0])
+        if not slope > 0.0:
+            return math.nan, True
+        if abs(v - limit) <= 0.5 * slope * tolerance:
+            return hs, True
+        step = min(max(hs + (limit - v) / slope, 0.5 * hs, 1e-3), 2.0 * hs, cap)
+        if step == hs:
+            return math.nan, True
+        if last[0] > 0.0 and abs(step - hs) <= tolerance:
+            return step, True
+        last, hs = (hs, v), step
+    return math.nan, True
+
+
+def _led_limit_hs(
+    value: Value, proxy: _Proxy, limit: float, start_hs: float, cap: float, settings: OperabilitySettings
+) -> tuple[float, bool, int]:
+    """:func:`_nonlinear_limit_hs` of ``value`` led by a cheaper ``proxy`` of it: (hs, converged, evaluations).
+
+    The proxy's root (secant steps from the still water, :func:`_secant_hs`; else the bracketing search on it) is read
+    by ``value`` itself; it is the answer when every solve converged and the reading is within the search's tolerance
+    of the limit, ``|value - limit| <= slope hs_tolerance_m`` (the slope the proxy's evaluations nearest it show: the
+    root of ``value`` within ``hs_tolerance_m`` of it), else the secant step with that slope is read, up to three
+    readings, and then ``value``'s own search from there answers, with steps of 1 % in Hs. A reading that does not
+    converge answers NaN, not converged. Where the proxy reaches no root below the cap, ``value``'s search starts at
+    the cap (one reading when it is not reached there either); where the proxy's solves do not converge, it starts
+    where the proxy's did. An answer is always a reading of ``value``, never of the proxy.
+    """
+    points: list[tuple[float, float]] = []
+
+    def recorded(hs: float) -> tuple[float, bool]:
+        v, ok = proxy.value(hs)
+        points.append((hs, v))
+        return v, ok
+
+    hs, ok = _secant_hs(recorded, limit, start_hs, cap, proxy.still, settings.hs_tolerance_m)
+    if ok and math.isnan(hs):
+        hs, ok, _ = _nonlinear_limit_hs(recorded, limit, start_hs, cap, settings)
+    count, slope = len(points), _slope_near(points, hs)
+    near = ok and 0.0 < hs < cap and slope > 0.0
+    for _ in range(3 if near else 0):
+        v, conv = value(hs)
+        count += 1
+        if not conv:
+            return math.nan, False, count  # flagged, as value's own search would be from here on
+        if abs(v - limit) <= slope * settings.hs_tolerance_m:
+            return hs, True, count
+        hs = min(max(hs - (v - limit) / slope, 1e-3), cap)  # the secant's estimate of value's root
+    start = (cap if hs == math.inf else hs) if ok else start_hs  # no root below the cap: value at the cap decides
+    steps = replace(settings, expansion=min(settings.expansion, 1.01)) if near else settings
+    root, converged, more = _nonlinear_limit_hs(value, limit, start, cap, steps)
+    return root, converged, count + more
+
+
 def _nonlinear_limits(
-    linear: dict[str, float], limits: dict[str, float], values: dict[str, Value], cap: float, settings: OperabilitySettings
+    linear: dict[str, float],
+    limits: dict[str, float],
+    values: dict[str, Value],
+    cap: float,
+    settings: OperabilitySettings,
+    proxies: dict[str, _Proxy] | None = None,
 ) -> tuple[dict[str, float], bool, int]:
     """Each limit's nonlinear Hs (NaN: not searched), whether every solve converged, and the evaluations.
 
     The limit the linear model reaches first is searched first; each other only below the smallest Hs found so far,
-    and not at all when it is still within its limit there (the MPMs grow with Hs).
+    and not at all when it is still within its limit there (the MPMs grow with Hs). A limit with a proxy of its value
+    (``proxies``: the frictional cradle design waves at a smaller H) is searched led by it (:func:`_led_limit_hs`).
     """
+    proxies = {} if proxies is None else proxies
     nonlinear = dict.fromkeys(limits, math.nan)
     evaluations, converged, bound = 0, True, cap
     for name in sorted(limits, key=lambda n: linear[n]):
@@ -285,7 +394,11 @@ def _nonlinear_limits(
             converged &= ok
             if v < limits[name]:
                 continue  # within its limit where another is reached: not searched (NaN)
-        hs, ok, count = _nonlinear_limit_hs(value, limits[name], min(linear[name], bound), bound, settings)
+        start = min(linear[name], bound)
+        if name in proxies:
+            hs, ok, count = _led_limit_hs(value, proxies[name], limits[name], start, bound, settings)
+        else:
+            hs, ok, count = _nonlinear_limit_hs(value, limits[name], start, bound, settings)
         evaluations += count
         converged &= ok
         nonlinear[name] = hs if ok else math.nan
@@ -305,15 +418,20 @@ def _point(family: SeaStateFamily, tp: float, settings: OperabilitySettings) -> 
         "bending_stress": linear_limit_hs(np.abs(sw.bending_stress_Pa), e.bending_stress.mpm, limits["bending_stress"]),
     }
     values = _vertical_values(family, ref, settings)
+    proxies: dict[str, _Proxy] = {}
     if family.cradle is not None:  # off head seas with a cradle limit set
         at = cradle_at_peak_period(family.cradle, ref)
         limits |= family.cradle.limits
         linear |= cradle_linear_limits(at)
-        band = settings.design_wave.band_fraction
-        values |= {n: cradle_design_wave_value(at, n, lambda hs: rescaled(ref, hs).spectrum, band) for n in family.cradle.limits}
+        band, friction = settings.design_wave.band_fraction, family.cradle.friction
+        spectrum_at = lambda hs: rescaled(ref, hs).spectrum  # noqa: E731
+        values |= {n: cradle_design_wave_value(at, n, spectrum_at, band, friction) for n in family.cradle.limits}
+        if (proxy := proxy_friction(friction)) is not None:
+            for n in family.cradle.limits:
+                proxies[n] = _Proxy(cradle_design_wave_value(at, n, spectrum_at, band, proxy), cradle_still_value(at, n))
     hs_lin, gov_lin = _governing(linear, cap)
     onset = _uplift_onset(sw.saddle_compression_m, e.saddle_compression.mpm, cap)
-    nonlinear, converged, evaluations = _nonlinear_limits(linear, limits, values, cap, settings)
+    nonlinear, converged, evaluations = _nonlinear_limits(linear, limits, values, cap, settings, proxies)
     if converged:
         hs_nl, gov_nl = _governing({k: (math.inf if math.isnan(v) else v) for k, v in nonlinear.items()}, cap)
     else:
@@ -346,6 +464,7 @@ def allowable_sea_states(
     *,
     family: SeaStateFamily | None = None,
     progress: Callable[[int, int], None] | None = None,
+    execution: ExecutionOptions | None = None,
 ) -> OperabilityResult:
     """Allowable Hs per peak period, linear and nonlinear, and the uplift onset (module docstring).
 
@@ -363,6 +482,10 @@ def allowable_sea_states(
         The shared part (:func:`~seafast.analyses.operability.family.sea_state_family`) when already computed for these Tp.
     progress
         Called with (done, total) after each peak period.
+    execution
+        Local worker processes (or a Dask scheduler) over the peak periods, one Tp per task
+        (:func:`~seafast.parallel.executor.map_batches`; each Tp's answer is the serial one); None or serial: the peak
+        periods one after the other in this process.
 
     Returns
     -------
@@ -376,9 +499,23 @@ def allowable_sea_states(
     """
     tps = [float(t) for t in peak_periods_s]
     fam = sea_state_family(case, tps, settings.master_step_rad_s) if family is None else family
+    if execution is not None and execution.mode() != "serial" and len(tps) > 1:
+        done: dict[int, OperabilityPoint] = {}
+        batches = plan_batches(list(range(len(tps))), execution.worker_count(), batch_size=1)
+        for out in map_batches(_points_task, (fam, settings, tps), batches, execution):
+            done |= dict(out)
+            if progress is not None:
+                progress(len(done), len(tps))
+        return OperabilityResult(case, tuple(done[i] for i in range(len(tps))), settings)
     points = []
     for i, tp in enumerate(tps):
         points.append(_point(fam, tp, settings))
         if progress is not None:
             progress(i + 1, len(tps))
     return OperabilityResult(case, tuple(points), settings)
+
+
+def _points_task(shared: tuple[SeaStateFamily, OperabilitySettings, list[float]], batch: list[int]) -> list[tuple[int, OperabilityPoint]]:
+    """The points of a batch of peak-period indices (a task of :func:`allowable_sea_states` on worker processes)."""
+    family, settings, tps = shared
+    return [(i, _point(family, tps[i], settings)) for i in batch]

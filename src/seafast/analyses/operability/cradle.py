@@ -18,18 +18,22 @@ Hs = 1 m); every MPM is proportional to Hs, so:
   at least the still water's: the column of ``seafast seastate``'s design-wave row. The unit waves' excitations
   do not change with Hs and are formed once per peak period.
 
-The design waves here are solved on frictionless pads even with ``seafastening.friction_coefficient`` set (which
-``seafast seastate`` follows, :mod:`seafast.analyses.seastate.cradle_friction_wave`): the frictional harmonic balance
-costs about 12 times the search (docs/operability.md#operability-on-the-cradles); :func:`cradle_family` warns of it.
+**Pad friction.** With ``seafastening.friction_coefficient`` above 0 (:class:`CradleFamily` ``friction``, that of
+``seafast seastate``, :func:`~seafast.analyses.seastate.cradle_friction_wave.design_wave_friction`) each design wave,
+selected on the linear MPMs as without friction, is solved on frictional pads exactly as ``seafast seastate`` solves
+its frictional design-wave row (:func:`~seafast.analyses.seastate.cradle_friction_wave.solve_frictional_design_wave`)
+and read there: ``transverse_slip`` keeps seastate's meaning, the lateral displacement of the cargo axis at a saddle
+(not the pads' slip, ``pad_slip_m``, which no design wave is designed for). :func:`proxy_friction` gives the same
+friction at a smaller H, which the search uses to find the Hs before reading it at the case's H
+(:mod:`seafast.analyses.operability.allowable`).
 
 Units: SI (N, m, s).
 """
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -48,7 +52,7 @@ from seafast.analyses.seastate.cradle_extremes import (
     element_groups,
     is_off_head_seas,
 )
-from seafast.analyses.seastate.cradle_friction_wave import design_wave_friction
+from seafast.analyses.seastate.cradle_friction_wave import DesignWaveFriction, design_wave_friction, solve_frictional_design_wave
 from seafast.analyses.seastate.cradle_transfer import (
     CradleSeaModel,
     CradleStillWater,
@@ -66,6 +70,7 @@ from seafast.model.structure import StructuralModel
 from seafast.solvers.cradle_hbm import CradleResponse
 
 __all__ = [
+    "PROXY_HARMONICS",
     "CradleFamily",
     "CradlePeakPeriod",
     "cradle_family",
@@ -73,11 +78,16 @@ __all__ = [
     "cradle_extremes_at",
     "cradle_linear_limits",
     "cradle_design_wave_value",
+    "cradle_still_value",
+    "proxy_friction",
 ]
 
 _COLUMN = {name: column for name, _, column in CRADLE_LIMITS}
 
-logger = logging.getLogger(__name__)
+PROXY_HARMONICS = 16
+"""H (N = 8 H) of the frictional design waves the allowable-Hs search is led by before its answer is read at the case's
+H: on the base case's beam-sea search waves (Tp 8-12 s, Hs 1.7-4 m) their pad force is within 9e-5 of H = 32's at
+about a third of the cost (docs/operability.md#operability-on-the-cradles)."""
 
 
 @dataclass(frozen=True)
@@ -92,11 +102,16 @@ class CradleFamily:
         The cargo's exact still-water state on its cradles.
     limits
         Governing name -> limit [N or m] of each cradle limit set (:func:`~seafast.analyses.operability.limits.cradle_limits`).
+    friction
+        The pads' friction and the frictional harmonic balance's H and N, ``seafast seastate``'s
+        (:func:`~seafast.analyses.seastate.cradle_friction_wave.design_wave_friction`); None: frictionless pads (the key
+        unset or 0).
     """
 
     sea: CradleSeaModel
     still: CradleStillWater
     limits: Mapping[str, float]
+    friction: DesignWaveFriction | None = None
 
 
 def cradle_family(case: Case, model: StructuralModel) -> CradleFamily | None:
@@ -105,20 +120,22 @@ def cradle_family(case: Case, model: StructuralModel) -> CradleFamily | None:
     Raises
     ------
     ValueError
-        If the cradles cannot be built from the case (naming the key).
+        If the cradles cannot be built from the case (naming the key), or the friction coefficient differs between
+        saddles.
     """
     limits = cradle_limits(case)
     if not limits or not is_off_head_seas(case):
         return None
     friction = design_wave_friction(case)
-    if friction is not None:
-        logger.warning(
-            "operability: seafastening.friction_coefficient = %g is not applied to the cradle limits: their design waves "
-            "are solved on frictionless pads (the frictional ones of seafast seastate cost about 12 times the search)",
-            float(friction.friction.friction_coefficient),
-        )
     sea = cradle_sea_model(case, model)
-    return CradleFamily(sea, cradle_still_water(sea), limits)
+    return CradleFamily(sea, cradle_still_water(sea), limits, friction)
+
+
+def proxy_friction(friction: DesignWaveFriction | None) -> DesignWaveFriction | None:
+    """The same friction at H = :data:`PROXY_HARMONICS` (N = 8 H), or None: frictionless, or H not above it."""
+    if friction is None or int(friction.options.harmonics) <= PROXY_HARMONICS:
+        return None
+    return replace(friction, options=replace(friction.options, harmonics=PROXY_HARMONICS, time_samples=8 * PROXY_HARMONICS))
 
 
 @dataclass(frozen=True)
@@ -180,13 +197,22 @@ def cradle_linear_limits(at: CradlePeakPeriod) -> dict[str, float]:
     return {name: linear_limit_hs(*_static_and_per_hs(at.per_metre, name), limit) for name, limit in at.family.limits.items()}
 
 
-def _solve(at: CradlePeakPeriod, wave: CradleDesignWave) -> CradleResponse:
-    """A design wave's periodic response (:func:`~seafast.analyses.seastate.cradle_design_wave.solve_cradle_design_wave`)."""
+def cradle_still_value(at: CradlePeakPeriod, name: str) -> float:
+    """The limit's column in still water [N or m]: what :func:`cradle_design_wave_value` gives at Hs = 0."""
+    return float(np.max(_static_and_per_hs(at.per_metre, name)[0], initial=0.0))
+
+
+def _solve(at: CradlePeakPeriod, wave: CradleDesignWave, friction: DesignWaveFriction | None) -> CradleResponse:
+    """A design wave's periodic response as ``seafast seastate`` solves it: frictionless
+    (:func:`~seafast.analyses.seastate.cradle_design_wave.solve_cradle_design_wave`), or on frictional pads
+    (:func:`~seafast.analyses.seastate.cradle_friction_wave.solve_frictional_design_wave`, its record of the elements)."""
     key = (wave.direction, wave.frequency_index)
     if key not in at.units:
         at.units[key] = cradle_unit_excitations(at.family.sea, at.vertical.per_direction[wave.direction], [wave.frequency_index])[0]
     excitation = scaled_excitation(at.units[key], wave.amplitude_m)
-    return solve_cradle_design_wave(at.family.sea.dynamics, excitation)
+    if friction is None:
+        return solve_cradle_design_wave(at.family.sea.dynamics, excitation)
+    return solve_frictional_design_wave(at.family.sea.dynamics, excitation, friction).cradle
 
 
 def _reading(at: CradlePeakPeriod, name: str, wave: CradleDesignWave, response: CradleResponse) -> float:
@@ -200,7 +226,11 @@ def _reading(at: CradlePeakPeriod, name: str, wave: CradleDesignWave, response: 
 
 
 def cradle_design_wave_value(
-    at: CradlePeakPeriod, name: str, spectrum_at: Callable[[float], WaveSpectrum], band_fraction: float = 0.5
+    at: CradlePeakPeriod,
+    name: str,
+    spectrum_at: Callable[[float], WaveSpectrum],
+    band_fraction: float = 0.5,
+    friction: DesignWaveFriction | None = None,
 ) -> Callable[[float], tuple[float, bool]]:
     """``value(Hs) -> (the design-wave estimate of the limit's column [N or m], every solve converged)`` (module docstring).
 
@@ -214,6 +244,9 @@ def cradle_design_wave_value(
         The peak period's wave spectrum at an Hs [m] (on the grid of ``at``).
     band_fraction
         The design band's share of the response spectrum's peak [-].
+    friction
+        The pads' friction (the family's, or :func:`proxy_friction`'s): each wave solved on frictional pads; None:
+        frictionless pads.
     """
     column = _COLUMN[name]
 
@@ -225,7 +258,7 @@ def cradle_design_wave_value(
         for wave in select_cradle_design_waves(at.transfer, spectral, band_fraction):
             if wave.quantity != column:
                 continue
-            response = _solve(at, wave)
+            response = _solve(at, wave, friction)
             converged &= bool(response.converged)
             total = max(total, _reading(at, name, wave, response))
         return total, converged
