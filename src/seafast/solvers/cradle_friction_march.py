@@ -69,7 +69,7 @@ class FrictionMarchOptions:
     """
 
     time_samples: int = 1024
-    max_periods: int = 300
+    max_periods: int = 200
     tolerance: float = 1e-6
     step_tolerance: float = 1e-11
     cutoff_rad_s: float | None = None

@@ -3,7 +3,8 @@
 1. The frictional harmonic balance (:func:`~seafast.solvers.cradle_friction.solve_cradle_friction_hbm`) with the
    given settings: where it converges (or ``mu`` = 0) its result is returned as it is.
 2. Otherwise the time march (:func:`~seafast.solvers.cradle_friction_march.march_cradle_friction`) at N steps a
-   period, then at 2 N with the same modes from the state the first reached (the step-halving check). The step
+   period, then (unless it does not repeat) at 2 N with the same modes from the state the first reached (the
+   step-halving check). The step
    error is the largest change of a peak between the two (each pad's peak and least normal force and peak friction
    force over the largest pad force, each pad's largest slip over the largest slip, every element's peak force over
    the largest element force) [-].
@@ -134,6 +135,8 @@ def _march_twice(
     if cutoff is None:
         cutoff = STEPS_PER_MODE_PERIOD_INV * float(excitation.omega_rad_s) * N
     coarse, state = march_cradle_friction(dynamics, friction, excitation, replace(march, cutoff_rad_s=cutoff), rest=rest)
+    if coarse.periodicity is Periodicity.NOT_PERIODIC:  # nothing to check the step on
+        return _Marched(coarse, coarse, np.inf)
     fine, _ = march_cradle_friction(
         dynamics, friction, excitation, replace(march, time_samples=2 * N, cutoff_rad_s=cutoff), rest=rest, start=state
     )
@@ -162,7 +165,7 @@ def _march_response(
 ) -> FrictionalCradleResponse:
     """The finer march's response with its outcome (module docstring)."""
     coarse, fine, error = marched.coarse, marched.fine, marched.step_error
-    N = fine.engagement_m.shape[0] // max(fine.period_multiple, 1)
+    N = 2 * coarse.engagement_m.shape[0] // max(coarse.period_multiple, 1)
     same = coarse.periodicity is fine.periodicity and coarse.period_multiple == fine.period_multiple
     if fine.periodicity is Periodicity.NOT_PERIODIC:
         outcome, residual = SolverOutcome.NOT_PERIODIC, fine.period_change
@@ -172,11 +175,17 @@ def _march_response(
         outcome, residual = SolverOutcome.CONVERGED_SUBHARMONIC, error
     else:
         outcome, residual = SolverOutcome.CONVERGED_BY_TIME_MARCH, error
-    message = (
+    head = (
         f"3-D cradle with pad friction (mu = {fine.tangents.friction_coefficient:g}) marched in time: the harmonic balance at "
-        f"H = {hbm.cradle.harmonics} did not converge (residual {hbm.cradle.residual:.2e}); {N // 2} and {N} steps a wave "
-        f"period: {coarse.periodicity.value} / {fine.periodicity.value} (period multiple {fine.period_multiple}) after "
-        f"{coarse.periods} + {fine.periods} periods, period change {fine.period_change:.1e}, step error on the peaks "
-        f"{error:.1e} (tolerance {STEP_TOLERANCE:g}), {coarse.unresolved_steps + fine.unresolved_steps} step(s) unresolved"
+        f"H = {hbm.cradle.harmonics} did not converge (residual {hbm.cradle.residual:.2e}); "
     )
+    if fine is coarse:
+        message = head + f"{N // 2} steps a wave period: not periodic after {coarse.periods} periods (change {coarse.period_change:.1e})"
+    else:
+        message = head + (
+            f"{N // 2} and {N} steps a wave period: {coarse.periodicity.value} / {fine.periodicity.value} (period multiple "
+            f"{fine.period_multiple}) after {coarse.periods} + {fine.periods} periods, period change {fine.period_change:.1e}, "
+            f"step error on the peaks {error:.1e} (tolerance {STEP_TOLERANCE:g}), "
+            f"{coarse.unresolved_steps + fine.unresolved_steps} step(s) unresolved"
+        )
     return _response(dynamics, excitation, fine, (outcome, float(residual), message))
