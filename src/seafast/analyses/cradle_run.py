@@ -20,7 +20,7 @@ nonlinear rows (docs/transverse.md#9-in-seafast-run):
 * ``dynamic nonlinear``: the frictional harmonic balance
   (:func:`seafast.solvers.cradle_friction.solve_cradle_friction_hbm`; H = ``solver.harmonics`` or
   :data:`FRICTION_HARMONICS`, N = ``solver.time_samples`` or 8 H), and where it does not converge the time march
-  (:func:`seafast.solvers.cradle_friction_solve.solve_cradle_friction`: its own grid, 2048 samples a wave period);
+  (:func:`seafast.solvers.cradle_friction_solve.solve_cradle_friction`: its own grid, 4096 samples a wave period);
 * ``static nonlinear``: the same solver on the still-water loads (constant, H = 1).
 
 In both the sliders are relaxed in still water (the frictionless response to the still-water loads and deck

@@ -56,7 +56,8 @@ class FrictionMarchOptions:
     Parameters
     ----------
     time_samples
-        Steps per wave period N (>= 16; the samples reported).
+        Steps per wave period N (>= 16; the samples reported). The default is the frictionless march's: where whole
+        pad pairs lift on the base case, halving the step moved the peaks by 1.8e-2 from 1024, 4.2e-3 from 2048.
     max_periods
         Wave periods marched at most (>= 12, to test the subharmonics).
     tolerance
@@ -68,7 +69,7 @@ class FrictionMarchOptions:
         The modes of ``(K_s, M)`` kept (None: those spanning at least two steps, as the frictionless march).
     """
 
-    time_samples: int = 1024
+    time_samples: int = 2048
     max_periods: int = 200
     tolerance: float = 1e-6
     step_tolerance: float = 1e-11
