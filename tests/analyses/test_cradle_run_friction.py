@@ -163,9 +163,9 @@ def _deck(excitation, N: int) -> np.ndarray:
 @pytest.mark.slow
 def test_where_pads_lift_and_slip_the_row_is_the_time_march(frictionless):
     """26 deg of roll on 20 deg pads with mu = 0.05: every pad lifts a quarter of the period (port and starboard in
-    turn) and the cargo slides 78 mm round its cradles, the
-    frictional harmonic balance does not converge, and the row is the time march's (docs/transverse.md#8-friction-at-
-    the-pads): converged, its step error the residual, every row on its grid."""
+    turn) and the cargo slides 78 mm round its cradles; the frictional harmonic balance does not converge and the row
+    is the time march's (docs/transverse.md#8-friction-at-the-pads): converged, its step error the residual, every
+    row on its grid."""
     case = load_case(overrides={**BEAM, "solver.harmonics": 8, "solver.time_samples": 64, "seafastening.saddle_contact_angle_deg": 20.0})
     base = run_case(case)
     cradle = build_cradle_case(base.case, base.model)
