@@ -103,7 +103,8 @@ def solve_cradle_friction(
     Returns
     -------
     FrictionalCradleResponse
-        The harmonic balance's (its grid, H), or the finer march's (2 N samples a wave period, ``harmonics`` 0):
+        The harmonic balance's (its grid, H), or the finer march's (2 N samples a wave period, ``harmonics`` N - 1,
+        the harmonics they carry, as the shooting's):
         outcome and residual as the module docstring.
     """
     hbm = solve_cradle_friction_hbm(dynamics, friction, excitation, options, rest=rest)
@@ -152,7 +153,9 @@ def _response(
 ) -> FrictionalCradleResponse:
     """A march as a :class:`FrictionalCradleResponse` (over its ``period_multiple`` wave periods)."""
     multiple = max(march.period_multiple, 1)
-    cradle = cradle_response(dynamics, march.engagement_m, march.cargo_displacement_m, excitation.omega_rad_s, (*outcome, 0), multiple)
+    carried = march.engagement_m.shape[0] // multiple // 2 - 1  # the harmonics a wave period's samples carry
+    q = march.cargo_displacement_m
+    cradle = cradle_response(dynamics, march.engagement_m, q, excitation.omega_rad_s, (*outcome, carried), multiple)
     tangents = march.tangents
     period = ConePeriod(
         march.friction_force_N, march.slider_m, march.slipped, tangents.rest_m, march.slider_m[-1], march.periods, march.period_change
