@@ -233,20 +233,10 @@ def solve_cradle_friction_hbm(
         return frictional_response(frictionless, tangents, free)
     z_lin, G, X_lin, Y = _linear_problem(dynamics, excitation, tangents, H)
     k = dynamics.problem.element_stiffness_N_per_m
-    if start is None:
-        result, route = _newton_route(
-            _System(z_lin, G, k, tangents, mu, N), options, lambda: _frictionless_start(dynamics, excitation, tangents, H, N)
-        )
-    else:
-        u0 = time_to_real_harmonics(np.asarray(start, dtype=float), H).ravel()
-        result = newton(
-            _System(z_lin, G, k, tangents, mu, N),
-            u0,
-            tolerance=float(options.tolerance),
-            max_iterations=int(options.max_iterations),
-            globalisation=_GLOBALISATION,
-        )
-        route = "from the given periodic state"
+    given = None if start is None else time_to_real_harmonics(np.asarray(start, dtype=float), H).ravel()
+    result, route = _newton_route(
+        _System(z_lin, G, k, tangents, mu, N), options, lambda: _frictionless_start(dynamics, excitation, tangents, H, N), given
+    )
     system = _System(z_lin, G, k, tangents, mu, N)
     state = system.forces(result.u.reshape(z_lin.shape))[1]
     C = real_to_complex_harmonics(system.forward @ system.full_forces(state))
@@ -281,10 +271,14 @@ def stuck_linear_solution(
 
 
 def _newton_route(
-    system: _System, options: FrictionHBMOptions, frictionless: Callable[[], NDArray[np.float64]]
+    system: _System,
+    options: FrictionHBMOptions,
+    frictionless: Callable[[], NDArray[np.float64]],
+    given: NDArray[np.float64] | None = None,
 ) -> tuple[NewtonResult[_State], str]:
     """Newton from the pads stuck at rest (the linear part's own solution); then from the frictionless solution; then
-    with mu raised in four steps from the stuck start. Returns the last result and the route in words."""
+    with mu raised in four steps from the stuck start; or from ``given`` alone (real harmonics, flattened). Returns the
+    last result and the route in words."""
 
     def solve(mu: float, start: NDArray[np.float64]) -> NewtonResult[_State]:
         trial = _System(system.z_lin, system.G, system.k, system.t, mu, system.inverse.shape[0])
@@ -292,6 +286,8 @@ def _newton_route(
             trial, start, tolerance=float(options.tolerance), max_iterations=int(options.max_iterations), globalisation=_GLOBALISATION
         )
 
+    if given is not None:
+        return solve(system.mu, given), "from the given periodic state"
     stuck = system.z_lin.ravel()
     result = solve(system.mu, stuck)
     if result.converged:

@@ -352,12 +352,22 @@ def march_cradle_friction(
         if lags[0] <= options.tolerance:
             break
     multiple = 1 if lags[0] <= options.tolerance else next((L for L in SUBHARMONIC_ORDERS if lags[L - 1] <= options.tolerance), 0)
-    periodicity = (Periodicity.PERIODIC, Periodicity.SUBHARMONIC)[multiple > 1] if multiple else Periodicity.NOT_PERIODIC
     last = kept[-max(multiple, 1) :]
     q = np.concatenate([p.q for p in last]) + np.tile(harmonics_to_time(X_stuck, N), (len(last), 1))
+    march = _assembled(last, q, tangents, m, (multiple, periods, float(lags[max(multiple, 1) - 1]), unresolved))
+    return march, MarchState(state[0], state[1], np.asarray(state[2], dtype=float))
+
+
+def _assembled(
+    last: list[_Period], q: NDArray[np.float64], tangents: PadTangents, m: int, verdict: tuple[int, int, float, int]
+) -> FrictionalMarch:
+    """The :class:`FrictionalMarch` of the periods ``last`` (the cargo's displacements ``q``); ``verdict`` = (period
+    multiple, periods marched, period change, unresolved steps)."""
+    multiple, periods, change, unresolved = verdict
+    periodicity = (Periodicity.PERIODIC, Periodicity.SUBHARMONIC)[multiple > 1] if multiple else Periodicity.NOT_PERIODIC
     z, w = np.concatenate([p.z for p in last]), np.concatenate([p.w for p in last])
-    delta = z[:, m:].reshape(-1, P, 2)
-    march = FrictionalMarch(
+    delta = z[:, m:].reshape(-1, tangents.pad_count, 2)
+    return FrictionalMarch(
         z[:, :m],
         delta,
         w,
@@ -367,11 +377,10 @@ def march_cradle_friction(
         periodicity,
         multiple,
         periods,
-        float(lags[max(multiple, 1) - 1]),
+        change,
         unresolved,
         tangents,
     )
-    return march, MarchState(state[0], state[1], np.asarray(state[2], dtype=float))
 
 
 def _lag_changes(kept: list[_Period], scale: float) -> NDArray[np.float64]:
