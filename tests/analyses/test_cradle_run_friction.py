@@ -15,7 +15,7 @@ from seafast.config.loader import load_case
 from seafast.excitation.cradle_loads import cradle_excitation
 from seafast.model.cradle_case import build_cradle_case
 from seafast.model.pad_friction import PadFriction
-from seafast.output.tables import format_cradle_table, format_summary_table, summary_csv_text
+from seafast.output.tables import format_cradle_table, summary_csv_text
 from seafast.results.cradle import CRADLE_SUMMARY_COLUMNS, FRICTION_SUMMARY_COLUMNS
 from seafast.results.dataset import SUMMARY_COLUMNS
 from seafast.solvers.cradle_friction import FrictionHBMOptions, relaxed_at, solve_cradle_friction_hbm
@@ -160,10 +160,12 @@ def _deck(excitation, N: int) -> np.ndarray:
     return harmonics_to_time(xo, N)
 
 
-def test_a_friction_solve_on_lifting_pads_is_flagged_not_converged(frictionless):
-    """40 deg of roll on 20 deg pads with mu = 0.05: the high-side pads lift a third of the period and the frictional
-    harmonic balance stops short (docs/transverse.md#8-friction-at-the-pads): the row is flagged with its residual and
-    why, its numbers kept."""
+@pytest.mark.slow
+def test_where_pads_lift_and_slip_the_row_is_the_time_march(frictionless):
+    """26 deg of roll on 20 deg pads with mu = 0.05: every pad lifts a quarter of the period (port and starboard in
+    turn) and the cargo slides 78 mm round its cradles; the frictional harmonic balance does not converge and the row
+    is the time march's (docs/transverse.md#8-friction-at-the-pads): converged, its step error the residual, every
+    row on its grid."""
     case = load_case(overrides={**BEAM, "solver.harmonics": 8, "solver.time_samples": 64, "seafastening.saddle_contact_angle_deg": 20.0})
     base = run_case(case)
     cradle = build_cradle_case(base.case, base.model)
@@ -174,20 +176,20 @@ def test_a_friction_solve_on_lifting_pads_is_flagged_not_converged(frictionless)
         cargo_load_N=0.0 * base.excitation.cargo_load_N,
         deck_displacement=0.0 * base.excitation.deck_displacement,
     )
-    motions = np.array([0, 0, 0, np.deg2rad(40.0), 0, 0], dtype=complex)
+    motions = np.array([0, 0, 0, np.deg2rad(26.0), 0, 0], dtype=complex)
     excitation = cradle_excitation(cradle.cargo, vertical, motions, base.model.saddle_x_m, (0.0, 0.0, 0.0))
     rows = cradle_rows(base.case, cradle, dynamics, excitation, PadFriction(0.05))
     key = ("dynamic", "nonlinear")
     fields = rows.fields(*key)
-    assert not fields["cradle_converged"] and fields["cradle_outcome"] == "not_converged"
-    assert fields["cradle_residual"] > 1e-6
-    assert "a pad lifts off" in fields["cradle_message"]
-    assert np.isfinite(fields["pad_friction_utilisation"]) and np.isfinite(fields["transverse_slip_m"])
+    assert fields["cradle_converged"] and fields["cradle_outcome"] == "converged_by_time_march"
+    assert 0.0 < fields["cradle_residual"] <= 5e-3 and "marched in time" in fields["cradle_message"]
+    dynamic = rows.rows[key]
+    pads = dynamic.response.engagement_m[:, : dynamic.response.pad_count]
+    assert np.all((np.mean(pads < 0.0, axis=0) > 0.2) & (np.mean(pads < 0.0, axis=0) < 0.35))
+    assert fields["pad_friction_utilisation"] == pytest.approx(1.0, abs=1e-9) and fields["transverse_slip_m"] > 0.05
+    assert all(row.response.time_s.size == 4096 for row in rows.rows.values())
     result = replace(base, cradle=rows)
-    summary = _summary(result)
-    assert not summary[key]["converged"] and all(r["converged"] for k, r in summary.items() if k != key)
-    assert f"NO (cradle residual {fields['cradle_residual']:.2e})" in format_summary_table(result.summary)
-    assert not bool(result.dataset["converged"].sel(load_case="dynamic", model="nonlinear"))
+    assert all(r["converged"] for r in _summary(result).values())
 
 
 def test_friction_differing_between_saddles_is_refused_naming_the_key():

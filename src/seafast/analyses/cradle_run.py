@@ -19,7 +19,8 @@ nonlinear rows (docs/transverse.md#9-in-seafast-run):
 
 * ``dynamic nonlinear``: the frictional harmonic balance
   (:func:`seafast.solvers.cradle_friction.solve_cradle_friction_hbm`; H = ``solver.harmonics`` or
-  :data:`FRICTION_HARMONICS`, N = ``solver.time_samples`` or 8 H);
+  :data:`FRICTION_HARMONICS`, N = ``solver.time_samples`` or 8 H), and where it does not converge the time march
+  (:func:`seafast.solvers.cradle_friction_solve.solve_cradle_friction`: its own grid, 4096 samples a wave period);
 * ``static nonlinear``: the same solver on the still-water loads (constant, H = 1).
 
 In both the sliders are relaxed in still water (the frictionless response to the still-water loads and deck
@@ -46,6 +47,7 @@ from seafast.model.structure import StructuralModel
 from seafast.results.cradle import CradleLayout, CradleRow, CradleRows
 from seafast.solvers.cradle_dynamics import CradleDynamics, cradle_operators
 from seafast.solvers.cradle_friction import FrictionHBMOptions, solve_cradle_friction_hbm
+from seafast.solvers.cradle_friction_solve import solve_cradle_friction
 from seafast.solvers.cradle_hbm import CradleResponse, cradle_response, solve_cradle_hbm
 from seafast.solvers.from_case import hbm_options
 from seafast.solvers.outcome import SolverOutcome
@@ -219,12 +221,14 @@ def _frictional_rows(
     """The four rows with the nonlinear ones on frictional pads (module docstring)."""
     options = friction_options(case)
     still = excitation.still_water()
-    dynamic = solve_cradle_friction_hbm(dynamics, friction, excitation, options, rest=still)
-    N = dynamic.cradle.time_s.size
+    dynamic = solve_cradle_friction(dynamics, friction, excitation, options, rest=still)
+    N, P = dynamic.cradle.time_s.size, dynamic.cradle.period_multiple
     static = solve_cradle_friction_hbm(dynamics, friction, still, replace(options, harmonics=1, time_samples=N), rest=still)
+    if P > 1:  # a subharmonic of the time march: the still water over the same P wave periods
+        static = replace(static, cradle=replace(static.cradle, time_s=dynamic.cradle.time_s, period_multiple=P))
     rows = {
-        ("static", "linear"): CradleRow(_linear_row(dynamics, still, N), linear=True),
-        ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N), linear=True),
+        ("static", "linear"): CradleRow(_linear_row(dynamics, still, N, P), linear=True),
+        ("dynamic", "linear"): CradleRow(_linear_row(dynamics, excitation, N, P), linear=True),
         ("static", "nonlinear"): CradleRow(static.cradle, linear=False, friction=static),
         ("dynamic", "nonlinear"): CradleRow(dynamic.cradle, linear=False, friction=dynamic),
     }

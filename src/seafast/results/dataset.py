@@ -42,7 +42,9 @@ __all__ = [
     "row_warnings",
 ]
 
-SOLVER_OUTCOMES = tuple(o.value for o in SolverOutcome)
+SOLVER_OUTCOMES = tuple(o.value for o in SolverOutcome if o is not SolverOutcome.CONVERGED_BY_TIME_MARCH)
+"""The outcomes ``solver_outcome``'s ``long_name`` lists (the time march's is the frictional cradle row's alone:
+``cradle_solver_outcome``)."""
 SOLVER_WARNINGS = tuple(w.value for w in SolverWarning)
 LOAD_CASES = ("static", "dynamic")
 MODELS = ("linear", "nonlinear")

@@ -48,7 +48,7 @@ from seafast.solvers.newton import DenseJacobian, Globalisation, Merit, NewtonRe
 from seafast.solvers.outcome import SolverOutcome
 from seafast.solvers.pad_tangential import FrictionalCradleResponse, PadTangents, frictional_response, pad_tangents
 
-__all__ = ["FrictionHBMOptions", "solve_cradle_friction_hbm", "relaxed_at"]
+__all__ = ["FrictionHBMOptions", "solve_cradle_friction_hbm", "relaxed_at", "stuck_linear_solution"]
 
 _GLOBALISATION = Globalisation(merit=Merit.SUM_OF_SQUARES, memory=4, accept_converged_trial=True)
 
@@ -192,6 +192,7 @@ def solve_cradle_friction_hbm(
     options: FrictionHBMOptions | None = None,
     *,
     rest: CradleExcitation | None = None,
+    start: NDArray[np.float64] | None = None,
 ) -> FrictionalCradleResponse:
     """The periodic response of the cargo on frictional pads by harmonic balance (module docstring).
 
@@ -209,6 +210,10 @@ def solve_cradle_friction_hbm(
         Where the sliders are relaxed: the frictionless response to this excitation's static part (e.g. still water
         with its deck deflection, so that friction answers only the wave); None: the frictionless rest at zero heel
         and trim on an undeflected deck (:func:`~seafast.solvers.pad_tangential.pad_tangents`).
+    start
+        A periodic state to start Newton from alone (no other start): every element's engagement and every pad's
+        tangential motion sampled over one period at ``t_n = n T / N`` (N, m + 2 P) [m], e.g. a time march's,
+        projected on the H harmonics; None: the starts of the module docstring.
 
     Returns
     -------
@@ -228,8 +233,9 @@ def solve_cradle_friction_hbm(
         return frictional_response(frictionless, tangents, free)
     z_lin, G, X_lin, Y = _linear_problem(dynamics, excitation, tangents, H)
     k = dynamics.problem.element_stiffness_N_per_m
+    given = None if start is None else time_to_real_harmonics(np.asarray(start, dtype=float), H).ravel()
     result, route = _newton_route(
-        _System(z_lin, G, k, tangents, mu, N), options, lambda: _frictionless_start(dynamics, excitation, tangents, H, N)
+        _System(z_lin, G, k, tangents, mu, N), options, lambda: _frictionless_start(dynamics, excitation, tangents, H, N), given
     )
     system = _System(z_lin, G, k, tangents, mu, N)
     state = system.forces(result.u.reshape(z_lin.shape))[1]
@@ -247,11 +253,32 @@ def solve_cradle_friction_hbm(
     return frictional_response(cradle, tangents, state.period)
 
 
+def stuck_linear_solution(
+    dynamics: CradleDynamics, excitation: CradleExcitation, tangents: PadTangents
+) -> tuple[NDArray[np.float64], NDArray[np.complex128]]:
+    """The linear periodic response with every element bilateral and the pads stuck at their sliders' rest.
+
+    Returns the real harmonics 0, 1 of every engagement and pad tangential motion (3, m + 2 P) [m] (the linear part
+    of the harmonic balance, the module docstring) and the cargo's complex displacement harmonics 0, 1 (2, 5 n)
+    [m, rad]: the frictionless linear response plus that of the stuck springs' forces ``k_t (delta - delta_rest)``.
+    """
+    z_lin, _, X_lin, Y = _linear_problem(dynamics, excitation, tangents, 1)
+    m = dynamics.problem.element_stiffness_N_per_m.size
+    delta = real_to_complex_harmonics(z_lin)[:, m:]
+    delta[0] -= tangents.rest_m.ravel()
+    forces = np.repeat(tangents.stiffness_N_per_m, 2)[None] * delta
+    return z_lin, X_lin + np.einsum("kcs,ks->kc", Y[:, :, m:], forces)
+
+
 def _newton_route(
-    system: _System, options: FrictionHBMOptions, frictionless: Callable[[], NDArray[np.float64]]
+    system: _System,
+    options: FrictionHBMOptions,
+    frictionless: Callable[[], NDArray[np.float64]],
+    given: NDArray[np.float64] | None = None,
 ) -> tuple[NewtonResult[_State], str]:
     """Newton from the pads stuck at rest (the linear part's own solution); then from the frictionless solution; then
-    with mu raised in four steps from the stuck start. Returns the last result and the route in words."""
+    with mu raised in four steps from the stuck start; or from ``given`` alone (real harmonics, flattened). Returns the
+    last result and the route in words."""
 
     def solve(mu: float, start: NDArray[np.float64]) -> NewtonResult[_State]:
         trial = _System(system.z_lin, system.G, system.k, system.t, mu, system.inverse.shape[0])
@@ -259,6 +286,8 @@ def _newton_route(
             trial, start, tolerance=float(options.tolerance), max_iterations=int(options.max_iterations), globalisation=_GLOBALISATION
         )
 
+    if given is not None:
+        return solve(system.mu, given), "from the given periodic state"
     stuck = system.z_lin.ravel()
     result = solve(system.mu, stuck)
     if result.converged:

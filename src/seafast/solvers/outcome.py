@@ -40,6 +40,10 @@ class SolverOutcome(Enum):
         The 3-D cradle's exact-event shooting: no stable orbit repeats every wave period, and the flow settles on
         one repeating every ``period_multiple`` (2 to 6) wave periods, found to the tolerance and stable; the
         response is that orbit over its whole period (``period_multiple`` wave periods), its maxima over it.
+    ``CONVERGED_BY_TIME_MARCH``
+        The 3-D cradle on frictional pads: the harmonic balance did not converge and the periodic steady state is
+        the time march's (:mod:`seafast.solvers.cradle_friction_march`): periodic to its tolerance, and its peaks
+        agree with a march at half the step within its step tolerance (the residual is that step error).
     ``OTHER_ORBIT``
         Time-domain reference started on a given periodic solution (e.g. the harmonic balance's):
         it reached a periodic steady state, but not the start's (the start's orbit is unstable,
@@ -53,6 +57,7 @@ class SolverOutcome(Enum):
     NOT_PERIODIC = "not_periodic"
     OTHER_ORBIT = "other_orbit"
     CONVERGED_SUBHARMONIC = "converged_subharmonic"
+    CONVERGED_BY_TIME_MARCH = "converged_by_time_march"
 
     @property
     def converged(self) -> bool:
@@ -67,6 +72,7 @@ class SolverOutcome(Enum):
             SolverOutcome.CONVERGED_BY_CONTINUATION,
             SolverOutcome.OTHER_ORBIT,
             SolverOutcome.CONVERGED_SUBHARMONIC,
+            SolverOutcome.CONVERGED_BY_TIME_MARCH,
         )
 
 

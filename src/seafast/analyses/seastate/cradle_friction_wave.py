@@ -2,8 +2,8 @@
 
 Each design wave (:mod:`seafast.analyses.seastate.cradle_design_wave`), selected and solved frictionless as without
 the key, is solved again as ``seafast run`` solves its dynamic row on frictional pads
-(docs/transverse.md#9-in-seafast-run): the frictional harmonic balance
-(:func:`~seafast.solvers.cradle_friction.solve_cradle_friction_hbm`) with the run's friction and settings
+(docs/transverse.md#9-in-seafast-run): the frictional harmonic balance, else the time march
+(:func:`~seafast.solvers.cradle_friction_solve.solve_cradle_friction`), with the run's friction and settings
 (:func:`~seafast.analyses.cradle_run.pad_friction_of_case`, :func:`~seafast.analyses.cradle_run.friction_options`)
 and the pads' sliders relaxed in the wave's still water, so that the friction answers the wave alone. The design-wave
 columns read that response and gain :data:`CRADLE_FRICTION_COLUMNS`. The linear spectral MPMs stay frictionless (the
@@ -22,7 +22,8 @@ from seafast.config.schema import Case
 from seafast.excitation.cradle_loads import CradleExcitation
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_dynamics import CradleDynamics
-from seafast.solvers.cradle_friction import FrictionHBMOptions, solve_cradle_friction_hbm
+from seafast.solvers.cradle_friction import FrictionHBMOptions
+from seafast.solvers.cradle_friction_solve import solve_cradle_friction
 from seafast.solvers.pad_tangential import FrictionalCradleResponse
 
 __all__ = [
@@ -74,12 +75,13 @@ def solve_frictional_design_wave(
 ) -> FrictionalCradleResponse:
     """A design wave's periodic response on frictional pads, solved as ``seafast run`` solves its dynamic row.
 
-    The frictional harmonic balance (:func:`~seafast.solvers.cradle_friction.solve_cradle_friction_hbm`, ``friction``'s
-    H and N) with the pads' sliders relaxed at the frictionless response to the wave's still water (its k = 0 loads
-    and deck deflection, ``rest=``): the friction answers the wave alone. A solve that does not converge is returned
-    flagged (``NOT_CONVERGED``, its residual), never raised.
+    The frictional harmonic balance (``friction``'s H and N), and where it does not converge the time march
+    (:func:`~seafast.solvers.cradle_friction_solve.solve_cradle_friction`), with the pads' sliders relaxed at the
+    frictionless response to the wave's still water (its k = 0 loads and deck deflection, ``rest=``): the friction
+    answers the wave alone. A solve that does not converge is returned flagged (its outcome and residual), never
+    raised.
     """
-    return solve_cradle_friction_hbm(dynamics, friction.friction, excitation, friction.options, rest=excitation.still_water())
+    return solve_cradle_friction(dynamics, friction.friction, excitation, friction.options, rest=excitation.still_water())
 
 
 def friction_totals(solves: Iterable[FrictionalCradleResponse]) -> dict[str, float]:

@@ -145,16 +145,16 @@ def integrate_to_periodic(
     for period in range(int(options.max_periods)):
         t0 = period * T
         run = solve_ivp(
-            rhs, (t0, t0 + T), y, method="LSODA", t_eval=t0 + T * period_fraction(N), jac=jacobian,
+            rhs, (t0, t0 + T), y, method="LSODA", t_eval=t0 + T * np.append(period_fraction(N), 1.0), jac=jacobian,
             rtol=float(options.relative_tolerance), atol=float(options.relative_tolerance) * scale,
         )  # fmt: skip
         if not run.success:
             raise RuntimeError(f"the time integration failed in period {period}: {run.message}")
         change = float(np.max(np.abs(run.y[:, -1] - y) / (np.abs(y) + scale)))
-        y = run.y[:, -1]
+        y = run.y[:, -1]  # the state at the period's end, t0 + T: the next period's start
         if change < options.periodicity_tolerance and period > 0:
             break
-    return PeriodicRun(run.t, run.y, period + 1, change)
+    return PeriodicRun(run.t[:-1], run.y[:, :-1], period + 1, change)
 
 
 def solve_cradle_time_domain(
