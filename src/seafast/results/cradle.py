@@ -185,7 +185,10 @@ class CradleRow:
         lifts = bool(np.any(r.open_fraction[: r.pad_count] > 0.0))
         if self.converged or not lifts:
             return r.message
-        why = "; a pad lifts off, where the frictional harmonic balance may not converge (docs/transverse.md#8-friction-at-the-pads)"
+        why = (
+            "; a pad lifts off: neither the frictional harmonic balance nor the time march of the frictional cargo reached a "
+            "periodic state within its tolerances (docs/transverse.md#8-friction-at-the-pads)"
+        )
         return r.message + why
 
 
