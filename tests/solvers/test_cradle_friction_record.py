@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from seafast.fourier import real_harmonics_to_time
+from seafast.fourier import harmonics_to_time, real_harmonics_to_time
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_friction import stuck_linear_solution
 from seafast.solvers.cradle_friction_march import FrictionMarchOptions, friction_stepper, march_cradle_friction
@@ -27,15 +27,15 @@ def periodic_and_record():
     options = FrictionMarchOptions(time_samples=N)
     march, _ = march_cradle_friction(dynamics, PadFriction(0.1), excitation, options)
     tangents = march.tangents
-    z_lin, _ = stuck_linear_solution(dynamics, excitation, tangents)
-    z_s = real_harmonics_to_time(z_lin, N)
+    z_lin, X_stuck = stuck_linear_solution(dynamics, excitation, tangents)
+    z_s = np.hstack([real_harmonics_to_time(z_lin, N), harmonics_to_time(X_stuck, N)])  # then every cargo DOF
     dt = 2.0 * np.pi / float(excitation.omega_rad_s) / N
     stepper = friction_stepper(dynamics, tangents, dt, STEPS_PER_MODE_PERIOD_INV * 2.0 * np.pi / dt)
     scale = float(np.max(np.abs(z_lin[1:])))
     steps = march.periods * N
-    record = march_friction_record(
-        stepper, tangents, lambda first, count: z_s[(first + np.arange(count)) % N], steps, options.step_tolerance * scale, steps - N
-    )
+    tiled = lambda first, count: z_s[(first + np.arange(count)) % N]  # noqa: E731
+    outputs = np.arange(X_stuck.shape[1])
+    record = march_friction_record(stepper, tangents, tiled, steps, options.step_tolerance * scale, steps - N, outputs)
     return march, record
 
 
@@ -55,8 +55,11 @@ def test_the_compiled_record_march_repeats_the_periodic_march_step_for_step(peri
     np.testing.assert_allclose(record.friction_utilisation, utilisation, rtol=1e-9)
     slip = np.hypot(*np.moveaxis(march.slider_m - tangents.rest_m, -1, 0)).max(axis=0)
     np.testing.assert_allclose(record.max_slip_m, slip, rtol=1e-8, atol=1e-12)
+    cargo = np.max(np.abs(march.cargo_displacement_m), axis=0)
+    np.testing.assert_allclose(record.max_abs_output, cargo, rtol=1e-9, atol=1e-9 * np.max(cargo))
+    np.testing.assert_array_equal(record.negative_fraction, np.mean(s < 0.0, axis=0))
     # the case is the one meant: a pad lifts, every pad slips and the friction reaches its cone
-    assert np.any(record.min_force_N[:P] == 0.0) and np.all(record.max_slip_m > 0.0)
+    assert 0.1 < np.max(record.negative_fraction[:P]) < 0.3 and np.all(record.max_slip_m > 0.0)
     assert record.slipped_steps > 0 and np.isclose(np.max(record.friction_utilisation), 1.0, atol=1e-9)
 
 

@@ -43,6 +43,10 @@ class FrictionRecord:
         (P,) each pad's largest ``|f| / (mu F_n)`` [-] (1 in slip; open pads carry no limit and are skipped).
     max_slip_m
         (P,) each pad's largest slider displacement from rest ``|w - w_rest|`` [m].
+    max_abs_output
+        (o,) the largest ``|q|`` of each output DOF of the cargo (the stuck linear part and the correction's) [m, rad].
+    negative_fraction
+        (m,) the fraction of the steps each element's engagement is below 0 (a pad lifted, a lashing slack) [-].
     slipped_steps, unresolved_steps, steps
         Steps where some pad slipped, steps whose problem missed the tolerance, steps marched (all of the record).
     """
@@ -51,6 +55,8 @@ class FrictionRecord:
     min_force_N: NDArray[np.float64]
     friction_utilisation: NDArray[np.float64]
     max_slip_m: NDArray[np.float64]
+    max_abs_output: NDArray[np.float64]
+    negative_fraction: NDArray[np.float64]
     slipped_steps: int
     unresolved_steps: int
     steps: int
@@ -68,6 +74,7 @@ def march_friction_record(
     steps: int,
     tolerance_m: float,
     measured_from: int = 0,
+    outputs: NDArray[np.intp] | None = None,
 ) -> FrictionRecord:
     """March the frictional correction over ``steps`` fine steps of a stuck linear record (module docstring).
 
@@ -78,27 +85,32 @@ def march_friction_record(
     tangents
         The pads' tangential kinematics, friction and sliders' rest.
     linear_at
-        ``(first, count) -> (count, m + 2 P)`` the stuck linear engagements and tangential motions at the fine steps
-        ``first .. first + count - 1`` [m].
+        ``(first, count) -> (count, m + 2 P + o)`` the stuck linear engagements and tangential motions, then the
+        stuck linear displacements of the ``outputs``, at the fine steps ``first .. first + count - 1`` [m, rad].
     steps
         Fine steps marched (from step 0, the correction and sliders at rest).
     tolerance_m
         A step's problem is solved when ``max |R|`` is below this [m] (the periodic march's ``step_tolerance``
         times the largest linear amplitude).
     measured_from
-        The maxima are those of the steps ending after this step (0: the whole record).
+        The maxima and fractions are those of the steps ending after this step (0: the whole record).
+    outputs
+        The cargo DOFs whose largest ``|q|`` is kept (None: none).
     """
     if int(steps) < 1 or not 0 <= int(measured_from) < int(steps):
         raise ValueError(f"steps = {steps!r}, measured_from = {measured_from!r}: allowed steps >= 1 and 0 <= measured_from < steps")
     m = stepper.stiffness_N_per_m.size - 2 * tangents.pad_count
     P, r = tangents.pad_count, stepper.flexibility.shape[0]
-    system = tuple(np.ascontiguousarray(a) for a in (stepper.predictor, stepper.engagement_modes, stepper.flexibility, stepper.receptance))
+    chosen = np.zeros(0, dtype=np.intp) if outputs is None else np.asarray(outputs, dtype=np.intp)
+    assert stepper.output_modes is not None and stepper.output_residual is not None
+    matrices = (stepper.predictor, stepper.engagement_modes, stepper.flexibility, stepper.receptance)
+    system = tuple(np.ascontiguousarray(a) for a in (*matrices, stepper.output_modes[chosen], stepper.output_residual[chosen]))
     kt = np.asarray(tangents.stiffness_N_per_m, dtype=float)
     mu_kn = np.asarray(tangents.friction_coefficient * tangents.normal_stiffness_N_per_m, dtype=float) * np.ones(P)
     rest = np.ascontiguousarray(tangents.rest_m, dtype=float).ravel()
     law = (np.ascontiguousarray(stepper.stiffness_N_per_m[:m]), kt * np.ones(P), mu_kn, rest, m, P)
     state = (np.zeros(3 * r), np.zeros(m + 2 * P), rest.reshape(P, 2).copy())
-    tallies = [_empty_tally(m, P) for _ in range(2)]  # before measured_from, then after
+    tallies = [_empty_tally(m, P, chosen.size) for _ in range(2)]  # before measured_from, then after
     position = 0
     while position < steps:
         end = min(position + CHUNK_STEPS, int(steps) if position >= measured_from else int(measured_from))
@@ -106,10 +118,12 @@ def march_friction_record(
         march_friction_block(block, system, law, float(stepper.dt), float(tolerance_m), state, tallies[position >= measured_from])
         position = end
     counts = tallies[0][4] + tallies[1][4]
-    force_max, force_min, utilisation, slip, _ = tallies[1]
-    return FrictionRecord(force_max, force_min, utilisation, slip, int(counts[0]), int(counts[1]), int(steps))
+    force_max, force_min, utilisation, slip, _, output_max, negative = tallies[1]
+    fraction = negative / float(int(steps) - int(measured_from))
+    return FrictionRecord(force_max, force_min, utilisation, slip, output_max, fraction, int(counts[0]), int(counts[1]), int(steps))
 
 
-def _empty_tally(m: int, P: int) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray]:
-    """(largest force, least force, utilisation, slip, counts) before any step."""
-    return (np.full(m, -np.inf), np.full(m, np.inf), np.zeros(P), np.zeros(P), np.zeros(2, dtype=np.int64))
+def _empty_tally(m: int, P: int, o: int) -> tuple[NDArray, ...]:
+    """(largest force, least force, utilisation, slip, counts, largest |output|, negative steps) before any step."""
+    counts, negative = np.zeros(2, dtype=np.int64), np.zeros(m, dtype=np.int64)
+    return (np.full(m, -np.inf), np.full(m, np.inf), np.zeros(P), np.zeros(P), counts, np.zeros(o), negative)

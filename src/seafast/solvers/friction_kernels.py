@@ -105,20 +105,22 @@ def march_friction_block(
 ) -> None:  # pragma: no cover - compiled
     """March the steps to ``z_lin[1:]`` from ``z_lin[0]``'s instant, updating ``state`` and ``tally`` in place.
 
-    ``system`` = (predictor, engagement/motion modes, flexibility, receptance G); ``law`` = (k (m,), k_t (P,),
-    mu k_n (P,), sliders' rest (2 P,), m, P); ``state`` = (x (3 r,), C (m + 2 P,), w (P, 2)); ``tally`` = (largest
-    and least force ``k max(s, 0)`` (m,), largest ``|f| / (mu F_n)`` (P,), largest ``|w - w_rest|`` (P,), counts
-    (2,): steps with a slip, steps unresolved).
+    ``z_lin`` (n, m + 2 P + o): the stuck linear engagements, tangential motions and o outputs (cargo DOFs).
+    ``system`` = (predictor, engagement/motion modes, flexibility, receptance G, the outputs' modes (o, r) and
+    residual flexibility (o, m + 2 P)); ``law`` = (k (m,), k_t (P,), mu k_n (P,), sliders' rest (2 P,), m, P);
+    ``state`` = (x (3 r,), C (m + 2 P,), w (P, 2)); ``tally`` = (largest and least force ``k max(s, 0)`` (m,),
+    largest ``|f| / (mu F_n)`` (P,), largest ``|w - w_rest|`` (P,), counts (2,): steps with a slip, steps
+    unresolved; largest ``|output|`` (o,), steps each element's engagement is below 0 (m,)).
     """
-    predictor, modes, flexibility, G = system
+    predictor, modes, flexibility, G, output_modes, output_residual = system
     k, kt, mu_kn, rest, m, P = law
     x, C, w = state
-    force_max, force_min, utilisation, slip_max, counts = tally
-    r = x.size // 3
+    force_max, force_min, utilisation, slip_max, counts, output_max, negative = tally
+    r, n_z = x.size // 3, m + 2 * P
     w_new, slipped = np.empty((P, 2)), np.zeros(P, dtype=np.bool_)
     for i in range(z_lin.shape[0] - 1):
         q_p = predictor @ x
-        z, C_new, solved = _solve_step(z_lin[i + 1] + modes @ q_p, C, w, G, law, tol, w_new, slipped)
+        z, C_new, solved = _solve_step(z_lin[i + 1, :n_z] + modes @ q_p, C, w, G, law, tol, w_new, slipped)
         C[:] = C_new
         w[:, :] = w_new
         if np.any(slipped):
@@ -130,7 +132,12 @@ def march_friction_block(
         x[r : 2 * r] = x[r : 2 * r] + 0.5 * dt * (x[2 * r :] + a)
         x[:r] = q
         x[2 * r :] = a
+        y = z_lin[i + 1, n_z:] + output_modes @ q + output_residual @ C
+        for o in range(y.size):
+            output_max[o] = max(output_max[o], abs(y[o]))
         for e in range(m):
+            if z[e] < 0.0:
+                negative[e] += 1
             f = k[e] * max(z[e], 0.0)
             force_max[e] = max(force_max[e], f)
             force_min[e] = min(force_min[e], f)
