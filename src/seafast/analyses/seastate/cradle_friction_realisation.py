@@ -1,0 +1,138 @@
+"""One random-phase realisation of a sea state off head seas for the 3-D cargo on frictional pads: nonlinear maxima.
+
+The frictional counterpart of :mod:`seafast.analyses.seastate.cradle_realisation`'s nonlinear model, for the same
+realisation (its plan's grid, phases, amplitude factors and, short-crested, directions: the same seed and index give
+the same sea). The linear system is the cargo with every element bilateral and the pads stuck at their sliders' rest
+(:mod:`seafast.analyses.seastate.cradle_stuck_transfer`); its record (engagements, pads' tangential motions, lateral
+displacement at the saddles) is synthesised on the coarse grid from its transfer functions and spline-interpolated
+to the fine steps, as the frictionless windows' is; the frictional correction is marched over the whole record
+(:func:`~seafast.solvers.cradle_friction_record.march_friction_record`: sliders persist after a slip, so there are
+no windows), from the correction at rest and the sliders relaxed in still water, at the frictionless plan's fine
+step with the frictional march's modal cutoff. The Monte Carlo does not call it yet: its cradle rows are frictionless.
+
+Units: SI (forces [N], displacements [m], time [s]).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.interpolate import CubicSpline
+
+from seafast.analyses.seastate.cradle_extremes import element_groups
+from seafast.analyses.seastate.cradle_realisation import CradleRealisationPlan
+from seafast.analyses.seastate.cradle_stuck_transfer import StuckTransfer
+from seafast.analyses.seastate.realisation import drawn_transfer
+from seafast.analyses.seastate.synthesis import amplitude_factors, interpolate_transfer, realisation_phases, synthesise
+from seafast.solvers.cradle_dynamics import CradleDynamics
+from seafast.solvers.cradle_friction_march import friction_stepper
+from seafast.solvers.cradle_friction_record import march_friction_record
+from seafast.solvers.cradle_march import STEPS_PER_MODE_PERIOD_INV, CradleStepper
+from seafast.solvers.pad_tangential import PadTangents
+
+__all__ = ["FrictionalRealisationPlan", "evaluate_frictional_cradle_realisation", "frictional_realisation_plan"]
+
+STEP_TOLERANCE = 1e-11
+"""A step's problem is solved below this times the largest stuck linear transfer function times the largest
+component amplitude (the periodic march's ``step_tolerance``) [-]."""
+
+
+@dataclass(frozen=True)
+class FrictionalRealisationPlan:
+    """What a frictional realisation needs beside its :class:`CradleRealisationPlan` (picklable).
+
+    Attributes
+    ----------
+    still_m
+        (m + 2 P + n_s,) the stuck linear still water [m].
+    transfer
+        (n_f, m + 2 P + n_s) the stuck transfer functions at the grid's components [m/m]; short-crested
+        (n_d, n_f, ...), one block per direction.
+    tangents, stepper
+        The pads' tangential kinematics and friction (sliders' rest in still water); the frictional step at the fine
+        step, every cargo DOF an output.
+    lateral_dofs
+        (n_s,) the lateral DOF at each saddle.
+    tolerance_m
+        The per-step problem's tolerance [m].
+    """
+
+    still_m: NDArray[np.float64]
+    transfer: NDArray[np.complex128]
+    tangents: PadTangents
+    stepper: CradleStepper
+    lateral_dofs: NDArray[np.intp]
+    tolerance_m: float
+
+
+def frictional_realisation_plan(
+    plan: CradleRealisationPlan,
+    dynamics: CradleDynamics,
+    tangents: PadTangents,
+    stuck_at: Callable[[NDArray[np.float64]], Sequence[StuckTransfer]],
+    omega_rad_s: NDArray[np.float64],
+) -> FrictionalRealisationPlan:
+    """The frictional part of ``plan``: the stuck transfer functions ``stuck_at`` (one per direction, as ``plan``'s)
+    computed at ``omega_rad_s`` and interpolated to the grid's components, and the frictional step at ``plan``'s
+    fine step."""
+    held = stuck_at(np.asarray(omega_rad_s, dtype=float))
+    per = [interpolate_transfer(omega_rad_s, s.transfer_m, plan.grid.omega_rad_s) for s in held]
+    transfer = np.stack(per) if plan.direction_weights is not None else per[0]
+    dt = plan.grid.time_step_s / plan.ratio
+    stepper = friction_stepper(dynamics, tangents, dt, STEPS_PER_MODE_PERIOD_INV * 2.0 * np.pi / dt)
+    largest = float(np.max(np.abs(transfer))) * float(np.max(plan.grid.amplitude_m))
+    return FrictionalRealisationPlan(
+        held[0].still_m, np.ascontiguousarray(transfer), tangents, stepper, held[0].lateral_dofs, STEP_TOLERANCE * max(largest, 1e-12)
+    )
+
+
+def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction: FrictionalRealisationPlan, index: int) -> dict[str, Any]:
+    """The nonlinear cradle extremes of realisation ``index`` on frictional pads.
+
+    Returns
+    -------
+    dict
+        ``{"nonlinear": {...}, "solved", "slipped_fraction", "seconds"}``: the frictionless nonlinear model's
+        quantities (:data:`~seafast.analyses.seastate.cradle_realisation.CRADLE_QUANTITIES`, pad lifted and lashing
+        slack fractions) and ``pad_friction_utilisation`` [-], ``pad_slip_m`` [m] (each pad's largest ``|f| /
+        (mu F_n)`` and slider displacement from rest, the largest over the pads).
+    """
+    t0 = time.perf_counter()
+    grid = plan.grid
+    phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
+    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
+    transfer = drawn_transfer(friction.transfer, plan.direction_weights, plan.seed, index)
+    totals = friction.still_m + synthesise(grid, phases, transfer, factors)
+    t = np.arange(grid.samples + 1) * grid.time_step_s
+    spline = CubicSpline(t, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic")
+    dt_f = grid.time_step_s / plan.ratio
+
+    def linear_at(first: int, count: int) -> NDArray[np.float64]:
+        return np.asarray(spline((first + np.arange(count)) * dt_f), dtype=float)
+
+    steps = grid.samples * plan.ratio - 1
+    record = march_friction_record(friction.stepper, friction.tangents, linear_at, steps, friction.tolerance_m, 0, friction.lateral_dofs)
+    pads, stoppers, lashings = element_groups(plan.pad_count, plan.stopper_count, plan.element_count)
+    low = record.min_force_N[lashings]
+    nonlinear = {
+        "F_pad_N": float(np.max(record.max_force_N[pads], initial=0.0)),
+        "F_stopper_N": float(np.max(record.max_force_N[stoppers], initial=0.0)),
+        "lashing_tension_max_N": float(np.max(record.max_force_N[lashings], initial=0.0)),
+        "lashing_tension_min_N": float(np.min(low)) if low.size else 0.0,
+        "transverse_slip_m": float(np.max(record.max_abs_output, initial=0.0)),
+        "pad_lifted_fraction": float(np.max(record.negative_fraction[pads], initial=0.0)),
+        "lashing_slack_fraction": float(np.max(record.negative_fraction[lashings], initial=0.0)),
+        "pad_friction_utilisation": float(np.max(record.friction_utilisation, initial=0.0)),
+        "pad_slip_m": float(np.max(record.max_slip_m, initial=0.0)),
+    }
+    return {
+        "nonlinear": nonlinear,
+        "solved": record.solved,
+        "slipped_fraction": record.slipped_steps / float(steps),
+        "seconds": time.perf_counter() - t0,
+    }
