@@ -76,3 +76,50 @@ def test_friction_lowers_the_pad_force_and_holds_the_cargo_in_the_same_sea():
     assert frictional["solved"] and 0.0 < frictional["slipped_fraction"] < 1.0
     assert ours["pad_friction_utilisation"] == pytest.approx(1.0, abs=1e-9)  # some pad slips: on its cone
     assert ours["F_pad_N"] < frictionless["F_pad_N"] and ours["transverse_slip_m"] < frictionless["transverse_slip_m"]
+
+
+MC_BEAM = {
+    "model.element_length_m": 4.0,
+    "sea_state.peak_period_s": 10.0,
+    "sea_state.heading_deg": 90.0,
+    "sea_state.significant_height_m": 7.0,
+    "sea_state.duration_s": 60.0,
+    "sea_state.realisations": 3,
+}
+
+
+@pytest.mark.slow
+def test_the_monte_carlo_on_frictional_pads_stores_the_frictional_realisations_and_their_statistics(tmp_path):
+    """With the key the records' nonlinear cradle part is the frictional realisation's (a pure function of the plans and
+    the index), its statistics gain the friction's most probable maxima, the linear part and statistics stay
+    frictionless; with 0 there is no frictional plan."""
+    import json
+
+    from seafast.analyses.seastate.cradle_friction_realisation import case_frictional_plan
+    from seafast.analyses.seastate.extremes import most_probable_maximum
+    from seafast.analyses.seastate.monte_carlo import STORE_DIRECTORY, run_monte_carlo
+    from seafast.output.seastate_cradle import monte_carlo_cradle_columns
+    from seafast.parallel.store import DICT_RECORDS
+
+    case = load_case(overrides={**MC_BEAM, "seafastening.friction_coefficient": 0.2})
+    result = run_monte_carlo(case, tmp_path, workers=1, progress=False)
+    lines = (tmp_path / STORE_DIRECTORY / DICT_RECORDS.records).read_text(encoding="utf-8").splitlines()
+    records = sorted((json.loads(line)["record"] for line in lines), key=lambda r: r["index"])
+    plan = build_cradle_plan(case)
+    assert plan is not None
+    friction = case_frictional_plan(case, plan)
+    assert friction is not None and result.cradle is not None
+    for r in records:
+        again = evaluate_frictional_cradle_realisation(plan, friction, r["index"])
+        assert r["cradle"]["nonlinear"] == pytest.approx(again["nonlinear"], rel=1e-12, abs=1e-15)
+        assert r["cradle"]["linear"] == pytest.approx(evaluate_cradle_realisation(plan, r["index"])["linear"], rel=1e-12, abs=1e-15)
+        assert r["cradle"]["solved"] and "pad_slip_m" not in r["cradle"]["linear"]
+    linear, nonlinear = result.cradle
+    assert "pad_slip_m" not in linear.mpm and "pad_friction_utilisation" not in linear.mpm
+    slips = [r["cradle"]["nonlinear"]["pad_slip_m"] for r in records]
+    np.testing.assert_array_equal(nonlinear.extremes["pad_slip_m"], slips)
+    assert nonlinear.mpm["pad_slip_m"] == most_probable_maximum(np.array(slips), seed=case.sea_state.seed + 100 + 6).value
+    columns = monte_carlo_cradle_columns(nonlinear)
+    assert columns["pad_friction_utilisation"] == pytest.approx(1.0, abs=1e-9) and columns["pad_slip_m"] > 0.0
+    assert "pad_slip_m" not in monte_carlo_cradle_columns(linear)
+    assert case_frictional_plan(load_case(overrides={**MC_BEAM, "seafastening.friction_coefficient": 0.0}), plan) is None

@@ -8,7 +8,8 @@ displacement at the saddles) is synthesised on the coarse grid from its transfer
 to the fine steps, as the frictionless windows' is; the frictional correction is marched over the whole record
 (:func:`~seafast.solvers.cradle_friction_record.march_friction_record`: sliders persist after a slip, so there are
 no windows), from the correction at rest and the sliders relaxed in still water, at the frictionless plan's fine
-step with the frictional march's modal cutoff. The Monte Carlo does not call it yet: its cradle rows are frictionless.
+step with the frictional march's modal cutoff. The Monte Carlo (:mod:`seafast.analyses.seastate.monte_carlo`) takes its
+nonlinear cradle quantities from here when ``seafastening.friction_coefficient`` is above 0.
 
 Units: SI (forces [N], displacements [m], time [s]).
 """
@@ -26,16 +27,28 @@ from scipy.interpolate import CubicSpline
 
 from seafast.analyses.seastate.cradle_extremes import element_groups
 from seafast.analyses.seastate.cradle_realisation import CradleRealisationPlan
-from seafast.analyses.seastate.cradle_stuck_transfer import StuckTransfer
+from seafast.analyses.seastate.cradle_stuck_transfer import StuckTransfer, stuck_transfer_functions
 from seafast.analyses.seastate.realisation import drawn_transfer
 from seafast.analyses.seastate.synthesis import amplitude_factors, interpolate_transfer, realisation_phases, synthesise
+from seafast.config.schema import Case
 from seafast.solvers.cradle_dynamics import CradleDynamics
+from seafast.solvers.cradle_friction import relaxed_at
 from seafast.solvers.cradle_friction_march import friction_stepper
 from seafast.solvers.cradle_friction_record import march_friction_record
 from seafast.solvers.cradle_march import STEPS_PER_MODE_PERIOD_INV, CradleStepper
-from seafast.solvers.pad_tangential import PadTangents
+from seafast.solvers.pad_tangential import PadTangents, pad_tangents
 
-__all__ = ["FrictionalRealisationPlan", "evaluate_frictional_cradle_realisation", "frictional_realisation_plan"]
+__all__ = [
+    "FRICTION_QUANTITIES",
+    "FrictionalRealisationPlan",
+    "case_frictional_plan",
+    "evaluate_frictional_cradle_realisation",
+    "frictional_realisation_plan",
+]
+
+FRICTION_QUANTITIES: tuple[str, ...] = ("pad_friction_utilisation", "pad_slip_m")
+"""Per frictional realisation, beside the nonlinear cradle quantities: the largest ``|f| / (mu F_n)`` [-] and slip of a
+pad from rest [m]."""
 
 STEP_TOLERANCE = 1e-11
 """A step's problem is solved below this times the largest stuck linear transfer function times the largest
@@ -89,6 +102,36 @@ def frictional_realisation_plan(
     return FrictionalRealisationPlan(
         held[0].still_m, np.ascontiguousarray(transfer), tangents, stepper, held[0].lateral_dofs, STEP_TOLERANCE * max(largest, 1e-12)
     )
+
+
+def case_frictional_plan(case: Case, plan: CradleRealisationPlan) -> FrictionalRealisationPlan | None:
+    """The frictional part of the case's cradle realisations (``plan``: :func:`~seafast.analyses.seastate.monte_carlo.build_cradle_plan`'s),
+    or None when ``seafastening.friction_coefficient`` is unset or 0 (frictionless pads).
+
+    The pads' friction as ``seafast run``'s (:func:`~seafast.analyses.cradle_run.pad_friction_of_case`), the sliders
+    relaxed in the still water, the stuck transfer functions at ``plan``'s transfer step over the spectrum's band.
+    """
+    from seafast.analyses.cradle_run import pad_friction_of_case
+    from seafast.analyses.seastate.cradle_transfer import cradle_sea_model, cradle_unit_excitations
+    from seafast.analyses.seastate.directional_transfer import sea_state_roll_damping, sea_state_transfer
+    from seafast.analyses.seastate.spectrum import sea_state_spectrum
+    from seafast.model.from_case import build_model
+
+    friction = pad_friction_of_case(case)
+    if friction is None or float(friction.friction_coefficient) == 0.0:
+        return None
+    model, spectrum = build_model(case), sea_state_spectrum(case)
+    roll, sea = sea_state_roll_damping(case, spectrum), cradle_sea_model(case, model)
+    lo, hi = float(spectrum.omega_rad_s[0]), float(spectrum.omega_rad_s[-1])
+    omega = np.linspace(lo, hi, max(int(np.ceil((hi - lo) / plan.settings.transfer_step_rad_s)) + 1, 8))
+    still = cradle_unit_excitations(sea, sea_state_transfer(case, model, omega[:1], roll).per_direction[0])[0].still_water()
+    dynamics = sea.dynamics
+    tangents = relaxed_at(pad_tangents(dynamics.problem, friction, dynamics.deck_x_m, dynamics.gravity_m_per_s2), dynamics, still)
+
+    def stuck_at(w: NDArray[np.float64]) -> list[StuckTransfer]:
+        return [stuck_transfer_functions(sea, tf, tangents) for tf in sea_state_transfer(case, model, w, roll).per_direction]
+
+    return frictional_realisation_plan(plan, dynamics, tangents, stuck_at, omega)
 
 
 def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction: FrictionalRealisationPlan, index: int) -> dict[str, Any]:

@@ -8,7 +8,7 @@ amplitude (:func:`~seafast.analyses.seastate.cradle_transfer.cradle_unit_excitat
 cargo's lateral displacement at each saddle. A random sea's stuck linear record is their superposition (the
 synthesis of :mod:`seafast.analyses.seastate.synthesis`), the record
 :func:`~seafast.solvers.cradle_friction_record.march_friction_record` marches the frictional correction along. The
-Monte Carlo does not use them yet: its cradle rows are frictionless.
+Monte Carlo's frictional realisations (:mod:`seafast.analyses.seastate.cradle_friction_realisation`) synthesise it.
 
 Convention as the vertical plane: ``x(t) = Re(X exp(i omega t))`` per metre of ``zeta(t) = zeta_a cos(omega t)``.
 Units: engagements and motions [m/m].
