@@ -51,8 +51,8 @@ FRICTION_QUANTITIES: tuple[str, ...] = ("pad_friction_utilisation", "pad_slip_m"
 pad from rest [m]."""
 
 STEP_TOLERANCE = 1e-11
-"""A step's problem is solved below this times the largest stuck linear transfer function times the largest
-component amplitude (the periodic march's ``step_tolerance``) [-]."""
+"""A step's problem is solved below this times the realisation's largest stuck linear engagement or motion from the
+still water (the periodic march's ``step_tolerance`` on its largest linear amplitude) [-]."""
 
 
 @dataclass(frozen=True)
@@ -71,8 +71,6 @@ class FrictionalRealisationPlan:
         step, every cargo DOF an output.
     lateral_dofs
         (n_s,) the lateral DOF at each saddle.
-    tolerance_m
-        The per-step problem's tolerance [m].
     """
 
     still_m: NDArray[np.float64]
@@ -80,7 +78,6 @@ class FrictionalRealisationPlan:
     tangents: PadTangents
     stepper: CradleStepper
     lateral_dofs: NDArray[np.intp]
-    tolerance_m: float
 
 
 def frictional_realisation_plan(
@@ -98,10 +95,7 @@ def frictional_realisation_plan(
     transfer = np.stack(per) if plan.direction_weights is not None else per[0]
     dt = plan.grid.time_step_s / plan.ratio
     stepper = friction_stepper(dynamics, tangents, dt, STEPS_PER_MODE_PERIOD_INV * 2.0 * np.pi / dt)
-    largest = float(np.max(np.abs(transfer))) * float(np.max(plan.grid.amplitude_m))
-    return FrictionalRealisationPlan(
-        held[0].still_m, np.ascontiguousarray(transfer), tangents, stepper, held[0].lateral_dofs, STEP_TOLERANCE * max(largest, 1e-12)
-    )
+    return FrictionalRealisationPlan(held[0].still_m, np.ascontiguousarray(transfer), tangents, stepper, held[0].lateral_dofs)
 
 
 def case_frictional_plan(case: Case, plan: CradleRealisationPlan) -> FrictionalRealisationPlan | None:
@@ -140,7 +134,7 @@ def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction
     Returns
     -------
     dict
-        ``{"nonlinear": {...}, "solved", "slipped_fraction", "seconds"}``: the frictionless nonlinear model's
+        ``{"nonlinear": {...}, "solved", "unresolved_steps", "slipped_fraction", "seconds"}``: the frictionless nonlinear model's
         quantities (:data:`~seafast.analyses.seastate.cradle_realisation.CRADLE_QUANTITIES`, pad lifted and lashing
         slack fractions) and ``pad_friction_utilisation`` [-], ``pad_slip_m`` [m] (each pad's largest ``|f| /
         (mu F_n)`` and slider displacement from rest, the largest over the pads).
@@ -150,7 +144,10 @@ def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction
     phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
     factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
     transfer = drawn_transfer(friction.transfer, plan.direction_weights, plan.seed, index)
-    totals = friction.still_m + synthesise(grid, phases, transfer, factors)
+    dynamic = synthesise(grid, phases, transfer, factors)
+    n_z = plan.element_count + 2 * friction.tangents.pad_count
+    tolerance = STEP_TOLERANCE * max(float(np.max(np.abs(dynamic[:, :n_z]))), 1e-12)
+    totals = friction.still_m + dynamic
     t = np.arange(grid.samples + 1) * grid.time_step_s
     spline = CubicSpline(t, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic")
     dt_f = grid.time_step_s / plan.ratio
@@ -159,7 +156,7 @@ def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction
         return np.asarray(spline((first + np.arange(count)) * dt_f), dtype=float)
 
     steps = grid.samples * plan.ratio - 1
-    record = march_friction_record(friction.stepper, friction.tangents, linear_at, steps, friction.tolerance_m, 0, friction.lateral_dofs)
+    record = march_friction_record(friction.stepper, friction.tangents, linear_at, steps, tolerance, 0, friction.lateral_dofs)
     pads, stoppers, lashings = element_groups(plan.pad_count, plan.stopper_count, plan.element_count)
     low = record.min_force_N[lashings]
     nonlinear = {
@@ -176,6 +173,7 @@ def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction
     return {
         "nonlinear": nonlinear,
         "solved": record.solved,
+        "unresolved_steps": record.unresolved_steps,
         "slipped_fraction": record.slipped_steps / float(steps),
         "seconds": time.perf_counter() - t0,
     }
