@@ -123,3 +123,22 @@ def test_the_monte_carlo_on_frictional_pads_stores_the_frictional_realisations_a
     assert columns["pad_friction_utilisation"] == pytest.approx(1.0, abs=1e-9) and columns["pad_slip_m"] > 0.0
     assert "pad_slip_m" not in monte_carlo_cradle_columns(linear)
     assert case_frictional_plan(load_case(overrides={**MC_BEAM, "seafastening.friction_coefficient": 0.0}), plan) is None
+
+
+@pytest.mark.slow
+def test_a_short_crested_sea_draws_the_same_directions_for_the_frictional_record():
+    """Short-crested (120 deg, s = 8) the frictional plan holds one block of stuck transfer functions per direction and a
+    realisation draws its components' directions as the frictionless one does: as mu -> 0 the same forces (1e-3)."""
+    from seafast.analyses.seastate.cradle_friction_realisation import case_frictional_plan
+
+    overrides = {**MC_BEAM, "sea_state.heading_deg": 120.0, "sea_state.spreading_exponent": 8.0}
+    case = load_case(overrides={**overrides, "seafastening.friction_coefficient": 1e-9})
+    plan = build_cradle_plan(case)
+    assert plan is not None and plan.direction_weights is not None
+    friction = case_frictional_plan(case, plan)
+    assert friction is not None and friction.transfer.shape[:2] == plan.transfer.shape[:2]
+    for index in (0, 1):
+        ours = evaluate_frictional_cradle_realisation(plan, friction, index)["nonlinear"]
+        theirs = evaluate_cradle_realisation(plan, index)["nonlinear"]
+        for q in ("F_pad_N", "lashing_tension_max_N", "transverse_slip_m"):
+            assert ours[q] == pytest.approx(theirs[q], rel=1e-3), (index, q)
