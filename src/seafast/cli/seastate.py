@@ -30,7 +30,8 @@ Outputs in DIR: seastate.csv (model,method,F_N,M_b_Nm,sigma_b_Pa,u_s_m,u_d_m,upl
 rows linear/spectral, linear/monte_carlo, nonlinear/monte_carlo, nonlinear/design_wave; maxima are most
 probable maxima over sea_state.duration_s, still water included; empty cells = not computed; off head seas
 also F_pad_N,F_stopper_N,lashing_tension_max_N,lashing_tension_min_N,transverse_slip_m after converged, and with
-seafastening.friction_coefficient > 0 the design-wave row on frictional pads with pad_friction_utilisation,pad_slip_m),
+seafastening.friction_coefficient > 0 the design-wave and nonlinear Monte Carlo rows on frictional pads with
+pad_friction_utilisation,pad_slip_m),
 seastate.nc, case.yaml and PNG figures. 'seafast report DIR' adds the sea-state section.
 """
 
@@ -82,7 +83,7 @@ def _cradle_rows(analysis: Any, rows: list[dict[str, Any]], say: Any) -> Any:
     pads = (
         ""
         if not cradle.design.frictional
-        else f", on frictional pads (mu = {cradle.design.frictional[0].friction_coefficient:g}; the linear spectral and Monte "
+        else f", on frictional pads (mu = {cradle.design.frictional[0].friction_coefficient:g}; the linear spectral and linear Monte "
         "Carlo cradle rows stay frictionless)"
     )
     say(

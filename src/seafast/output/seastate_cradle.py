@@ -68,15 +68,22 @@ CRADLE_QUANTITIES = {
 
 CRADLE_FRICTION_QUANTITIES = {
     "pad_friction_utilisation": (
-        "largest pad friction utilisation |f| / (mu F_n) over the cradle design waves (frictional pads; 1 where a pad slips)",
+        (
+            "largest pad friction utilisation |f| / (mu F_n) over the cradle design waves, or its most probable maximum "
+            "over the duration in the nonlinear Monte Carlo row (frictional pads; 1 where a pad slips)"
+        ),
         "1",
     ),
     "pad_slip_m": (
-        "largest slip of a pad, its slider's displacement from rest |w - w_rest|, over the cradle design waves (frictional pads)",
+        (
+            "largest slip of a pad, its slider's displacement from rest |w - w_rest|, over the cradle design waves, or its "
+            "most probable maximum over the duration in the nonlinear Monte Carlo row (frictional pads)"
+        ),
         "m",
     ),
 }
-"""The columns after the cradle columns on frictional pads (the design-wave row's alone): long name and unit."""
+"""The columns after the cradle columns on frictional pads (the design-wave and nonlinear Monte Carlo rows'): long name
+and unit."""
 
 
 def _has_friction(rows: Sequence[Mapping[str, Any]]) -> bool:
@@ -221,5 +228,9 @@ def cradle_coords(cradle: CradleSeaState) -> dict[str, xr.Variable]:
 
 def monte_carlo_cradle_columns(statistics: CradleStatistics | None) -> dict[str, float | None]:
     """The five cradle columns of a Monte Carlo row: one model's most probable extremes
-    (:class:`~seafast.analyses.seastate.cradle_statistics.CradleStatistics`), or empty cells (None) without them."""
-    return cradle_columns(None if statistics is None else statistics.mpm)
+    (:class:`~seafast.analyses.seastate.cradle_statistics.CradleStatistics`), or empty cells (None) without them; on
+    frictional pads the nonlinear model's friction columns (:data:`CRADLE_FRICTION_QUANTITIES`) too."""
+    columns = cradle_columns(None if statistics is None else statistics.mpm)
+    if statistics is not None:
+        columns.update({q: float(statistics.mpm[q]) for q in CRADLE_FRICTION_COLUMNS if q in statistics.mpm})
+    return columns

@@ -18,18 +18,29 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.cradle_friction_realisation import FRICTION_QUANTITIES
 from seafast.analyses.seastate.cradle_realisation import CRADLE_QUANTITIES, FRACTIONS
 from seafast.analyses.seastate.extremes import most_probable_maximum
 
 __all__ = ["CradleStatistics", "cradle_statistics", "cradle_statistics_variables"]
 
-_UNITS = {"F_pad_N": "N", "F_stopper_N": "N", "lashing_tension_max_N": "N", "lashing_tension_min_N": "N", "transverse_slip_m": "m"}
+_UNITS = {
+    "F_pad_N": "N",
+    "F_stopper_N": "N",
+    "lashing_tension_max_N": "N",
+    "lashing_tension_min_N": "N",
+    "transverse_slip_m": "m",
+    "pad_friction_utilisation": "1",
+    "pad_slip_m": "m",
+}
 _LONG = {
     "F_pad_N": "largest pad force over the saddles, sides and the duration (still water included)",
     "F_stopper_N": "largest side-stopper force over the duration (linear: k max(s, 0) of the linear motion across)",
     "lashing_tension_max_N": "largest lashing-wire tension over the duration (still water included)",
     "lashing_tension_min_N": "least lashing-wire tension over the duration (linear: negative where the wire would push)",
     "transverse_slip_m": "largest lateral displacement of the cargo relative to the deck at a saddle over the duration",
+    "pad_friction_utilisation": "largest pad friction utilisation |f| / (mu F_n) over the duration (frictional pads)",
+    "pad_slip_m": "largest slip of a pad from rest |w - w_rest| over the duration (frictional pads)",
 }
 
 
@@ -61,11 +72,13 @@ class CradleStatistics:
 
 
 def cradle_statistics(model: str, records: Sequence[Mapping[str, Any]], seed: int) -> CradleStatistics:
-    """The ``model`` statistics of the realisation records' ``cradle`` parts (:func:`evaluate_cradle_realisation`)."""
+    """The ``model`` statistics of the realisation records' ``cradle`` parts (:func:`evaluate_cradle_realisation`);
+    on frictional pads the nonlinear model's :data:`FRICTION_QUANTITIES` too, each a most probable maximum."""
     parts = [r.get("cradle") if "error" not in r else None for r in records]
-    extremes = {q: np.array([np.nan if p is None else p[model][q] for p in parts]) for q in CRADLE_QUANTITIES + FRACTIONS}
+    frictional = tuple(q for q in FRICTION_QUANTITIES if any(p is not None and q in p[model] for p in parts))
+    extremes = {q: np.array([np.nan if p is None else p[model][q] for p in parts]) for q in CRADLE_QUANTITIES + FRACTIONS + frictional}
     mpm, interval, method = {}, {}, {}
-    for i, q in enumerate(CRADLE_QUANTITIES):
+    for i, q in enumerate(CRADLE_QUANTITIES + frictional):
         least = q == "lashing_tension_min_N"
         e = most_probable_maximum(-extremes[q] if least else extremes[q], seed=seed + 100 + i)
         mpm[q] = -e.value if least else e.value
@@ -78,7 +91,8 @@ def cradle_statistics(model: str, records: Sequence[Mapping[str, Any]], seed: in
 def cradle_statistics_variables(statistics: Sequence[CradleStatistics]) -> dict[str, Any]:
     """seastate.nc's ``mc_cradle_*`` variables (dimensions ``model``, ``realisation``) of both models' statistics."""
     out: dict[str, Any] = {}
-    for q in CRADLE_QUANTITIES:
+    frictional = tuple(q for q in FRICTION_QUANTITIES if all(q in s.mpm for s in statistics))
+    for q in CRADLE_QUANTITIES + frictional:
         u, ln = _UNITS[q], _LONG[q]
         out[f"mc_cradle_{q}"] = (
             ("model", "realisation"),

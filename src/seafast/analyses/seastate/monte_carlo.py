@@ -37,6 +37,11 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from seafast.analyses.seastate.cradle_friction_realisation import (
+    FrictionalRealisationPlan,
+    case_frictional_plan,
+    evaluate_frictional_cradle_realisation,
+)
 from seafast.analyses.seastate.cradle_realisation import CradleRealisationPlan, evaluate_cradle_realisation
 from seafast.analyses.seastate.cradle_statistics import CradleStatistics, cradle_statistics, cradle_statistics_variables
 from seafast.analyses.seastate.extremes import CONFIDENCE_LEVEL, MPMEstimate, most_probable_maximum
@@ -74,6 +79,7 @@ STORE_DIRECTORY = "monte_carlo"
 
 _NUMERICS_VERSION = 1  # bump when a change alters stored realisations (the fingerprint then refuses old stores)
 _CRADLE_VERSION = 1  # off head seas the records hold the cradle extremes: stores without them are another run
+_CRADLE_FRICTION_VERSION = 1  # on frictional pads the nonlinear cradle extremes are the frictional march's
 
 _UNITS = {"F_N": "N", "M_b_Nm": "N m", "sigma_b_Pa": "Pa", "u_s_m": "m", "u_d_m": "m"}
 _LONG = {
@@ -366,7 +372,7 @@ def build_cradle_plan(case: Case) -> CradleRealisationPlan | None:
     return cradle_realisation_plan(case, spectrum, per, sea.dynamics, cradle_still_water(sea), direction_weights=weights)
 
 
-def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan, cradle: bool = False) -> str:
+def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan, cradle: bool = False, friction: bool = False) -> str:
     """Identity of a run's realisations.
 
     The case without the realisation count and name, the settings, and the plan's amplitudes and
@@ -380,8 +386,10 @@ def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan
         sea.pop("heading_deg", None)
         sea.pop("spreading_exponent", None)
     data.pop("name", None)
-    identity = {"case": data, "settings": settings.__dict__, "numerics": _NUMERICS_VERSION} | (
-        {"cradle": _CRADLE_VERSION} if cradle else {}
+    identity = (
+        {"case": data, "settings": settings.__dict__, "numerics": _NUMERICS_VERSION}
+        | ({"cradle": _CRADLE_VERSION} if cradle else {})
+        | ({"cradle_friction": _CRADLE_FRICTION_VERSION} if friction else {})
     )
     blob = json.dumps(identity, sort_keys=True, default=str)
     digest = hashlib.sha256(blob.encode("utf-8"))
@@ -391,10 +399,12 @@ def _fingerprint(case: Case, settings: MonteCarloSettings, plan: RealisationPlan
     return digest.hexdigest()[:16]
 
 
-def _realisations(plans: tuple[RealisationPlan, CradleRealisationPlan | None], indices: list[int]) -> list[dict[str, Any]]:
-    """The records of a batch of realisations (off head seas with their ``cradle`` part); one that fails is a record
-    with its error text (the run goes on)."""
-    plan, cradle = plans
+def _realisations(
+    plans: tuple[RealisationPlan, CradleRealisationPlan | None, FrictionalRealisationPlan | None], indices: list[int]
+) -> list[dict[str, Any]]:
+    """The records of a batch of realisations (off head seas with their ``cradle`` part, its nonlinear model the
+    frictional march's on frictional pads); one that fails is a record with its error text (the run goes on)."""
+    plan, cradle, friction = plans
     records = []
     for index in indices:
         t0 = time.perf_counter()
@@ -402,6 +412,10 @@ def _realisations(plans: tuple[RealisationPlan, CradleRealisationPlan | None], i
             record = evaluate_realisation(plan, index)[0]
             if cradle is not None:
                 record["cradle"] = {k: v for k, v in evaluate_cradle_realisation(cradle, index).items() if k != "index"}
+                if friction is not None:  # the frictionless windows' nonlinear model replaced
+                    frictional = evaluate_frictional_cradle_realisation(cradle, friction, index)
+                    frictional["seconds"] += record["cradle"]["seconds"]
+                    record["cradle"].update(frictional)
             records.append(record)
         except Exception as exc:  # noqa: BLE001 - any failure of one realisation is recorded
             records.append({"index": int(index), "error": error_text(exc), "seconds": time.perf_counter() - t0})
@@ -482,8 +496,9 @@ def run_monte_carlo(
         the scheduler cannot be reached.
     """
     plan, cradle_plan = build_plan(case, settings), build_cradle_plan(case)
+    friction_plan = None if cradle_plan is None else case_frictional_plan(case, cradle_plan)
     n_r = int(case.sea_state.realisations)
-    fingerprint = _fingerprint(case, settings, plan, cradle_plan is not None)
+    fingerprint = _fingerprint(case, settings, plan, cradle_plan is not None, friction_plan is not None)
     described = plan.describe() | ({} if cradle_plan is None else cradle_plan.describe())
     manifest = {"case": case.name, "duration_s": plan.duration_s, "seed": plan.seed, "settings": described}
     seconds = np.full(n_r, np.nan)
@@ -494,7 +509,7 @@ def run_monte_carlo(
         bar = progress_reporter(n_r, reused, label=f"Monte Carlo {case.name}", unit="realisations", enabled=progress and bool(pending))
         try:
             batches = plan_batches(pending, execution.worker_count(), execution.batch_size)
-            for batch in map_batches(_realisations, (plan, cradle_plan), batches, execution):
+            for batch in map_batches(_realisations, (plan, cradle_plan, friction_plan), batches, execution):
                 bar.update(store.append(batch))
                 for record in batch:
                     if 0 <= int(record["index"]) < n_r:
