@@ -43,7 +43,13 @@ from seafast.fourier import harmonics_to_time, real_harmonics_to_time
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_dynamics import CradleDynamics
 from seafast.solvers.cradle_friction import relaxed_at, stuck_linear_solution
-from seafast.solvers.cradle_march import STEPS_PER_MODE_PERIOD_INV, SUBHARMONIC_ORDERS, CradleStepper, Periodicity
+from seafast.solvers.cradle_march import (
+    STEPS_PER_MODE_PERIOD_INV,
+    SUBHARMONIC_ORDERS,
+    CradleStepper,
+    Periodicity,
+    newmark_advance,
+)
 from seafast.solvers.pad_tangential import PadTangents, pad_tangents
 
 __all__ = ["FrictionMarchOptions", "FrictionalMarch", "friction_stepper", "march_cradle_friction"]
@@ -270,7 +276,7 @@ def _march_period(
 ) -> tuple[_Period, int]:
     """N steps from ``state`` = [x, C, w] (updated); the period's samples and the steps left unresolved."""
     x, C, w = state
-    N, n = z_s.shape[0], state[0].size // 3
+    N = z_s.shape[0]
     dt = stepper.dt
     A, F = stepper.engagement_modes, stepper.flexibility
     assert stepper.output_modes is not None and stepper.output_residual is not None
@@ -284,9 +290,7 @@ def _march_period(
         z, C, w, slipped, solved = problem.solve(z_p, C, w, scale)
         unresolved += not solved
         q = q_p - F @ C
-        a = (4.0 / dt**2) * (q - x[:n]) - (4.0 / dt) * x[n : 2 * n] - x[2 * n :]
-        v = x[n : 2 * n] + 0.5 * dt * (x[2 * n :] + a)
-        x = np.concatenate([q, v, a])
+        x = newmark_advance(x, q, dt)
         out.z[i], out.w[i], out.slipped[i] = z, w, slipped
         out.q[i] = stepper.output_modes @ q + stepper.output_residual @ C
     state[:] = [x, C, w]

@@ -48,6 +48,7 @@ __all__ = [
     "cradle_stepper",
     "march_cradle",
     "march_step",
+    "newmark_advance",
     "pivoting_correction_N",
 ]
 
@@ -286,7 +287,6 @@ def march_step(
     ``x`` = (eta, eta', eta'') of the modes kept and the corrected set of the step before. Returns the new state
     and corrected set, every element's engagement ``s`` [m] and the correction ``c`` [N] at the end of the step.
     """
-    n = x.size // 3
     dt = stepper.dt
     A, F, G, k = stepper.engagement_modes, stepper.flexibility, stepper.receptance, stepper.stiffness_N_per_m
     q_p = stepper.predictor @ x
@@ -297,9 +297,16 @@ def march_step(
         c, open_ = contact_correction_N(G, k, s_p, open_set, stepper.sign)
         q = q_p - F @ c
         s = s_next + A @ q - (G - A @ F) @ c
+    return newmark_advance(x, q, dt), open_, s, c
+
+
+def newmark_advance(x: NDArray[np.float64], q: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
+    """The state (q, q', q'') after a step of Newmark's average acceleration that ends at the displacements ``q``,
+    from ``x`` = (q, q', q'') at its start [modal units, per s, per s^2]."""
+    n = x.size // 3
     a = (4.0 / dt**2) * (q - x[:n]) - (4.0 / dt) * x[n : 2 * n] - x[2 * n :]
     v = x[n : 2 * n] + 0.5 * dt * (x[2 * n :] + a)
-    return np.concatenate([q, v, a]), open_, s, c
+    return np.concatenate([q, v, a])
 
 
 def _march_period(stepper: CradleStepper, s_lin: NDArray[np.float64], state: list[NDArray]) -> NDArray[np.float64]:
