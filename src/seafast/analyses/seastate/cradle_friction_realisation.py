@@ -23,13 +23,16 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import CubicSpline
 
-from seafast.analyses.seastate.cradle_extremes import element_groups
-from seafast.analyses.seastate.cradle_realisation import CradleRealisationPlan
+from seafast.analyses.seastate.cradle_realisation import (
+    CradleRealisationPlan,
+    fine_interpolant,
+    record_extremes,
+    record_fractions,
+    synthesised_record,
+)
 from seafast.analyses.seastate.cradle_stuck_transfer import StuckTransfer, stuck_transfer_functions
-from seafast.analyses.seastate.realisation import drawn_transfer
-from seafast.analyses.seastate.synthesis import amplitude_factors, interpolate_transfer, realisation_phases, synthesise
+from seafast.analyses.seastate.synthesis import interpolate_transfer
 from seafast.config.schema import Case
 from seafast.solvers.cradle_dynamics import CradleDynamics
 from seafast.solvers.cradle_friction import relaxed_at
@@ -140,33 +143,15 @@ def evaluate_frictional_cradle_realisation(plan: CradleRealisationPlan, friction
         (mu F_n)`` and slider displacement from rest, the largest over the pads).
     """
     t0 = time.perf_counter()
-    grid = plan.grid
-    phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
-    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
-    transfer = drawn_transfer(friction.transfer, plan.direction_weights, plan.seed, index)
-    dynamic = synthesise(grid, phases, transfer, factors)
+    dynamic = synthesised_record(plan, friction.transfer, index)[0]
     n_z = plan.element_count + 2 * friction.tangents.pad_count
     tolerance = STEP_TOLERANCE * max(float(np.max(np.abs(dynamic[:, :n_z]))), 1e-12)
-    totals = friction.still_m + dynamic
-    t = np.arange(grid.samples + 1) * grid.time_step_s
-    spline = CubicSpline(t, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic")
-    dt_f = grid.time_step_s / plan.ratio
-
-    def linear_at(first: int, count: int) -> NDArray[np.float64]:
-        return np.asarray(spline((first + np.arange(count)) * dt_f), dtype=float)
-
-    steps = grid.samples * plan.ratio - 1
+    linear_at = fine_interpolant(plan, friction.still_m + dynamic)
+    steps = plan.grid.samples * plan.ratio - 1
     record = march_friction_record(friction.stepper, friction.tangents, linear_at, steps, tolerance, 0, friction.lateral_dofs)
-    pads, stoppers, lashings = element_groups(plan.pad_count, plan.stopper_count, plan.element_count)
-    low = record.min_force_N[lashings]
     nonlinear = {
-        "F_pad_N": float(np.max(record.max_force_N[pads], initial=0.0)),
-        "F_stopper_N": float(np.max(record.max_force_N[stoppers], initial=0.0)),
-        "lashing_tension_max_N": float(np.max(record.max_force_N[lashings], initial=0.0)),
-        "lashing_tension_min_N": float(np.min(low)) if low.size else 0.0,
-        "transverse_slip_m": float(np.max(record.max_abs_output, initial=0.0)),
-        "pad_lifted_fraction": float(np.max(record.negative_fraction[pads], initial=0.0)),
-        "lashing_slack_fraction": float(np.max(record.negative_fraction[lashings], initial=0.0)),
+        **record_extremes(plan, record.max_force_N, record.min_force_N, record.max_abs_output),
+        **record_fractions(plan, record.negative_fraction),
         "pad_friction_utilisation": float(np.max(record.friction_utilisation, initial=0.0)),
         "pad_slip_m": float(np.max(record.max_slip_m, initial=0.0)),
     }

@@ -67,6 +67,10 @@ __all__ = [
     "CradleRealisationPlan",
     "cradle_realisation_plan",
     "evaluate_cradle_realisation",
+    "fine_interpolant",
+    "record_extremes",
+    "record_fractions",
+    "synthesised_record",
 ]
 
 CRADLE_QUANTITIES: tuple[str, ...] = ("F_pad_N", "F_stopper_N", "lashing_tension_max_N", "lashing_tension_min_N", "transverse_slip_m")
@@ -240,7 +244,7 @@ def cradle_realisation_plan(
     )
 
 
-def _extremes(plan: CradleRealisationPlan, force: NDArray, low: NDArray, slip: NDArray) -> dict[str, float]:
+def record_extremes(plan: CradleRealisationPlan, force: NDArray, low: NDArray, slip: NDArray) -> dict[str, float]:
     """The five quantities from per-element largest ``force`` and least ``low`` forces [N] and the largest ``slip`` [m]."""
     pads, stoppers, lashings = element_groups(plan.pad_count, plan.stopper_count, plan.element_count)
     return {
@@ -252,7 +256,7 @@ def _extremes(plan: CradleRealisationPlan, force: NDArray, low: NDArray, slip: N
     }
 
 
-def _fractions(plan: CradleRealisationPlan, per_element: NDArray) -> dict[str, float]:
+def record_fractions(plan: CradleRealisationPlan, per_element: NDArray) -> dict[str, float]:
     """The largest fraction of the record a pad is lifted and a lashing slack, from per-element fractions [-]."""
     pads, _, lashings = element_groups(plan.pad_count, plan.stopper_count, plan.element_count)
     return {
@@ -265,8 +269,8 @@ def _linear_record(plan: CradleRealisationPlan, s: NDArray, v: NDArray) -> dict[
     """The linear model's extremes and fractions from the coarse samples of ``s`` (n_t, m) and ``v`` (n_t, n_s)."""
     k = plan.stiffness_N_per_m
     force = np.where(plan.sign > 0, k * s, k * np.maximum(s, 0.0))
-    extremes = _extremes(plan, force.max(axis=0), force.min(axis=0), np.abs(v).max(axis=0))
-    return {**extremes, **_fractions(plan, np.mean(plan.sign * s < 0.0, axis=0))}
+    extremes = record_extremes(plan, force.max(axis=0), force.min(axis=0), np.abs(v).max(axis=0))
+    return {**extremes, **record_fractions(plan, np.mean(plan.sign * s < 0.0, axis=0))}
 
 
 @dataclass
@@ -293,18 +297,25 @@ class _Tally:
         self.solved = self.solved and out.solved
 
 
-def _windows(plan: CradleRealisationPlan, totals: NDArray, trigger: NDArray[np.bool_]) -> _Tally:
-    """March the correction in every window ``trigger`` opens (the module docstring, step 2)."""
-    n_tc, ratio, m = plan.grid.samples, plan.ratio, plan.element_count
-    splines: list[CubicSpline] = []  # built at the first window
-    dt_f = plan.grid.time_step_s / ratio
+def fine_interpolant(plan: CradleRealisationPlan, totals: NDArray[np.float64]) -> Callable[[int, int], NDArray[np.float64]]:
+    """``linear_at(first, count)``: the coarse record ``totals`` (n_tc, ...) at the fine steps ``first ..
+    first + count - 1`` (the fine step ``dt_c / ratio``), by periodic cubic splines built at the first call."""
+    splines: list[CubicSpline] = []
+    dt_f = plan.grid.time_step_s / plan.ratio
 
     def linear_at(first: int, count: int) -> NDArray[np.float64]:
         if not splines:
-            t = np.arange(n_tc + 1) * plan.grid.time_step_s
+            t = np.arange(plan.grid.samples + 1) * plan.grid.time_step_s
             splines.append(CubicSpline(t, np.vstack([totals, totals[:1]]), axis=0, bc_type="periodic"))
         return np.asarray(splines[0]((first + np.arange(count)) * dt_f), dtype=float)
 
+    return linear_at
+
+
+def _windows(plan: CradleRealisationPlan, totals: NDArray, trigger: NDArray[np.bool_]) -> _Tally:
+    """March the correction in every window ``trigger`` opens (the module docstring, step 2)."""
+    n_tc, ratio, m = plan.grid.samples, plan.ratio, plan.element_count
+    linear_at = fine_interpolant(plan, totals)  # splines built at the first window
     tally = _Tally(
         np.zeros(n_tc, dtype=bool), np.full(m, -np.inf), np.full(m, np.inf), np.zeros(totals.shape[1] - m), np.zeros(m, dtype=np.int64)
     )
@@ -328,6 +339,19 @@ def _windows(plan: CradleRealisationPlan, totals: NDArray, trigger: NDArray[np.b
     return tally
 
 
+def synthesised_record(
+    plan: CradleRealisationPlan, transfer: NDArray[np.complex128], index: int
+) -> tuple[NDArray[np.float64], NDArray[np.complex128], NDArray[np.float64]]:
+    """Realisation ``index``'s record of the quantities whose transfer functions are ``transfer`` (on ``plan``'s
+    components; short-crested one block per direction) on the coarse grid (n_tc, ...) [m], with the transfer functions
+    drawn for it (one direction per component) [m/m] and its amplitude factors [-]: the same sea whatever ``transfer``."""
+    grid = plan.grid
+    phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
+    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
+    drawn = drawn_transfer(transfer, plan.direction_weights, plan.seed, index)
+    return synthesise(grid, phases, drawn, factors), drawn, factors
+
+
 def evaluate_cradle_realisation(plan: CradleRealisationPlan, index: int, windowed: bool = True) -> dict[str, Any]:
     """The cradle extremes of realisation ``index``, linear and nonlinear.
 
@@ -342,10 +366,7 @@ def evaluate_cradle_realisation(plan: CradleRealisationPlan, index: int, windowe
     """
     t0 = time.perf_counter()
     grid, m = plan.grid, plan.element_count
-    phases = realisation_phases(plan.seed, index, grid.omega_rad_s.size)
-    factors = amplitude_factors(plan.seed, index, grid.omega_rad_s.size, plan.random_amplitudes)
-    transfer = drawn_transfer(plan.transfer, plan.direction_weights, plan.seed, index)
-    X = synthesise(grid, phases, transfer, factors)  # (n_tc, m + n_s)
+    X, transfer, factors = synthesised_record(plan, plan.transfer, index)  # (n_tc, m + n_s)
     totals = np.hstack([plan.engagement_static_m, plan.lateral_static_m]) + X
     s, v = totals[:, :m], totals[:, m:]
     linear = _linear_record(plan, s, v)
@@ -360,8 +381,8 @@ def evaluate_cradle_realisation(plan: CradleRealisationPlan, index: int, windowe
         tally.force_min = np.minimum(tally.force_min, force_free.min(axis=0))
         tally.slip_max = np.maximum(tally.slip_max, np.abs(v[free]).max(axis=0))
     nonlinear = {
-        **_extremes(plan, tally.force_max, tally.force_min, tally.slip_max),
-        **_fractions(plan, tally.corrected_steps / float(grid.samples * plan.ratio)),
+        **record_extremes(plan, tally.force_max, tally.force_min, tally.slip_max),
+        **record_fractions(plan, tally.corrected_steps / float(grid.samples * plan.ratio)),
     }
     return {
         "index": int(index),
