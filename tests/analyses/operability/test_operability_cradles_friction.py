@@ -6,7 +6,6 @@ converge flagged, and without the key, with mu = 0 or in head seas ``operability
 from __future__ import annotations
 
 import csv
-import dataclasses
 import logging
 import math
 from pathlib import Path
@@ -15,6 +14,7 @@ import pytest
 
 import seafast.analyses.operability.allowable as allowable_module
 import seafast.analyses.operability.cradle as cradle_module
+from frictional_stand_in import not_converging
 from round_off import assert_same_table
 from seafast.analyses.operability.allowable import OperabilitySettings, allowable_sea_states
 from seafast.analyses.operability.cradle import (
@@ -26,12 +26,11 @@ from seafast.analyses.operability.cradle import (
 )
 from seafast.analyses.operability.family import analysis_at, rescaled, sea_state_family
 from seafast.analyses.seastate.cradle_design_wave import cradle_design_waves
-from seafast.analyses.seastate.cradle_friction_wave import DesignWaveFriction, design_wave_friction, solve_frictional_design_wave
+from seafast.analyses.seastate.cradle_friction_wave import DesignWaveFriction, design_wave_friction
 from seafast.cli import main
 from seafast.config import load_case
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_friction import FrictionHBMOptions
-from seafast.solvers.outcome import SolverOutcome
 
 DATA = Path(__file__).parent / "data"
 PAD_LIMIT_N = 5.0e6
@@ -153,22 +152,10 @@ def test_the_led_search_answers_with_the_value_s_root_whatever_the_proxy():
     assert not ok and math.isnan(root)  # a reading that does not converge: flagged, never an answer
 
 
-def _not_converging(residual: float):
-    """A stand-in for the frictional solve: the mu = 0 answer reported ``NOT_CONVERGED`` with ``residual``."""
-
-    def solve(dynamics, excitation, friction):
-        zero = DesignWaveFriction(PadFriction(0.0), friction.options)
-        response = solve_frictional_design_wave(dynamics, excitation, zero)
-        cradle = dataclasses.replace(response.cradle, outcome=SolverOutcome.NOT_CONVERGED, residual=residual)
-        return dataclasses.replace(response, cradle=cradle)
-
-    return solve
-
-
 def test_a_frictional_wave_that_does_not_converge_flags_the_point(monkeypatch, caplog):
     """Every frictional solve stood in for by one that says it did not converge: the point is ``not_converged``, its
     nonlinear allowable Hs and the pad limit's NaN (never the stand-in's numbers), warned of; the linear ones stand."""
-    monkeypatch.setattr(cradle_module, "solve_frictional_design_wave", _not_converging(3e-3))
+    monkeypatch.setattr(cradle_module, "solve_frictional_design_wave", not_converging(3e-3))
     with caplog.at_level(logging.WARNING):
         p = allowable_sea_states(load_case(None, ROUGH), [10.0]).points[0]
     assert not p.converged and p.governing_nonlinear == "not_converged"

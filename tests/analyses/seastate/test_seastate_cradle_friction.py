@@ -10,13 +10,13 @@ converge flags the row with its residual; without the key, with mu = 0 or in hea
 from __future__ import annotations
 
 import csv
-import dataclasses
 
 import numpy as np
 import pytest
 import xarray as xr
 
 import seafast
+from frictional_stand_in import not_converging
 from seafast.analyses.seastate import cradle_friction_wave
 from seafast.analyses.seastate.cradle_design_wave import cradle_design_waves, cradle_sea_state, design_wave_excitation
 from seafast.analyses.seastate.cradle_extremes import CRADLE_COLUMNS, element_groups
@@ -30,7 +30,6 @@ from seafast.analyses.seastate.spectral import SEASTATE_COLUMNS, spectral_analys
 from seafast.cli import main
 from seafast.model.pad_friction import PadFriction
 from seafast.solvers.cradle_friction import FrictionHBMOptions, solve_cradle_friction_hbm
-from seafast.solvers.outcome import SolverOutcome
 
 BEAM = {"sea_state.heading_deg": 90.0}
 MU = 0.2
@@ -177,25 +176,13 @@ def test_a_small_friction_moves_each_force_by_no_more_than_the_friction_availabl
         assert np.max(change[: r0.cradle.pad_count]) > 0.5 * bound, wave.quantity
 
 
-def _not_converging(residual: float):
-    """A stand-in for the frictional solve: the mu = 0 answer reported ``NOT_CONVERGED`` with ``residual``."""
-
-    def solve(dynamics, excitation, friction):
-        zero = DesignWaveFriction(PadFriction(0.0), friction.options)
-        response = solve_frictional_design_wave(dynamics, excitation, zero)
-        cradle = dataclasses.replace(response.cradle, outcome=SolverOutcome.NOT_CONVERGED, residual=residual)
-        return dataclasses.replace(response, cradle=cradle)
-
-    return solve
-
-
 def test_a_frictional_wave_that_does_not_converge_flags_the_row_and_the_study_carries_on(monkeypatch, tmp_path, capsys):
     """Every frictional solve stood in for by one that says it did not converge (residual 3e-3): seastate.csv keeps the
     row's numbers, flags it converged=false, the command warns with the residual and exits 3; the friction columns
     follow the cradle columns, filled in the design-wave row alone; seastate.nc labels the waves' friction."""
     from seafast.analyses.seastate import cradle_design_wave
 
-    monkeypatch.setattr(cradle_design_wave, "solve_frictional_design_wave", _not_converging(3e-3))
+    monkeypatch.setattr(cradle_design_wave, "solve_frictional_design_wave", not_converging(3e-3))
     out = tmp_path / "mu"
     sets = ["--set", "sea_state.heading_deg=90", "--set", f"seafastening.friction_coefficient={MU}", "--set", f"solver.harmonics={H}"]
     assert main(["seastate", "-o", str(out), "--no-monte-carlo", "--no-plots", "-q", *sets]) == 3
